@@ -1,0 +1,38 @@
+# meridian_warnings(target): the project's warning set, private to the target.
+# -Wno-restrict: GCC 12 reports false positives inside std::string's
+# operator+ at -O2 (GCC bug 105329).
+function(meridian_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+    -Wno-sign-conversion $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>
+    $<$<BOOL:${MERIDIAN_WERROR}>:-Werror>)
+endfunction()
+
+# meridian_add_module(name SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Creates library target meridian_<name>, alias and export name Meridian::<name>.
+function(meridian_add_module name)
+  cmake_parse_arguments(M "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  set(t meridian_${name})
+  add_library(${t} ${M_SOURCES})
+  add_library(Meridian::${name} ALIAS ${t})
+  set_target_properties(${t} PROPERTIES EXPORT_NAME ${name} POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(${t} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_compile_features(${t} PUBLIC cxx_std_20)
+  target_link_libraries(${t} PUBLIC ${M_PUBLIC_DEPS} PRIVATE ${M_PRIVATE_DEPS})
+  meridian_warnings(${t})
+  set_property(GLOBAL APPEND PROPERTY MERIDIAN_MODULES ${t})
+endfunction()
+
+# meridian_add_test(name SOURCES ... LIBS ...): one GoogleTest executable,
+# each test case registered with CTest.
+function(meridian_add_test name)
+  cmake_parse_arguments(T "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${T_SOURCES})
+  target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main GTest::gmock)
+  meridian_warnings(${name})
+  target_compile_definitions(${name} PRIVATE
+    MERIDIAN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    MERIDIAN_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
+endfunction()
