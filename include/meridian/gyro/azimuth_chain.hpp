@@ -1,0 +1,47 @@
+#pragma once
+/// \file azimuth_chain.hpp
+/// From N_G to a grid azimuth (spec §6), with σ propagated at each step.
+///
+///   A_G = r − N_G                 gyro azimuth
+///   A   = A_G + E                 astronomic azimuth
+///   α   = A − η·tan φ             geodetic azimuth (Laplace), when η is known
+///   T   = α − γ (+ δ)             grid azimuth of the chord (δ when the target is known)
+///
+/// Angles in radians; azimuths clockwise from north, normalised to [0, 2π).
+/// Errors of A_G, E and η are independent; γ and δ are exact.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meridian/gyro/instrument.hpp"
+
+namespace meridian::gyro {
+
+struct AzimuthChainInput {
+  /// A_G = r − N_G with σ (from the pointing and N_G), e.g. the mean of
+  /// several determinations (see gyro_azimuth() in determination.hpp).
+  Uncertain gyro_azimuth_rad;
+  Uncertain instrument_constant_rad;      ///< E (signed) with σ
+  double latitude_rad = 0.0;              ///< geodetic latitude φ of the station
+  std::optional<Uncertain> eta_rad;       ///< η, prime-vertical deflection (astro − geodetic)
+  double convergence_rad = 0.0;           ///< γ at the station (grid north from true north, clockwise)
+  std::optional<double> arc_to_chord_rad; ///< δ for the target line
+};
+
+struct AzimuthChainResult {
+  Uncertain gyro_azimuth_rad;       ///< A_G
+  Uncertain astronomic_azimuth_rad; ///< A
+  Uncertain geodetic_azimuth_rad;   ///< α (= A when η is unknown, see notes)
+  Uncertain grid_azimuth_rad;       ///< T
+  double laplace_correction_rad = 0.0;  ///< −η·tan φ (0 when η unknown)
+  double convergence_rad = 0.0;         ///< γ
+  double arc_to_chord_rad = 0.0;        ///< δ (0 when not computed)
+  bool laplace_applied = false;
+  bool arc_to_chord_applied = false;
+  std::vector<std::string> notes;
+};
+
+AzimuthChainResult azimuth_chain(const AzimuthChainInput& in);
+
+}  // namespace meridian::gyro

@@ -1,0 +1,86 @@
+#pragma once
+/// \file determination.hpp
+/// One gyro determination, whatever its mode and method: observations in,
+/// N_G with σ (and every intermediate quantity) out. This is what
+/// `meridian gyro reduce` runs for each entry of a file.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meridian/gyro/instrument.hpp"
+#include "meridian/gyro/nontracking.hpp"
+#include "meridian/gyro/reversal.hpp"
+#include "meridian/gyro/tracking.hpp"
+#include "meridian/gyro/unified_fit.hpp"
+#include "meridian/gyro/zero_position.hpp"
+
+namespace meridian::gyro {
+
+enum class Mode { Tracking, NonTracking };
+std::string to_string(Mode m);  ///< "tracking", "non-tracking"
+
+/// A determination as read from a field book.
+struct DeterminationInput {
+  std::string label;                 ///< free text, e.g. "D1 (known line, before)"
+  Mode mode = Mode::NonTracking;
+  /// Method name (nontracking: transit, time-difference, direct,
+  /// timed-amplitude-1, timed-amplitude-2, lsq; tracking: two-point,
+  /// schuler, lsq-linear, lsq) or "all".
+  std::string method = "all";
+  double clamp_reading_rad = 0.0;    ///< N′ (non-tracking only)
+  NonTrackingObservations nontracking;
+  TrackingObservations tracking;
+  /// α_p given directly (div, σ); used unless runs are given.
+  ZeroPosition zero_position;
+  std::optional<ZeroPositionRun> zero_before;  ///< motor-off run before the gyro run
+  std::optional<ZeroPositionRun> zero_after;   ///< and after
+  /// Circle reading to the target of this determination (radians, σ of the pointing).
+  std::optional<Uncertain> target_reading_rad;
+};
+
+/// Options that apply to all determinations.
+struct ReduceOptions {
+  ReversalMethod zero_position_method = ReversalMethod::Schuler;
+  double zero_position_tolerance_div = 0.5;
+  UnifiedFitOptions unified_fit;
+};
+
+/// The outcome of one method.
+struct MethodResult {
+  std::string method;                       ///< method name as in DeterminationInput::method
+  NorthReading north;                       ///< N_G, σ, ΔN, zero-position correction
+  /// Non-tracking: the method's approximation error carried to N_G,
+  /// (1+λ)·τ·(β_method − β_exact) in radians; 0 for exact methods.
+  double approximation_error_rad = 0.0;
+  std::optional<BetaResult> beta;           ///< non-tracking simple methods and lsq
+  std::optional<UnifiedFitResult> fit;      ///< non-tracking lsq
+  std::optional<ReversalResult> reversal;   ///< tracking
+};
+
+struct DeterminationResult {
+  std::string label;
+  Mode mode = Mode::NonTracking;
+  std::string method;                       ///< as requested ("all" allowed)
+  /// The result reported for the determination: the requested method, or
+  /// with "all" the recommended one (non-tracking: lsq when it can be run,
+  /// else direct, timed-amplitude, transit, time-difference in that order;
+  /// tracking: lsq, else lsq-linear, schuler, two-point).
+  MethodResult primary;
+  std::vector<MethodResult> all;            ///< every applicable method, when method == "all"
+  ZeroPosition zero_position_used;          ///< α_p applied (if any)
+  std::optional<ZeroPositionSummary> zero_position;  ///< from before/after runs
+  std::vector<std::string> warnings;
+};
+
+/// Reduce one determination. Errors carry the field path inside the
+/// determination (e.g. "crossings[1].times_s"); callers add the file and
+/// the determination index.
+DeterminationResult reduce_determination(const DeterminationInput& in, const Instrument& inst,
+                                         const ReduceOptions& options = {});
+
+/// Gyro azimuth A_G = r − N_G of a determination that has a target reading
+/// (radians, σ combining pointing and N_G). Throws InputError otherwise.
+Uncertain gyro_azimuth(const DeterminationResult& r, const DeterminationInput& in);
+
+}  // namespace meridian::gyro

@@ -1,0 +1,56 @@
+#pragma once
+/// \file instrument_spec.hpp
+/// An instrument as described in a file (constants possibly determined at
+/// another latitude, or given as periods) and its resolution to the
+/// Instrument constants at a station latitude.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meridian/gyro/constants.hpp"
+#include "meridian/gyro/instrument.hpp"
+
+namespace meridian::gyro {
+
+struct InstrumentSpec {
+  std::string name;
+  double scale_value_rad = 0.0;                ///< τ (rad/div), > 0
+  double sigma_scale_value_rad = 0.0;
+  /// λ given directly, with σ. Mutually exclusive with the periods.
+  std::optional<Uncertain> torsion_ratio;
+  /// Latitude φ0 at which λ or the periods were determined (radians). When
+  /// absent they are taken to hold at the station latitude.
+  std::optional<double> constants_latitude_rad;
+  std::optional<Uncertain> tracking_period_s;     ///< T_A
+  std::optional<Uncertain> nontracking_period_s;  ///< T_B (with T_A gives λ = (T_A/T_B)² − 1)
+  std::optional<Uncertain> free_period_s;         ///< T_F (with T_A gives λ = (T_A/T_F)²)
+  /// Calibrated transit factor c (rad/(div·s)) valid at constants_latitude.
+  std::optional<Uncertain> transit_factor_rad_per_div_s;
+  double sigma_time_s = 0.1;
+  double sigma_reading_div = 0.05;
+  double latitude_limit_rad = kDefaultLatitudeLimit_rad;
+  /// Nominal accuracy class (arcsec), e.g. 15 or 25: sets default tolerances.
+  double accuracy_class_arcsec = 15.0;
+};
+
+/// Instrument constants at `station_lat_rad`, plus what was done to get them.
+struct ResolvedInstrument {
+  Instrument instrument;
+  std::vector<std::string> notes;   ///< e.g. "lambda rescaled from 34.0° to 36.5°"
+};
+
+/// Resolve λ (given, or from periods) and rescale it to the station
+/// latitude by λ(φ) = λ(φ0)·cos φ0/cos φ. A calibrated c is not rescaled
+/// (it depends on T_B and λ): it is used only when φ0 is absent or equals the
+/// station latitude, otherwise dropped with a note. Throws InputError when
+/// neither λ nor usable periods are given, when both are, or when the
+/// latitude is beyond the limit.
+ResolvedInstrument resolve_instrument(const InstrumentSpec& spec, double station_lat_rad);
+
+/// Default tolerance for the difference between determinations of one line:
+/// 40″ for an instrument of class ≤ 15″, 70″ for class ≤ 25″, else
+/// 2.8·class·sqrt(2) (two determinations at the 95 % level), in radians.
+double default_determination_tolerance_rad(double accuracy_class_arcsec);
+
+}  // namespace meridian::gyro

@@ -1,0 +1,23 @@
+#pragma once
+/// \file gyro_writers.hpp
+/// Writers of gyro field-book files in the YAML formats that the readers
+/// accept (docs/file-formats.md). Angles are written as DMS strings with
+/// 4 decimals of arc-seconds, times and readings with round-trip precision,
+/// so reading a written file gives back the same values (to 1e-4″ for angles).
+
+#include <string>
+
+#include "meridian/io/gyro_files.hpp"
+
+namespace meridian::io {
+
+/// A `meridian gyro reduce` file. `header` is written as leading comment
+/// lines (e.g. the command and the truth of a simulation).
+std::string reduce_file_yaml(const gyro::InstrumentSpec& instrument, double latitude_rad,
+                             const std::vector<gyro::DeterminationInput>& determinations,
+                             const std::string& header = {});
+
+/// A `meridian gyro campaign` file.
+std::string campaign_file_yaml(const gyro::CampaignInput& campaign, const std::string& header = {});
+
+}  // namespace meridian::io

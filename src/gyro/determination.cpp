@@ -1,0 +1,133 @@
+#include "meridian/gyro/determination.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "meridian/core/angle.hpp"
+#include "meridian/core/error.hpp"
+
+namespace meridian::gyro {
+namespace {
+
+MethodResult run_nontracking(NonTrackingMethod m, const DeterminationInput& in,
+                             const Instrument& inst, const ZeroPosition& zero,
+                             const ReduceOptions& options) {
+  MethodResult r;
+  r.method = to_string(m);
+  if (m == NonTrackingMethod::LeastSquares) {
+    r.fit = fit_nontracking(in.nontracking, inst, options.unified_fit);
+    r.beta = r.fit->as_beta_result();
+  } else {
+    r.beta = reduce_nontracking(m, in.nontracking, inst);
+  }
+  if (r.beta->transit_delta_n_rad && inst.transit_factor_rad_per_div_s)
+    r.north = north_from_delta(in.clamp_reading_rad, *r.beta->transit_delta_n_rad, inst, zero);
+  else
+    r.north = north_from_nontracking(in.clamp_reading_rad, r.beta->beta_div, inst, zero);
+  r.approximation_error_rad =
+      (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad * r.beta->approximation_error_div;
+  return r;
+}
+
+MethodResult run_tracking(ReversalMethod m, const DeterminationInput& in, const Instrument& inst,
+                          const ZeroPosition& zero) {
+  MethodResult r;
+  r.method = to_string(m);
+  TrackingResult t = reduce_tracking(m, in.tracking, inst, zero);
+  r.reversal = t.fit;
+  r.north = t.north;
+  return r;
+}
+
+}  // namespace
+
+std::string to_string(Mode m) { return m == Mode::Tracking ? "tracking" : "non-tracking"; }
+
+DeterminationResult reduce_determination(const DeterminationInput& in, const Instrument& inst,
+                                         const ReduceOptions& options) {
+  DeterminationResult out;
+  out.label = in.label;
+  out.mode = in.mode;
+  out.method = in.method;
+
+  ZeroPosition zero = in.zero_position;
+  if (in.zero_before || in.zero_after) {
+    try {
+      out.zero_position = summarise_zero_position(in.zero_before, in.zero_after,
+                                                  options.zero_position_method,
+                                                  inst.sigma_reading_div,
+                                                  options.zero_position_tolerance_div);
+    } catch (Error& e) {
+      e.add_context("", std::nullopt, "zero_position");
+      throw;
+    }
+    zero = out.zero_position->mean_div;
+    for (const auto& w : out.zero_position->warnings) out.warnings.push_back(w);
+  }
+  out.zero_position_used = zero;
+
+  if (in.mode == Mode::NonTracking) {
+    if (in.method == "all") {
+      std::vector<NonTrackingMethod> methods = applicable_methods(in.nontracking);
+      if (methods.empty())
+        throw InputError("no non-tracking method is applicable to the observations given "
+                         "(need crossings with times and, for most methods, reversals or period_s)");
+      for (NonTrackingMethod m : methods) {
+        try {
+          out.all.push_back(run_nontracking(m, in, inst, zero, options));
+        } catch (const NumericalError& e) {
+          out.warnings.push_back(fmt::format("{}: {}", to_string(m), e.what()));
+        }
+      }
+      if (out.all.empty()) throw NumericalError("every applicable method failed: " + out.warnings.back());
+      static const char* order[] = {"lsq", "direct", "timed-amplitude-1", "timed-amplitude-2",
+                                    "transit", "time-difference"};
+      bool found = false;
+      for (const char* name : order) {
+        for (const auto& r : out.all)
+          if (r.method == name) {
+            out.primary = r;
+            found = true;
+            break;
+          }
+        if (found) break;
+      }
+      if (!found) out.primary = out.all.front();
+    } else {
+      out.primary = run_nontracking(nontracking_method_from_string(in.method), in, inst, zero, options);
+    }
+    if (out.primary.beta)
+      for (const auto& w : out.primary.beta->warnings) out.warnings.push_back(w);
+  } else {
+    if (in.method == "all") {
+      const int n = static_cast<int>(in.tracking.reversals_rad.size());
+      for (ReversalMethod m : {ReversalMethod::TwoPoint, ReversalMethod::Schuler,
+                               ReversalMethod::LinearLsq, ReversalMethod::NonlinearLsq}) {
+        if (m != ReversalMethod::TwoPoint && n < 3) continue;
+        try {
+          out.all.push_back(run_tracking(m, in, inst, zero));
+        } catch (const NumericalError& e) {
+          out.warnings.push_back(fmt::format("{}: {}", to_string(m), e.what()));
+        }
+      }
+      if (out.all.empty()) {
+        // Surface the real input problem (too few or bad readings).
+        out.all.push_back(run_tracking(ReversalMethod::TwoPoint, in, inst, zero));
+      }
+      out.primary = out.all.back();
+    } else {
+      out.primary = run_tracking(reversal_method_from_string(in.method), in, inst, zero);
+    }
+  }
+  return out;
+}
+
+Uncertain gyro_azimuth(const DeterminationResult& r, const DeterminationInput& in) {
+  if (!in.target_reading_rad)
+    throw InputError("no target reading for this determination", {"", std::nullopt, "target_reading"});
+  return {wrap_positive_rad(in.target_reading_rad->value - r.primary.north.north_rad),
+          std::hypot(in.target_reading_rad->sigma, r.primary.north.sigma_rad)};
+}
+
+}  // namespace meridian::gyro

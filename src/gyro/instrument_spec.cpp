@@ -1,0 +1,84 @@
+#include "meridian/gyro/instrument_spec.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+
+namespace meridian::gyro {
+
+ResolvedInstrument resolve_instrument(const InstrumentSpec& spec, double station_lat_rad) {
+  ResolvedInstrument out;
+  Instrument& inst = out.instrument;
+  if (!(spec.scale_value_rad > 0.0) || !std::isfinite(spec.scale_value_rad))
+    throw InputError("scale value must be a positive number", {"", std::nullopt, "scale_value_arcsec"});
+  check_latitude(station_lat_rad, spec.latitude_limit_rad);
+  inst.scale_value_rad = spec.scale_value_rad;
+  inst.sigma_scale_value_rad = spec.sigma_scale_value_rad;
+  inst.sigma_time_s = spec.sigma_time_s;
+  inst.sigma_reading_div = spec.sigma_reading_div;
+
+  const bool has_periods = spec.nontracking_period_s || spec.free_period_s;
+  Uncertain lambda0;
+  if (spec.torsion_ratio) {
+    if (has_periods)
+      throw InputError("give either torsion_ratio or periods, not both", {"", std::nullopt, "torsion_ratio"});
+    lambda0 = *spec.torsion_ratio;
+  } else if (has_periods) {
+    if (!spec.tracking_period_s)
+      throw InputError("the tracking period T_A is needed to compute lambda from periods",
+                       {"", std::nullopt, "periods.tracking_s"});
+    if (spec.nontracking_period_s && spec.free_period_s)
+      throw InputError("give the non-tracking period or the free period, not both",
+                       {"", std::nullopt, "periods"});
+    if (spec.nontracking_period_s) {
+      lambda0 = torsion_ratio_from_nontracking_period(*spec.tracking_period_s, *spec.nontracking_period_s);
+      out.notes.push_back(fmt::format("lambda = (T_A/T_B)^2 - 1 = {:.5f} from periods", lambda0.value));
+    } else {
+      lambda0 = torsion_ratio_from_free_period(*spec.tracking_period_s, *spec.free_period_s);
+      out.notes.push_back(fmt::format("lambda = (T_A/T_F)^2 = {:.5f} from periods", lambda0.value));
+    }
+  } else {
+    throw InputError("the torsion ratio lambda is missing: give torsion_ratio or periods",
+                     {"", std::nullopt, "torsion_ratio"});
+  }
+  if (!(lambda0.value >= 0.0) || !std::isfinite(lambda0.value))
+    throw InputError(fmt::format("torsion ratio must be >= 0 (got {})", lambda0.value),
+                     {"", std::nullopt, "torsion_ratio"});
+
+  bool same_latitude = true;
+  if (spec.constants_latitude_rad) {
+    const double lat0 = *spec.constants_latitude_rad;
+    same_latitude = std::fabs(lat0 - station_lat_rad) < 1e-9;
+    inst.torsion_ratio = rescale_torsion_ratio(lambda0, lat0, station_lat_rad, spec.latitude_limit_rad);
+    if (!same_latitude)
+      out.notes.push_back(fmt::format("lambda rescaled from {:.5f} at {:.4f} deg to {:.5f} at {:.4f} deg",
+                                      lambda0.value, lat0 / units::kDegree, inst.torsion_ratio.value,
+                                      station_lat_rad / units::kDegree));
+  } else {
+    inst.torsion_ratio = lambda0;
+  }
+  if (spec.transit_factor_rad_per_div_s) {
+    if (same_latitude)
+      inst.transit_factor_rad_per_div_s = spec.transit_factor_rad_per_div_s;
+    else
+      out.notes.push_back("calibrated transit factor c not used: it was determined at another "
+                          "latitude; c = (1+lambda)*tau*pi/(2 T_B) is computed instead");
+  }
+  return out;
+}
+
+double default_determination_tolerance_rad(double accuracy_class_arcsec) {
+  double t;
+  if (accuracy_class_arcsec <= 15.0)
+    t = 40.0;
+  else if (accuracy_class_arcsec <= 25.0)
+    t = 70.0;
+  else
+    t = 2.8 * accuracy_class_arcsec * std::sqrt(2.0);
+  return t * units::kArcsecond;
+}
+
+}  // namespace meridian::gyro

@@ -1,0 +1,202 @@
+#include "meridian/gyro/reversal.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "meridian/adjust/least_squares.hpp"
+#include "meridian/adjust/nonlinear.hpp"
+#include "meridian/core/angle.hpp"
+#include "meridian/core/error.hpp"
+
+namespace meridian::gyro {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double alt_sign(int i) { return (i % 2 == 0) ? 1.0 : -1.0; }  // (−1)^i
+
+// Linear LS of (R2); i runs 1…n.
+adjust::LeastSquaresResult fit_linear(std::span<const double> r) {
+  const int n = static_cast<int>(r.size());
+  Eigen::MatrixXd A(n, 3);
+  Eigen::VectorXd l(n);
+  for (int k = 0; k < n; ++k) {
+    const int i = k + 1;
+    A(k, 0) = 1.0;
+    A(k, 1) = alt_sign(i);
+    A(k, 2) = -alt_sign(i) * (2.0 * i - 1.0);
+    l(k) = r[static_cast<std::size_t>(k)];
+  }
+  return adjust::solve_linear_diagonal(A, l, Eigen::VectorXd::Ones(n));
+}
+
+void fill_sigma(ReversalResult& res, double sigma_reading, double q) {
+  res.cofactor_centre = q;
+  if (res.dof > 0) {
+    res.centre.sigma = res.sigma0 * std::sqrt(q);
+    res.sigma_is_aposteriori = true;
+  } else if (std::isfinite(sigma_reading)) {
+    res.centre.sigma = sigma_reading * std::sqrt(q);
+  } else {
+    res.centre.sigma = kNaN;
+    res.notes.push_back("no redundancy and no a-priori reading sigma: sigma of the centre unknown");
+  }
+}
+
+}  // namespace
+
+std::string to_string(ReversalMethod m) {
+  switch (m) {
+    case ReversalMethod::TwoPoint: return "two-point";
+    case ReversalMethod::Schuler: return "schuler";
+    case ReversalMethod::LinearLsq: return "lsq-linear";
+    case ReversalMethod::NonlinearLsq: return "lsq";
+  }
+  return "?";
+}
+
+ReversalMethod reversal_method_from_string(const std::string& name) {
+  for (auto m : {ReversalMethod::TwoPoint, ReversalMethod::Schuler, ReversalMethod::LinearLsq,
+                 ReversalMethod::NonlinearLsq})
+    if (to_string(m) == name) return m;
+  throw InputError(fmt::format(
+      "unknown tracking method \"{}\" (expected two-point, schuler, lsq-linear, lsq or all)", name),
+      {"", std::nullopt, "method"});
+}
+
+void check_reversal_sequence(std::span<const double> r, int min_count) {
+  if (static_cast<int>(r.size()) < min_count)
+    throw InputError(fmt::format("{} reversal readings given, at least {} needed", r.size(), min_count));
+  for (std::size_t i = 0; i < r.size(); ++i)
+    if (!std::isfinite(r[i]))
+      throw InputError(fmt::format("reading {} is not a finite number", i + 1));
+  for (std::size_t i = 1; i < r.size(); ++i) {
+    const double d = r[i] - r[i - 1];
+    if (d == 0.0)
+      throw InputError(fmt::format("readings {} and {} are equal: not a reversal sequence", i, i + 1));
+    if (i >= 2 && (d > 0) == (r[i - 1] - r[i - 2] > 0))
+      throw InputError(fmt::format(
+          "reading {} does not alternate about the centre: readings {}, {}, {} move the same way",
+          i + 1, i - 1, i, i + 1));
+  }
+}
+
+std::vector<double> unwrap_circle_readings(std::span<const double> r) {
+  std::vector<double> out(r.begin(), r.end());
+  if (out.empty()) return out;
+  for (std::size_t i = 1; i < out.size(); ++i)
+    out[i] = out[0] + wrap_signed_rad(out[i] - out[0]);
+  return out;
+}
+
+ReversalResult estimate_centre(ReversalMethod method, std::span<const double> r,
+                               double sigma_reading) {
+  ReversalResult res;
+  res.method = method;
+  const int n = static_cast<int>(r.size());
+  check_reversal_sequence(r, method == ReversalMethod::TwoPoint ? 2 : 3);
+
+  switch (method) {
+    case ReversalMethod::TwoPoint: {
+      res.centre.value = 0.5 * (r[0] + r[1]);
+      res.amplitude = Uncertain{0.5 * (r[1] - r[0]), kNaN};
+      res.residuals = {0.0, 0.0};
+      res.sigma0 = kNaN;
+      fill_sigma(res, sigma_reading, 0.5);
+      res.notes.push_back("damping neglected");
+      if (n > 2) res.notes.push_back(fmt::format("only the first two of {} readings used", n));
+      break;
+    }
+    case ReversalMethod::Schuler: {
+      // M = (r1 + 3r2 + 4r3 + … + 4r_{n−2} + 3r_{n−1} + rn)/(4(n−2)): the mean of the
+      // n−2 successive means (r_i + 2r_{i+1} + r_{i+2})/4.
+      std::vector<double> w(static_cast<std::size_t>(n), 0.0);
+      for (int i = 0; i + 2 < n; ++i) {
+        res.partial_means.push_back(0.25 * (r[i] + 2.0 * r[i + 1] + r[i + 2]));
+        w[i] += 0.25;
+        w[i + 1] += 0.5;
+        w[i + 2] += 0.25;
+      }
+      double m = 0, q = 0;
+      for (int i = 0; i < n; ++i) {
+        w[i] /= (n - 2);
+        m += w[i] * r[i];
+        q += w[i] * w[i];
+      }
+      res.centre.value = m;
+      if (n > 3) {
+        const auto lin = fit_linear(r);  // σ̂0 of one reading from the redundant linear model
+        res.dof = lin.dof;
+        res.sigma0 = lin.sigma0;
+        res.residuals.assign(lin.residuals.data(), lin.residuals.data() + n);
+        res.notes.push_back("sigma0 of a reading from the linearised least-squares fit (R2)");
+      } else {
+        res.sigma0 = kNaN;
+        res.residuals.assign(static_cast<std::size_t>(n), 0.0);
+      }
+      fill_sigma(res, sigma_reading, q);
+      res.notes.push_back("linear damping assumed (exact for e^{-i kappa} to first order)");
+      break;
+    }
+    case ReversalMethod::LinearLsq: {
+      const auto lin = fit_linear(r);
+      res.centre.value = lin.x(0);
+      res.dof = lin.dof;
+      res.sigma0 = lin.sigma0;
+      const double qmm = lin.cofactor(0, 0);
+      res.amplitude = Uncertain{lin.x(1), res.dof > 0 ? lin.sigma_aposteriori(1) : kNaN};
+      res.damping = Uncertain{lin.x(2), res.dof > 0 ? lin.sigma_aposteriori(2) : kNaN};
+      res.residuals.assign(lin.residuals.data(), lin.residuals.data() + n);
+      fill_sigma(res, sigma_reading, qmm);
+      if (n > 10) res.notes.push_back("more than 10 reversals add little precision (q_MM ~ 1/n)");
+      break;
+    }
+    case ReversalMethod::NonlinearLsq: {
+      const auto lin = fit_linear(r);
+      // Start: A = A′ + c, κ = 2c/(A′ + c) from matching (R2) to the expansion of (R1).
+      const double a0 = lin.x(1) + lin.x(2);
+      const double k0 = a0 != 0.0 ? 2.0 * lin.x(2) / a0 : 0.0;
+      Eigen::VectorXd l(n);
+      for (int k = 0; k < n; ++k) l(k) = r[static_cast<std::size_t>(k)];
+      adjust::NonlinearModel model;
+      model.predict = [n](const Eigen::VectorXd& x) {
+        Eigen::VectorXd f(n);
+        for (int k = 0; k < n; ++k) {
+          const int i = k + 1;
+          f(k) = x(0) + alt_sign(i) * x(1) * std::exp(-i * x(2));
+        }
+        return f;
+      };
+      model.jacobian = [n](const Eigen::VectorXd& x) {
+        Eigen::MatrixXd J(n, 3);
+        for (int k = 0; k < n; ++k) {
+          const int i = k + 1;
+          const double e = std::exp(-i * x(2));
+          J(k, 0) = 1.0;
+          J(k, 1) = alt_sign(i) * e;
+          J(k, 2) = -alt_sign(i) * x(1) * i * e;
+        }
+        return J;
+      };
+      adjust::NonlinearOptions opt;
+      opt.step_scale = Eigen::Vector3d(std::fabs(lin.x(0)) + std::fabs(a0), std::fabs(a0), 1.0);
+      const auto nl = adjust::solve_nonlinear(model, l, Eigen::MatrixXd::Identity(n, n),
+                                              Eigen::Vector3d(lin.x(0), a0, k0), opt);
+      res.centre.value = nl.x(0);
+      res.dof = nl.dof;
+      res.sigma0 = nl.sigma0;
+      res.amplitude = Uncertain{nl.x(1), res.dof > 0 ? nl.sigma_aposteriori(1) : kNaN};
+      res.damping = Uncertain{nl.x(2), res.dof > 0 ? nl.sigma_aposteriori(2) : kNaN};
+      res.residuals.assign(nl.residuals.data(), nl.residuals.data() + n);
+      fill_sigma(res, sigma_reading, nl.cofactor(0, 0));
+      res.notes.push_back(fmt::format("non-linear fit converged in {} iterations", nl.iterations));
+      break;
+    }
+  }
+  return res;
+}
+
+}  // namespace meridian::gyro

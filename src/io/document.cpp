@@ -1,0 +1,160 @@
+#include "document.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "meridian/core/dms.hpp"
+#include "meridian/core/error.hpp"
+
+namespace meridian::io::detail {
+
+Node::Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file)
+    : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)) {}
+
+Node Node::load_file(const std::filesystem::path& path) {
+  auto file = std::make_shared<const std::string>(path.string());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot open the file", {*file, std::nullopt, {}});
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError("cannot read the file", {*file, std::nullopt, {}});
+  const std::string text = ss.str();
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw ParseError("the file is empty", {*file, std::nullopt, {}});
+  if (text.find('\0') != std::string::npos)
+    throw ParseError("the file contains NUL bytes: not a text file", {*file, std::nullopt, {}});
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ParseError(fmt::format("syntax error: {} (column {})", e.msg, e.mark.column + 1),
+                     {*file, e.mark.line >= 0 ? std::optional<int>(e.mark.line + 1) : std::nullopt, {}});
+  }
+  Node n(root, "", file);
+  if (!root.IsMap()) n.fail("the top level must be a mapping of fields (YAML) or an object (JSON)");
+  return n;
+}
+
+int Node::line() const { return node_.Mark().line + 1; }
+
+void Node::fail(const std::string& message) const {
+  const int l = node_.Mark().line;
+  throw InputError(message, {*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, path_});
+}
+
+std::string Node::child_path(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+std::optional<Node> Node::get(const std::string& key) const {
+  if (!node_.IsMap()) fail("expected a mapping of fields");
+  YAML::Node c = node_[key];
+  if (!c || c.IsNull()) return std::nullopt;
+  return Node(c, child_path(key), file_);
+}
+
+Node Node::require(const std::string& key) const {
+  auto c = get(key);
+  if (!c) {
+    const int l = node_.Mark().line;
+    throw InputError(fmt::format("missing field \"{}\"", key),
+                     {*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, child_path(key)});
+  }
+  return *c;
+}
+
+std::vector<Node> Node::elements() const {
+  if (!node_.IsSequence()) fail("expected a list");
+  std::vector<Node> out;
+  std::size_t i = 0;
+  for (const auto& c : node_) out.emplace_back(c, fmt::format("{}[{}]", path_, i++), file_);
+  return out;
+}
+
+double Node::number() const {
+  if (!node_.IsScalar()) fail("expected a number");
+  const std::string& s = node_.Scalar();
+  double v = 0;
+  std::size_t used = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    fail(fmt::format("expected a number, got \"{}\"", s));
+  }
+  while (used < s.size() && std::isspace(static_cast<unsigned char>(s[used]))) ++used;
+  if (used != s.size()) fail(fmt::format("expected a number, got \"{}\"", s));
+  if (!std::isfinite(v)) fail(fmt::format("expected a finite number, got \"{}\"", s));
+  return v;
+}
+
+double Node::positive_number() const {
+  const double v = number();
+  if (!(v > 0)) fail(fmt::format("must be positive (got {})", v));
+  return v;
+}
+
+double Node::non_negative_number() const {
+  const double v = number();
+  if (v < 0) fail(fmt::format("must not be negative (got {})", v));
+  return v;
+}
+
+int Node::integer() const {
+  const double v = number();
+  if (v != std::floor(v) || std::fabs(v) > 1e9) fail(fmt::format("expected a whole number (got {})", v));
+  return static_cast<int>(v);
+}
+
+bool Node::boolean() const {
+  if (!node_.IsScalar()) fail("expected true or false");
+  const std::string& s = node_.Scalar();
+  if (s == "true" || s == "yes") return true;
+  if (s == "false" || s == "no") return false;
+  fail(fmt::format("expected true or false, got \"{}\"", s));
+}
+
+std::string Node::string() const {
+  if (!node_.IsScalar()) fail("expected a text value");
+  return node_.Scalar();
+}
+
+Angle Node::angle() const {
+  if (!node_.IsScalar()) fail("expected an angle (DMS text such as \"157 21 00\" or decimal degrees)");
+  const std::string& s = node_.Scalar();
+  try {
+    return parse_angle(s);
+  } catch (Error& e) {
+    const int l = node_.Mark().line;
+    e.add_context(*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, path_);
+    throw;
+  }
+}
+
+std::vector<double> Node::numbers() const {
+  std::vector<double> v;
+  for (const auto& e : elements()) v.push_back(e.number());
+  return v;
+}
+
+void Node::allow_only(std::initializer_list<std::string_view> allowed) const {
+  if (!node_.IsMap()) fail("expected a mapping of fields");
+  std::set<std::string> seen;
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.Scalar();
+    Node k(kv.first, child_path(key), file_);
+    if (!seen.insert(key).second) k.fail("duplicate field");
+    bool ok = false;
+    for (auto a : allowed) ok = ok || a == key;
+    if (!ok) {
+      std::string list;
+      for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      k.fail(fmt::format("unknown field \"{}\" (accepted here: {})", key, list));
+    }
+  }
+}
+
+}  // namespace meridian::io::detail

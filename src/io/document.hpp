@@ -1,0 +1,75 @@
+#pragma once
+// Private to the io module: a YAML/JSON node that knows its file, line and
+// field path, so every error names where the bad value is.
+
+#include <filesystem>
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "meridian/core/angle.hpp"
+
+namespace meridian::io::detail {
+
+class Node {
+ public:
+  Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file);
+  Node(const Node&) = default;
+  // YAML::Node's assignment writes through to the document; rebind instead.
+  Node& operator=(const Node& o) {
+    node_.reset(o.node_);
+    path_ = o.path_;
+    file_ = o.file_;
+    return *this;
+  }
+
+  /// Load a YAML or JSON file (JSON is read by the YAML parser as is).
+  static Node load_file(const std::filesystem::path& path);
+
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return *file_; }
+  int line() const;  ///< 1-based
+
+  bool is_map() const { return node_.IsMap(); }
+  bool is_sequence() const { return node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsScalar(); }
+
+  /// Member `key`; nullopt when absent or null. Requires a map.
+  std::optional<Node> get(const std::string& key) const;
+  /// Member `key`; throws "missing field" when absent or null.
+  Node require(const std::string& key) const;
+  bool has(const std::string& key) const { return get(key).has_value(); }
+
+  /// Elements of a sequence (a scalar is not accepted).
+  std::vector<Node> elements() const;
+
+  double number() const;           ///< a finite number
+  double positive_number() const;  ///< a finite number > 0
+  double non_negative_number() const;
+  int integer() const;
+  bool boolean() const;
+  std::string string() const;
+  /// Angle: a number is decimal degrees; a string is parsed by parse_angle
+  /// (DMS, gon, …).
+  Angle angle() const;
+  std::vector<double> numbers() const;  ///< sequence of finite numbers
+
+  /// Throws for keys other than `allowed` (catches typos and unknown units)
+  /// and for duplicate keys.
+  void allow_only(std::initializer_list<std::string_view> allowed) const;
+
+  [[noreturn]] void fail(const std::string& message) const;
+
+ private:
+  std::string child_path(const std::string& key) const;
+  YAML::Node node_;
+  std::string path_;
+  std::shared_ptr<const std::string> file_;
+};
+
+}  // namespace meridian::io::detail

@@ -1,0 +1,403 @@
+#include "meridian/io/gyro_files.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "document.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/geodesy/ellipsoid.hpp"
+
+namespace meridian::io {
+namespace {
+
+using detail::Node;
+using gyro::Uncertain;
+
+constexpr double kArcsec = units::kArcsecond;
+
+// "value" and "value_sigma"-style pairs: a σ key is optional.
+double sigma_or(const Node& n, const std::string& key, double fallback) {
+  auto s = n.get(key);
+  return s ? s->non_negative_number() : fallback;
+}
+
+gyro::InstrumentSpec read_instrument(const Node& n) {
+  n.allow_only({"name", "scale_value_arcsec", "scale_value_sigma_arcsec", "torsion_ratio",
+                "torsion_ratio_sigma", "constants_latitude_deg", "periods",
+                "transit_factor_arcsec_per_div_s", "transit_factor_sigma_arcsec_per_div_s",
+                "sigma_time_s", "sigma_reading_div", "latitude_limit_deg",
+                "accuracy_class_arcsec"});
+  gyro::InstrumentSpec s;
+  if (auto v = n.get("name")) s.name = v->string();
+  s.scale_value_rad = n.require("scale_value_arcsec").positive_number() * kArcsec;
+  s.sigma_scale_value_rad = sigma_or(n, "scale_value_sigma_arcsec", 0.0) * kArcsec;
+  if (auto v = n.get("torsion_ratio")) {
+    const double lam = v->non_negative_number();
+    s.torsion_ratio = Uncertain{lam, sigma_or(n, "torsion_ratio_sigma", 0.0)};
+  } else if (n.has("torsion_ratio_sigma")) {
+    n.require("torsion_ratio_sigma").fail("torsion_ratio_sigma given without torsion_ratio");
+  }
+  if (auto p = n.get("periods")) {
+    p->allow_only({"tracking_s", "nontracking_s", "free_s", "sigma_s"});
+    const double sig = sigma_or(*p, "sigma_s", 0.0);
+    if (auto v = p->get("tracking_s")) s.tracking_period_s = Uncertain{v->positive_number(), sig};
+    if (auto v = p->get("nontracking_s")) s.nontracking_period_s = Uncertain{v->positive_number(), sig};
+    if (auto v = p->get("free_s")) s.free_period_s = Uncertain{v->positive_number(), sig};
+  }
+  if (auto v = n.get("constants_latitude_deg")) s.constants_latitude_rad = v->angle().rad();
+  if (auto v = n.get("transit_factor_arcsec_per_div_s"))
+    s.transit_factor_rad_per_div_s =
+        Uncertain{v->positive_number() * kArcsec,
+                  sigma_or(n, "transit_factor_sigma_arcsec_per_div_s", 0.0) * kArcsec};
+  if (auto v = n.get("sigma_time_s")) s.sigma_time_s = v->positive_number();
+  if (auto v = n.get("sigma_reading_div")) s.sigma_reading_div = v->positive_number();
+  if (auto v = n.get("latitude_limit_deg")) {
+    const double d = v->positive_number();
+    if (d >= 90.0) v->fail("the latitude limit must be below 90 deg");
+    s.latitude_limit_rad = d * units::kDegree;
+  }
+  if (auto v = n.get("accuracy_class_arcsec")) s.accuracy_class_arcsec = v->positive_number();
+  return s;
+}
+
+gyro::ZeroPositionRun read_zero_run(const Node& n) {
+  n.allow_only({"reversals_div", "times_s"});
+  gyro::ZeroPositionRun r;
+  r.reversals_div = n.require("reversals_div").numbers();
+  if (auto t = n.get("times_s")) r.times_s = t->numbers();
+  return r;
+}
+
+int read_direction(const Node& n) {
+  const std::string s = n.string();
+  if (s == "east" || s == "e" || s == "+" || s == "+1" || s == "1") return +1;
+  if (s == "west" || s == "w" || s == "-" || s == "-1") return -1;
+  n.fail(fmt::format("expected east or west, got \"{}\"", s));
+}
+
+gyro::DeterminationInput read_determination(const Node& n, const gyro::InstrumentSpec& inst) {
+  n.allow_only({"label", "mode", "method", "clamp_reading", "period_s", "period_sigma_s",
+                "zero_position_div", "zero_position_sigma_div", "zero_position", "crossings",
+                "reversals_div", "reversal_times_s", "sigma_time_s", "sigma_reading_div",
+                "reversals", "sigma_reading_arcsec", "target_reading", "target_sigma_arcsec"});
+  gyro::DeterminationInput d;
+  if (auto v = n.get("label")) d.label = v->string();
+  const Node mode = n.require("mode");
+  const std::string m = mode.string();
+  if (m == "non-tracking" || m == "nontracking")
+    d.mode = gyro::Mode::NonTracking;
+  else if (m == "tracking")
+    d.mode = gyro::Mode::Tracking;
+  else
+    mode.fail(fmt::format("unknown mode \"{}\" (expected tracking or non-tracking)", m));
+  if (auto v = n.get("method")) d.method = v->string();
+  // Validate the method name now, so the error points at this line.
+  if (d.method != "all") {
+    try {
+      if (d.mode == gyro::Mode::NonTracking)
+        (void)gyro::nontracking_method_from_string(d.method);
+      else
+        (void)gyro::reversal_method_from_string(d.method);
+    } catch (Error& e) {
+      n.require("method").fail(e.message());
+    }
+  }
+
+  const char* nontracking_only[] = {"clamp_reading", "period_s", "crossings", "reversals_div",
+                                    "reversal_times_s"};
+  const char* tracking_only[] = {"reversals", "sigma_reading_arcsec"};
+  if (d.mode == gyro::Mode::Tracking) {
+    for (const char* k : nontracking_only)
+      if (auto v = n.get(k)) v->fail("field of a non-tracking determination given for mode tracking");
+    const Node rev = n.require("reversals");
+    for (const auto& e : rev.elements()) d.tracking.reversals_rad.push_back(e.angle().rad());
+    if (auto v = n.get("sigma_reading_arcsec")) d.tracking.sigma_reading_rad = v->positive_number() * kArcsec;
+  } else {
+    for (const char* k : tracking_only)
+      if (auto v = n.get(k)) v->fail("field of a tracking determination given for mode non-tracking");
+    d.clamp_reading_rad = n.require("clamp_reading").angle().rad();
+    auto& o = d.nontracking;
+    o.sigma_time_s = inst.sigma_time_s;
+    o.sigma_reading_div = inst.sigma_reading_div;
+    if (auto v = n.get("sigma_time_s")) o.sigma_time_s = v->positive_number();
+    if (auto v = n.get("sigma_reading_div")) o.sigma_reading_div = v->positive_number();
+    if (auto v = n.get("period_s"))
+      o.period_s = Uncertain{v->positive_number(), sigma_or(n, "period_sigma_s", 0.0)};
+    if (auto c = n.get("crossings")) {
+      for (const auto& e : c->elements()) {
+        e.allow_only({"level_div", "times_s", "first_direction"});
+        gyro::Crossing x;
+        x.level_div = e.require("level_div").number();
+        const Node times = e.require("times_s");
+        x.times_s = times.numbers();
+        if (x.times_s.empty()) times.fail("no crossing times");
+        for (std::size_t i = 1; i < x.times_s.size(); ++i)
+          if (!(x.times_s[i] > x.times_s[i - 1]))
+            times.fail(fmt::format("times must increase (t{} = {} <= t{} = {})", i + 1,
+                                   x.times_s[i], i, x.times_s[i - 1]));
+        x.first_direction = read_direction(e.require("first_direction"));
+        o.crossings.push_back(std::move(x));
+      }
+    }
+    if (auto v = n.get("reversals_div")) o.reversals_div = v->numbers();
+    if (auto v = n.get("reversal_times_s")) {
+      o.reversal_times_s = v->numbers();
+      if (o.reversal_times_s.size() != o.reversals_div.size())
+        v->fail(fmt::format("{} reversal times for {} reversal readings", o.reversal_times_s.size(),
+                            o.reversals_div.size()));
+    }
+    if (o.crossings.empty() && o.reversals_div.empty())
+      n.fail("a non-tracking determination needs crossings and/or reversals_div");
+  }
+  if (auto v = n.get("zero_position_div")) {
+    if (n.has("zero_position")) v->fail("give zero_position_div or zero_position runs, not both");
+    d.zero_position = Uncertain{v->number(), sigma_or(n, "zero_position_sigma_div", 0.0)};
+  }
+  if (auto z = n.get("zero_position")) {
+    z->allow_only({"before", "after"});
+    if (auto b = z->get("before")) d.zero_before = read_zero_run(*b);
+    if (auto a = z->get("after")) d.zero_after = read_zero_run(*a);
+    if (!d.zero_before && !d.zero_after) z->fail("give a before and/or an after run");
+  }
+  if (auto v = n.get("target_reading"))
+    d.target_reading_rad = Uncertain{v->angle().normalized_positive().rad(),
+                                     sigma_or(n, "target_sigma_arcsec", 0.0) * kArcsec};
+  return d;
+}
+
+// Run `f`, adding the file and line to errors thrown by the library for
+// this node (the library knows the field path inside it, not the file).
+template <class F>
+auto with_location(const Node& n, F&& f) {
+  try {
+    return f();
+  } catch (Error& e) {
+    if (e.context().file.empty()) e.add_context(n.file(), n.line(), n.path());
+    throw;
+  }
+}
+
+std::vector<gyro::DeterminationInput> read_determinations(const Node& list,
+                                                          const gyro::InstrumentSpec& inst,
+                                                          FieldLines& lines) {
+  std::vector<gyro::DeterminationInput> out;
+  lines[list.path()] = list.line();
+  for (const auto& e : list.elements()) {
+    out.push_back(read_determination(e, inst));
+    lines[e.path()] = e.line();
+  }
+  return out;
+}
+
+gyro::ReduceOptions read_options(const Node& n) {
+  n.allow_only({"zero_position_method", "estimate_damping", "zero_position_tolerance_div"});
+  gyro::ReduceOptions o;
+  if (auto v = n.get("zero_position_method")) {
+    try {
+      o.zero_position_method = gyro::reversal_method_from_string(v->string());
+    } catch (Error& e) {
+      v->fail(e.message());
+    }
+  }
+  if (auto v = n.get("estimate_damping")) o.unified_fit.estimate_damping = v->boolean();
+  if (auto v = n.get("zero_position_tolerance_div"))
+    o.zero_position_tolerance_div = v->positive_number();
+  return o;
+}
+
+gyro::PointInput read_point(const Node& n) {
+  n.allow_only({"name", "latitude_deg", "longitude_deg", "x_m", "y_m", "eta_arcsec",
+                "eta_sigma_arcsec"});
+  gyro::PointInput p;
+  if (auto v = n.get("name")) p.name = v->string();
+  if (auto v = n.get("latitude_deg")) {
+    p.lat_rad = v->angle().rad();
+    if (std::fabs(*p.lat_rad) > units::kPi / 2) v->fail("latitude must be within +-90 deg");
+  }
+  if (auto v = n.get("longitude_deg")) p.lon_rad = v->angle().rad();
+  if (p.lat_rad.has_value() != p.lon_rad.has_value())
+    n.fail("give both latitude_deg and longitude_deg");
+  if (auto v = n.get("x_m")) p.x_north_m = v->number();
+  if (auto v = n.get("y_m")) p.y_east_m = v->number();
+  if (p.x_north_m.has_value() != p.y_east_m.has_value()) n.fail("give both x_m and y_m");
+  if (!p.lat_rad && !p.x_north_m) n.fail("a point needs latitude_deg/longitude_deg or x_m/y_m");
+  if (auto v = n.get("eta_arcsec"))
+    p.eta_rad = Uncertain{v->number() * kArcsec, sigma_or(n, "eta_sigma_arcsec", 0.0) * kArcsec};
+  return p;
+}
+
+geodesy::GridDefinition read_grid(const Node& n) {
+  n.allow_only({"system", "zone", "ellipsoid", "hemisphere", "zone_prefix",
+                "central_meridian_deg", "scale_factor", "false_easting_m", "false_northing_m"});
+  geodesy::Ellipsoid e = geodesy::wgs84();
+  if (auto v = n.get("ellipsoid")) {
+    try {
+      e = geodesy::ellipsoid_by_name(v->string());
+    } catch (Error& err) {
+      v->fail(err.message());
+    }
+  }
+  const Node sys = n.require("system");
+  const std::string s = sys.string();
+  bool prefix = false;
+  if (auto v = n.get("zone_prefix")) prefix = v->boolean();
+  geodesy::GridDefinition g;
+  auto zone = [&] { return n.require("zone").integer(); };
+  try {
+    if (s == "gk3" || s == "gauss-kruger-3")
+      g = geodesy::gauss_kruger_3(zone(), e, prefix);
+    else if (s == "gk6" || s == "gauss-kruger-6")
+      g = geodesy::gauss_kruger_6(zone(), e, prefix);
+    else if (s == "utm") {
+      bool north = true;
+      if (auto h = n.get("hemisphere")) {
+        const std::string hs = h->string();
+        if (hs == "north" || hs == "n") north = true;
+        else if (hs == "south" || hs == "s") north = false;
+        else h->fail("expected north or south");
+      }
+      g = geodesy::utm(zone(), north, e);
+    } else if (s == "custom") {
+      g.system = geodesy::ZoneSystem::Custom;
+      g.ellipsoid = e;
+      g.central_meridian_rad = n.require("central_meridian_deg").angle().rad();
+      if (auto v = n.get("scale_factor")) g.scale_factor = v->positive_number();
+      if (auto v = n.get("false_easting_m")) g.false_easting_m = v->number();
+      if (auto v = n.get("false_northing_m")) g.false_northing_m = v->number();
+    } else {
+      sys.fail(fmt::format("unknown grid system \"{}\" (expected gk3, gk6, utm or custom)", s));
+    }
+    if (s != "custom")
+      for (const char* k : {"central_meridian_deg", "scale_factor", "false_easting_m", "false_northing_m"})
+        if (auto v = n.get(k)) v->fail("only for system custom");
+    (void)geodesy::TransverseMercatorGrid(g);  // validates
+  } catch (Error& err) {
+    if (err.context().file.empty()) n.fail(err.message());
+    throw;
+  }
+  return g;
+}
+
+}  // namespace
+
+void locate_error(Error& e, const std::string& file, const FieldLines& lines) {
+  if (!e.context().file.empty()) return;
+  const std::string& field = e.context().field;
+  std::optional<int> line;
+  std::size_t best = 0;
+  for (const auto& [path, l] : lines) {
+    const bool prefix = field.compare(0, path.size(), path) == 0 &&
+                        (field.size() == path.size() || field[path.size()] == '.' ||
+                         field[path.size()] == '[');
+    if (prefix && path.size() >= best) {
+      best = path.size();
+      line = l;
+    }
+  }
+  e.add_context(file, line);
+}
+
+GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
+  const Node root = Node::load_file(path);
+  root.allow_only({"instrument", "station", "determinations", "options"});
+  GyroReduceFile f;
+  f.file = path.string();
+  const Node inst = root.require("instrument");
+  f.instrument = read_instrument(inst);
+  const Node st = root.require("station");
+  st.allow_only({"name", "latitude_deg"});
+  const Node lat = st.require("latitude_deg");
+  f.latitude_rad = lat.angle().rad();
+  if (std::fabs(f.latitude_rad) > units::kPi / 2) lat.fail("latitude must be within +-90 deg");
+  if (auto o = root.get("options")) f.options = read_options(*o);
+  const Node dets = root.require("determinations");
+  f.determinations = read_determinations(dets, f.instrument, f.lines);
+  if (f.determinations.empty()) dets.fail("no determinations");
+  // Check that the constants resolve at this latitude, so the error points at the file.
+  with_location(lat, [&] {
+    gyro::check_latitude(f.latitude_rad, f.instrument.latitude_limit_rad);
+    return 0;
+  });
+  with_location(inst, [&] { return gyro::resolve_instrument(f.instrument, f.latitude_rad); });
+  return f;
+}
+
+CampaignFile read_campaign_file(const std::filesystem::path& path) {
+  const Node root = Node::load_file(path);
+  root.allow_only({"campaign", "instrument", "grid", "known_line", "instrument_constant", "line",
+                   "tolerances", "options"});
+  CampaignFile f;
+  f.file = path.string();
+  gyro::CampaignInput& c = f.campaign;
+  for (const char* k : {"instrument", "grid", "known_line", "line", "known_line.from",
+                        "known_line.to", "line.from", "line.to"}) {
+    // Record section lines for errors found later by the library.
+    std::optional<Node> n = root;
+    std::string rest = k;
+    while (n && !rest.empty()) {
+      const auto dot = rest.find('.');
+      n = n->is_map() ? n->get(rest.substr(0, dot)) : std::nullopt;
+      rest = dot == std::string::npos ? "" : rest.substr(dot + 1);
+    }
+    if (n) f.lines[k] = n->line();
+  }
+  if (auto v = root.get("campaign")) c.name = v->string();
+  c.instrument = read_instrument(root.require("instrument"));
+  c.grid = read_grid(root.require("grid"));
+  if (auto k = root.get("known_line")) {
+    k->allow_only({"from", "to", "azimuth", "before", "after"});
+    gyro::KnownLineInput kl;
+    kl.from = read_point(k->require("from"));
+    if (auto t = k->get("to")) kl.to = read_point(*t);
+    const Node az = k->require("azimuth");
+    az.allow_only({"kind", "value", "sigma_arcsec"});
+    const Node kind = az.require("kind");
+    const std::string ks = kind.string();
+    if (ks == "astronomic") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Astronomic;
+    else if (ks == "geodetic") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Geodetic;
+    else if (ks == "grid") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Grid;
+    else kind.fail(fmt::format("unknown azimuth kind \"{}\" (expected astronomic, geodetic or grid)", ks));
+    kl.azimuth.value_rad = {az.require("value").angle().normalized_positive().rad(),
+                            sigma_or(az, "sigma_arcsec", 0.0) * kArcsec};
+    if (auto b = k->get("before")) kl.before = read_determinations(*b, c.instrument, f.lines);
+    if (auto a = k->get("after")) kl.after = read_determinations(*a, c.instrument, f.lines);
+    if (kl.before.empty() && kl.after.empty()) k->fail("give determinations before and/or after");
+    for (const auto* list : {&kl.before, &kl.after})
+      for (const auto& d : *list)
+        if (!d.target_reading_rad) k->fail("every known-line determination needs target_reading");
+    c.known_line = std::move(kl);
+  }
+  if (auto e = root.get("instrument_constant")) {
+    if (c.known_line) e->fail("give known_line or instrument_constant, not both");
+    e->allow_only({"value", "sigma_arcsec"});
+    c.instrument_constant_rad = Uncertain{e->require("value").angle().normalized_signed().rad(),
+                                          sigma_or(*e, "sigma_arcsec", 0.0) * kArcsec};
+  }
+  if (!c.known_line && !c.instrument_constant_rad)
+    root.fail("give known_line (calibration on a known line) or instrument_constant");
+  const Node line = root.require("line");
+  line.allow_only({"from", "to", "determinations"});
+  c.line.from = read_point(line.require("from"));
+  if (auto t = line.get("to")) c.line.to = read_point(*t);
+  const Node dets = line.require("determinations");
+  c.line.determinations = read_determinations(dets, c.instrument, f.lines);
+  if (c.line.determinations.empty()) dets.fail("no determinations");
+  for (std::size_t i = 0; i < c.line.determinations.size(); ++i)
+    if (!c.line.determinations[i].target_reading_rad)
+      dets.elements()[i].fail("every line determination needs target_reading");
+  if (auto t = root.get("tolerances")) {
+    t->allow_only({"determination_difference_arcsec", "instrument_constant_difference_arcsec",
+                   "zero_position_div"});
+    if (auto v = t->get("determination_difference_arcsec"))
+      c.tolerances.determination_difference_rad = v->positive_number() * kArcsec;
+    if (auto v = t->get("instrument_constant_difference_arcsec"))
+      c.tolerances.instrument_constant_difference_rad = v->positive_number() * kArcsec;
+    if (auto v = t->get("zero_position_div")) c.tolerances.zero_position_div = v->positive_number();
+  }
+  if (auto o = root.get("options")) c.options = read_options(*o);
+  return f;
+}
+
+}  // namespace meridian::io

@@ -1,0 +1,196 @@
+#include "meridian/report/gyro_json.hpp"
+
+#include <cmath>
+
+#include "meridian/core/dms.hpp"
+#include "meridian/core/units.hpp"
+
+namespace meridian::report {
+namespace {
+
+using nlohmann::json;
+constexpr double kArcsec = units::kArcsecond;
+constexpr double kDeg = units::kDegree;
+
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json arcsec(double rad) { return num(rad / kArcsec); }
+json uncertain(const gyro::Uncertain& u, double scale = 1.0) {
+  return {{"value", num(u.value / scale)}, {"sigma", num(u.sigma / scale)}};
+}
+json strings(const std::vector<std::string>& v) { return json(v); }
+
+json reversal_json(const gyro::ReversalResult& r, bool radians) {
+  const double s = radians ? kArcsec : 1.0;
+  json j;
+  j["unit"] = radians ? "arcsec" : "div";
+  j["centre"] = radians ? json{{"value_deg", num(r.centre.value / kDeg)}, {"sigma_arcsec", num(r.centre.sigma / kArcsec)}}
+                        : uncertain(r.centre);
+  if (r.amplitude) j["amplitude"] = uncertain(*r.amplitude, s);
+  if (r.damping) j["damping"] = r.method == gyro::ReversalMethod::NonlinearLsq
+                                    ? uncertain(*r.damping)
+                                    : uncertain(*r.damping, s);
+  j["cofactor_centre"] = num(r.cofactor_centre);
+  j["dof"] = r.dof;
+  j["sigma0"] = num(r.sigma0 / s);
+  j["sigma_is_aposteriori"] = r.sigma_is_aposteriori;
+  json res = json::array();
+  for (double v : r.residuals) res.push_back(num(v / s));
+  j["residuals"] = res;
+  if (!r.partial_means.empty()) {
+    json pm = json::array();
+    for (double v : r.partial_means) pm.push_back(radians ? num(v / kDeg) : num(v));
+    j["partial_means"] = pm;
+  }
+  j["notes"] = strings(r.notes);
+  return j;
+}
+
+}  // namespace
+
+json method_to_json(const gyro::MethodResult& r, gyro::Mode mode) {
+  json j;
+  j["method"] = r.method;
+  j["north_reading_deg"] = num(r.north.north_rad / kDeg);
+  j["north_reading_dms"] = format_direction_dms(Angle::radians(r.north.north_rad), {2, true, false});
+  j["sigma_arcsec"] = arcsec(r.north.sigma_rad);
+  j["zero_position_correction_arcsec"] = arcsec(r.north.zero_correction_rad);
+  if (mode == gyro::Mode::NonTracking) {
+    j["delta_n_arcsec"] = arcsec(r.north.delta_n_rad);
+    if (r.beta) {
+      const auto& b = *r.beta;
+      j["beta_div"] = num(b.beta_div.value);
+      j["beta_sigma_div"] = num(b.beta_div.sigma);
+      j["approximation_error_div"] = num(b.approximation_error_div);
+      j["approximation_error_arcsec"] = arcsec(r.approximation_error_rad);
+      if (b.amplitude_div) j["amplitude_div"] = uncertain(*b.amplitude_div);
+      if (b.period_s) j["period_s"] = uncertain(*b.period_s);
+      if (b.transit_delta_n_rad) j["transit_delta_n_arcsec"] = uncertain(*b.transit_delta_n_rad, kArcsec);
+      j["warnings"] = strings(b.warnings);
+      j["assumptions"] = strings(b.assumptions);
+    }
+    if (r.fit) {
+      const auto& f = *r.fit;
+      json fit;
+      fit["t0_s"] = uncertain(f.t0_s);
+      fit["damping_per_s"] = uncertain(f.damping_per_s);
+      fit["sigma0"] = num(f.sigma0);
+      fit["dof"] = f.dof;
+      fit["iterations"] = f.iterations;
+      json res = json::array();
+      for (const auto& v : f.residuals)
+        res.push_back({{"kind", v.kind == gyro::UnifiedFitResidual::Kind::CrossingTime ? "crossing_time_s"
+                                                                                      : "reversal_div"},
+                       {"group", v.group},
+                       {"index", v.index},
+                       {"observed", num(v.observed)},
+                       {"residual", num(v.residual)},
+                       {"standardized", num(v.standardized)},
+                       {"redundancy", num(v.redundancy)}});
+      fit["residuals"] = res;
+      j["fit"] = fit;
+    }
+  } else if (r.reversal) {
+    j["delta_n_arcsec"] = arcsec(r.north.delta_n_rad);
+    j["fit"] = reversal_json(*r.reversal, true);
+  }
+  return j;
+}
+
+json determination_to_json(const gyro::DeterminationResult& r) {
+  json j = method_to_json(r.primary, r.mode);
+  j["mode"] = gyro::to_string(r.mode);
+  j["method"] = r.method;
+  if (!r.label.empty()) j["label"] = r.label;
+  if (r.method == "all") {
+    j["recommended_method"] = r.primary.method;
+    json all = json::array();
+    for (const auto& m : r.all) all.push_back(method_to_json(m, r.mode));
+    j["results"] = all;
+  }
+  if (r.zero_position_used)
+    j["zero_position_div"] = uncertain(*r.zero_position_used);
+  else
+    j["zero_position_div"] = nullptr;
+  if (r.zero_position) {
+    const auto& z = *r.zero_position;
+    json zj;
+    if (z.before) zj["before"] = reversal_json(z.before->fit, false);
+    if (z.after) zj["after"] = reversal_json(z.after->fit, false);
+    zj["mean_div"] = uncertain(z.mean_div);
+    zj["difference_div"] = z.difference_div ? num(*z.difference_div) : json(nullptr);
+    zj["tolerance_div"] = z.tolerance_div;
+    zj["within_tolerance"] = z.within_tolerance;
+    j["zero_position_runs"] = zj;
+  }
+  j["warnings"] = strings(r.warnings);
+  return j;
+}
+
+json campaign_to_json(const gyro::CampaignResult& r) {
+  auto az = [](const gyro::Uncertain& u) {
+    return json{{"deg", num(u.value / kDeg)},
+                {"dms", format_direction_dms(Angle::radians(u.value), {2, true, false})},
+                {"sigma_arcsec", num(u.sigma / kArcsec)}};
+  };
+  auto point = [](const gyro::PointResult& p) {
+    return json{{"name", p.name},
+                {"latitude_deg", num(p.lat_rad / kDeg)},
+                {"longitude_deg", num(p.lon_rad / kDeg)},
+                {"x_m", num(p.grid.x_north_m)},
+                {"y_m", num(p.grid.y_east_m)},
+                {"convergence_arcsec", num(p.grid.convergence_rad / kArcsec)},
+                {"scale", num(p.grid.scale)}};
+  };
+  json j;
+  j["campaign"] = r.name;
+  j["station"] = point(r.station);
+  if (r.target) j["target"] = point(*r.target);
+  if (r.known_station) j["known_station"] = point(*r.known_station);
+  j["torsion_ratio_station"] = uncertain(r.instrument_station.instrument.torsion_ratio);
+  auto dets = [&](const std::vector<gyro::DeterminationResult>& d, const std::vector<gyro::Uncertain>& ag) {
+    json a = json::array();
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      json e = determination_to_json(d[i]);
+      if (i < ag.size()) e["gyro_azimuth"] = az(ag[i]);
+      a.push_back(e);
+    }
+    return a;
+  };
+  if (r.instrument_constant) {
+    const auto& e = *r.instrument_constant;
+    json k;
+    k["known_astronomic_azimuth"] = az(*r.known_astronomic_azimuth_rad);
+    k["before"] = dets(r.known_before, r.known_gyro_azimuths_before);
+    k["after"] = dets(r.known_after, r.known_gyro_azimuths_after);
+    json eb = json::array(), ea = json::array();
+    for (const auto& x : e.before) eb.push_back(uncertain(x, kArcsec));
+    for (const auto& x : e.after) ea.push_back(uncertain(x, kArcsec));
+    k["instrument_constants_before_arcsec"] = eb;
+    k["instrument_constants_after_arcsec"] = ea;
+    k["difference_arcsec"] = e.difference_rad ? arcsec(*e.difference_rad) : json(nullptr);
+    j["calibration"] = k;
+  }
+  j["instrument_constant_arcsec"] = uncertain(r.instrument_constant_used_rad, kArcsec);
+  j["determinations"] = dets(r.determinations, r.gyro_azimuths);
+  j["gyro_azimuth_mean"] = az(r.gyro_azimuth_mean.mean);
+  j["gyro_azimuth_mean"]["sigma_propagated_arcsec"] = arcsec(r.gyro_azimuth_mean.sigma_propagated);
+  j["gyro_azimuth_mean"]["sigma_empirical_arcsec"] = arcsec(r.gyro_azimuth_mean.sigma_empirical);
+  const auto& c = r.chain;
+  j["astronomic_azimuth"] = az(c.astronomic_azimuth_rad);
+  j["laplace_correction_arcsec"] = c.laplace_applied ? arcsec(c.laplace_correction_rad) : json(nullptr);
+  j["geodetic_azimuth"] = az(c.geodetic_azimuth_rad);
+  j["convergence_arcsec"] = arcsec(c.convergence_rad);
+  j["arc_to_chord_arcsec"] = c.arc_to_chord_applied ? arcsec(c.arc_to_chord_rad) : json(nullptr);
+  j["grid_azimuth"] = az(c.grid_azimuth_rad);
+  json checks = json::array();
+  for (const auto& k : r.checks)
+    checks.push_back({{"name", k.name}, {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
+                      {"unit", k.unit}, {"pass", k.pass}});
+  j["checks"] = checks;
+  j["all_checks_pass"] = r.all_checks_pass();
+  j["notes"] = strings(r.notes);
+  j["warnings"] = strings(r.warnings);
+  return j;
+}
+
+}  // namespace meridian::report

@@ -1,0 +1,130 @@
+#include "meridian/report/gyro_text.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "meridian/core/dms.hpp"
+#include "meridian/core/units.hpp"
+
+namespace meridian::report {
+namespace {
+
+constexpr double kArcsec = units::kArcsecond;
+
+std::string dir(double rad) { return format_direction_dms(Angle::radians(rad), {1, true, false}); }
+std::string dirp(double rad) { return format_direction_dms(Angle::radians(rad), {2, true, false}); }
+std::string sig(double rad) {
+  return std::isfinite(rad) ? fmt::format("{:.1f}\"", rad / kArcsec) : std::string("n/a");
+}
+std::string sec(double rad) { return fmt::format("{:+.2f}\"", rad / kArcsec); }
+std::string sec3(double rad) { return fmt::format("{:+.3f}\"", rad / kArcsec); }
+
+void method_line(std::string& out, const gyro::MethodResult& m) {
+  out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", m.method, dir(m.north.north_rad),
+                     sig(m.north.sigma_rad));
+}
+
+}  // namespace
+
+std::string determination_text(const gyro::DeterminationResult& r, int index) {
+  std::string out = fmt::format("Determination {}{} ({}, method {})\n", index + 1,
+                                r.label.empty() ? "" : " \"" + r.label + "\"", gyro::to_string(r.mode),
+                                r.method);
+  auto line = [&](const gyro::MethodResult& m) {
+    if (r.mode == gyro::Mode::NonTracking && m.beta) {
+      out += fmt::format("  {:<18} beta {:+9.4f} div  dN {:>10}  N_G {:>15}  sigma {:>7}", m.method,
+                         m.beta->beta_div.value, sec3(m.north.delta_n_rad), dirp(m.north.north_rad),
+                         sig(m.north.sigma_rad));
+      if (m.approximation_error_rad != 0.0)
+        out += fmt::format("  approximation error {:+.3f}\"", m.approximation_error_rad / kArcsec);
+      out += "\n";
+    } else {
+      method_line(out, m);
+    }
+  };
+  if (r.method == "all") {
+    for (const auto& m : r.all) line(m);
+    out += fmt::format("  recommended: {}\n", r.primary.method);
+  } else {
+    line(r.primary);
+  }
+  if (r.zero_position_used)
+    out += fmt::format("  zero position {:+.3f} div (sigma {:.3f}), correction {}\n",
+                       r.zero_position_used->value, r.zero_position_used->sigma,
+                       sec(r.primary.north.zero_correction_rad));
+  for (const auto& w : r.warnings) out += "  warning: " + w + "\n";
+  return out;
+}
+
+std::string campaign_text(const gyro::CampaignResult& r) {
+  std::string out;
+  out += fmt::format("Gyro orientation campaign: {}\n", r.name.empty() ? "(unnamed)" : r.name);
+  out += std::string(72, '=') + "\n";
+  auto point = [&](const char* what, const gyro::PointResult& p) {
+    out += fmt::format("{:<14} {:<10} lat {}  lon {}  x {:.3f} m  y {:.3f} m  gamma {}\n", what, p.name,
+                       format_dms(Angle::radians(p.lat_rad), {3, true, false}),
+                       format_dms(Angle::radians(p.lon_rad), {3, true, false}), p.grid.x_north_m,
+                       p.grid.y_east_m, format_dms(Angle::radians(p.grid.convergence_rad), {2, true, true}));
+  };
+  point("Station", r.station);
+  if (r.target) point("Target", *r.target);
+  if (r.known_station) point("Known station", *r.known_station);
+  const auto& lam = r.instrument_station.instrument.torsion_ratio;
+  out += fmt::format("Torsion ratio at the station: {:.5f} (sigma {:.5f})\n\n", lam.value, lam.sigma);
+
+  if (r.instrument_constant) {
+    out += "Calibration on the known line\n";
+    out += fmt::format("  known azimuth (astronomic) {}  sigma {}\n", dir(r.known_astronomic_azimuth_rad->value),
+                       sig(r.known_astronomic_azimuth_rad->sigma));
+    auto list = [&](const char* when, const std::vector<gyro::DeterminationResult>& d,
+                    const std::vector<gyro::Uncertain>& ag, const std::vector<gyro::Uncertain>& e) {
+      for (std::size_t i = 0; i < d.size(); ++i)
+        out += fmt::format("  {:<6} {:<20} N_G {:>15}  A_G {:>15}  E {:>9}  sigma {}\n", when,
+                           d[i].primary.method, dir(d[i].primary.north.north_rad), dir(ag[i].value),
+                           sec(e[i].value), sig(e[i].sigma));
+    };
+    list("before", r.known_before, r.known_gyro_azimuths_before, r.instrument_constant->before);
+    list("after", r.known_after, r.known_gyro_azimuths_after, r.instrument_constant->after);
+  }
+  out += fmt::format("  instrument constant E = {}  sigma {}\n\n", sec(r.instrument_constant_used_rad.value),
+                     sig(r.instrument_constant_used_rad.sigma));
+
+  out += "Determinations on the line\n";
+  for (std::size_t i = 0; i < r.determinations.size(); ++i) {
+    const auto& d = r.determinations[i];
+    out += fmt::format("  {:<2} {:<20} N_G {:>15}  sigma {:>6}  A_G {:>15}  sigma {}\n", i + 1,
+                       d.label.empty() ? d.primary.method : d.label, dir(d.primary.north.north_rad),
+                       sig(d.primary.north.sigma_rad), dir(r.gyro_azimuths[i].value),
+                       sig(r.gyro_azimuths[i].sigma));
+  }
+  out += "\nAzimuth chain (station to target)\n";
+  const auto& c = r.chain;
+  out += fmt::format("  gyro azimuth        A_G = {:>15}  sigma {}\n", dir(c.gyro_azimuth_rad.value),
+                     sig(c.gyro_azimuth_rad.sigma));
+  out += fmt::format("  + instrument const. E   = {:>15}\n", sec(r.instrument_constant_used_rad.value));
+  out += fmt::format("  astronomic azimuth  A   = {:>15}  sigma {}\n", dir(c.astronomic_azimuth_rad.value),
+                     sig(c.astronomic_azimuth_rad.sigma));
+  out += fmt::format("  Laplace -eta tan(phi)   = {:>15}\n",
+                     c.laplace_applied ? sec(c.laplace_correction_rad) : std::string("not applied"));
+  out += fmt::format("  geodetic azimuth    alpha = {:>13}  sigma {}\n", dir(c.geodetic_azimuth_rad.value),
+                     sig(c.geodetic_azimuth_rad.sigma));
+  out += fmt::format("  - convergence gamma     = {:>15}\n",
+                     format_dms(Angle::radians(c.convergence_rad), {2, true, true}));
+  out += fmt::format("  + arc-to-chord delta    = {:>15}\n",
+                     c.arc_to_chord_applied ? sec(c.arc_to_chord_rad) : std::string("not applied"));
+  out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n\n", dir(c.grid_azimuth_rad.value),
+                     sig(c.grid_azimuth_rad.sigma));
+  out += "Checks\n";
+  if (r.checks.empty()) out += "  (none applicable)\n";
+  for (const auto& k : r.checks)
+    out += fmt::format("  [{}] {}: {:.2f} {} (tolerance {:.2f})\n", k.pass ? "PASS" : "FAIL", k.name,
+                       k.value, k.unit, k.tolerance);
+  if (!r.notes.empty()) out += "\nNotes\n";
+  for (const auto& n : r.notes) out += "  - " + n + "\n";
+  if (!r.warnings.empty()) out += "\nWarnings\n";
+  for (const auto& w : r.warnings) out += "  ! " + w + "\n";
+  return out;
+}
+
+}  // namespace meridian::report
