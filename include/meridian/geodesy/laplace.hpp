@@ -9,6 +9,13 @@ namespace meridian::geodesy {
 /// (radians). η is the prime-vertical deflection component (η = (Λ − λ)·cos φ,
 /// astronomic minus geodetic), φ the geodetic latitude. Zenith-distance
 /// terms are neglected (horizontal sightings).
+///
+/// eta_rad: radians, positive when the astronomic longitude exceeds the
+/// geodetic one; |η| ≤ 0.01 rad (≈ 34′, far above the largest deflections on
+/// Earth, about 1′; larger values are almost surely a unit error).
+/// lat_rad: radians, north positive, |φ| < π/2. Example: η = +5″ at
+/// φ = 45° N gives −5″. Throws InputError for non-finite values or values
+/// out of range.
 double laplace_correction_rad(double eta_rad, double lat_rad);
 
 }  // namespace meridian::geodesy
