@@ -1,5 +1,6 @@
 #include "meridian/gyro/determination.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -40,6 +41,24 @@ MethodResult run_tracking(ReversalMethod m, const DeterminationInput& in, const 
   return r;
 }
 
+// A graduation outside the range of the observed reversal readings cannot
+// have been crossed: catch it before a fit absorbs it into a wrong amplitude.
+// The margin allows for reading noise and slow damping between a crossing
+// and the reversals.
+void check_levels_reached(const NonTrackingObservations& o) {
+  if (o.reversals_div.size() < 2) return;
+  const auto [lo, hi] = std::minmax_element(o.reversals_div.begin(), o.reversals_div.end());
+  const double margin = std::max(3.0 * o.sigma_reading_div, 0.02 * 0.5 * (*hi - *lo));
+  for (std::size_t i = 0; i < o.crossings.size(); ++i) {
+    const double a = o.crossings[i].level_div;
+    if (a < *lo - margin || a > *hi + margin)
+      throw InputError(fmt::format("level {} div lies beyond the reversal readings ({} ... {} div): "
+                                   "the light mark never reaches it",
+                                   a, *lo, *hi),
+                       {"", std::nullopt, fmt::format("crossings[{}].level_div", i)});
+  }
+}
+
 }  // namespace
 
 std::string to_string(Mode m) { return m == Mode::Tracking ? "tracking" : "non-tracking"; }
@@ -68,6 +87,7 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
   out.zero_position_used = zero;
 
   if (in.mode == Mode::NonTracking) {
+    check_levels_reached(in.nontracking);
     if (in.method == "all") {
       std::vector<NonTrackingMethod> methods = applicable_methods(in.nontracking);
       if (methods.empty())

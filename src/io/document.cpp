@@ -12,8 +12,11 @@
 
 namespace meridian::io::detail {
 
-Node::Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file)
-    : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)) {}
+Node::Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
+           std::shared_ptr<LineMap> lines)
+    : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)), lines_(std::move(lines)) {
+  if (node_.Mark().line >= 0) (*lines_)[path_] = node_.Mark().line + 1;
+}
 
 Node Node::load_file(const std::filesystem::path& path) {
   auto file = std::make_shared<const std::string>(path.string());
@@ -34,7 +37,7 @@ Node Node::load_file(const std::filesystem::path& path) {
     throw ParseError(fmt::format("syntax error: {} (column {})", e.msg, e.mark.column + 1),
                      {*file, e.mark.line >= 0 ? std::optional<int>(e.mark.line + 1) : std::nullopt, {}});
   }
-  Node n(root, "", file);
+  Node n(root, "", file, std::make_shared<LineMap>());
   if (!root.IsMap()) n.fail("the top level must be a mapping of fields (YAML) or an object (JSON)");
   return n;
 }
@@ -54,7 +57,7 @@ std::optional<Node> Node::get(const std::string& key) const {
   if (!node_.IsMap()) fail("expected a mapping of fields");
   YAML::Node c = node_[key];
   if (!c || c.IsNull()) return std::nullopt;
-  return Node(c, child_path(key), file_);
+  return Node(c, child_path(key), file_, lines_);
 }
 
 Node Node::require(const std::string& key) const {
@@ -71,7 +74,7 @@ std::vector<Node> Node::elements() const {
   if (!node_.IsSequence()) fail("expected a list");
   std::vector<Node> out;
   std::size_t i = 0;
-  for (const auto& c : node_) out.emplace_back(c, fmt::format("{}[{}]", path_, i++), file_);
+  for (const auto& c : node_) out.emplace_back(c, fmt::format("{}[{}]", path_, i++), file_, lines_);
   return out;
 }
 
@@ -145,7 +148,7 @@ void Node::allow_only(std::initializer_list<std::string_view> allowed) const {
   std::set<std::string> seen;
   for (const auto& kv : node_) {
     const std::string key = kv.first.Scalar();
-    Node k(kv.first, child_path(key), file_);
+    Node k(kv.first, child_path(key), file_, lines_);
     if (!seen.insert(key).second) k.fail("duplicate field");
     bool ok = false;
     for (auto a : allowed) ok = ok || a == key;

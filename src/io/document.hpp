@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,13 +19,17 @@ namespace meridian::io::detail {
 
 class Node {
  public:
-  Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file);
+  using LineMap = std::map<std::string, int>;
+
+  Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
+       std::shared_ptr<LineMap> lines);
   Node(const Node&) = default;
   // YAML::Node's assignment writes through to the document; rebind instead.
   Node& operator=(const Node& o) {
     node_.reset(o.node_);
     path_ = o.path_;
     file_ = o.file_;
+    lines_ = o.lines_;
     return *this;
   }
 
@@ -33,6 +38,8 @@ class Node {
 
   const std::string& path() const { return path_; }
   const std::string& file() const { return *file_; }
+  /// Line of every node visited so far, by field path.
+  const LineMap& visited_lines() const { return *lines_; }
   int line() const;  ///< 1-based
 
   bool is_map() const { return node_.IsMap(); }
@@ -70,6 +77,7 @@ class Node {
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<const std::string> file_;
+  std::shared_ptr<LineMap> lines_;
 };
 
 }  // namespace meridian::io::detail

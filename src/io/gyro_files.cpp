@@ -180,14 +180,9 @@ auto with_location(const Node& n, F&& f) {
 }
 
 std::vector<gyro::DeterminationInput> read_determinations(const Node& list,
-                                                          const gyro::InstrumentSpec& inst,
-                                                          FieldLines& lines) {
+                                                          const gyro::InstrumentSpec& inst) {
   std::vector<gyro::DeterminationInput> out;
-  lines[list.path()] = list.line();
-  for (const auto& e : list.elements()) {
-    out.push_back(read_determination(e, inst));
-    lines[e.path()] = e.line();
-  }
+  for (const auto& e : list.elements()) out.push_back(read_determination(e, inst));
   return out;
 }
 
@@ -313,7 +308,7 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
   if (std::fabs(f.latitude_rad) > units::kPi / 2) lat.fail("latitude must be within +-90 deg");
   if (auto o = root.get("options")) f.options = read_options(*o);
   const Node dets = root.require("determinations");
-  f.determinations = read_determinations(dets, f.instrument, f.lines);
+  f.determinations = read_determinations(dets, f.instrument);
   if (f.determinations.empty()) dets.fail("no determinations");
   // Check that the constants resolve at this latitude, so the error points at the file.
   with_location(lat, [&] {
@@ -321,6 +316,7 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
     return 0;
   });
   with_location(inst, [&] { return gyro::resolve_instrument(f.instrument, f.latitude_rad); });
+  f.lines = root.visited_lines();
   return f;
 }
 
@@ -331,18 +327,6 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   CampaignFile f;
   f.file = path.string();
   gyro::CampaignInput& c = f.campaign;
-  for (const char* k : {"instrument", "grid", "known_line", "line", "known_line.from",
-                        "known_line.to", "line.from", "line.to"}) {
-    // Record section lines for errors found later by the library.
-    std::optional<Node> n = root;
-    std::string rest = k;
-    while (n && !rest.empty()) {
-      const auto dot = rest.find('.');
-      n = n->is_map() ? n->get(rest.substr(0, dot)) : std::nullopt;
-      rest = dot == std::string::npos ? "" : rest.substr(dot + 1);
-    }
-    if (n) f.lines[k] = n->line();
-  }
   if (auto v = root.get("campaign")) c.name = v->string();
   c.instrument = read_instrument(root.require("instrument"));
   c.grid = read_grid(root.require("grid"));
@@ -361,8 +345,8 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     else kind.fail(fmt::format("unknown azimuth kind \"{}\" (expected astronomic, geodetic or grid)", ks));
     kl.azimuth.value_rad = {az.require("value").angle().normalized_positive().rad(),
                             sigma_or(az, "sigma_arcsec", 0.0) * kArcsec};
-    if (auto b = k->get("before")) kl.before = read_determinations(*b, c.instrument, f.lines);
-    if (auto a = k->get("after")) kl.after = read_determinations(*a, c.instrument, f.lines);
+    if (auto b = k->get("before")) kl.before = read_determinations(*b, c.instrument);
+    if (auto a = k->get("after")) kl.after = read_determinations(*a, c.instrument);
     if (kl.before.empty() && kl.after.empty()) k->fail("give determinations before and/or after");
     for (const auto* list : {&kl.before, &kl.after})
       for (const auto& d : *list)
@@ -382,7 +366,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   c.line.from = read_point(line.require("from"));
   if (auto t = line.get("to")) c.line.to = read_point(*t);
   const Node dets = line.require("determinations");
-  c.line.determinations = read_determinations(dets, c.instrument, f.lines);
+  c.line.determinations = read_determinations(dets, c.instrument);
   if (c.line.determinations.empty()) dets.fail("no determinations");
   for (std::size_t i = 0; i < c.line.determinations.size(); ++i)
     if (!c.line.determinations[i].target_reading_rad)
@@ -397,6 +381,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     if (auto v = t->get("zero_position_div")) c.tolerances.zero_position_div = v->positive_number();
   }
   if (auto o = root.get("options")) c.options = read_options(*o);
+  f.lines = root.visited_lines();
   return f;
 }
 

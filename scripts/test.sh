@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs what is needed, builds everything with -Werror and runs the whole
+# test suite: unit, CLI and validation tests, the find_package(Meridian)
+# consumer check and, unless MERIDIAN_SKIP_SANITIZERS=1, the suite again
+# under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+jobs=$(nproc)
+
+echo "== Release build and tests"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DMERIDIAN_BUILD_TESTS=ON
+cmake --build build -j"$jobs"
+ctest --test-dir build -j"$jobs" --output-on-failure
+
+echo "== Installed package: find_package(Meridian) from a downstream project"
+rm -rf build/install build/consumer
+cmake --install build --prefix build/install > /dev/null
+cmake -S tests/package -B build/consumer -DCMAKE_PREFIX_PATH="$PWD/build/install"
+cmake --build build/consumer -j"$jobs"
+./build/consumer/meridian_consumer
+
+if [ "${MERIDIAN_SKIP_SANITIZERS:-0}" != 1 ]; then
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DMERIDIAN_SANITIZE=ON -DMERIDIAN_BUILD_TESTS=ON
+  cmake --build build-asan -j"$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir build-asan -j"$jobs" --output-on-failure
+fi
+echo "== all tests passed"

@@ -1,0 +1,145 @@
+// Calibration, azimuth chain and whole campaigns (spec §5–§7, §8.5).
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/gyro/azimuth_chain.hpp"
+#include "meridian/gyro/calibration.hpp"
+#include "meridian/gyro/campaign.hpp"
+#include "meridian/gyro/campaign_simulator.hpp"
+
+using namespace meridian;
+using namespace meridian::gyro;
+
+namespace {
+constexpr double kArcsec = units::kArcsecond;
+constexpr double kDeg = units::kDegree;
+
+// Signed difference of two directions in arc-seconds.
+double diff_arcsec(double a, double b) { return std::remainder(a - b, 2 * units::kPi) / kArcsec; }
+
+// Run GeographicLib's own TransverseMercatorProj: returns gamma (degrees).
+double tool_convergence_deg(double lat_deg, double lon_deg, double lon0_deg, double a, double f) {
+  const std::string cmd = fmt::format("echo {:.12f} {:.12f} | TransverseMercatorProj -l {:.12f} -k 1 -e {:.4f} {:.15g} -p 12",
+                                      lat_deg, lon_deg, lon0_deg, a, f);
+  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
+  if (!p) ADD_FAILURE() << "cannot run TransverseMercatorProj";
+  double x = 0, y = 0, gamma = 0, k = 0;
+  if (!p || std::fscanf(p.get(), "%lf %lf %lf %lf", &x, &y, &gamma, &k) != 4)
+    ADD_FAILURE() << "TransverseMercatorProj (Debian geographiclib-tools) is needed: " << cmd;
+  return gamma;
+}
+}  // namespace
+
+TEST(Calibration, InstrumentConstantBeforeAfter) {
+  const Uncertain known{(30.0 * kDeg), 3 * kArcsec};
+  const std::vector<Uncertain> before{{30 * kDeg - 20 * kArcsec, 5 * kArcsec}, {30 * kDeg - 24 * kArcsec, 5 * kArcsec}};
+  const std::vector<Uncertain> after{{30 * kDeg - 26 * kArcsec, 5 * kArcsec}};
+  const auto e = instrument_constant(known, before, after, 40 * kArcsec);
+  EXPECT_NEAR(e.before[0].value / kArcsec, 20.0, 1e-9);
+  EXPECT_NEAR(e.mean.value / kArcsec, 70.0 / 3.0, 1e-9);
+  EXPECT_NEAR(*e.difference_rad / kArcsec, 26.0 - 22.0, 1e-9);
+  EXPECT_TRUE(e.within_tolerance);
+  // σ: max(propagated 5/√3, empirical) combined with σ(A_known) = 3".
+  const double emp = std::sqrt(((20 - 70.0 / 3) * (20 - 70.0 / 3) + (24 - 70.0 / 3) * (24 - 70.0 / 3) +
+                                (26 - 70.0 / 3) * (26 - 70.0 / 3)) / 6.0);
+  EXPECT_NEAR(e.mean.sigma / kArcsec, std::hypot(std::max(5 / std::sqrt(3.0), emp), 3.0), 1e-9);
+  const auto bad = instrument_constant(known, before, {{30 * kDeg - 80 * kArcsec, 5 * kArcsec}}, 40 * kArcsec);
+  EXPECT_FALSE(bad.within_tolerance);
+  EXPECT_FALSE(bad.warnings.empty());
+}
+
+TEST(Calibration, MeanDirectionAcrossNorth) {
+  const auto m = mean_direction({{-10 * kArcsec + 2 * units::kPi, 1 * kArcsec}, {10 * kArcsec, 1 * kArcsec}});
+  EXPECT_NEAR(diff_arcsec(m.mean.value, 0.0), 0.0, 1e-9);
+  EXPECT_NEAR(m.max_difference / kArcsec, 20.0, 1e-9);
+}
+
+TEST(AzimuthChain, ClosedFormWithSigma) {
+  AzimuthChainInput in;
+  in.gyro_azimuth_rad = {100 * kDeg, 5 * kArcsec};
+  in.instrument_constant_rad = {-30 * kArcsec, 4 * kArcsec};
+  in.latitude_rad = 40 * kDeg;
+  in.eta_rad = Uncertain{6 * kArcsec, 1 * kArcsec};
+  in.convergence_rad = -0.5 * kDeg;
+  in.arc_to_chord_rad = 0.3 * kArcsec;
+  const auto r = azimuth_chain(in);
+  const double t40 = std::tan(40 * kDeg);
+  EXPECT_NEAR(r.astronomic_azimuth_rad.value, 100 * kDeg - 30 * kArcsec, 1e-15);
+  EXPECT_NEAR(r.laplace_correction_rad / kArcsec, -6 * t40, 1e-9);
+  EXPECT_NEAR(diff_arcsec(r.grid_azimuth_rad.value, 100 * kDeg - 30 * kArcsec - 6 * t40 * kArcsec + 0.5 * kDeg + 0.3 * kArcsec), 0.0, 1e-9);
+  EXPECT_NEAR(r.grid_azimuth_rad.sigma / kArcsec, std::sqrt(25 + 16 + t40 * t40), 1e-9);
+  in.eta_rad.reset();
+  const auto r2 = azimuth_chain(in);
+  EXPECT_FALSE(r2.laplace_applied);
+  EXPECT_FALSE(r2.notes.empty());
+}
+
+TEST(Campaign, NoiseFreeSimulationRecoversTruth) {
+  CampaignTruth t = example_campaign_truth();
+  t.sigma_time_s = 0;
+  t.sigma_reading_div = 0;
+  t.sigma_tracking_arcsec = 0;
+  t.sigma_pointing_arcsec = 0;
+  t.alpha_p_drift_div = 0;
+  t.round_to_field_precision = false;
+  const auto sim = simulate_campaign(t, 7);
+  const auto r = process_campaign(sim.input);
+  EXPECT_NEAR(r.instrument_constant_used_rad.value / kArcsec, t.instrument_constant_rad / kArcsec, 0.01);
+  EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), 0.0, 0.01);
+  EXPECT_TRUE(r.all_checks_pass());
+  EXPECT_TRUE(r.chain.laplace_applied);
+  EXPECT_TRUE(r.chain.arc_to_chord_applied);
+  for (const auto& d : r.determinations) EXPECT_TRUE(d.zero_position.has_value());
+}
+
+TEST(Campaign, GridAzimuthAgreesWithGeographicLibTool) {
+  // Spec §8.5: T = α − γ + δ with γ from TransverseMercatorProj, to 0.001".
+  const auto sim = simulate_campaign(example_campaign_truth(), 11);
+  const auto r = process_campaign(sim.input);
+  const auto& e = sim.input.grid.ellipsoid;
+  const double gamma_tool = tool_convergence_deg(r.station.lat_rad / kDeg, r.station.lon_rad / kDeg,
+                                                 sim.input.grid.central_meridian_rad / kDeg, e.a_m, e.f);
+  const double t_independent = r.chain.geodetic_azimuth_rad.value - gamma_tool * kDeg + r.chain.arc_to_chord_rad;
+  EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, t_independent), 0.0, 0.001);
+  EXPECT_NEAR(r.chain.convergence_rad / kDeg, gamma_tool, 0.001 / 3600);
+}
+
+TEST(Campaign, NoisySimulationWithinReportedSigma) {
+  // 40 noisy campaigns: the grid azimuth error stays within 3σ each time
+  // and the RMS normalised error is of order one.
+  double sum2 = 0;
+  const int runs = 40;
+  for (int s = 0; s < runs; ++s) {
+    const auto sim = simulate_campaign(example_campaign_truth(), 1000 + static_cast<std::uint64_t>(s));
+    const auto r = process_campaign(sim.input);
+    const double err = diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad);
+    const double sig = r.chain.grid_azimuth_rad.sigma / kArcsec;
+    EXPECT_LT(std::fabs(err), 3.5 * sig) << "seed " << 1000 + s;
+    sum2 += (err / sig) * (err / sig);
+  }
+  const double rms = std::sqrt(sum2 / runs);
+  EXPECT_GT(rms, 0.3);
+  EXPECT_LT(rms, 1.5);
+}
+
+TEST(Campaign, MissingInstrumentConstantIsAnError) {
+  auto sim = simulate_campaign(example_campaign_truth(), 3);
+  sim.input.known_line.reset();
+  EXPECT_THROW(process_campaign(sim.input), InputError);
+  sim.input.instrument_constant_rad = Uncertain{25 * kArcsec, 5 * kArcsec};
+  EXPECT_NO_THROW(process_campaign(sim.input));
+}
+
+TEST(Campaign, LatitudeBeyondLimitIsRejected) {
+  auto t = example_campaign_truth();
+  t.instrument.latitude_limit_rad = 30 * kDeg;
+  EXPECT_THROW(simulate_campaign(t, 1), InputError);
+}
