@@ -20,6 +20,9 @@ struct UnifiedFitOptions {
   /// Use the given period_s as a (weighted) observation of T_B when present;
   /// otherwise T_B is free.
   bool use_known_period = true;
+  /// Fill UnifiedFitResult::simple_methods (the comparison table); switch off
+  /// for Monte Carlo loops that only need the fit.
+  bool compare_simple_methods = true;
 };
 
 /// One observation of the fit with its residual.
@@ -67,16 +70,28 @@ struct UnifiedFitResult {
 };
 
 /// Whether fit_nontracking can run with these options: at least one
-/// crossing time; β and B separable (crossings of two levels, or reversal
-/// readings); a start value for T_B (period_s, three passages of one level,
+/// crossing time; β and B separable (two consecutive passages of two levels,
+/// or of one level and a reversal reading, or two reversal readings); a
+/// start value for T_B (period_s, three passages of one level,
 /// or two timed reversals); σ_t > 0 (and σ_a > 0 with reversals); as many
 /// observations as parameters; reversal times when damping is estimated
 /// from reversal readings.
 bool unified_fit_applicable(const NonTrackingObservations& obs,
                             const UnifiedFitOptions& options = {});
 
-/// Throws InputError when there are fewer observations than parameters, and
-/// NumericalError when the fit does not converge or is singular.
+/// Parameters (β, B, t0, T_B[, k]). Observation equations: every crossing
+/// time as a function of the parameters on a fixed phase branch (eastward
+/// passage θ = asin((a−β)/B) + 2πm, westward θ = π − asin((a−β)/B) + 2πm,
+/// t = t0 + T_B·θ/(2π); with damping the root of (N1) near that time, by
+/// Newton), σ = σ_t; every reversal reading a_r = β ± B·e^{−k(t_r − t0)},
+/// σ = σ_a (sides alternate; t_r from reversal_times_s, needed only with
+/// damping); period_s as an observation of T_B when use_known_period and
+/// σ > 0, T_B held fixed when σ = 0. Start values from the simple methods;
+/// Levenberg–Marquardt (adjust::solve_nonlinear) with analytic Jacobian.
+/// Reported σ and covariance are a priori (from the given σ); σ̂0 separately.
+/// Throws InputError when there are fewer observations than parameters (or
+/// as unified_fit_applicable says), and NumericalError when the fit does not
+/// converge, is singular, or leaves a timed level out of reach.
 UnifiedFitResult fit_nontracking(const NonTrackingObservations& obs, const Instrument& inst,
                                  const UnifiedFitOptions& options = {});
 
