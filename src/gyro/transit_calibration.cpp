@@ -15,27 +15,16 @@ struct TransitData {
   Uncertain amplitude, dt;
 };
 
-TransitData transit_data(const DeterminationInput& d, const char* field) {
+// B and the direction-corrected Δt from the transit method itself, so any
+// number of transits and reversals is handled the same way as in reductions.
+TransitData transit_data(const DeterminationInput& d, const Instrument& inst, const char* field) {
   try {
-    if (d.mode != Mode::NonTracking) throw InputError("must be a non-tracking determination", {"", std::nullopt, "mode"});
-    const auto& o = d.nontracking;
-    const Crossing* zero = nullptr;
-    for (const auto& c : o.crossings)
-      if (c.level_div == 0.0) zero = &c;
-    if (!zero || zero->times_s.size() < 3)
-      throw InputError("three crossings of level 0 are needed", {"", std::nullopt, "crossings"});
-    if (o.reversals_div.size() < 2)
-      throw InputError("two reversal readings are needed for the amplitude", {"", std::nullopt, "reversals_div"});
-    const double ae = o.reversals_div[0], aw = o.reversals_div[1];
-    if ((ae > 0) == (aw > 0))
-      throw InputError("the two reversal readings must lie on either side of the scale zero",
-                       {"", std::nullopt, "reversals_div"});
-    TransitData t;
-    t.amplitude = {0.5 * (std::fabs(ae) + std::fabs(aw)), o.sigma_reading_div / std::sqrt(2.0)};
-    const auto& ts = zero->times_s;
-    // Δt for an eastward first transit; a westward first transit flips its sign.
-    t.dt = {zero->first_direction * time_difference_s(ts[0], ts[1], ts[2]), o.sigma_time_s * std::sqrt(6.0)};
-    return t;
+    if (d.mode != Mode::NonTracking)
+      throw InputError("must be a non-tracking determination", {"", std::nullopt, "mode"});
+    const BetaResult r = reduce_nontracking(NonTrackingMethod::Transit, d.nontracking, inst);
+    if (!r.amplitude_div || !r.time_difference_s)
+      throw NumericalError("the transit method gave no amplitude or time difference");
+    return {*r.amplitude_div, *r.time_difference_s};
   } catch (Error& e) {
     e.add_context("", std::nullopt, field);
     throw;
@@ -48,8 +37,8 @@ TransitFactorCalibration calibrate_transit_factor(const DeterminationInput& firs
                                                   const DeterminationInput& second,
                                                   const Instrument& inst) {
   TransitFactorCalibration r;
-  const TransitData a = transit_data(first, "determinations[0]");
-  const TransitData b = transit_data(second, "determinations[1]");
+  const TransitData a = transit_data(first, inst, "determinations[0]");
+  const TransitData b = transit_data(second, inst, "determinations[1]");
   const double dclamp = wrap_signed_rad(second.clamp_reading_rad - first.clamp_reading_rad);
   if (std::fabs(dclamp) < units::kArcminute)
     throw InputError("the two clamp readings must differ (by 10-15' on either side of north)",

@@ -14,15 +14,16 @@ namespace meridian::gyro {
 struct TransitFactorCalibration {
   Uncertain factor_rad_per_div_s;        ///< c (rad/(div·s)) with σ
   double computed_rad_per_div_s = 0.0;   ///< (1+λ)·τ·π/(2T_B) for comparison, when T_B is known (else 0)
-  Uncertain amplitude1_div, amplitude2_div;   ///< B_i = (|a_e| + |a_w|)/2
+  Uncertain amplitude1_div, amplitude2_div;   ///< B_i from the reversal readings
   Uncertain dt1_s, dt2_s;                     ///< Δt_i = −t1 + 2t2 − t3 of the level-0 transits
   double north_rad = 0.0;                     ///< N from the calibrated c (both give the same)
   std::vector<std::string> notes;
 };
 
-/// Each determination must be non-tracking with at least three level-0
-/// crossings and two reversal readings; the clamps must differ. σ(B) and
-/// σ(Δt) follow from the determinations' reading and timing σ.
+/// Each determination must be non-tracking with the transit method's inputs
+/// (≥ 3 level-0 crossings, ≥ 2 reversal readings); B and the
+/// direction-corrected Δt (with σ) come from the transit reduction. The
+/// clamps must differ.
 TransitFactorCalibration calibrate_transit_factor(const DeterminationInput& first,
                                                   const DeterminationInput& second,
                                                   const Instrument& inst);
