@@ -11,6 +11,8 @@
 namespace meridian::gyro {
 namespace {
 
+}  // namespace
+
 // Grid coordinates are authoritative when given (mine surveys work on the
 // grid); geographic ones given as well are only checked for consistency.
 PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercatorGrid& grid,
@@ -47,6 +49,8 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
   }
   return r;
 }
+
+namespace {
 
 std::vector<DeterminationResult> reduce_all(const std::vector<DeterminationInput>& dets,
                                             const Instrument& inst, const ReduceOptions& opt,

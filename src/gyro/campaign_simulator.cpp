@@ -22,18 +22,12 @@ struct Station {
   double period_s;
 };
 
+// The truth is defined by grid coordinates (the chord azimuths come from them).
 PointResult locate(const PointInput& p, const geodesy::TransverseMercatorGrid& grid, const char* what) {
   if (!p.x_north_m || !p.y_east_m)
     throw InputError(fmt::format("the simulator needs grid coordinates for the {}", what));
-  PointResult r;
-  r.name = p.name;
-  const auto g = grid.reverse(*p.x_north_m, *p.y_east_m);
-  r.lat_rad = g.lat_rad;
-  r.lon_rad = g.lon_rad;
-  r.grid = grid.forward(g.lat_rad, g.lon_rad);
-  r.grid.x_north_m = *p.x_north_m;
-  r.grid.y_east_m = *p.y_east_m;
-  return r;
+  std::vector<std::string> unused;
+  return resolve_point(p, grid, what, unused);
 }
 
 // Round to the printed precision so the file written holds exactly the

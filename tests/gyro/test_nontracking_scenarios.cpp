@@ -14,6 +14,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/gyro/instrument.hpp"
 #include "meridian/gyro/nontracking.hpp"
+#include "nontracking_truth.hpp"
 #include "meridian/gyro/unified_fit.hpp"
 
 namespace {
@@ -27,53 +28,10 @@ using meridian::gyro::Uncertain;
 using meridian::units::kArcsecond;
 using meridian::units::kPi;
 
-struct Truth {
-  double beta = -0.12;
-  double amp = 9.0;
-  double period = 440.0;
-  double t0 = 50.0;
-};
-
-// Passages of `level` from t_from on (k = 0): eastward at θ = ψ + 2πm,
-// westward at θ = π − ψ + 2πm, ψ = asin((a − β)/B), t = t0 + T·θ/(2π).
-Crossing passages(const Truth& o, double level, double t_from, int count) {
-  const double psi = std::asin((level - o.beta) / o.amp);
-  Crossing c;
-  c.level_div = level;
-  for (int m = static_cast<int>(std::floor((t_from - o.t0) / o.period)) - 1;
-       static_cast<int>(c.times_s.size()) < count; ++m) {
-    for (int dir : {+1, -1}) {
-      const double theta = (dir > 0 ? psi : kPi - psi) + 2.0 * kPi * m;
-      const double t = o.t0 + o.period * theta / (2.0 * kPi);
-      if (t < t_from || static_cast<int>(c.times_s.size()) >= count) continue;
-      if (c.times_s.empty()) c.first_direction = dir;
-      c.times_s.push_back(t);
-    }
-  }
-  return c;
-}
-
-// Turning points from t_from on: β + B at θ = π/2 + 2πm, β − B at 3π/2 + 2πm.
-void add_reversals(NonTrackingObservations& obs, const Truth& o, double t_from, int count) {
-  for (int m = static_cast<int>(std::floor((t_from - o.t0) / o.period)) - 1;
-       static_cast<int>(obs.reversals_div.size()) < count; ++m) {
-    for (int side : {+1, -1}) {
-      const double theta = (side > 0 ? 0.5 * kPi : 1.5 * kPi) + 2.0 * kPi * m;
-      const double t = o.t0 + o.period * theta / (2.0 * kPi);
-      if (t < t_from || static_cast<int>(obs.reversals_div.size()) >= count) continue;
-      obs.reversals_div.push_back(o.beta + side * o.amp);
-      obs.reversal_times_s.push_back(t);
-    }
-  }
-}
-
-// λ = 0.30, τ = 600″/div (spec §8.2).
-Instrument scenario_instrument() {
-  Instrument inst;
-  inst.scale_value_rad = 600.0 * kArcsecond;
-  inst.torsion_ratio = {0.30, 0.0};
-  return inst;
-}
+using meridian_test::Truth;
+using meridian_test::passages;
+using meridian_test::add_reversals;
+using meridian_test::scenario_instrument;
 
 // Levels 0, −2, +2 timed three times each from t_from, two reversals with
 // their times, T_B known.

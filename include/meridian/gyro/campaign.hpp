@@ -100,6 +100,13 @@ struct CampaignResult {
   bool all_checks_pass() const;
 };
 
+/// Resolve a point on the grid: grid coordinates are authoritative when
+/// given (the geographic ones are then only checked; a difference above 1″
+/// adds a warning), else the geographic ones are projected. Errors carry
+/// `field` as their field path.
+PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercatorGrid& grid,
+                          const std::string& field, std::vector<std::string>& warnings);
+
 /// Process a campaign. Errors carry field paths such as
 /// "line.determinations[1].crossings[0].times_s" (the reader adds file/line).
 CampaignResult process_campaign(const CampaignInput& in);
