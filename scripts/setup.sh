@@ -1,13 +1,19 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages Meridian needs to build, test and run.
-# Run as root (or with sudo). Does nothing when everything is present.
+# Installs what Meridian needs to build, test and run on Debian 12: the
+# Debian packages below (as root, or with sudo) and the pinned JavaScript
+# for HTML reports (web/package-lock.json, `npm ci` into web/node_modules).
+# Does nothing that is already done.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config python3
   libeigen3-dev libgeographiclib-dev geographiclib-tools
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium fonts-dejavu-core fonts-liberation
 )
+# Node.js and npm only fetch the report JavaScript; any installed node will do.
+command -v npm > /dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -18,4 +24,11 @@ if ((${#missing[@]})); then
   [ "$(id -u)" -eq 0 ] || SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+# The report JavaScript, exactly as pinned in the lockfile.
+stamp=web/node_modules/.meridian-lock
+if ! cmp -s web/package-lock.json "$stamp" 2> /dev/null; then
+  echo "setup: npm ci in web/ (vega, vega-lite, vega-embed)"
+  (cd web && npm ci --no-audit --no-fund --loglevel=error)
+  cp web/package-lock.json "$stamp"
 fi

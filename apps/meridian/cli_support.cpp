@@ -1,8 +1,14 @@
 #include "cli_support.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
@@ -37,6 +43,42 @@ void emit(const std::string& path, const std::string& text) {
     return;
   }
   write_file_atomically(path, text);
+}
+
+TerminalProgress::TerminalProgress(bool quiet) : enabled_(!quiet && ::isatty(STDERR_FILENO) == 1) {
+  if (const char* d = std::getenv("MERIDIAN_PROGRESS_DELAY_S")) delay_s_ = std::atof(d);
+}
+
+TerminalProgress::~TerminalProgress() { finish(); }
+
+void TerminalProgress::update(std::size_t done, std::size_t total, std::string_view what) {
+  if (!enabled_) return;
+  const auto now = Clock::now();
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (elapsed < delay_s_) return;
+  if (drawn_ && now - last_draw_ < std::chrono::milliseconds(100) && done != total) return;
+  last_draw_ = now;
+  std::string line;
+  if (total > 0) {
+    const double f = static_cast<double>(done) / static_cast<double>(total);
+    const int width = 30;
+    const int fill = static_cast<int>(f * width);
+    const double eta = f > 0 ? elapsed * (1.0 - f) / f : 0.0;
+    line = fmt::format("\r{} [{}{}] {:3.0f}% {}/{}  ETA {:.0f} s ", what, std::string(static_cast<std::size_t>(fill), '#'),
+                       std::string(static_cast<std::size_t>(width - fill), '.'), 100.0 * f, done, total, eta);
+  } else {
+    line = fmt::format("\r{} {} ", what, done);
+  }
+  std::fputs(line.c_str(), stderr);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void TerminalProgress::finish() {
+  if (!drawn_) return;
+  std::fputs("\r\033[K", stderr);  // clear the bar's line
+  std::fflush(stderr);
+  drawn_ = false;
 }
 
 }  // namespace meridian::cli

@@ -2,8 +2,11 @@
 // Shared plumbing of the meridian CLI: exit codes, error reporting and
 // output. The CLI only parses, calls the library and formats.
 
+#include <chrono>
 #include <functional>
 #include <string>
+
+#include "meridian/core/progress.hpp"
 
 namespace meridian::cli {
 
@@ -23,5 +26,25 @@ int guarded(const std::function<int()>& body);
 
 /// Write `text` to `path` atomically, or to stdout when path is empty or "-".
 void emit(const std::string& path, const std::string& text);
+
+/// A progress bar on stderr for runs longer than a second: drawn only when
+/// stderr is a terminal and not `quiet`, at most ten times a second, and
+/// cleared by finish(). MERIDIAN_PROGRESS_DELAY_S overrides the one-second
+/// delay (tests use 0).
+class TerminalProgress : public Progress {
+ public:
+  explicit TerminalProgress(bool quiet);
+  ~TerminalProgress() override;
+  void update(std::size_t done, std::size_t total, std::string_view what) override;
+  void finish() override;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool enabled_;
+  bool drawn_ = false;
+  double delay_s_ = 1.0;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_draw_{};
+};
 
 }  // namespace meridian::cli

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -12,8 +13,11 @@
 #include "meridian/core/error.hpp"
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/io/gyro_files.hpp"
+#include "meridian/gyro/instrument_spec.hpp"
+#include "meridian/report/gyro_html.hpp"
 #include "meridian/report/gyro_json.hpp"
 #include "meridian/report/gyro_text.hpp"
+#include "meridian/report/html.hpp"
 
 namespace meridian::cli {
 namespace {
@@ -49,11 +53,25 @@ int run_demo(const DemoArgs& a) {
   std::error_code ec;
   fs::create_directories(a.output_dir, ec);
   if (ec) throw IoError("cannot create the output directory: " + ec.message(), {a.output_dir, std::nullopt, {}});
-  const fs::path txt = fs::path(a.output_dir) / "campaign.txt";
-  const fs::path json = fs::path(a.output_dir) / "campaign.json";
-  emit(txt.string(), text);
-  emit(json.string(), report::campaign_to_json(r).dump(2) + "\n");
-  std::cout << "\nReports written: " << txt.string() << ", " << json.string() << "\n";
+  const fs::path out = a.output_dir;
+  std::vector<fs::path> written{out / "campaign.txt", out / "campaign.json", out / "campaign.html"};
+  emit(written[0].string(), text);
+  emit(written[1].string(), report::campaign_to_json(r).dump(2) + "\n");
+  emit(written[2].string(), report::render_html(report::gyro_campaign_document(f.file, f.campaign, r)));
+  // Every reduction method side by side on the spec's example, and a tracking run.
+  for (const char* name : {"spec-scenario-2", "tracking"}) {
+    const io::GyroReduceFile g = io::read_gyro_reduce_file(dir / (std::string(name) + ".yaml"));
+    const auto inst = gyro::resolve_instrument(g.instrument, g.latitude_rad);
+    std::vector<gyro::DeterminationResult> results;
+    for (const auto& d : g.determinations) results.push_back(gyro::reduce_determination(d, inst.instrument, g.options));
+    written.push_back(out / (std::string(name) + ".html"));
+    emit(written.back().string(), report::render_html(report::gyro_reduce_document(g.file, inst, g.latitude_rad,
+                                                                                  g.determinations, results)));
+  }
+  std::cout << "\nReports written:\n";
+  for (const auto& p : written) std::cout << "  " << p.string() << "\n";
+  std::cout << "Open the .html files in a browser (they work offline); print them to PDF with\n"
+               "  meridian report pdf " << written[2].string() << "\n";
   return kOk;
 }
 

@@ -20,8 +20,10 @@
 #include "meridian/gyro/transit_calibration.hpp"
 #include "meridian/io/gyro_files.hpp"
 #include "meridian/io/gyro_writers.hpp"
+#include "meridian/report/gyro_html.hpp"
 #include "meridian/report/gyro_json.hpp"
 #include "meridian/report/gyro_text.hpp"
+#include "meridian/report/html.hpp"
 
 namespace meridian::cli {
 namespace {
@@ -29,15 +31,17 @@ namespace {
 constexpr double kArcsec = units::kArcsecond;
 
 struct ReduceArgs {
-  std::string file, output;
-  bool json = false;
+  std::string file, output, report;
+  bool json = false, quiet = false;
 };
 
 int run_reduce(const ReduceArgs& a) {
   const io::GyroReduceFile f = io::read_gyro_reduce_file(a.file);
   const gyro::ResolvedInstrument inst = gyro::resolve_instrument(f.instrument, f.latitude_rad);
   std::vector<gyro::DeterminationResult> results;
+  TerminalProgress progress(a.quiet);
   for (std::size_t i = 0; i < f.determinations.size(); ++i) {
+    progress.update(i, f.determinations.size(), "determinations");
     try {
       results.push_back(gyro::reduce_determination(f.determinations[i], inst.instrument, f.options));
     } catch (Error& e) {
@@ -63,28 +67,37 @@ int run_reduce(const ReduceArgs& a) {
     for (const auto& n : inst.notes) out += "  note: " + n + "\n";
     for (std::size_t i = 0; i < results.size(); ++i) out += report::determination_text(results[i], static_cast<int>(i));
   }
+  progress.finish();
+  // Everything is computed before anything is written.
+  const std::string html = a.report.empty() ? std::string()
+                                            : report::render_html(report::gyro_reduce_document(
+                                                  f.file, inst, f.latitude_rad, f.determinations, results));
   emit(a.output, out);
+  if (!a.report.empty()) emit(a.report, html);
   return kOk;
 }
 
 struct CampaignArgs {
-  std::string file, output;
-  bool json = false, strict = false;
+  std::string file, output, report;
+  bool json = false, strict = false, quiet = false;
 };
 
-gyro::CampaignResult process_file(const std::string& path) {
-  const io::CampaignFile f = io::read_campaign_file(path);
+int run_campaign(const CampaignArgs& a) {
+  const io::CampaignFile f = io::read_campaign_file(a.file);
+  TerminalProgress progress(a.quiet);
+  gyro::CampaignResult r;
   try {
-    return gyro::process_campaign(f.campaign);
+    r = gyro::process_campaign(f.campaign, &progress);
   } catch (Error& e) {
     io::locate_error(e, f.file, f.lines);
     throw;
   }
-}
-
-int run_campaign(const CampaignArgs& a) {
-  const gyro::CampaignResult r = process_file(a.file);
-  emit(a.output, a.json ? report::campaign_to_json(r).dump(2) + "\n" : report::campaign_text(r));
+  progress.finish();
+  const std::string out = a.json ? report::campaign_to_json(r).dump(2) + "\n" : report::campaign_text(r);
+  const std::string html = a.report.empty() ? std::string()
+                                            : report::render_html(report::gyro_campaign_document(f.file, f.campaign, r));
+  emit(a.output, out);
+  if (!a.report.empty()) emit(a.report, html);
   return (a.strict && !r.all_checks_pass()) ? kInputError : kOk;
 }
 
@@ -153,6 +166,7 @@ struct SimulateArgs {
   std::string noise = "white";
   double rho1 = 0.5, rho2 = 0.0;
   int determinations = 1;
+  bool quiet = false;
 };
 
 gyro::NoiseModel noise_model(const SimulateArgs& a, double sigma) {
@@ -195,7 +209,9 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
   spec.torsion_ratio = gyro::Uncertain{lambda, 0.0};
   const gyro::Instrument inst = gyro::resolve_instrument(spec, lat).instrument;
   std::vector<gyro::DeterminationInput> dets;
+  TerminalProgress progress(a.quiet);
   for (int i = 0; i < a.determinations; ++i) {
+    progress.update(static_cast<std::size_t>(i), static_cast<std::size_t>(a.determinations), "simulating");
     const std::uint64_t seed = a.seed + static_cast<std::uint64_t>(i);
     gyro::DeterminationInput d;
     d.method = "all";
@@ -243,6 +259,7 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
     }
     dets.push_back(std::move(d));
   }
+  progress.finish();
   emit(a.output, io::reduce_file_yaml(spec, lat, dets, header));
   return kOk;
 }
@@ -258,6 +275,8 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   reduce->add_option("FILE", ra->file, "Input file (YAML, or JSON as is)")->required();
   reduce->add_flag("--json", ra->json, "Print one JSON object instead of text");
   reduce->add_option("-o,--output", ra->output, "Write to this file (atomically) instead of stdout");
+  reduce->add_option("--report", ra->report, "Also write a self-contained HTML report (plots, tables) to this file");
+  reduce->add_flag("-q,--quiet", ra->quiet, "No progress bar");
   reduce->callback([ra, &exit_code] { exit_code = guarded([&] { return run_reduce(*ra); }); });
 
   auto ca = std::make_shared<CampaignArgs>();
@@ -266,6 +285,8 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   camp->add_flag("--json", ca->json, "Print JSON instead of text");
   camp->add_flag("--strict", ca->strict, "Exit with code 1 when a tolerance check fails");
   camp->add_option("-o,--output", ca->output, "Write to this file (atomically) instead of stdout");
+  camp->add_option("--report", ca->report, "Also write a self-contained HTML report (plots, tables) to this file");
+  camp->add_flag("-q,--quiet", ca->quiet, "No progress bar");
   camp->callback([ca, &exit_code] { exit_code = guarded([&] { return run_campaign(*ca); }); });
 
   auto ta = std::make_shared<TransitArgs>();
@@ -307,10 +328,12 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--noise", sa->noise, "white | markov1 | markov2")->capture_default_str();
   sim->add_option("--rho1", sa->rho1, "Markov coefficient rho1")->capture_default_str();
   sim->add_option("--rho2", sa->rho2, "Markov-2 coefficient rho2")->capture_default_str();
+  sim->add_flag("-q,--quiet", sa->quiet, "No progress bar");
   sim->callback([sa, sim, &exit_code] {
     std::string cmd = "meridian gyro simulate";
     for (const CLI::Option* o : sim->get_options())
-      if (o->count() > 0 && o->get_name() != "--help" && o->get_name() != "-o,--output" && !o->get_lnames().empty()) {
+      if (o->count() > 0 && o->get_name() != "--help" && o->get_name() != "-o,--output" &&
+          o->get_name() != "-q,--quiet" && !o->get_lnames().empty()) {
         cmd += " --" + o->get_lnames().front();
         if (o->get_expected_min() > 0)
           for (const auto& r : o->results()) cmd += " " + r;

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   int exit_code = meridian::cli::kOk;
   meridian::cli::add_gyro_commands(app, exit_code);
   meridian::cli::add_demo_command(app, exit_code);
+  meridian::cli::add_report_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -52,13 +52,19 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
 
 namespace {
 
+struct Counter {
+  Progress* progress;
+  std::size_t done, total;
+};
+
 std::vector<DeterminationResult> reduce_all(const std::vector<DeterminationInput>& dets,
                                             const Instrument& inst, const ReduceOptions& opt,
                                             const std::string& field,
                                             std::vector<Uncertain>& gyro_azimuths,
-                                            std::vector<std::string>& warnings) {
+                                            std::vector<std::string>& warnings, Counter& count) {
   std::vector<DeterminationResult> out;
   for (std::size_t i = 0; i < dets.size(); ++i) {
+    report_progress(count.progress, count.done++, count.total, "determinations");
     const std::string f = fmt::format("{}[{}]", field, i);
     try {
       out.push_back(reduce_determination(dets[i], inst, opt));
@@ -80,8 +86,10 @@ bool CampaignResult::all_checks_pass() const {
   return true;
 }
 
-CampaignResult process_campaign(const CampaignInput& in) {
+CampaignResult process_campaign(const CampaignInput& in, Progress* progress) {
   CampaignResult res;
+  Counter count{progress, 0, in.line.determinations.size()};
+  if (in.known_line) count.total += in.known_line->before.size() + in.known_line->after.size();
   res.name = in.name;
   const geodesy::TransverseMercatorGrid grid(in.grid);
   res.notes.push_back("grid: " + geodesy::describe(in.grid));
@@ -117,9 +125,9 @@ CampaignResult process_campaign(const CampaignInput& in) {
     for (const auto& n : res.instrument_known->notes) res.notes.push_back("known station: " + n);
     const Instrument& ik = res.instrument_known->instrument;
     res.known_before = reduce_all(k.before, ik, opt, "known_line.before",
-                                  res.known_gyro_azimuths_before, res.warnings);
+                                  res.known_gyro_azimuths_before, res.warnings, count);
     res.known_after = reduce_all(k.after, ik, opt, "known_line.after",
-                                 res.known_gyro_azimuths_after, res.warnings);
+                                 res.known_gyro_azimuths_after, res.warnings, count);
 
     // Known azimuth → astronomic.
     Uncertain a = k.azimuth.value_rad;
@@ -175,7 +183,8 @@ CampaignResult process_campaign(const CampaignInput& in) {
     throw InputError("no determination on the line", {"", std::nullopt, "line.determinations"});
   const Instrument& ic = res.instrument_station.instrument;
   res.determinations = reduce_all(in.line.determinations, ic, opt, "line.determinations",
-                                  res.gyro_azimuths, res.warnings);
+                                  res.gyro_azimuths, res.warnings, count);
+  report_progress(progress, count.done, count.total, "determinations");
   res.gyro_azimuth_mean = mean_direction(res.gyro_azimuths);
   if (res.gyro_azimuths.size() >= 2) {
     const bool ok = res.gyro_azimuth_mean.max_difference <= det_tol;

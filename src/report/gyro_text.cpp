@@ -6,19 +6,18 @@
 
 #include "meridian/core/dms.hpp"
 #include "meridian/core/units.hpp"
+#include "format.hpp"
 
 namespace meridian::report {
 namespace {
 
 constexpr double kArcsec = units::kArcsecond;
 
-std::string dir(double rad) { return format_direction_dms(Angle::radians(rad), {1, true, false}); }
-std::string dirp(double rad) { return format_direction_dms(Angle::radians(rad), {2, true, false}); }
-std::string sig(double rad) {
-  return std::isfinite(rad) ? fmt::format("{:.1f}\"", rad / kArcsec) : std::string("n/a");
-}
-std::string sec(double rad) { return fmt::format("{:+.2f}\"", rad / kArcsec); }
-std::string sec3(double rad) { return fmt::format("{:+.3f}\"", rad / kArcsec); }
+std::string dir(double rad) { return fmtx::dir(rad, 1); }
+std::string dirp(double rad) { return fmtx::dir(rad, 2); }
+std::string sig(double rad) { return fmtx::sig(rad); }
+std::string sec(double rad) { return fmtx::sec(rad, 2); }
+std::string sec3(double rad) { return fmtx::sec(rad, 3); }
 
 void method_line(std::string& out, const gyro::MethodResult& m) {
   out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", m.method, dir(m.north.north_rad),

@@ -226,3 +226,41 @@ TEST_F(Cli, TransitFactorCalibration) {
   const double computed = 1.3 * 600 * M_PI / 880;
   EXPECT_NEAR(j["transit_factor_arcsec_per_div_s"].get<double>() / computed, 1.0, 0.005);
 }
+
+TEST_F(Cli, HtmlReportWrittenOnlyOnSuccess) {
+  const CmdResult s = run("gyro simulate --mode campaign --seed 5 -o " + (dir_ / "c.yaml").string());
+  ASSERT_EQ(s.code, 0) << s.err;
+  const auto html = dir_ / "c.html";
+  const CmdResult c = run("gyro campaign " + (dir_ / "c.yaml").string() + " --report " + html.string());
+  ASSERT_EQ(c.code, 0) << c.err;
+  const std::string page = slurp(html);
+  EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(page.find("data-vega-spec"), std::string::npos);
+  EXPECT_NE(page.find("<section id=\"result\">"), std::string::npos);
+  const auto f = write("obs.yaml", kScenario);
+  const CmdResult r = run("gyro reduce " + f.string() + " --report " + (dir_ / "r.html").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(dir_ / "r.html").find("<section id=\"determination-3\">"), std::string::npos);
+  // Bad input: no report file.
+  std::string bad = kScenario;
+  bad.replace(bad.find("period_s: 440.0"), 15, "period_s: -440");
+  const CmdResult b = run("gyro reduce " + write("bad.yaml", bad).string() + " --report " + (dir_ / "b.html").string());
+  EXPECT_EQ(b.code, 1);
+  EXPECT_FALSE(fs::exists(dir_ / "b.html"));
+}
+
+TEST_F(Cli, ProgressBarOnlyOnATerminalAndNotWhenQuiet) {
+  const std::string cmd = std::string("MERIDIAN_PROGRESS_DELAY_S=0 ") + MERIDIAN_EXE +
+                          " gyro simulate --determinations 40 -o " + (dir_ / "s.yaml").string();
+  // Not a terminal: nothing on stderr.
+  const CmdResult plain = run("gyro simulate --determinations 40 -o " + (dir_ / "p.yaml").string());
+  EXPECT_EQ(plain.err, "");
+  // A pseudo-terminal (util-linux `script`): the bar is drawn and cleared.
+  const auto log = dir_ / "tty.log";
+  ASSERT_EQ(std::system(("script -qec '" + cmd + "' " + log.string() + " > /dev/null").c_str()), 0);
+  const std::string tty = slurp(log);
+  EXPECT_NE(tty.find("simulating ["), std::string::npos) << tty;
+  EXPECT_NE(tty.find("\033[K"), std::string::npos);
+  ASSERT_EQ(std::system(("script -qec '" + cmd + " --quiet' " + log.string() + " > /dev/null").c_str()), 0);
+  EXPECT_EQ(slurp(log).find("simulating ["), std::string::npos);
+}

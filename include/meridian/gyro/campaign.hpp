@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "meridian/core/progress.hpp"
 #include "meridian/geodesy/grid.hpp"
 #include "meridian/gyro/azimuth_chain.hpp"
 #include "meridian/gyro/calibration.hpp"
@@ -109,6 +110,7 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
 
 /// Process a campaign. Errors carry field paths such as
 /// "line.determinations[1].crossings[0].times_s" (the reader adds file/line).
-CampaignResult process_campaign(const CampaignInput& in);
+/// `progress`, when given, is told about each determination reduced.
+CampaignResult process_campaign(const CampaignInput& in, Progress* progress = nullptr);
 
 }  // namespace meridian::gyro

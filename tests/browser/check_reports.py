@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Renders every HTML report that `meridian demo` writes in headless Chromium
+and fails on a JavaScript error, a plot that did not render, a missing
+section, a page that would need the network, or a PDF that does not print.
+
+Usage: check_reports.py --meridian build/meridian --out DIR [--screenshots]
+"""
+import argparse
+import glob
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                  "--disable-quic", "--virtual-time-budget=20000", "--run-all-compositor-stages-before-draw",
+                  "--enable-logging=stderr", "--v=0"]
+
+# Sections each kind of report must have (HTML ids).
+REQUIRED = {
+    "campaign.html": ["result", "checks", "calibration", "line", "line-determination-1", "notes"],
+    "spec-scenario-2.html": ["summary", "determination-1"],
+    "tracking.html": ["summary", "determination-1"],
+}
+
+
+def find_chromium():
+    for name in (os.environ.get("MERIDIAN_CHROMIUM"), "chromium", "chromium-browser", "google-chrome"):
+        if name and shutil.which(name):
+            return shutil.which(name)
+    return None
+
+
+def check_page(chromium, path):
+    errors = []
+    html = open(path, encoding="utf-8").read()
+    if re.search(r"<script[^>]+src=|<link[^>]+href=\"?https?:", html):
+        errors.append("the page loads external resources (it must work offline)")
+    with tempfile.TemporaryDirectory() as profile:
+        run = subprocess.run([chromium, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--dump-dom",
+                              "file://" + os.path.abspath(path)], capture_output=True, text=True, timeout=180)
+    if run.returncode != 0:
+        return [f"chromium exited with {run.returncode}: {run.stderr[-500:]}"]
+    dom = run.stdout
+    for line in run.stderr.splitlines():
+        if "CONSOLE" in line and ("Uncaught" in line or "Error" in line):
+            errors.append("console: " + line.strip())
+    body = re.search(r"<body([^>]*)>", dom)
+    attrs = dict(re.findall(r'([\w-]+)="([^"]*)"', body.group(1))) if body else {}
+    if attrs.get("data-render-status") != "complete":
+        errors.append("rendering did not complete (data-render-status missing)")
+    else:
+        expected = int(attrs.get("data-plots-expected", "0"))
+        rendered = int(attrs.get("data-plots-rendered", "-1"))
+        page_errors = json.loads(attrs.get("data-render-errors", "[]").replace("&quot;", '"'))
+        if expected == 0:
+            errors.append("the report has no plots")
+        if rendered != expected:
+            errors.append(f"{rendered} of {expected} plots rendered")
+        errors += ["page: " + e for e in page_errors]
+    svgs = len(re.findall(r"<svg[^>]*class=\"marks\"", dom))
+    if body and svgs < int(attrs.get("data-plots-expected", "1")):
+        errors.append(f"only {svgs} rendered SVG plots in the DOM")
+    for section in REQUIRED.get(os.path.basename(path), []):
+        if f'<section id="{section}"' not in dom:
+            errors.append(f"missing section '{section}'")
+    return errors
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--meridian", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--screenshots", action="store_true")
+    args = ap.parse_args()
+    chromium = find_chromium()
+    if not chromium:
+        print("FAIL: no chromium on PATH; install Debian's chromium (scripts/setup.sh does)")
+        return 1
+    shutil.rmtree(args.out, ignore_errors=True)
+    demo = subprocess.run([args.meridian, "demo", "--output-dir", args.out], capture_output=True, text=True)
+    if demo.returncode != 0:
+        print("FAIL: meridian demo:", demo.stderr)
+        return 1
+    pages = sorted(glob.glob(os.path.join(args.out, "*.html")))
+    passed = failed = 0
+    for page in pages:
+        errs = check_page(chromium, page)
+        if errs:
+            failed += 1
+            print(f"FAIL {page}")
+            for e in errs:
+                print("   ", e)
+        else:
+            passed += 1
+            print(f"ok   {page}")
+    # Every page must be one the check knows, so new reports get section checks.
+    for name in REQUIRED:
+        if not os.path.exists(os.path.join(args.out, name)):
+            failed += 1
+            print(f"FAIL {name} was not written by meridian demo")
+    # The campaign report prints to a PDF.
+    pdf = os.path.join(args.out, "campaign.pdf")
+    p = subprocess.run([args.meridian, "report", "pdf", os.path.join(args.out, "campaign.html"), "-o", pdf],
+                       capture_output=True, text=True)
+    data = open(pdf, "rb").read() if os.path.exists(pdf) else b""
+    pages_in_pdf = len(re.findall(rb"/Type\s*/Page[^s]", data))
+    if p.returncode != 0 or not data.startswith(b"%PDF") or pages_in_pdf < 2:
+        failed += 1
+        print(f"FAIL meridian report pdf (exit {p.returncode}, {pages_in_pdf} pages): {p.stderr}")
+    else:
+        passed += 1
+        print(f"ok   {pdf} ({pages_in_pdf} A4 pages)")
+    if args.screenshots:
+        for page in pages:
+            subprocess.run([args.meridian, "report", "screenshot", page], check=False)
+    print(f"{passed} passed, {failed} failed")
+    return 0 if failed == 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

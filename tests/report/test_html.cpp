@@ -1,0 +1,68 @@
+// The HTML document renderer and the gyro report mapping.
+
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "meridian/gyro/campaign_simulator.hpp"
+#include "meridian/report/gyro_html.hpp"
+#include "meridian/report/html.hpp"
+#include "meridian/report/web_assets.hpp"
+
+using namespace meridian;
+using namespace meridian::report;
+
+namespace {
+int count(const std::string& s, const std::string& what) {
+  int n = 0;
+  for (std::size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + what.size())) ++n;
+  return n;
+}
+}  // namespace
+
+TEST(Html, EscapesTextAndKeepsScriptsClosed) {
+  EXPECT_EQ(html_escape("a<b & \"c\" 'd'>"), "a&lt;b &amp; &quot;c&quot; &#39;d&#39;&gt;");
+  Document d;
+  d.title = "T <x>";
+  Plot p{"p", {{"data", {{"values", nlohmann::json::array({{{"label", "</script><b>"}}})}}}, {"mark", "point"}}, ""};
+  d.sections.push_back(Section{"s1", "Section & one", {Paragraph{"<i>text</i>"}, p}, 2});
+  const std::string html = render_html(d);
+  EXPECT_NE(html.find("<title>T &lt;x&gt;</title>"), std::string::npos);
+  EXPECT_NE(html.find("&lt;i&gt;text&lt;/i&gt;"), std::string::npos);
+  // The spec's "</script>" must not end the JSON script element early.
+  EXPECT_EQ(html.find("\"</script><b>\""), std::string::npos);
+  EXPECT_NE(html.find("<\\/script>"), std::string::npos);
+  EXPECT_NE(html.find("<section id=\"s1\">"), std::string::npos);
+  EXPECT_EQ(count(html, "data-vega-spec="), 1);
+}
+
+TEST(Html, InlinesTheVegaLibrariesAndNeedsNoNetwork) {
+  const WebAssets& a = web_assets();
+  EXPECT_GT(a.vega_js.size(), 100000u);
+  EXPECT_GT(a.vega_lite_js.size(), 50000u);
+  EXPECT_GT(a.vega_embed_js.size(), 10000u);
+  EXPECT_NE(a.vega_embed_js.find("vegaEmbed"), std::string_view::npos);
+  EXPECT_NE(std::string(a.versions).find("vega-lite"), std::string::npos);
+  const std::string html = render_html(Document{"t", "", {}, {}, "f"});
+  EXPECT_FALSE(std::regex_search(html, std::regex("<script[^>]+src=")));
+  EXPECT_NE(html.find("@page { size: A4"), std::string::npos);
+  EXPECT_NE(html.find("data-render-status"), std::string::npos);
+}
+
+TEST(Html, CampaignDocumentHasEverySection) {
+  const auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 4);
+  const auto r = gyro::process_campaign(sim.input);
+  const Document d = gyro_campaign_document("c.yaml", sim.input, r);
+  std::vector<std::string> ids;
+  for (const auto& s : d.sections) ids.push_back(s.id);
+  for (const char* id : {"result", "checks", "calibration", "line", "known-before-1", "known-after-2",
+                         "line-determination-1", "line-determination-3", "notes"})
+    EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
+  const std::string html = render_html(d);
+  // Oscillation + residuals + methods + zero position for 6 non-tracking runs,
+  // tracking + residuals + methods + zero position for 1, plus 2 summaries.
+  EXPECT_EQ(count(html, "data-vega-spec="), 6 * 4 + 4 + 2);
+  EXPECT_NE(html.find("Grid azimuth"), std::string::npos);
+  EXPECT_NE(html.find("PASS"), std::string::npos);
+}
