@@ -14,48 +14,71 @@
 
 namespace meridian {
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& path, const char* what, int err) {
+  throw IoError(fmt::format("{}: {}", what, std::strerror(err)), {path.string(), std::nullopt, {}});
+}
+
+}  // namespace
+
+AtomicFileWriter::AtomicFileWriter(std::filesystem::path path) : path_(std::move(path)) {
   namespace fs = std::filesystem;
-  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::string tmpl = (dir / ("." + path.filename().string() + ".tmp.XXXXXX")).string();
-  int fd = ::mkstemp(tmpl.data());
-  if (fd < 0)
-    throw IoError(fmt::format("cannot create a temporary file in {}: {}", dir.string(),
-                              std::strerror(errno)),
-                  {path.string(), std::nullopt, {}});
-  auto cleanup_fail = [&](const char* what) {
-    const int err = errno;
-    ::close(fd);
-    ::unlink(tmpl.c_str());
-    throw IoError(fmt::format("{}: {}", what, std::strerror(err)), {path.string(), std::nullopt, {}});
-  };
-  const char* p = content.data();
-  std::size_t left = content.size();
+  const fs::path dir = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
+  tmp_ = (dir / ("." + path_.filename().string() + ".tmp.XXXXXX")).string();
+  fd_ = ::mkstemp(tmp_.data());
+  if (fd_ < 0)
+    throw IoError(fmt::format("cannot create a temporary file in {}: {}", dir.string(), std::strerror(errno)),
+                  {path_.string(), std::nullopt, {}});
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    ::unlink(tmp_.c_str());
+  }
+}
+
+void AtomicFileWriter::write(std::string_view chunk) {
+  if (fd_ < 0) throw IoError("write after commit", {path_.string(), std::nullopt, {}});
+  const char* p = chunk.data();
+  std::size_t left = chunk.size();
   while (left > 0) {
-    ssize_t n = ::write(fd, p, left);
+    const ssize_t n = ::write(fd_, p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
-      cleanup_fail("cannot write");
+      fail(path_, "cannot write", errno);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0) cleanup_fail("cannot flush to disk");
+}
+
+void AtomicFileWriter::commit() {
+  if (fd_ < 0) throw IoError("committed twice", {path_.string(), std::nullopt, {}});
+  if (::fsync(fd_) != 0) fail(path_, "cannot flush to disk", errno);
   // mkstemp creates 0600; give the result ordinary permissions (umask applies).
   const mode_t mask = ::umask(0);
   ::umask(mask);
-  ::fchmod(fd, static_cast<mode_t>(0666 & ~mask));
+  ::fchmod(fd_, static_cast<mode_t>(0666 & ~mask));
+  const int fd = fd_;
+  fd_ = -1;
   if (::close(fd) != 0) {
     const int err = errno;
-    ::unlink(tmpl.c_str());
-    throw IoError(fmt::format("cannot close: {}", std::strerror(err)), {path.string(), std::nullopt, {}});
+    ::unlink(tmp_.c_str());
+    fail(path_, "cannot close", err);
   }
-  if (::rename(tmpl.c_str(), path.c_str()) != 0) {
+  if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
     const int err = errno;
-    ::unlink(tmpl.c_str());
-    throw IoError(fmt::format("cannot rename the temporary file into place: {}", std::strerror(err)),
-                  {path.string(), std::nullopt, {}});
+    ::unlink(tmp_.c_str());
+    fail(path_, "cannot rename the temporary file into place", err);
   }
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  AtomicFileWriter w(path);
+  w.write(content);
+  w.commit();
 }
 
 }  // namespace meridian

@@ -28,3 +28,34 @@ TEST(AtomicFile, WritesAndReplacesWithoutLeftovers) {
 TEST(AtomicFile, MissingDirectoryThrowsIoError) {
   EXPECT_THROW(meridian::write_file_atomically("/nonexistent-dir-xyz/out.txt", "x"), meridian::IoError);
 }
+
+TEST(AtomicFile, StreamingWriterCommitsOrLeavesNothing) {
+  fs::path dir = fs::temp_directory_path() / ("meridian_atomic_stream_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path f = dir / "out.csv";
+  meridian::write_file_atomically(f, "old\n");
+  {
+    meridian::AtomicFileWriter w(f);
+    w.write("a,b\n");
+    w.write("1,2\n");
+    // Destroyed without commit: an interrupted run.
+  }
+  std::ifstream in1(f);
+  std::stringstream s1;
+  s1 << in1.rdbuf();
+  EXPECT_EQ(s1.str(), "old\n");
+  {
+    meridian::AtomicFileWriter w(f);
+    w.write("a,b\n");
+    w.write("1,2\n");
+    w.commit();
+  }
+  std::ifstream in2(f);
+  std::stringstream s2;
+  s2 << in2.rdbuf();
+  EXPECT_EQ(s2.str(), "a,b\n1,2\n");
+  int n = 0;
+  for ([[maybe_unused]] auto& e : fs::directory_iterator(dir)) ++n;
+  EXPECT_EQ(n, 1);
+  fs::remove_all(dir);
+}

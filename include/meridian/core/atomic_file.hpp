@@ -12,4 +12,24 @@ namespace meridian {
 /// Write `content` to `path` atomically. Throws IoError naming the path.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
+/// Streaming atomic output for long runs: chunks go to a temporary file
+/// beside `path`; commit() flushes it to disk and renames it into place. If
+/// the writer is destroyed without commit() (an error, an interrupted run)
+/// the temporary file is removed and `path` is untouched.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(std::filesystem::path path);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+
+  void write(std::string_view chunk);
+  void commit();
+
+ private:
+  std::filesystem::path path_;
+  std::string tmp_;
+  int fd_ = -1;
+};
+
 }  // namespace meridian

@@ -1,0 +1,186 @@
+// Meridian's gravity engine side by side with GeographicLib on the same
+// synthetic model files (written at start-up into a temporary directory).
+//   build-grav/bench/bench_gravity --benchmark_counters_tabular=true
+// Per-point times are the "time" column divided by the items processed
+// (items_per_second is reported).
+
+#include <GeographicLib/GravityCircle.hpp>
+#include <GeographicLib/GravityModel.hpp>
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "meridian/core/units.hpp"
+#include "meridian/gravity/egm_format.hpp"
+#include "meridian/gravity/gravity_circle.hpp"
+#include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/synthetic.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace mg = meridian::gravity;
+constexpr double kDeg = meridian::units::kDegree;
+
+const fs::path& dir() {
+  static const fs::path d = [] {
+    fs::path p = fs::temp_directory_path() / ("meridian_bench_gravity_" + std::to_string(::getpid()));
+    fs::create_directories(p);
+    return p;
+  }();
+  return d;
+}
+
+std::string model_name(int degree) {
+  static std::map<int, std::string> made;
+  if (auto it = made.find(degree); it != made.end()) return it->second;
+  mg::SyntheticModelOptions o;
+  o.max_degree = degree;
+  o.seed = 2024;
+  const std::string name = "bench" + std::to_string(degree);
+  mg::write_egm_files(mg::make_synthetic_model(o), dir() / name);
+  return made[degree] = name;
+}
+
+struct Models {
+  std::unique_ptr<mg::GravityField> meridian;
+  std::unique_ptr<GeographicLib::GravityModel> geographiclib;
+};
+
+Models& models(int degree, unsigned threads = 1) {
+  static std::map<std::pair<int, unsigned>, Models> cache;
+  Models& m = cache[{degree, threads}];
+  if (!m.meridian) {
+    const std::string name = model_name(degree);
+    m.meridian = std::make_unique<mg::GravityField>(mg::read_egm_file(dir() / (name + ".egm")), mg::FieldOptions{false, threads});
+    m.geographiclib = std::make_unique<GeographicLib::GravityModel>(name, dir().string());
+  }
+  return m;
+}
+
+std::vector<mg::GeodeticPoint> scattered(std::size_t n) {
+  std::mt19937_64 g(99);
+  std::uniform_real_distribution<double> z(-1, 1), lon(-180, 180), h(-500, 10000);
+  std::vector<mg::GeodeticPoint> p(n);
+  for (auto& q : p) q = {std::asin(z(g)), lon(g) * kDeg, h(g)};
+  return p;
+}
+
+// ξ, η (SphericalAnomaly) at scattered points, one thread.
+void BM_Meridian_Deflection(benchmark::State& st) {
+  const auto& f = *models(static_cast<int>(st.range(0))).meridian;
+  const auto pts = scattered(static_cast<std::size_t>(st.range(1)));
+  for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts, mg::Quantities::Deflection));
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(1)));
+}
+void BM_GeographicLib_Deflection(benchmark::State& st) {
+  const auto& g = *models(static_cast<int>(st.range(0))).geographiclib;
+  const auto pts = scattered(static_cast<std::size_t>(st.range(1)));
+  for (auto _ : st)
+    for (const auto& p : pts) {
+      double dg, xi, eta;
+      g.SphericalAnomaly(p.lat_rad / kDeg, p.lon_rad / kDeg, p.height_m, dg, xi, eta);
+      benchmark::DoNotOptimize(xi + eta);
+    }
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(1)));
+}
+// ξ, η and N (what `meridian gravity points` prints): two syntheses each.
+void BM_Meridian_DeflectionAndGeoid(benchmark::State& st) {
+  const auto& f = *models(static_cast<int>(st.range(0))).meridian;
+  const auto pts = scattered(static_cast<std::size_t>(st.range(1)));
+  for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts, mg::Quantities::All));
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(1)));
+}
+void BM_GeographicLib_DeflectionAndGeoid(benchmark::State& st) {
+  const auto& g = *models(static_cast<int>(st.range(0))).geographiclib;
+  const auto pts = scattered(static_cast<std::size_t>(st.range(1)));
+  for (auto _ : st)
+    for (const auto& p : pts) {
+      double dg, xi, eta;
+      g.SphericalAnomaly(p.lat_rad / kDeg, p.lon_rad / kDeg, p.height_m, dg, xi, eta);
+      benchmark::DoNotOptimize(xi + eta + g.GeoidHeight(p.lat_rad / kDeg, p.lon_rad / kDeg));
+    }
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(1)));
+}
+// One point per call (no batching across points).
+void BM_Meridian_DeflectionSinglePoint(benchmark::State& st) {
+  const auto& f = *models(static_cast<int>(st.range(0))).meridian;
+  const auto pts = scattered(16);
+  std::size_t i = 0;
+  for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts[i++ % pts.size()], mg::Quantities::Deflection));
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()));
+}
+// Batches on all cores (threads = range(2)).
+void BM_Meridian_DeflectionThreads(benchmark::State& st) {
+  const auto& f = *models(static_cast<int>(st.range(0)), static_cast<unsigned>(st.range(2))).meridian;
+  const auto pts = scattered(static_cast<std::size_t>(st.range(1)));
+  for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts, mg::Quantities::Deflection));
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(1)));
+}
+// Points on a parallel: per-longitude cost (circle built once, outside the loop).
+void BM_Meridian_CirclePerPoint(benchmark::State& st) {
+  const mg::GravityCircle c(*models(static_cast<int>(st.range(0))).meridian, 47.3 * kDeg, 500, mg::Quantities::Deflection);
+  double lon = 0;
+  for (auto _ : st) benchmark::DoNotOptimize(c.evaluate((lon += 0.01) * kDeg));
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()));
+}
+void BM_GeographicLib_CirclePerPoint(benchmark::State& st) {
+  const GeographicLib::GravityCircle c =
+      models(static_cast<int>(st.range(0))).geographiclib->Circle(47.3, 500, GeographicLib::GravityModel::SPHERICAL_ANOMALY);
+  double lon = 0;
+  for (auto _ : st) {
+    double dg, xi, eta;
+    c.SphericalAnomaly(lon += 0.01, dg, xi, eta);
+    benchmark::DoNotOptimize(xi + eta);
+  }
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()));
+}
+// Building the circle (the O(N²) part).
+void BM_Meridian_CircleSetup(benchmark::State& st) {
+  const auto& f = *models(static_cast<int>(st.range(0))).meridian;
+  for (auto _ : st) benchmark::DoNotOptimize(mg::GravityCircle(f, 47.3 * kDeg, 500, mg::Quantities::Deflection));
+}
+void BM_GeographicLib_CircleSetup(benchmark::State& st) {
+  const auto& g = *models(static_cast<int>(st.range(0))).geographiclib;
+  for (auto _ : st) benchmark::DoNotOptimize(g.Circle(47.3, 500, GeographicLib::GravityModel::SPHERICAL_ANOMALY));
+}
+// Loading a model from the binary .egm.cof (read + synthesis tables).
+void BM_Meridian_Load(benchmark::State& st) {
+  const fs::path p = dir() / (model_name(static_cast<int>(st.range(0))) + ".egm");
+  for (auto _ : st) benchmark::DoNotOptimize(mg::GravityField(mg::read_egm_file(p)));
+}
+void BM_GeographicLib_Load(benchmark::State& st) {
+  const std::string name = model_name(static_cast<int>(st.range(0)));
+  for (auto _ : st) benchmark::DoNotOptimize(GeographicLib::GravityModel(name, dir().string()));
+}
+
+BENCHMARK(BM_Meridian_Deflection)->Args({360, 256})->Args({2190, 16})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeographicLib_Deflection)->Args({360, 256})->Args({2190, 16})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Meridian_DeflectionAndGeoid)->Args({360, 256})->Args({2190, 16})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeographicLib_DeflectionAndGeoid)->Args({360, 256})->Args({2190, 16})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Meridian_DeflectionSinglePoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Meridian_DeflectionThreads)->Args({360, 1024, 1})->Args({360, 1024, 2})->Args({2190, 64, 1})->Args({2190, 64, 2})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Meridian_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_GeographicLib_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Meridian_CircleSetup)->Arg(360)->Arg(2190)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeographicLib_CircleSetup)->Arg(360)->Arg(2190)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Meridian_Load)->Arg(2190)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GeographicLib_Load)->Arg(2190)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  std::error_code ec;
+  fs::remove_all(dir(), ec);
+  return 0;
+}

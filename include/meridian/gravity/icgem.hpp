@@ -1,0 +1,28 @@
+#pragma once
+/// \file icgem.hpp
+/// ICGEM `.gfc` gravity-field files (http://icgem.gfz-potsdam.de, format
+/// description "ICGEM-Format-2011"): header keys up to `end_of_head`, then
+/// `gfc n m C S [sigmaC sigmaS]` lines. Fortran `D` exponents are accepted.
+
+#include <filesystem>
+#include <string>
+
+#include "meridian/gravity/gravity_model.hpp"
+
+namespace meridian::gravity {
+
+/// Read an ICGEM file. Requirements (else ParseError/InputError naming the
+/// file and line): `product_type gravity_field` (if present),
+/// `earth_gravity_constant`, `radius`, `max_degree`, `norm` absent or
+/// `fully_normalized`; only static `gfc` lines (time-variable `gfct`, `trnd`,
+/// `acos`, `asin` are rejected); 0 ≤ m ≤ n ≤ max_degree; no duplicate
+/// (n, m); every (n, m) with 2 ≤ n ≤ kept degree present (degrees 0 and 1
+/// may be omitted: C̄00 = 1, degree 1 = 0). Lines beyond the truncation are
+/// checked for syntax but not stored. The reference field is WGS84.
+GravityModelData read_icgem_file(const std::filesystem::path& path, const Truncation& truncation = {});
+
+/// The model as ICGEM text (17 significant digits, so reading it back gives
+/// bit-identical coefficients).
+std::string format_icgem(const GravityModelData& model);
+
+}  // namespace meridian::gravity

@@ -1,0 +1,241 @@
+#include "meridian/gravity/egm_format.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "meridian/core/atomic_file.hpp"
+#include "meridian/core/error.hpp"
+#include "text_util.hpp"
+
+namespace meridian::gravity {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the .egm.cof reader assumes a little-endian host");
+
+constexpr std::size_t kIdLength = 8;
+
+// GeographicLib's "fract": a number or "p/q".
+std::optional<double> parse_fract(std::string_view s) {
+  const std::size_t slash = s.find('/');
+  if (slash == std::string_view::npos) return detail::parse_double(s);
+  const auto a = detail::parse_double(s.substr(0, slash)), b = detail::parse_double(s.substr(slash + 1));
+  if (!a || !b || *b == 0) return std::nullopt;
+  return *a / *b;
+}
+
+class CofReader {
+ public:
+  explicit CofReader(const std::string& file) : file_(file), in_(file, std::ios::binary) {
+    if (!in_) throw IoError("cannot open coefficient file", {file, {}, ""});
+    in_.seekg(0, std::ios::end);
+    size_ = static_cast<std::uint64_t>(in_.tellg());
+    in_.seekg(0);
+  }
+  std::uint64_t offset() { return static_cast<std::uint64_t>(in_.tellg()); }
+  void need(std::uint64_t bytes, const char* what) {
+    if (offset() + bytes > size_)
+      throw ParseError(fmt::format("file truncated: {} needs {} bytes at offset {}, file has {}", what, bytes, offset(), size_),
+                       {file_, {}, what});
+  }
+  void read(void* dst, std::uint64_t bytes, const char* what) {
+    need(bytes, what);
+    in_.read(static_cast<char*>(dst), static_cast<std::streamsize>(bytes));
+    if (!in_) throw IoError(fmt::format("read error at offset {}", offset()), {file_, {}, what});
+  }
+  void skip(std::uint64_t bytes, const char* what) {
+    need(bytes, what);
+    in_.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
+  }
+  // One coefficient set with truncation; returns nullopt for N = M = −1.
+  std::optional<SphericalHarmonicCoefficients> coefficients(const Truncation& t, const char* what, int* file_n) {
+    std::int32_t nm[2];
+    read(nm, sizeof nm, what);
+    const int n0 = nm[0], m0 = nm[1];
+    if (file_n) *file_n = n0;
+    if (n0 == -1 && m0 == -1) return std::nullopt;
+    if (!(n0 >= m0 && m0 >= 0) || n0 > 100000)
+      throw ParseError(fmt::format("bad degree and order {} {} at offset {}", n0, m0, offset() - sizeof nm), {file_, {}, what});
+    const int n = t.max_degree < 0 ? n0 : std::min(t.max_degree, n0);
+    const int m = std::min({t.max_order < 0 ? n : t.max_order, m0, n});
+    SphericalHarmonicCoefficients c(n, m);
+    // C: columns m = 0..m0 of length n0 + 1 − m; S: columns m = 1..m0.
+    for (int pass = 0; pass < 2; ++pass) {
+      double* dst = pass == 0 ? c.c_data() : c.s_data();
+      for (int mm = pass; mm <= m0; ++mm) {
+        const std::uint64_t len = static_cast<std::uint64_t>(n0 + 1 - mm);
+        if (mm > m) {
+          skip(len * 8, what);
+          continue;
+        }
+        const std::uint64_t keep = static_cast<std::uint64_t>(n + 1 - mm);
+        read(dst + c.index(mm, mm), keep * 8, what);
+        skip((len - keep) * 8, what);
+      }
+    }
+    for (std::size_t k = 0; k < c.size(); ++k)
+      if (!std::isfinite(c.c_values()[k]) || !std::isfinite(c.s_values()[k]))
+        throw ParseError(fmt::format("non-finite coefficient (entry {} of the {} set)", k, what), {file_, {}, what});
+    return c;
+  }
+  void expect_end() {
+    if (offset() != size_)
+      throw ParseError(fmt::format("{} bytes of extra data after the coefficients (offset {})", size_ - offset(), offset()),
+                       {file_, {}, ""});
+  }
+
+ private:
+  std::string file_;
+  std::ifstream in_;
+  std::uint64_t size_ = 0;
+};
+
+}  // namespace
+
+GravityModelData read_egm_file(const std::filesystem::path& path, const Truncation& truncation) {
+  const std::string file = path.string();
+  std::ifstream in(path);
+  if (!in) throw IoError("cannot open gravity model metadata file", {file, {}, ""});
+  GravityModelData model;
+  model.source_file = file;
+  model.tide_system = "unknown";
+  std::string line;
+  int line_no = 1;
+  if (!std::getline(in, line) || line.rfind("EGMF-", 0) != 0)
+    throw ParseError("no EGMF-n signature on the first line (not a GeographicLib .egm file)", {file, 1, ""});
+  if (line.substr(5, line.find_first_of(" \t\r", 5) - 5) != "1")
+    throw ParseError("unsupported .egm version \"" + line.substr(5) + "\" (expected EGMF-1)", {file, 1, ""});
+  double a = NAN, gm = NAN, omega = NAN, f = NAN, j2 = NAN, zeta0 = 0, corrmult = 1;
+  model.gm_m3_s2 = model.radius_m = NAN;
+  std::string id;
+  std::vector<std::string_view> fields;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    detail::split_fields(line, fields);
+    if (fields.empty()) continue;
+    const std::string key(fields[0]);
+    std::string val = fields.size() > 1 ? line.substr(static_cast<std::size_t>(fields[1].data() - line.data())) : "";
+    while (!val.empty() && std::isspace(static_cast<unsigned char>(val.back()))) val.pop_back();
+    auto number = [&]() {
+      const auto v = parse_fract(val);
+      if (!v || !std::isfinite(*v)) throw ParseError(fmt::format("{} is not a number: \"{}\"", key, val), {file, line_no, key});
+      return *v;
+    };
+    if (key == "Name") model.name = val;
+    else if (key == "Description") model.description = val;
+    else if (key == "ModelRadius") model.radius_m = number();
+    else if (key == "ModelMass") model.gm_m3_s2 = number();
+    else if (key == "AngularVelocity") omega = number();
+    else if (key == "ReferenceRadius") a = number();
+    else if (key == "ReferenceMass") gm = number();
+    else if (key == "Flattening") f = number();
+    else if (key == "DynamicalFormFactor") j2 = number();
+    else if (key == "HeightOffset") zeta0 = number();
+    else if (key == "CorrectionMultiplier") corrmult = number();
+    else if (key == "ID") id = val;
+    else if (key == "Normalization") {
+      if (val != "FULL" && val != "Full" && val != "full")
+        throw ParseError("normalization \"" + val + "\" is not supported (only FULL)", {file, line_no, key});
+    } else if (key == "ByteOrder") {
+      if (val != "Little" && val != "little")
+        throw ParseError("byte order \"" + val + "\" is not supported (only Little)", {file, line_no, key});
+    }
+  }
+  auto require = [&](double v, const char* key) {
+    if (!(std::isfinite(v) && v > 0)) throw ParseError(fmt::format("missing or non-positive {}", key), {file, {}, key});
+  };
+  require(model.radius_m, "ModelRadius");
+  require(model.gm_m3_s2, "ModelMass");
+  require(a, "ReferenceRadius");
+  require(gm, "ReferenceMass");
+  if (!(std::isfinite(omega) && omega >= 0)) throw ParseError("missing AngularVelocity", {file, {}, "AngularVelocity"});
+  if (std::isfinite(f) == std::isfinite(j2))
+    throw ParseError("exactly one of Flattening and DynamicalFormFactor must be given", {file, {}, "Flattening"});
+  if (!(corrmult > 0)) throw ParseError("CorrectionMultiplier must be positive", {file, {}, "CorrectionMultiplier"});
+  if (id.size() != kIdLength) throw ParseError("ID must have exactly 8 characters, got \"" + id + "\"", {file, {}, "ID"});
+  model.reference = NormalFieldParameters{model.name.empty() ? "reference" : model.name + " reference", a, gm, omega,
+                                          std::isfinite(f) ? f : 0.0, std::isfinite(j2) ? j2 : 0.0};
+  if (model.name.empty()) model.name = path.stem().string();
+
+  const std::string cof = file + ".cof";
+  CofReader r(cof);
+  char fid[kIdLength];
+  r.read(fid, kIdLength, "ID");
+  if (std::string(fid, kIdLength) != id)
+    throw ParseError(fmt::format("ID mismatch: {} has \"{}\", {} has \"{}\"", file, id, cof, std::string(fid, kIdLength)),
+                     {cof, {}, "ID"});
+  int file_n = 0;
+  auto c = r.coefficients(truncation, "gravitational", &file_n);
+  if (!c) throw ParseError("the gravitational coefficient set is empty (N = M = -1)", {cof, {}, "gravitational"});
+  if (c->c(0, 0) != 0) throw ParseError("the degree 0 coefficient must be 0 in a .egm.cof file", {cof, {}, "C00"});
+  c->set(0, 0, 1.0, 0.0);
+  model.coefficients = std::move(*c);
+  model.file_max_degree = file_n;
+  if (auto corr = r.coefficients(truncation, "correction", nullptr)) {
+    model.correction = GeoidCorrection{std::move(*corr), corrmult, zeta0};
+  } else if (zeta0 != 0) {
+    model.correction = GeoidCorrection{SphericalHarmonicCoefficients(0, 0), corrmult, zeta0};
+  }
+  r.expect_end();
+  return model;
+}
+
+void write_egm_files(const GravityModelData& model, const std::filesystem::path& prefix) {
+  const SphericalHarmonicCoefficients& c = model.coefficients;
+  if (c.c(0, 0) != 1.0)
+    throw InputError(fmt::format("C00 = {} cannot be written to a GeographicLib file (it must be 1; rescale GM)", c.c(0, 0)),
+                     {"", {}, "C00"});
+  std::string id;
+  for (char ch : model.name)
+    if (std::isalnum(static_cast<unsigned char>(ch)) && id.size() < kIdLength)
+      id += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  id.resize(kIdLength, 'X');
+  const NormalFieldParameters& ref = model.reference;
+  std::string meta = fmt::format(
+      "EGMF-1\n# Gravity model written by Meridian\nName {}\nDescription {}\nModelRadius {:.17g}\nModelMass {:.17g}\n"
+      "AngularVelocity {:.17g}\nReferenceRadius {:.17g}\nReferenceMass {:.17g}\n",
+      model.name.empty() ? prefix.filename().string() : model.name,
+      model.description.empty() ? "none" : model.description, model.radius_m, model.gm_m3_s2, ref.omega_rad_s, ref.a_m,
+      ref.gm_m3_s2);
+  meta += ref.j2 != 0 ? fmt::format("DynamicalFormFactor {:.17g}\n", ref.j2) : fmt::format("Flattening {:.17g}\n", ref.flattening);
+  if (model.correction)
+    meta += fmt::format("HeightOffset {:.17g}\nCorrectionMultiplier {:.17g}\n", model.correction->height_offset_m,
+                        model.correction->multiplier);
+  meta += "ID " + id + "\n";
+
+  std::string bin = id;
+  auto put = [&](const void* p, std::size_t bytes) { bin.append(static_cast<const char*>(p), bytes); };
+  auto put_set = [&](const SphericalHarmonicCoefficients& s, bool zero_c00) {
+    const std::int32_t nm[2] = {s.max_degree(), s.max_order()};
+    put(nm, sizeof nm);
+    std::vector<double> cv = s.c_values();
+    if (zero_c00) cv[0] = 0;
+    put(cv.data(), cv.size() * 8);
+    const std::size_t s0 = static_cast<std::size_t>(s.max_degree()) + 1;  // skip the m = 0 column
+    put(s.s_values().data() + s0, (s.size() - s0) * 8);
+  };
+  bin.reserve(8 + 16 + 16 * c.size());
+  put_set(c, true);
+  if (model.correction && model.correction->coefficients.size() > 0) {
+    put_set(model.correction->coefficients, false);
+  } else {
+    const std::int32_t none[2] = {-1, -1};
+    put(none, sizeof none);
+  }
+  std::filesystem::path egm = prefix;
+  egm += ".egm";
+  std::filesystem::path cof = prefix;
+  cof += ".egm.cof";
+  write_file_atomically(cof, bin);
+  write_file_atomically(egm, meta);
+}
+
+}  // namespace meridian::gravity

@@ -1,0 +1,62 @@
+#pragma once
+// Private: the spherical-harmonic summation kernel shared by GravityField
+// and GravityCircle. See docs/gravity-field.md §3 for the formulas.
+
+#include <cstddef>
+#include <vector>
+
+#include "meridian/gravity/coefficients.hpp"
+
+namespace meridian::gravity::detail {
+
+/// Points evaluated together (one AVX-512 vector; two AVX2 vectors).
+inline constexpr int kLanes = 8;
+/// Scale applied to P̄_nm / cos^m ψ so that neither overflow nor underflow
+/// occurs to degree ~2700 (Holmes & Featherstone 2002).
+inline constexpr double kScale = 1e-280;
+inline constexpr double kInvScale = 1e280;
+
+/// A point in the kernel's variables: t = sin ψ, u = cos ψ (geocentric
+/// latitude ψ), q = a/r, and the longitude's cosine and sine.
+struct LanePoint {
+  double t, u, q, cos_lon, sin_lon;
+};
+
+/// Σ_n Σ_m q^{n+1} P̄_nm(t)(C cos mλ + S sin mλ) and derivatives, so that
+/// with K = GM/a: value = K·v, ∂/∂r = −(K/r)·dr, (1/r)∂/∂ψ = (K/r)·dn,
+/// (1/(r cos ψ))∂/∂λ = (K/r)·de.
+struct LaneSums {
+  double v, dr, dn, de;
+};
+
+class SynthesisTable {
+ public:
+  explicit SynthesisTable(const SphericalHarmonicCoefficients& c);
+
+  int max_degree() const noexcept { return n_; }
+  int max_order() const noexcept { return m_; }
+
+  /// Evaluate 1..kLanes points (count); dr/dn/de only when `gradient`.
+  void evaluate(const LanePoint* points, int count, bool gradient, LaneSums* out) const;
+
+  /// Per-order column sums for one (t, q) — 6 values per m when
+  /// `gradient` (A0, B0, A1, B1, A2, B2), else 2 (A0, B0) — for circles.
+  std::vector<double> column_sums(double t, double q, bool gradient) const;
+  /// Combine column sums at one longitude (the O(M) part).
+  LaneSums horner(const std::vector<double>& sums, bool gradient, const LanePoint& p) const;
+
+  /// One (n, m): recursion coefficients and C̄, S̄, interleaved so a column
+  /// is one sequential stream (32 bytes per coefficient pair; computing α, β
+  /// on the fly from √ tables halves memory but measured 15–25 % slower).
+  struct Term {
+    double alpha, beta, c, s;
+  };
+
+ private:
+  int n_ = 0, m_ = 0;
+  std::vector<Term> terms_;         // column-major, m = 0..M, n = m..N
+  std::vector<std::size_t> start_;  // index of (m, m) in terms_
+  std::vector<double> sectoral_;    // kScale · P̄_mm / cos^m ψ
+};
+
+}  // namespace meridian::gravity::detail

@@ -1,0 +1,157 @@
+// Runs `meridian gravity ...` as a user would: a synthetic model written by
+// the CLI, compared with GeographicLib's own Gravity tool when installed.
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using meridian_test::CmdResult;
+class GravityCli : public meridian_test::CliTest {};
+
+TEST_F(GravityCli, SynthModelWritesThreeFilesDeterministically) {
+  ASSERT_EQ(run("gravity synth-model --degree 30 --seed 9 --out a").code, 0);
+  ASSERT_EQ(run("gravity synth-model --degree 30 --seed 9 --out b").code, 0);
+  for (const char* ext : {".gfc", ".egm.cof"}) {
+    ASSERT_TRUE(fs::exists(dir_ / (std::string("a") + ext)));
+    EXPECT_EQ(slurp(dir_ / (std::string("a") + ext)), slurp(dir_ / (std::string("b") + ext))) << ext;
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "a.egm"));
+  EXPECT_NE(run("gravity synth-model --degree 3000 --out c").code, 0);
+  EXPECT_FALSE(fs::exists(dir_ / "c.gfc"));
+}
+
+TEST_F(GravityCli, PointJsonMatchesGeographicLibGravityTool) {
+  ASSERT_EQ(run("gravity synth-model --degree 60 --seed 3 --out m").code, 0);
+  const CmdResult r = run("gravity point --model m.egm -33.5 151.25 120 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* k : {"xi_arcsec", "eta_arcsec", "geoid_m"}) EXPECT_TRUE(j.contains(k)) << k;
+  // The .gfc copy is the same model.
+  const auto g = nlohmann::json::parse(run("gravity point --model m.gfc --json -- -33.5 151.25 120").out);
+  EXPECT_NEAR(g["xi_arcsec"].get<double>(), j["xi_arcsec"].get<double>(), 1e-9);
+  if (std::system("command -v Gravity > /dev/null 2>&1") != 0) GTEST_SKIP() << "GeographicLib's Gravity tool not installed";
+  // Gravity -A prints Dg01 (mGal), xi, eta (arcsec); -H prints N (m).
+  const CmdResult a = shell("echo '-33.5 151.25 120' | Gravity -n m -d . -A -p 9");
+  const CmdResult h = shell("echo '-33.5 151.25' | Gravity -n m -d . -H -p 9");
+  ASSERT_EQ(a.code, 0) << a.err;
+  double dg, xi, eta, n;
+  std::istringstream(a.out) >> dg >> xi >> eta;
+  std::istringstream(h.out) >> n;
+  EXPECT_NEAR(j["xi_arcsec"].get<double>(), xi, 1e-6);
+  EXPECT_NEAR(j["eta_arcsec"].get<double>(), eta, 1e-6);
+  EXPECT_NEAR(j["geoid_m"].get<double>(), n, 1e-6);
+}
+
+TEST_F(GravityCli, PointsCsvStdinToStdoutAndAtomicFile) {
+  ASSERT_EQ(run("gravity synth-model --degree 20 --seed 1 --out m").code, 0);
+  const std::string csv = "lat,lon,h\n10,20,0\n-89.9,0,5000\n45 30 00,-120,100\n";
+  const CmdResult r = run("gravity points --model m.egm", csv);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(in, line)) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "lat_deg,lon_deg,h_m,xi_arcsec,eta_arcsec,geoid_m");
+  EXPECT_EQ(lines[3].rfind("45.5000000000,-120.0000000000,100.0000,", 0), 0u) << lines[3];
+  // Same numbers as `gravity point`.
+  const auto j = nlohmann::json::parse(run("gravity point --model m.egm 10 20 --json").out);
+  double lat, lon, h, xi, eta, n;
+  char c;
+  std::istringstream(lines[1]) >> lat >> c >> lon >> c >> h >> c >> xi >> c >> eta >> c >> n;
+  EXPECT_NEAR(xi, j["xi_arcsec"].get<double>(), 1e-8);
+  EXPECT_NEAR(n, j["geoid_m"].get<double>(), 1e-8);
+  std::ofstream(dir_ / "in.csv") << csv;
+  ASSERT_EQ(run("gravity points --model m.egm --input in.csv --output out.csv").code, 0);
+  EXPECT_EQ(slurp(dir_ / "out.csv"), r.out);
+}
+
+TEST_F(GravityCli, BadInputGivesExitCodeAndNamesTheLine) {
+  ASSERT_EQ(run("gravity synth-model --degree 10 --out m").code, 0);
+  std::ofstream(dir_ / "bad.csv") << "10,20\n95,0\n";
+  CmdResult r = run("gravity points --model m.egm --input bad.csv --output out.csv");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("bad.csv:2"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out.csv"));
+  r = run("gravity point --model m.egm 0 0 50000000");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("height"), std::string::npos) << r.err;
+  r = run("gravity point --model no_such_model_name 0 0");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("not found"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "broken.gfc") << "end_of_head\n";
+  r = run("gravity point --model broken.gfc 0 0");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("broken.gfc"), std::string::npos) << r.err;
+}
+
+TEST_F(GravityCli, ModelFoundByNameThroughGeographicLibEnvironment) {
+  ASSERT_EQ(run("gravity synth-model --degree 10 --out mymodel").code, 0);
+  const CmdResult r = run("gravity point --model mymodel 1 2");  // not a file name: looked up
+  EXPECT_EQ(r.code, 1);
+  const CmdResult ok = shell("GEOGRAPHICLIB_GRAVITY_PATH=" + dir_.string() + " " + MERIDIAN_EXE + " gravity point --model mymodel 1 2");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("xi_arcsec"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(GravityCli, TrackOptionInterpolatesWithinTolerance) {
+  ASSERT_EQ(run("gravity synth-model --degree 90 --seed 2 --out m").code, 0);
+  std::string csv;
+  for (int i = 0; i < 400; ++i) csv += std::to_string(40 + i * 1e-4) + "," + std::to_string(10 + i * 1e-4) + ",0\n";
+  const CmdResult exact = run("gravity points --model m.egm", csv);
+  const CmdResult track = run("gravity points --model m.egm --track-tolerance-arcsec 0.0001", csv);
+  ASSERT_EQ(track.code, 0) << track.err;
+  std::istringstream a(exact.out), b(track.out);
+  std::string la, lb;
+  std::getline(a, la);
+  std::getline(b, lb);
+  double worst = 0;
+  while (std::getline(a, la) && std::getline(b, lb)) {
+    double x[6], y[6];
+    char c;
+    std::istringstream sa(la), sb(lb);
+    for (int k = 0; k < 6; ++k) sa >> x[k] >> c, sb >> y[k] >> c;
+    worst = std::max({worst, std::abs(x[3] - y[3]), std::abs(x[4] - y[4])});
+  }
+  EXPECT_LT(worst, 1.5e-4);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(GravityCli, GeoidGridCommandLabelsTheFallbackDeflection) {
+  // A 1° PGM with constant height 12.345 m (offset 0, scale 0.001).
+  std::string s = "P5\n# Offset 0\n# Scale 0.001\n360 181\n65535\n";
+  for (int i = 0; i < 360 * 181; ++i) s += std::string{static_cast<char>(12345 >> 8), static_cast<char>(12345 & 255)};
+  std::ofstream(dir_ / "flat.pgm", std::ios::binary) << s;
+  const CmdResult r = run("gravity geoid-grid --grid flat.pgm 12.5 -7.25 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["geoid_m"].get<double>(), 12.345, 1e-9);
+  EXPECT_NEAR(j["fallback_xi_arcsec"].get<double>(), 0.0, 1e-9);
+  EXPECT_NE(j["fallback_method"].get<std::string>().find("fallback"), std::string::npos);
+  EXPECT_EQ(run("gravity geoid-grid --grid missing.gtx 0 0").code, 4);
+}
+
+}  // namespace
