@@ -7,6 +7,7 @@
 #include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/gravity/gravity_field.hpp"
 
 namespace meridian::gyro {
 namespace {
@@ -76,6 +77,26 @@ std::vector<DeterminationResult> reduce_all(const std::vector<DeterminationInput
     for (const auto& w : out.back().warnings) warnings.push_back(f + ": " + w);
   }
   return out;
+}
+
+}  // namespace
+
+namespace {
+
+// η at a point: as given, else from the gravity model (with a note), else none.
+std::optional<Uncertain> eta_at(const CampaignInput& in, const PointInput& p, const PointResult& r,
+                                std::vector<std::string>& notes) {
+  if (p.eta_rad) return p.eta_rad;
+  if (!in.deflection_model || !in.deflection_model->field) return std::nullopt;
+  const DeflectionModel& m = *in.deflection_model;
+  const double h = p.height_m.value_or(0.0);
+  const gravity::FieldValues v =
+      m.field->evaluate(gravity::GeodeticPoint{r.lat_rad, r.lon_rad, h}, gravity::Quantities::Deflection);
+  notes.push_back(fmt::format("{}: eta = {:+.3f}\" (sigma {:.1f}\") from the gravity model {} at h = {:.1f} m{}",
+                              r.name.empty() ? "point" : r.name, v.eta_astro_rad / units::kArcsecond,
+                              m.sigma_eta_rad / units::kArcsecond, m.description, h,
+                              p.height_m ? "" : " (height not given)"));
+  return Uncertain{v.eta_astro_rad, m.sigma_eta_rad};
 }
 
 }  // namespace
@@ -150,10 +171,10 @@ CampaignResult process_campaign(const CampaignInput& in, Progress* progress) {
       a.value = alpha;
     }
     if (k.azimuth.kind != KnownAzimuth::Kind::Astronomic) {
-      if (k.from.eta_rad) {
+      if (const auto eta = eta_at(in, k.from, *res.known_station, res.notes)) {
         // Laplace inverted: A = α + η·tan φ.
-        a.value += k.from.eta_rad->value * std::tan(phi);
-        a.sigma = std::hypot(a.sigma, k.from.eta_rad->sigma * std::tan(phi));
+        a.value += eta->value * std::tan(phi);
+        a.sigma = std::hypot(a.sigma, eta->sigma * std::tan(phi));
       } else {
         res.notes.push_back("known line: eta unknown at the known station; the deflection is "
                             "absorbed into E (E relates gyro to geodetic azimuths)");
@@ -216,7 +237,7 @@ CampaignResult process_campaign(const CampaignInput& in, Progress* progress) {
   chain.gyro_azimuth_rad = res.gyro_azimuth_mean.mean;
   chain.instrument_constant_rad = res.instrument_constant_used_rad;
   chain.latitude_rad = res.station.lat_rad;
-  chain.eta_rad = in.line.from.eta_rad;
+  chain.eta_rad = eta_at(in, in.line.from, res.station, res.notes);
   chain.convergence_rad = res.station.grid.convergence_rad;
   if (res.target)
     chain.arc_to_chord_rad = geodesy::arc_to_chord(grid, res.station.grid.x_north_m,

@@ -198,10 +198,10 @@ CampaignTruth example_campaign_truth() {
   t.nontracking_period_s = 440.0;
   t.grid = geodesy::gauss_kruger_3(38, geodesy::cgcs2000());
   // Near 37.85 N, 112.55 E: west of the zone's central meridian 114 E.
-  t.known_station = {"A (surface)", {}, {}, 4191380.250, 372430.120, {}};
-  t.known_target = {"B (surface)", {}, {}, 4192655.870, 373118.440, {}};
-  t.station = {"C (shaft bottom)", {}, {}, 4190912.410, 372887.660, {}};
-  t.target = {"D (main drift)", {}, {}, 4190104.030, 373652.350, {}};
+  t.known_station = {"A (surface)", {}, {}, 4191380.250, 372430.120, {}, 862.4};
+  t.known_target = {"B (surface)", {}, {}, 4192655.870, 373118.440, {}, 871.9};
+  t.station = {"C (shaft bottom)", {}, {}, 4190912.410, 372887.660, {}, 341.7};
+  t.target = {"D (main drift)", {}, {}, 4190104.030, 373652.350, {}, 338.2};
   t.eta_station_rad = -4.2 * kArcsec;
   t.eta_known_rad = -4.0 * kArcsec;
   t.instrument_constant_rad = 25.4 * kArcsec;

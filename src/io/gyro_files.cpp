@@ -8,6 +8,8 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/ellipsoid.hpp"
+#include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/model_lookup.hpp"
 
 namespace meridian::io {
 namespace {
@@ -204,7 +206,7 @@ gyro::ReduceOptions read_options(const Node& n) {
 
 gyro::PointInput read_point(const Node& n) {
   n.allow_only({"name", "latitude_deg", "longitude_deg", "x_m", "y_m", "eta_arcsec",
-                "eta_sigma_arcsec"});
+                "eta_sigma_arcsec", "height_m"});
   gyro::PointInput p;
   if (auto v = n.get("name")) p.name = v->string();
   if (auto v = n.get("latitude_deg")) {
@@ -220,6 +222,7 @@ gyro::PointInput read_point(const Node& n) {
   if (!p.lat_rad && !p.x_north_m) n.fail("a point needs latitude_deg/longitude_deg or x_m/y_m");
   if (auto v = n.get("eta_arcsec"))
     p.eta_rad = Uncertain{v->number() * kArcsec, sigma_or(n, "eta_sigma_arcsec", 0.0) * kArcsec};
+  if (auto v = n.get("height_m")) p.height_m = v->number();
   return p;
 }
 
@@ -275,6 +278,32 @@ geodesy::GridDefinition read_grid(const Node& n) {
   return g;
 }
 
+// The model is a path (relative to the campaign file, or as given) or a name
+// found where GeographicLib keeps its models.
+gyro::DeflectionModel read_deflection_model(const Node& n, const std::filesystem::path& campaign_path) {
+  n.allow_only({"model", "max_degree", "eta_sigma_arcsec"});
+  const Node model = n.require("model");
+  std::string source = model.string();
+  gravity::Truncation t;
+  if (auto v = n.get("max_degree")) t.max_degree = v->integer();
+  const std::filesystem::path beside = campaign_path.parent_path() / source;
+  const std::string lookup = std::filesystem::exists(beside) ? beside.string() : source;
+  gravity::GravityModelData data;
+  try {
+    data = gravity::load_model(lookup, t);
+  } catch (Error& e) {
+    if (e.context().file.empty()) model.fail(e.message());
+    throw;
+  }
+  gyro::DeflectionModel d;
+  d.source = source;
+  d.description = fmt::format("{} (degree {})", data.name.empty() ? source : data.name,
+                              data.coefficients.max_degree());
+  d.field = std::make_shared<const gravity::GravityField>(data);
+  if (auto v = n.get("eta_sigma_arcsec")) d.sigma_eta_rad = v->positive_number() * kArcsec;
+  return d;
+}
+
 }  // namespace
 
 void locate_error(Error& e, const std::string& file, const FieldLines& lines) {
@@ -323,7 +352,7 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
 CampaignFile read_campaign_file(const std::filesystem::path& path) {
   const Node root = Node::load_file(path);
   root.allow_only({"campaign", "instrument", "grid", "known_line", "instrument_constant", "line",
-                   "tolerances", "options"});
+                   "tolerances", "options", "gravity_model"});
   CampaignFile f;
   f.file = path.string();
   gyro::CampaignInput& c = f.campaign;
@@ -381,6 +410,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     if (auto v = t->get("zero_position_div")) c.tolerances.zero_position_div = v->positive_number();
   }
   if (auto o = root.get("options")) c.options = read_options(*o);
+  if (auto g = root.get("gravity_model")) c.deflection_model = read_deflection_model(*g, path);
   f.lines = root.visited_lines();
   return f;
 }

@@ -128,6 +128,7 @@ void point_yaml(std::string& o, const char* key, const gyro::PointInput& p, cons
     o += in + "eta_arcsec: " + num(p.eta_rad->value / kArcsec) + "\n";
     if (p.eta_rad->sigma > 0) o += in + "eta_sigma_arcsec: " + num(p.eta_rad->sigma / kArcsec) + "\n";
   }
+  if (p.height_m) o += in + "height_m: " + num(*p.height_m) + "\n";
 }
 
 std::string grid_system(const geodesy::GridDefinition& g) {
@@ -204,6 +205,9 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
     o += "  instrument_constant_difference_arcsec: " +
          num(*c.tolerances.instrument_constant_difference_rad / kArcsec) + "\n";
   o += "  zero_position_div: " + num(c.tolerances.zero_position_div) + "\n";
+  if (c.deflection_model)
+    o += "gravity_model: {model: " + q(c.deflection_model->source) + ", eta_sigma_arcsec: " +
+         num(c.deflection_model->sigma_eta_rad / kArcsec) + "}\n";
   return o;
 }
 

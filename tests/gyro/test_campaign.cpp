@@ -14,6 +14,9 @@
 #include "meridian/gyro/calibration.hpp"
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
+#include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/synthetic.hpp"
+#include "meridian/geodesy/grid.hpp"
 
 using namespace meridian;
 using namespace meridian::gyro;
@@ -142,4 +145,38 @@ TEST(Campaign, LatitudeBeyondLimitIsRejected) {
   auto t = example_campaign_truth();
   t.instrument.latitude_limit_rad = 30 * kDeg;
   EXPECT_THROW(simulate_campaign(t, 1), InputError);
+}
+
+TEST(Campaign, EtaFromAGravityModelRecoversTruth) {
+  // The truth's η at both stations is the model's plumb-line η; the campaign
+  // gets no η but the model, and must recover the true grid azimuth.
+  const auto model = gravity::make_synthetic_model({60, 5, 1e-5});
+  const auto field = std::make_shared<const gravity::GravityField>(model);
+  CampaignTruth t = example_campaign_truth();
+  t.sigma_time_s = 0;
+  t.sigma_reading_div = 0;
+  t.sigma_tracking_arcsec = 0;
+  t.sigma_pointing_arcsec = 0;
+  t.alpha_p_drift_div = 0;
+  t.round_to_field_precision = false;
+  t.give_eta = false;
+  const geodesy::TransverseMercatorGrid grid(t.grid);
+  auto eta_at = [&](const PointInput& p) {
+    const auto g = grid.reverse(*p.x_north_m, *p.y_east_m);
+    return field->evaluate(gravity::GeodeticPoint{g.lat_rad, g.lon_rad, p.height_m.value_or(0.0)}).eta_astro_rad;
+  };
+  t.eta_station_rad = eta_at(t.station);
+  t.eta_known_rad = eta_at(t.known_station);
+  ASSERT_GT(std::fabs(t.eta_station_rad / kArcsec), 0.5);  // a deflection worth correcting
+  auto sim = simulate_campaign(t, 21);
+  sim.input.deflection_model = DeflectionModel{field, "synthetic", "synthetic (degree 60)", 1.5 * kArcsec};
+  const auto r = process_campaign(sim.input);
+  ASSERT_TRUE(r.chain.laplace_applied);
+  EXPECT_NEAR(r.chain.laplace_correction_rad, -t.eta_station_rad * std::tan(r.station.lat_rad), 1e-12);
+  EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), 0.0, 0.01);
+  bool noted = false;
+  for (const auto& n : r.notes) noted = noted || n.find("from the gravity model synthetic (degree 60)") != std::string::npos;
+  EXPECT_TRUE(noted);
+  // σ of η enters the geodetic azimuth: tan φ · 1.5".
+  EXPECT_GT(r.chain.geodetic_azimuth_rad.sigma, r.chain.astronomic_azimuth_rad.sigma);
 }

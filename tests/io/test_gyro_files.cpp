@@ -13,6 +13,8 @@
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/io/gyro_files.hpp"
 #include "meridian/io/gyro_writers.hpp"
+#include "meridian/gravity/egm_format.hpp"
+#include "meridian/gravity/synthetic.hpp"
 
 using namespace meridian;
 namespace fs = std::filesystem;
@@ -177,4 +179,20 @@ TEST(GyroFiles, LocateErrorUsesInnermostRecordedField) {
   InputError e2("bad", {"", std::nullopt, "line.determinations[10]"});
   io::locate_error(e2, "c.yaml", lines);
   EXPECT_STREQ(e2.what(), "c.yaml:40: line.determinations[10]: bad");
+}
+
+TEST(GyroFiles, CampaignGravityModelBesideTheFile) {
+  TempDir d;
+  const auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 5);
+  gravity::write_egm_files(gravity::make_synthetic_model({30, 2, 1e-5}), d.write("m.txt", "").parent_path() / "m");
+  std::string yaml = io::campaign_file_yaml(sim.input);
+  const auto good = d.write("c.yaml", yaml + "gravity_model: {model: m.egm, eta_sigma_arcsec: 2}\n");
+  const auto f = io::read_campaign_file(good);
+  ASSERT_TRUE(f.campaign.deflection_model);
+  EXPECT_NEAR(f.campaign.deflection_model->sigma_eta_rad / kArcsec, 2.0, 1e-12);
+  EXPECT_NE(f.campaign.deflection_model->description.find("degree 30"), std::string::npos);
+  ASSERT_TRUE(f.campaign.line.from.height_m);
+  EXPECT_NEAR(*f.campaign.line.from.height_m, 341.7, 1e-9);
+  expect_error([&] { io::read_campaign_file(d.write("bad.yaml", yaml + "gravity_model: {model: nowhere.gfc}\n")); },
+               {"bad.yaml:", "gravity_model.model"});
 }

@@ -4,16 +4,22 @@
 /// known line before and after, determinations on the unknown line, and the
 /// azimuth chain down to the grid azimuth, with tolerance checks.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "meridian/core/progress.hpp"
+#include "meridian/core/units.hpp"
 #include "meridian/geodesy/grid.hpp"
 #include "meridian/gyro/azimuth_chain.hpp"
 #include "meridian/gyro/calibration.hpp"
 #include "meridian/gyro/determination.hpp"
 #include "meridian/gyro/instrument_spec.hpp"
+
+namespace meridian::gravity {
+class GravityField;
+}
 
 namespace meridian::gyro {
 
@@ -23,6 +29,19 @@ struct PointInput {
   std::optional<double> lat_rad, lon_rad;   ///< geodetic latitude/longitude (radians)
   std::optional<double> x_north_m, y_east_m; ///< grid coordinates on the campaign grid
   std::optional<Uncertain> eta_rad;          ///< η at this point (radians), if known
+  /// Ellipsoidal height (m), used to evaluate η from a gravity model; 0 with
+  /// a note when absent (η changes by well under 0.1″ per 100 m).
+  std::optional<double> height_m;
+};
+
+/// η from a global gravity model for points whose η is not given (spec §6,
+/// step 3). The model's plumb-line direction at the point is used: η =
+/// (Λ − λ)·cos φ of the model's gravity vector (gravity::FieldValues::eta_astro_rad).
+struct DeflectionModel {
+  std::shared_ptr<const gravity::GravityField> field;
+  std::string source;                        ///< name or path as given (for notes and writers)
+  std::string description;                   ///< e.g. "EGM2008 (degree 2190)"
+  double sigma_eta_rad = 1.5 * units::kArcsecond;  ///< commission error assumed for η
 };
 
 /// The known line's azimuth and its kind.
@@ -61,6 +80,7 @@ struct CampaignInput {
   LineInput line;
   Tolerances tolerances;
   ReduceOptions options;
+  std::optional<DeflectionModel> deflection_model;
 };
 
 /// A point resolved in both coordinate systems.
