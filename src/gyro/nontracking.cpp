@@ -322,15 +322,46 @@ BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
 // ---------------------------------------------------------------------------
 // Time difference (§4.2) and direct solution (§4.3)
 
+// The first three passages of both levels of the pair, each with σ_t.
+std::vector<Uncertain> two_level_times(const NonTrackingObservations& obs, const LevelPair& lp) {
+  std::vector<Uncertain> in;
+  for (std::size_t c : {lp.i, lp.j})
+    for (std::size_t k = 0; k < 3; ++k) in.push_back({obs.crossings[c].times_s[k], obs.sigma_time_s});
+  return in;
+}
+
+// The direct solution (§4.3) from the sines s_x of the two levels:
+// (β − a_x) = B·s_x ⇒ β and B. Also the exact reference of the time-difference method.
+struct TwoLevelSolution {
+  double beta, amplitude;
+};
+TwoLevelSolution solve_two_levels(double ai, double aj, double si, double sj) {
+  if (sj == si)
+    throw_numerical("crossings", "both levels give the same time difference: no solution");
+  return {(ai * sj - aj * si) / (sj - si), (aj - ai) / (si - sj)};
+}
+
+void require_positive_amplitude(double b_div) {
+  if (!(b_div > 0.0))
+    throw_numerical("crossings", fmt::format("the crossing times imply a non-positive amplitude "
+                                             "B = {} div",
+                                             num(b_div)));
+}
+
+void warn_if_extrapolated(BetaResult& r, const LevelPair& lp, const char* method) {
+  if (!lp.opposite)
+    r.warnings.push_back(fmt::format("{}: no two timed levels lie on opposite sides of the centre; "
+                                     "β is extrapolated",
+                                     method));
+}
+
 BetaResult time_difference_method(const NonTrackingObservations& obs, const Instrument& inst) {
   const LevelPair lp = require_two_levels(obs, "time-difference");
   const Crossing& ci = obs.crossings[lp.i];
   const Crossing& cj = obs.crossings[lp.j];
   const double ai = ci.level_div;
   const double aj = cj.level_div;
-  std::vector<Uncertain> in;
-  for (std::size_t k = 0; k < 3; ++k) in.push_back({ci.times_s[k], obs.sigma_time_s});
-  for (std::size_t k = 0; k < 3; ++k) in.push_back({cj.times_s[k], obs.sigma_time_s});
+  const std::vector<Uncertain> in = two_level_times(obs, lp);
 
   // Outputs: β (small angle), T_B implied (mean t3 − t1), B and β from the
   // arcsine (direct) form with that T_B.
@@ -343,17 +374,12 @@ BetaResult time_difference_method(const NonTrackingObservations& obs, const Inst
     if (dtj == dti)
       throw_numerical("crossings", "both levels give the same time difference: no solution");
     const double beta = (ai * dtj - aj * dti) / (dtj - dti);
-    const double si = std::sin(kPi * dti / (2.0 * T));
-    const double sj = std::sin(kPi * dtj / (2.0 * T));
-    const double beta_exact = (ai * sj - aj * si) / (sj - si);
-    const double B = (aj - ai) / (si - sj);
-    return {beta, T, B, beta_exact};
+    const TwoLevelSolution exact =
+        solve_two_levels(ai, aj, std::sin(kPi * dti / (2.0 * T)), std::sin(kPi * dtj / (2.0 * T)));
+    return {beta, T, exact.amplitude, exact.beta};
   };
   const Propagated p = propagate(f, in);
-  if (!(p.value[2] > 0.0))
-    throw_numerical("crossings", fmt::format("the crossing times imply a non-positive amplitude "
-                                             "B = {} div",
-                                             num(p.value[2])));
+  require_positive_amplitude(p.value[2]);
   BetaResult r;
   r.method = NonTrackingMethod::TimeDifference;
   r.beta_div = {p.value[0], p.sigma[0]};
@@ -365,9 +391,7 @@ BetaResult time_difference_method(const NonTrackingObservations& obs, const Inst
   r.assumptions.push_back(level_pair_note(obs, lp));
   r.assumptions.push_back("implied T_B = mean of t3 − t1 of the two levels; implied B and the "
                           "approximation error from the arcsine form with that T_B");
-  if (!lp.opposite)
-    r.warnings.push_back("time-difference: no two timed levels lie on opposite sides of the "
-                         "centre; β is extrapolated");
+  warn_if_extrapolated(r, lp, "time-difference");
   warn_small_angle(r, inst, "time-difference");
   return r;
 }
@@ -379,9 +403,7 @@ BetaResult direct_method(const NonTrackingObservations& obs) {
   const Crossing& cj = obs.crossings[lp.j];
   const double ai = ci.level_div;
   const double aj = cj.level_div;
-  std::vector<Uncertain> in;
-  for (std::size_t k = 0; k < 3; ++k) in.push_back({ci.times_s[k], obs.sigma_time_s});
-  for (std::size_t k = 0; k < 3; ++k) in.push_back({cj.times_s[k], obs.sigma_time_s});
+  std::vector<Uncertain> in = two_level_times(obs, lp);
   in.push_back(period_input(obs));
   const auto f = [&](const Vec& x) -> Vec {
     const double T = x[6];
@@ -389,15 +411,11 @@ BetaResult direct_method(const NonTrackingObservations& obs) {
                                (2.0 * T));
     const double sj = std::sin(kPi * effective_dt(x[3], x[4], x[5], cj.first_direction, T, lp.j) /
                                (2.0 * T));
-    if (sj == si)
-      throw_numerical("crossings", "both levels give the same time difference: no solution");
-    return {(ai * sj - aj * si) / (sj - si), (aj - ai) / (si - sj)};
+    const TwoLevelSolution sol = solve_two_levels(ai, aj, si, sj);
+    return {sol.beta, sol.amplitude};
   };
   const Propagated p = propagate(f, in);
-  if (!(p.value[1] > 0.0))
-    throw_numerical("crossings", fmt::format("the crossing times imply a non-positive amplitude "
-                                             "B = {} div",
-                                             num(p.value[1])));
+  require_positive_amplitude(p.value[1]);
   BetaResult r;
   r.method = NonTrackingMethod::Direct;
   r.beta_div = {p.value[0], p.sigma[0]};
@@ -405,9 +423,7 @@ BetaResult direct_method(const NonTrackingObservations& obs) {
   r.period_s = period_input(obs);
   r.assumptions.push_back("k = 0 (damping neglected)");
   r.assumptions.push_back(level_pair_note(obs, lp));
-  if (!lp.opposite)
-    r.warnings.push_back("direct: no two timed levels lie on opposite sides of the centre; β is "
-                         "extrapolated");
+  warn_if_extrapolated(r, lp, "direct");
   return r;
 }
 
