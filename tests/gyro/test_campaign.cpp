@@ -25,6 +25,18 @@ namespace {
 constexpr double kArcsec = units::kArcsecond;
 constexpr double kDeg = units::kDegree;
 
+// The example campaign without any noise, drift or rounding.
+CampaignTruth noise_free_truth() {
+  CampaignTruth t = example_campaign_truth();
+  t.sigma_time_s = 0;
+  t.sigma_reading_div = 0;
+  t.sigma_tracking_arcsec = 0;
+  t.sigma_pointing_arcsec = 0;
+  t.alpha_p_drift_div = 0;
+  t.round_to_field_precision = false;
+  return t;
+}
+
 // Signed difference of two directions in arc-seconds.
 double diff_arcsec(double a, double b) { return std::remainder(a - b, 2 * units::kPi) / kArcsec; }
 
@@ -86,13 +98,7 @@ TEST(AzimuthChain, ClosedFormWithSigma) {
 }
 
 TEST(Campaign, NoiseFreeSimulationRecoversTruth) {
-  CampaignTruth t = example_campaign_truth();
-  t.sigma_time_s = 0;
-  t.sigma_reading_div = 0;
-  t.sigma_tracking_arcsec = 0;
-  t.sigma_pointing_arcsec = 0;
-  t.alpha_p_drift_div = 0;
-  t.round_to_field_precision = false;
+  CampaignTruth t = noise_free_truth();
   const auto sim = simulate_campaign(t, 7);
   const auto r = process_campaign(sim.input);
   EXPECT_NEAR(r.instrument_constant_used_rad.value / kArcsec, t.instrument_constant_rad / kArcsec, 0.01);
@@ -152,13 +158,7 @@ TEST(Campaign, EtaFromAGravityModelRecoversTruth) {
   // gets no η but the model, and must recover the true grid azimuth.
   const auto model = gravity::make_synthetic_model({60, 5, 1e-5});
   const auto field = std::make_shared<const gravity::GravityField>(model);
-  CampaignTruth t = example_campaign_truth();
-  t.sigma_time_s = 0;
-  t.sigma_reading_div = 0;
-  t.sigma_tracking_arcsec = 0;
-  t.sigma_pointing_arcsec = 0;
-  t.alpha_p_drift_div = 0;
-  t.round_to_field_precision = false;
+  CampaignTruth t = noise_free_truth();
   t.give_eta = false;
   const geodesy::TransverseMercatorGrid grid(t.grid);
   auto eta_at = [&](const PointInput& p) {
