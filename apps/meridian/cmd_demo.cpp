@@ -10,6 +10,7 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "gyro_runs.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/io/gyro_files.hpp"
@@ -41,13 +42,7 @@ int run_demo(const DemoArgs& a) {
   const fs::path dir = find_examples(a.examples_dir);
   const fs::path file = dir / "campaign.yaml";
   const io::CampaignFile f = io::read_campaign_file(file);
-  gyro::CampaignResult r;
-  try {
-    r = gyro::process_campaign(f.campaign);
-  } catch (Error& e) {
-    io::locate_error(e, f.file, f.lines);
-    throw;
-  }
+  const gyro::CampaignResult r = process_campaign_file(f);
   const std::string text = report::campaign_text(r);
   std::cout << "meridian demo: gyro orientation campaign " << file.string() << "\n\n" << text;
   std::error_code ec;
@@ -60,13 +55,11 @@ int run_demo(const DemoArgs& a) {
   emit(written[2].string(), report::render_html(report::gyro_campaign_document(f.file, f.campaign, r)));
   // Every reduction method side by side on the spec's example, and a tracking run.
   for (const char* name : {"spec-scenario-2", "tracking"}) {
-    const io::GyroReduceFile g = io::read_gyro_reduce_file(dir / (std::string(name) + ".yaml"));
-    const auto inst = gyro::resolve_instrument(g.instrument, g.latitude_rad);
-    std::vector<gyro::DeterminationResult> results;
-    for (const auto& d : g.determinations) results.push_back(gyro::reduce_determination(d, inst.instrument, g.options));
+    const ReducedFile g = reduce_file((dir / (std::string(name) + ".yaml")).string());
     written.push_back(out / (std::string(name) + ".html"));
-    emit(written.back().string(), report::render_html(report::gyro_reduce_document(g.file, inst, g.latitude_rad,
-                                                                                  g.determinations, results)));
+    emit(written.back().string(),
+         report::render_html(report::gyro_reduce_document(g.file.file, g.instrument, g.file.latitude_rad,
+                                                          g.file.determinations, g.results)));
   }
   std::cout << "\nReports written:\n";
   for (const auto& p : written) std::cout << "  " << p.string() << "\n";

@@ -10,6 +10,7 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "gyro_runs.hpp"
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
@@ -36,20 +37,11 @@ struct ReduceArgs {
 };
 
 int run_reduce(const ReduceArgs& a) {
-  const io::GyroReduceFile f = io::read_gyro_reduce_file(a.file);
-  const gyro::ResolvedInstrument inst = gyro::resolve_instrument(f.instrument, f.latitude_rad);
-  std::vector<gyro::DeterminationResult> results;
   TerminalProgress progress(a.quiet);
-  for (std::size_t i = 0; i < f.determinations.size(); ++i) {
-    progress.update(i, f.determinations.size(), "determinations");
-    try {
-      results.push_back(gyro::reduce_determination(f.determinations[i], inst.instrument, f.options));
-    } catch (Error& e) {
-      e.add_context("", std::nullopt, fmt::format("determinations[{}]", i));
-      io::locate_error(e, f.file, f.lines);
-      throw;
-    }
-  }
+  const ReducedFile reduced = reduce_file(a.file, &progress);
+  const io::GyroReduceFile& f = reduced.file;
+  const gyro::ResolvedInstrument& inst = reduced.instrument;
+  const std::vector<gyro::DeterminationResult>& results = reduced.results;
   std::string out;
   if (a.json) {
     nlohmann::json j;
@@ -85,13 +77,7 @@ struct CampaignArgs {
 int run_campaign(const CampaignArgs& a) {
   const io::CampaignFile f = io::read_campaign_file(a.file);
   TerminalProgress progress(a.quiet);
-  gyro::CampaignResult r;
-  try {
-    r = gyro::process_campaign(f.campaign, &progress);
-  } catch (Error& e) {
-    io::locate_error(e, f.file, f.lines);
-    throw;
-  }
+  const gyro::CampaignResult r = process_campaign_file(f, &progress);
   progress.finish();
   const std::string out = a.json ? report::campaign_to_json(r).dump(2) + "\n" : report::campaign_text(r);
   const std::string html = a.report.empty() ? std::string()

@@ -13,11 +13,9 @@ namespace {
 
 constexpr double kArcsec = units::kArcsecond;
 
-std::string dir(double rad) { return fmtx::dir(rad, 1); }
-std::string dirp(double rad) { return fmtx::dir(rad, 2); }
-std::string sig(double rad) { return fmtx::sig(rad); }
-std::string sec(double rad) { return fmtx::sec(rad, 2); }
-std::string sec3(double rad) { return fmtx::sec(rad, 3); }
+using fmtx::dir;
+using fmtx::sec;
+using fmtx::sig;
 
 void method_line(std::string& out, const gyro::MethodResult& m) {
   out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", m.method, dir(m.north.north_rad),
@@ -33,7 +31,7 @@ std::string determination_text(const gyro::DeterminationResult& r, int index) {
   auto line = [&](const gyro::MethodResult& m) {
     if (r.mode == gyro::Mode::NonTracking && m.beta) {
       out += fmt::format("  {:<18} beta {:+9.4f} div  dN {:>10}  N_G {:>15}  sigma {:>7}", m.method,
-                         m.beta->beta_div.value, sec3(m.north.delta_n_rad), dirp(m.north.north_rad),
+                         m.beta->beta_div.value, sec(m.north.delta_n_rad, 3), dir(m.north.north_rad, 2),
                          sig(m.north.sigma_rad));
       if (m.approximation_error_rad != 0.0)
         out += fmt::format("  approximation error {:+.3f}\"", m.approximation_error_rad / kArcsec);
