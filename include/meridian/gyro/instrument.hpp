@@ -10,13 +10,12 @@
 
 #include <optional>
 
+#include "meridian/core/uncertain.hpp"
+
 namespace meridian::gyro {
 
-/// A value with its standard deviation (same unit). sigma = 0 means exact.
-struct Uncertain {
-  double value = 0.0;
-  double sigma = 0.0;
-};
+/// A value with its standard deviation (core/uncertain.hpp).
+using meridian::Uncertain;
 
 /// Constants of one instrument at the station latitude.
 struct Instrument {
