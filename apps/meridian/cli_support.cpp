@@ -12,6 +12,7 @@
 
 #include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/report/html.hpp"
 
 namespace meridian::cli {
 
@@ -34,6 +35,11 @@ int guarded(const std::function<int()>& body) {
     std::cerr << "meridian: internal error: " << e.what() << "\n";
     return kInternalError;
   }
+}
+
+void require_html_reports_for(const std::string& report_path) {
+  if (!report_path.empty() && !report::html_reports_available())
+    throw Error(report::html_reports_unavailable_message(), {"", std::nullopt, "--report"});
 }
 
 void emit(const std::string& path, const std::string& text) {

@@ -27,6 +27,10 @@ int guarded(const std::function<int()>& body);
 /// Write `text` to `path` atomically, or to stdout when path is empty or "-".
 void emit(const std::string& path, const std::string& text);
 
+/// When `report_path` is not empty and this build has no HTML reports, throw
+/// an Error saying how to enable them, before any work is done.
+void require_html_reports_for(const std::string& report_path);
+
 /// A progress bar on stderr for runs longer than a second: drawn only when
 /// stderr is a terminal and not `quiet`, at most ten times a second, and
 /// cleared by finish(). MERIDIAN_PROGRESS_DELAY_S overrides the one-second

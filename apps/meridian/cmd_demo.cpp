@@ -6,15 +6,10 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "cli_support.hpp"
 #include "commands.hpp"
-#include "gyro_runs.hpp"
 #include "meridian/core/error.hpp"
-#include "meridian/gyro/campaign.hpp"
-#include "meridian/io/gyro_files.hpp"
-#include "meridian/gyro/instrument_spec.hpp"
+#include "meridian/io/gyro_jobs.hpp"
 #include "meridian/report/gyro_html.hpp"
 #include "meridian/report/gyro_json.hpp"
 #include "meridian/report/gyro_text.hpp"
@@ -41,30 +36,36 @@ fs::path find_examples(const std::string& given) {
 int run_demo(const DemoArgs& a) {
   const fs::path dir = find_examples(a.examples_dir);
   const fs::path file = dir / "campaign.yaml";
-  const io::CampaignFile f = io::read_campaign_file(file);
-  const gyro::CampaignResult r = process_campaign_file(f);
+  const io::CampaignJob job = io::run_campaign_file(file);
+  const gyro::CampaignResult& r = job.result;
   const std::string text = report::campaign_text(r);
   std::cout << "meridian demo: gyro orientation campaign " << file.string() << "\n\n" << text;
   std::error_code ec;
   fs::create_directories(a.output_dir, ec);
   if (ec) throw IoError("cannot create the output directory: " + ec.message(), {a.output_dir, std::nullopt, {}});
   const fs::path out = a.output_dir;
-  std::vector<fs::path> written{out / "campaign.txt", out / "campaign.json", out / "campaign.html"};
+  std::vector<fs::path> written{out / "campaign.txt", out / "campaign.json"};
   emit(written[0].string(), text);
   emit(written[1].string(), report::campaign_to_json(r).dump(2) + "\n");
-  emit(written[2].string(), report::render_html(report::gyro_campaign_document(f.file, f.campaign, r)));
-  // Every reduction method side by side on the spec's example, and a tracking run.
-  for (const char* name : {"spec-scenario-2", "tracking"}) {
-    const ReducedFile g = reduce_file((dir / (std::string(name) + ".yaml")).string());
-    written.push_back(out / (std::string(name) + ".html"));
+  if (!report::html_reports_available()) {
+    std::cout << "\nNo HTML reports: " << report::html_reports_unavailable_message() << ".\n";
+  } else {
+    written.push_back(out / "campaign.html");
     emit(written.back().string(),
-         report::render_html(report::gyro_reduce_document(g.file.file, g.instrument, g.file.latitude_rad,
-                                                          g.file.determinations, g.results)));
+         report::render_html(report::gyro_campaign_document(job.file.file, job.file.campaign, r)));
+    // Every reduction method side by side on the spec's example, and a tracking run.
+    for (const char* name : {"spec-scenario-2", "tracking"}) {
+      const io::ReduceJob g = io::run_reduce_file(dir / (std::string(name) + ".yaml"));
+      written.push_back(out / (std::string(name) + ".html"));
+      emit(written.back().string(),
+           report::render_html(report::gyro_reduce_document(g.file.file, g.file.input, g.result)));
+    }
   }
   std::cout << "\nReports written:\n";
   for (const auto& p : written) std::cout << "  " << p.string() << "\n";
-  std::cout << "Open the .html files in a browser (they work offline); print them to PDF with\n"
-               "  meridian report pdf " << written[2].string() << "\n";
+  if (report::html_reports_available())
+    std::cout << "Open the .html files in a browser (they work offline); print them to PDF with\n"
+                 "  meridian report pdf " << written[2].string() << "\n";
   return kOk;
 }
 

@@ -5,14 +5,12 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "meridian/core/version.hpp"
 
-#ifndef MERIDIAN_VERSION
-#define MERIDIAN_VERSION "unknown"
-#endif
 
 int main(int argc, char** argv) {
   CLI::App app{"meridian - true north and the plumb line from instrument data"};
-  app.set_version_flag("--version", std::string("meridian ") + MERIDIAN_VERSION);
+  app.set_version_flag("--version", std::string("meridian ") + meridian::version());
   app.require_subcommand(1);
   int exit_code = meridian::cli::kOk;
   meridian::cli::add_gyro_commands(app, exit_code);

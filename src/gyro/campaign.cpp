@@ -7,12 +7,10 @@
 #include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
-#include "meridian/gravity/gravity_field.hpp"
 
 namespace meridian::gyro {
-namespace {
 
-}  // namespace
+std::string to_string(CheckUnit u) { return u == CheckUnit::Div ? "div" : "arcsec"; }
 
 // Grid coordinates are authoritative when given (mine surveys work on the
 // grid); geographic ones given as well are only checked for consistency.
@@ -51,202 +49,225 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
   return r;
 }
 
-namespace {
-
-struct Counter {
-  Progress* progress;
-  std::size_t done, total;
-};
-
-std::vector<DeterminationResult> reduce_all(const std::vector<DeterminationInput>& dets,
-                                            const Instrument& inst, const ReduceOptions& opt,
-                                            const std::string& field,
-                                            std::vector<Uncertain>& gyro_azimuths,
-                                            std::vector<std::string>& warnings, Counter& count) {
-  std::vector<DeterminationResult> out;
-  for (std::size_t i = 0; i < dets.size(); ++i) {
-    report_progress(count.progress, count.done++, count.total, "determinations");
-    const std::string f = fmt::format("{}[{}]", field, i);
-    try {
-      out.push_back(reduce_determination(dets[i], inst, opt));
-      gyro_azimuths.push_back(gyro_azimuth(out.back(), dets[i]));
-    } catch (Error& e) {
-      e.add_context("", std::nullopt, f);
-      throw;
-    }
-    for (const auto& w : out.back().warnings) warnings.push_back(f + ": " + w);
-  }
-  return out;
-}
-
-}  // namespace
-
-namespace {
-
-// η at a point: as given, else from the gravity model (with a note), else none.
-std::optional<Uncertain> eta_at(const CampaignInput& in, const PointInput& p, const PointResult& r,
-                                std::vector<std::string>& notes) {
-  if (p.eta_rad) return p.eta_rad;
-  if (!in.deflection_model || !in.deflection_model->field) return std::nullopt;
-  const DeflectionModel& m = *in.deflection_model;
-  const double h = p.height_m.value_or(0.0);
-  const gravity::FieldValues v =
-      m.field->evaluate(gravity::GeodeticPoint{r.lat_rad, r.lon_rad, h}, gravity::Quantities::Deflection);
-  notes.push_back(fmt::format("{}: eta = {:+.3f}\" (sigma {:.1f}\") from the gravity model {} at h = {:.1f} m{}",
-                              r.name.empty() ? "point" : r.name, v.eta_astro_rad / units::kArcsecond,
-                              m.sigma_eta_rad / units::kArcsecond, m.description, h,
-                              p.height_m ? "" : " (height not given)"));
-  return Uncertain{v.eta_astro_rad, m.sigma_eta_rad};
-}
-
-}  // namespace
-
 bool CampaignResult::all_checks_pass() const {
   for (const auto& c : checks)
     if (!c.pass) return false;
   return true;
 }
 
-CampaignResult process_campaign(const CampaignInput& in, Progress* progress) {
-  CampaignResult res;
-  Counter count{progress, 0, in.line.determinations.size()};
-  if (in.known_line) count.total += in.known_line->before.size() + in.known_line->after.size();
-  res.name = in.name;
-  const geodesy::TransverseMercatorGrid grid(in.grid);
-  res.notes.push_back("grid: " + geodesy::describe(in.grid));
+namespace {
 
-  res.station = resolve_point(in.line.from, grid, "line.from", res.warnings);
-  if (in.line.to) res.target = resolve_point(*in.line.to, grid, "line.to", res.warnings);
-  try {
-    res.instrument_station = resolve_instrument(in.instrument, res.station.lat_rad);
-  } catch (Error& e) {
-    e.add_context("", std::nullopt, "instrument");
-    throw;
+// The steps of process(), in order. Each reads the input and fills its part
+// of the result.
+class CampaignRun {
+ public:
+  CampaignRun(const CampaignInput& in, Progress* progress, const DeflectionModel* deflection)
+      : in_(in), progress_(progress), deflection_(deflection), grid_(in.grid) {
+    total_ = in.line.determinations.size();
+    if (in.known_line) total_ += in.known_line->before.size() + in.known_line->after.size();
+    if (in.gravity_model && !deflection)
+      throw InputError("the campaign names a gravity model but it was not loaded",
+                       {"", std::nullopt, "gravity_model"});
+    det_tol_ = in.tolerances.determination_difference_rad.value_or(
+        default_determination_tolerance_rad(in.instrument.accuracy_class_arcsec));
+    e_tol_ = in.tolerances.instrument_constant_difference_rad.value_or(det_tol_);
+    options_ = in.options;
+    options_.zero_position_tolerance_div = in.tolerances.zero_position_div;
   }
-  for (const auto& n : res.instrument_station.notes) res.notes.push_back("station C: " + n);
 
-  const double det_tol = in.tolerances.determination_difference_rad.value_or(
-      default_determination_tolerance_rad(in.instrument.accuracy_class_arcsec));
-  const double e_tol = in.tolerances.instrument_constant_difference_rad.value_or(det_tol);
-  ReduceOptions opt = in.options;
-  opt.zero_position_tolerance_div = in.tolerances.zero_position_div;
+  CampaignResult run() {
+    res_.name = in_.name;
+    res_.notes.push_back("grid: " + geodesy::describe(in_.grid));
+    resolve_station();
+    if (in_.known_line) calibrate_on_known_line();
+    else use_given_instrument_constant();
+    reduce_line();
+    check_zero_positions();
+    reduce_azimuth_chain();
+    return std::move(res_);
+  }
 
-  // 1. Instrument constant.
-  if (in.known_line) {
-    const KnownLineInput& k = *in.known_line;
-    res.known_station = resolve_point(k.from, grid, "known_line.from", res.warnings);
-    std::optional<PointResult> known_target;
-    if (k.to) known_target = resolve_point(*k.to, grid, "known_line.to", res.warnings);
+ private:
+  ResolvedInstrument instrument_at(const PointResult& p) const {
     try {
-      res.instrument_known = resolve_instrument(in.instrument, res.known_station->lat_rad);
+      return resolve_instrument(in_.instrument, p.lat_rad);
     } catch (Error& e) {
       e.add_context("", std::nullopt, "instrument");
       throw;
     }
-    for (const auto& n : res.instrument_known->notes) res.notes.push_back("known station: " + n);
-    const Instrument& ik = res.instrument_known->instrument;
-    res.known_before = reduce_all(k.before, ik, opt, "known_line.before",
-                                  res.known_gyro_azimuths_before, res.warnings, count);
-    res.known_after = reduce_all(k.after, ik, opt, "known_line.after",
-                                 res.known_gyro_azimuths_after, res.warnings, count);
+  }
 
-    // Known azimuth → astronomic.
+  // Station C, target D and the instrument constants at C.
+  void resolve_station() {
+    res_.station = resolve_point(in_.line.from, grid_, "line.from", res_.warnings);
+    if (in_.line.to) res_.target = resolve_point(*in_.line.to, grid_, "line.to", res_.warnings);
+    res_.instrument_station = instrument_at(res_.station);
+    for (const auto& n : res_.instrument_station.notes) res_.notes.push_back("station C: " + n);
+  }
+
+  // Reduce every determination of `dets`, with their gyro azimuths A_G.
+  std::vector<DeterminationResult> reduce_all(const std::vector<DeterminationInput>& dets, const Instrument& inst,
+                                              const std::string& field, std::vector<Uncertain>& gyro_azimuths) {
+    std::vector<DeterminationResult> out;
+    for (std::size_t i = 0; i < dets.size(); ++i) {
+      report_progress(progress_, done_++, total_, "determinations");
+      const std::string f = fmt::format("{}[{}]", field, i);
+      try {
+        out.push_back(reduce_determination(dets[i], inst, options_));
+        gyro_azimuths.push_back(gyro_azimuth(out.back(), dets[i]));
+      } catch (Error& e) {
+        e.add_context("", std::nullopt, f);
+        throw;
+      }
+      for (const auto& w : out.back().warnings) res_.warnings.push_back(f + ": " + w);
+    }
+    return out;
+  }
+
+  // η at a point: as given, else from the deflection model (with a note), else none.
+  std::optional<Uncertain> eta_at(const PointInput& p, const PointResult& r) {
+    if (p.eta_rad) return p.eta_rad;
+    if (!deflection_) return std::nullopt;
+    const double h = p.height_m.value_or(0.0);
+    const double eta = deflection_->eta_rad(r.lat_rad, r.lon_rad, h);
+    res_.notes.push_back(fmt::format("{}: eta = {:+.3f}\" (sigma {:.1f}\") from the gravity model {} at h = {:.1f} m{}",
+                                     r.name.empty() ? "point" : r.name, eta / units::kArcsecond,
+                                     deflection_->sigma_eta_rad / units::kArcsecond, deflection_->description, h,
+                                     p.height_m ? "" : " (height not given)"));
+    return Uncertain{eta, deflection_->sigma_eta_rad};
+  }
+
+  // The known line's azimuth as an astronomic azimuth (the inverse chain).
+  Uncertain known_astronomic_azimuth(const KnownLineInput& k, const std::optional<PointResult>& known_target) {
     Uncertain a = k.azimuth.value_rad;
-    const double phi = res.known_station->lat_rad;
+    const double phi = res_.known_station->lat_rad;
     if (k.azimuth.kind == KnownAzimuth::Kind::Grid) {
-      double alpha = a.value + res.known_station->grid.convergence_rad;
+      double alpha = a.value + res_.known_station->grid.convergence_rad;
       if (known_target) {
-        const double delta = geodesy::arc_to_chord(
-            grid, res.known_station->grid.x_north_m, res.known_station->grid.y_east_m,
-            known_target->grid.x_north_m, known_target->grid.y_east_m);
+        const double delta = geodesy::arc_to_chord(grid_, res_.known_station->grid.x_north_m,
+                                                   res_.known_station->grid.y_east_m, known_target->grid.x_north_m,
+                                                   known_target->grid.y_east_m);
         alpha -= delta;
-        res.notes.push_back(fmt::format("known line: geodetic azimuth = grid + gamma - delta "
-                                        "(gamma {:.2f}\", delta {:.2f}\")",
-                                        res.known_station->grid.convergence_rad / units::kArcsecond,
-                                        delta / units::kArcsecond));
+        res_.notes.push_back(fmt::format("known line: geodetic azimuth = grid + gamma - delta "
+                                         "(gamma {:.2f}\", delta {:.2f}\")",
+                                         res_.known_station->grid.convergence_rad / units::kArcsecond,
+                                         delta / units::kArcsecond));
       } else {
-        res.notes.push_back("known line: geodetic azimuth = grid + gamma (no target coordinates, "
-                            "arc-to-chord correction neglected)");
+        res_.notes.push_back("known line: geodetic azimuth = grid + gamma (no target coordinates, "
+                             "arc-to-chord correction neglected)");
       }
       a.value = alpha;
     }
     if (k.azimuth.kind != KnownAzimuth::Kind::Astronomic) {
-      if (const auto eta = eta_at(in, k.from, *res.known_station, res.notes)) {
+      if (const auto eta = eta_at(k.from, *res_.known_station)) {
         // Laplace inverted: A = α + η·tan φ.
         a.value += eta->value * std::tan(phi);
         a.sigma = std::hypot(a.sigma, eta->sigma * std::tan(phi));
       } else {
-        res.notes.push_back("known line: eta unknown at the known station; the deflection is "
-                            "absorbed into E (E relates gyro to geodetic azimuths)");
+        res_.notes.push_back("known line: eta unknown at the known station; the deflection is "
+                             "absorbed into E (E relates gyro to geodetic azimuths)");
       }
     }
     a.value = wrap_positive_rad(a.value);
-    res.known_astronomic_azimuth_rad = a;
-    res.instrument_constant = instrument_constant(a, res.known_gyro_azimuths_before,
-                                                  res.known_gyro_azimuths_after, e_tol);
-    res.instrument_constant_used_rad = res.instrument_constant->mean;
-    for (const auto& w : res.instrument_constant->warnings) res.warnings.push_back(w);
-    if (res.instrument_constant->difference_rad)
-      res.checks.push_back({"instrument constant, after - before",
-                            *res.instrument_constant->difference_rad / units::kArcsecond,
-                            e_tol / units::kArcsecond, "arcsec",
-                            res.instrument_constant->within_tolerance});
-  } else if (in.instrument_constant_rad) {
-    res.instrument_constant_used_rad = *in.instrument_constant_rad;
-    res.notes.push_back("instrument constant E given, not calibrated in this campaign");
-  } else {
-    throw InputError("no instrument constant: give known_line (calibration) or instrument_constant",
-                     {"", std::nullopt, "known_line"});
+    return a;
   }
 
-  // 2. The unknown line.
-  if (in.line.determinations.empty())
-    throw InputError("no determination on the line", {"", std::nullopt, "line.determinations"});
-  const Instrument& ic = res.instrument_station.instrument;
-  res.determinations = reduce_all(in.line.determinations, ic, opt, "line.determinations",
-                                  res.gyro_azimuths, res.warnings, count);
-  report_progress(progress, count.done, count.total, "determinations");
-  res.gyro_azimuth_mean = mean_direction(res.gyro_azimuths);
-  if (res.gyro_azimuths.size() >= 2) {
-    const bool ok = res.gyro_azimuth_mean.max_difference <= det_tol;
-    res.checks.push_back({"line determinations, largest difference",
-                          res.gyro_azimuth_mean.max_difference / units::kArcsecond,
-                          det_tol / units::kArcsecond, "arcsec", ok});
+  // Step 1: the instrument constant E from determinations on the known line.
+  void calibrate_on_known_line() {
+    const KnownLineInput& k = *in_.known_line;
+    res_.known_station = resolve_point(k.from, grid_, "known_line.from", res_.warnings);
+    std::optional<PointResult> known_target;
+    if (k.to) known_target = resolve_point(*k.to, grid_, "known_line.to", res_.warnings);
+    res_.instrument_known = instrument_at(*res_.known_station);
+    for (const auto& n : res_.instrument_known->notes) res_.notes.push_back("known station: " + n);
+    const Instrument& ik = res_.instrument_known->instrument;
+    res_.known_before = reduce_all(k.before, ik, "known_line.before", res_.known_gyro_azimuths_before);
+    res_.known_after = reduce_all(k.after, ik, "known_line.after", res_.known_gyro_azimuths_after);
+
+    const Uncertain a = known_astronomic_azimuth(k, known_target);
+    res_.known_astronomic_azimuth_rad = a;
+    res_.instrument_constant =
+        instrument_constant(a, res_.known_gyro_azimuths_before, res_.known_gyro_azimuths_after, e_tol_);
+    res_.instrument_constant_used_rad = res_.instrument_constant->mean;
+    for (const auto& w : res_.instrument_constant->warnings) res_.warnings.push_back(w);
+    if (res_.instrument_constant->difference_rad)
+      res_.checks.push_back({"instrument constant, after - before",
+                             *res_.instrument_constant->difference_rad / units::kArcsecond,
+                             e_tol_ / units::kArcsecond, CheckUnit::Arcsec, res_.instrument_constant->within_tolerance});
+  }
+
+  void use_given_instrument_constant() {
+    if (!in_.instrument_constant_rad)
+      throw InputError("no instrument constant: give known_line (calibration) or instrument_constant",
+                       {"", std::nullopt, "known_line"});
+    res_.instrument_constant_used_rad = *in_.instrument_constant_rad;
+    res_.notes.push_back("instrument constant E given, not calibrated in this campaign");
+  }
+
+  // Step 2: the determinations on the unknown line and their agreement.
+  void reduce_line() {
+    if (in_.line.determinations.empty())
+      throw InputError("no determination on the line", {"", std::nullopt, "line.determinations"});
+    res_.determinations = reduce_all(in_.line.determinations, res_.instrument_station.instrument,
+                                     "line.determinations", res_.gyro_azimuths);
+    report_progress(progress_, done_, total_, "determinations");
+    res_.gyro_azimuth_mean = mean_direction(res_.gyro_azimuths);
+    if (res_.gyro_azimuths.size() < 2) {
+      res_.warnings.push_back("only one determination on the line: no independent check");
+      return;
+    }
+    const double spread = res_.gyro_azimuth_mean.max_difference;
+    const bool ok = spread <= det_tol_;
+    res_.checks.push_back({"line determinations, largest difference", spread / units::kArcsecond,
+                           det_tol_ / units::kArcsecond, CheckUnit::Arcsec, ok});
     if (!ok)
-      res.warnings.push_back(fmt::format(
-          "gyro azimuths of the line differ by {:.1f}\" (tolerance {:.1f}\")",
-          res.gyro_azimuth_mean.max_difference / units::kArcsecond, det_tol / units::kArcsecond));
-  } else {
-    res.warnings.push_back("only one determination on the line: no independent check");
+      res_.warnings.push_back(fmt::format("gyro azimuths of the line differ by {:.1f}\" (tolerance {:.1f}\")",
+                                          spread / units::kArcsecond, det_tol_ / units::kArcsecond));
   }
-  // Zero-position stability checks of every determination.
-  auto zero_checks = [&](const std::vector<DeterminationResult>& v, const std::string& what) {
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (v[i].zero_position && v[i].zero_position->difference_div)
-        res.checks.push_back({fmt::format("zero position after - before, {}[{}]", what, i),
-                              *v[i].zero_position->difference_div,
-                              v[i].zero_position->tolerance_div, "div",
-                              v[i].zero_position->within_tolerance});
-  };
-  zero_checks(res.known_before, "known_line.before");
-  zero_checks(res.known_after, "known_line.after");
-  zero_checks(res.determinations, "line.determinations");
 
-  // 3. Azimuth chain.
-  AzimuthChainInput chain;
-  chain.gyro_azimuth_rad = res.gyro_azimuth_mean.mean;
-  chain.instrument_constant_rad = res.instrument_constant_used_rad;
-  chain.latitude_rad = res.station.lat_rad;
-  chain.eta_rad = eta_at(in, in.line.from, res.station, res.notes);
-  chain.convergence_rad = res.station.grid.convergence_rad;
-  if (res.target)
-    chain.arc_to_chord_rad = geodesy::arc_to_chord(grid, res.station.grid.x_north_m,
-                                                   res.station.grid.y_east_m,
-                                                   res.target->grid.x_north_m,
-                                                   res.target->grid.y_east_m);
-  res.chain = azimuth_chain(chain);
-  for (const auto& n : res.chain.notes) res.notes.push_back(n);
-  return res;
+  // Zero-position stability of every determination with runs before and after.
+  void check_zero_positions() {
+    auto checks = [&](const std::vector<DeterminationResult>& v, const std::string& what) {
+      for (std::size_t i = 0; i < v.size(); ++i)
+        if (v[i].zero_position && v[i].zero_position->difference_div)
+          res_.checks.push_back({fmt::format("zero position after - before, {}[{}]", what, i),
+                                 *v[i].zero_position->difference_div, v[i].zero_position->tolerance_div,
+                                 CheckUnit::Div, v[i].zero_position->within_tolerance});
+    };
+    checks(res_.known_before, "known_line.before");
+    checks(res_.known_after, "known_line.after");
+    checks(res_.determinations, "line.determinations");
+  }
+
+  // Step 3: mean A_G + E → astronomic → geodetic → grid azimuth of C→D.
+  void reduce_azimuth_chain() {
+    AzimuthChainInput chain;
+    chain.gyro_azimuth_rad = res_.gyro_azimuth_mean.mean;
+    chain.instrument_constant_rad = res_.instrument_constant_used_rad;
+    chain.latitude_rad = res_.station.lat_rad;
+    chain.eta_rad = eta_at(in_.line.from, res_.station);
+    chain.convergence_rad = res_.station.grid.convergence_rad;
+    if (res_.target)
+      chain.arc_to_chord_rad = geodesy::arc_to_chord(grid_, res_.station.grid.x_north_m, res_.station.grid.y_east_m,
+                                                     res_.target->grid.x_north_m, res_.target->grid.y_east_m);
+    res_.chain = azimuth_chain(chain);
+    for (const auto& n : res_.chain.notes) res_.notes.push_back(n);
+  }
+
+  const CampaignInput& in_;
+  Progress* progress_;
+  const DeflectionModel* deflection_;
+  const geodesy::TransverseMercatorGrid grid_;
+  std::size_t done_ = 0, total_ = 0;
+  double det_tol_ = 0.0, e_tol_ = 0.0;
+  ReduceOptions options_;
+  CampaignResult res_;
+};
+
+}  // namespace
+
+CampaignResult process(const CampaignInput& in, Progress* progress, const DeflectionModel* deflection) {
+  return CampaignRun(in, progress, deflection).run();
 }
 
 }  // namespace meridian::gyro

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/angle.hpp"
+#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/gyro/simulator.hpp"
@@ -57,7 +58,6 @@ DeterminationInput simulate_determination(const CampaignTruth& t, const Station&
   std::normal_distribution<double> normal(0.0, 1.0);
   DeterminationInput d;
   d.label = label;
-  d.method = "all";
   // The surveyor points at the target with some arbitrary circle orientation.
   const double r_target_true = wrap_positive_rad((180.0 + 170.0 * uni(rng)) * units::kDegree);
   const double north = wrap_positive_rad(r_target_true - gyro_az);
@@ -115,8 +115,8 @@ DeterminationInput simulate_determination(const CampaignTruth& t, const Station&
   for (auto& c : d.nontracking.crossings)
     for (auto& x : c.times_s) x = rnd(x, 0.001);
   for (auto& a : d.nontracking.reversals_div) a = rnd(a, 0.01);
-  d.nontracking.sigma_time_s = t.sigma_time_s > 0 ? t.sigma_time_s : 0.1;
-  d.nontracking.sigma_reading_div = t.sigma_reading_div > 0 ? t.sigma_reading_div : 0.05;
+  d.nontracking.sigma_time_s = t.sigma_time_s > 0 ? t.sigma_time_s : kDefaultSigmaTime_s;
+  d.nontracking.sigma_reading_div = t.sigma_reading_div > 0 ? t.sigma_reading_div : kDefaultSigmaReading_div;
   return d;
 }
 
@@ -182,6 +182,10 @@ SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) 
     in.line.determinations.push_back(simulate_determination(t, c, ag_line, false, fmt::format("line, non-tracking #{}", ++k), rng));
   for (int i = 0; i < t.line_tracking; ++i)
     in.line.determinations.push_back(simulate_determination(t, c, ag_line, true, fmt::format("line, tracking #{}", ++k), rng));
+  out.truth.push_back(fmt::format("Truth: grid azimuth C-D {} ; known line A-B grid azimuth {} ; E = {:+.1f}\"",
+                                  format_direction_dms(Angle::radians(out.true_grid_azimuth_rad), {3, true, false}),
+                                  format_direction_dms(Angle::radians(out.true_known_grid_azimuth_rad), {3, true, false}),
+                                  t.instrument_constant_rad / kArcsec));
   return out;
 }
 
@@ -192,8 +196,6 @@ CampaignTruth example_campaign_truth() {
   t.instrument.scale_value_rad = 600.0 * kArcsec;
   t.instrument.torsion_ratio = Uncertain{0.30, 0.003};
   t.instrument.constants_latitude_rad = 34.2 * units::kDegree;
-  t.instrument.sigma_time_s = 0.1;
-  t.instrument.sigma_reading_div = 0.05;
   t.instrument.accuracy_class_arcsec = 15.0;
   t.nontracking_period_s = 440.0;
   t.grid = geodesy::gauss_kruger_3(38, geodesy::cgcs2000());

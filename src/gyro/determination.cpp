@@ -15,7 +15,7 @@ MethodResult run_nontracking(NonTrackingMethod m, const DeterminationInput& in,
                              const Instrument& inst, const ZeroPosition& zero,
                              const ReduceOptions& options) {
   MethodResult r;
-  r.method = to_string(m);
+  r.method = m;
   if (m == NonTrackingMethod::LeastSquares) {
     r.fit = fit_nontracking(in.nontracking, inst, options.unified_fit);
     r.beta = r.fit->as_beta_result();
@@ -34,7 +34,7 @@ MethodResult run_nontracking(NonTrackingMethod m, const DeterminationInput& in,
 MethodResult run_tracking(ReversalMethod m, const DeterminationInput& in, const Instrument& inst,
                           const ZeroPosition& zero) {
   MethodResult r;
-  r.method = to_string(m);
+  r.method = m;
   TrackingResult t = reduce_tracking(m, in.tracking, inst, zero);
   r.reversal = t.fit;
   r.north = t.north;
@@ -59,9 +59,30 @@ void check_levels_reached(const NonTrackingObservations& o) {
   }
 }
 
+// The requested method as the mode's own kind of method.
+template <class M>
+M requested_method(const DeterminationInput& in) {
+  if (const M* m = std::get_if<M>(&*in.method)) return *m;
+  throw InputError(fmt::format("method \"{}\" is not a {} method", to_string(*in.method), to_string(in.mode)),
+                   {"", std::nullopt, "method"});
+}
+
 }  // namespace
 
 std::string to_string(Mode m) { return m == Mode::Tracking ? "tracking" : "non-tracking"; }
+
+std::string to_string(const Method& m) {
+  return std::visit([](auto x) { return to_string(x); }, m);
+}
+
+Method method_from_string(Mode mode, const std::string& name) {
+  if (mode == Mode::NonTracking) return nontracking_method_from_string(name);
+  return reversal_method_from_string(name);
+}
+
+std::string method_request_name(const std::optional<Method>& requested) {
+  return requested ? to_string(*requested) : std::string("all");
+}
 
 DeterminationResult reduce_determination(const DeterminationInput& in, const Instrument& inst,
                                          const ReduceOptions& options) {
@@ -88,7 +109,7 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
 
   if (in.mode == Mode::NonTracking) {
     check_levels_reached(in.nontracking);
-    if (in.method == "all") {
+    if (!in.method) {
       std::vector<NonTrackingMethod> methods = applicable_methods(in.nontracking);
       if (methods.empty())
         throw InputError("no non-tracking method is applicable to the observations given "
@@ -101,12 +122,13 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
         }
       }
       if (out.all.empty()) throw NumericalError("every applicable method failed: " + out.warnings.back());
-      static const char* order[] = {"lsq", "direct", "timed-amplitude-1", "timed-amplitude-2",
-                                    "transit", "time-difference"};
+      static constexpr NonTrackingMethod order[] = {
+          NonTrackingMethod::LeastSquares,    NonTrackingMethod::Direct,  NonTrackingMethod::TimedAmplitude1,
+          NonTrackingMethod::TimedAmplitude2, NonTrackingMethod::Transit, NonTrackingMethod::TimeDifference};
       bool found = false;
-      for (const char* name : order) {
+      for (NonTrackingMethod preferred : order) {
         for (const auto& r : out.all)
-          if (r.method == name) {
+          if (r.method == Method{preferred}) {
             out.primary = r;
             found = true;
             break;
@@ -115,12 +137,12 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
       }
       if (!found) out.primary = out.all.front();
     } else {
-      out.primary = run_nontracking(nontracking_method_from_string(in.method), in, inst, zero, options);
+      out.primary = run_nontracking(requested_method<NonTrackingMethod>(in), in, inst, zero, options);
     }
     if (out.primary.beta)
       for (const auto& w : out.primary.beta->warnings) out.warnings.push_back(w);
   } else {
-    if (in.method == "all") {
+    if (!in.method) {
       const int n = static_cast<int>(in.tracking.reversals_rad.size());
       for (ReversalMethod m : {ReversalMethod::TwoPoint, ReversalMethod::Schuler,
                                ReversalMethod::LinearLsq, ReversalMethod::NonlinearLsq}) {
@@ -137,7 +159,7 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
       }
       out.primary = out.all.back();
     } else {
-      out.primary = run_tracking(reversal_method_from_string(in.method), in, inst, zero);
+      out.primary = run_tracking(requested_method<ReversalMethod>(in), in, inst, zero);
     }
   }
   return out;

@@ -63,4 +63,19 @@ TransitFactorCalibration calibrate_transit_factor(const DeterminationInput& firs
   return r;
 }
 
+TransitFactorCalibration calibrate_transit_factor(const ReduceInput& in) {
+  if (in.determinations.size() != 2)
+    throw InputError(fmt::format("exactly two determinations (east and west clamp) are needed, got {}",
+                                 in.determinations.size()),
+                     {"", std::nullopt, "determinations"});
+  ResolvedInstrument inst;
+  try {
+    inst = resolve_instrument(in.instrument, in.latitude_rad);
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, "instrument");
+    throw;
+  }
+  return calibrate_transit_factor(in.determinations[0], in.determinations[1], inst.instrument);
+}
+
 }  // namespace meridian::gyro

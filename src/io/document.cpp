@@ -1,4 +1,4 @@
-#include "document.hpp"
+#include "meridian/io/document.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -10,7 +10,7 @@
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 
-namespace meridian::io::detail {
+namespace meridian::io {
 
 Node::Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
            std::shared_ptr<LineMap> lines)
@@ -160,4 +160,21 @@ void Node::allow_only(std::initializer_list<std::string_view> allowed) const {
   }
 }
 
-}  // namespace meridian::io::detail
+void locate_error(Error& e, const std::string& file, const FieldLines& lines) {
+  if (!e.context().file.empty()) return;
+  const std::string& field = e.context().field;
+  std::optional<int> line;
+  std::size_t best = 0;
+  for (const auto& [path, l] : lines) {
+    const bool prefix = field.compare(0, path.size(), path) == 0 &&
+                        (field.size() == path.size() || field[path.size()] == '.' ||
+                         field[path.size()] == '[');
+    if (prefix && path.size() >= best) {
+      best = path.size();
+      line = l;
+    }
+  }
+  e.add_context(file, line);
+}
+
+}  // namespace meridian::io

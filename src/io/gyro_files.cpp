@@ -4,17 +4,14 @@
 
 #include <fmt/format.h>
 
-#include "document.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/ellipsoid.hpp"
-#include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/model_lookup.hpp"
+#include "meridian/io/document.hpp"
 
 namespace meridian::io {
 namespace {
 
-using detail::Node;
 using gyro::Uncertain;
 
 constexpr double kArcsec = units::kArcsecond;
@@ -94,16 +91,12 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
     d.mode = gyro::Mode::Tracking;
   else
     mode.fail(fmt::format("unknown mode \"{}\" (expected tracking or non-tracking)", m));
-  if (auto v = n.get("method")) d.method = v->string();
-  // Validate the method name now, so the error points at this line.
-  if (d.method != "all") {
+  if (auto v = n.get("method")) {
+    const std::string name = v->string();
     try {
-      if (d.mode == gyro::Mode::NonTracking)
-        (void)gyro::nontracking_method_from_string(d.method);
-      else
-        (void)gyro::reversal_method_from_string(d.method);
+      if (name != "all") d.method = gyro::method_from_string(d.mode, name);
     } catch (Error& e) {
-      n.require("method").fail(e.message());
+      v->fail(e.message());
     }
   }
 
@@ -279,72 +272,43 @@ geodesy::GridDefinition read_grid(const Node& n) {
 }
 
 // The model is a path (relative to the campaign file, or as given) or a name
-// found where GeographicLib keeps its models.
-gyro::DeflectionModel read_deflection_model(const Node& n, const std::filesystem::path& campaign_path) {
+// found where GeographicLib keeps its models; it is loaded by the caller.
+gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesystem::path& campaign_path) {
   n.allow_only({"model", "max_degree", "eta_sigma_arcsec"});
-  const Node model = n.require("model");
-  std::string source = model.string();
-  gravity::Truncation t;
-  if (auto v = n.get("max_degree")) t.max_degree = v->integer();
-  const std::filesystem::path beside = campaign_path.parent_path() / source;
-  const std::string lookup = std::filesystem::exists(beside) ? beside.string() : source;
-  gravity::GravityModelData data;
-  try {
-    data = gravity::load_model(lookup, t);
-  } catch (Error& e) {
-    if (e.context().file.empty()) model.fail(e.message());
-    throw;
-  }
-  gyro::DeflectionModel d;
-  d.source = source;
-  d.description = fmt::format("{} (degree {})", data.name.empty() ? source : data.name,
-                              data.coefficients.max_degree());
-  d.field = std::make_shared<const gravity::GravityField>(data);
-  if (auto v = n.get("eta_sigma_arcsec")) d.sigma_eta_rad = v->positive_number() * kArcsec;
-  return d;
+  gyro::GravityModelRef r;
+  r.source = n.require("model").string();
+  const std::filesystem::path beside = campaign_path.parent_path() / r.source;
+  r.lookup = std::filesystem::exists(beside) ? beside.string() : r.source;
+  if (auto v = n.get("max_degree")) r.max_degree = v->integer();
+  if (auto v = n.get("eta_sigma_arcsec")) r.sigma_eta_rad = v->positive_number() * kArcsec;
+  return r;
 }
 
 }  // namespace
-
-void locate_error(Error& e, const std::string& file, const FieldLines& lines) {
-  if (!e.context().file.empty()) return;
-  const std::string& field = e.context().field;
-  std::optional<int> line;
-  std::size_t best = 0;
-  for (const auto& [path, l] : lines) {
-    const bool prefix = field.compare(0, path.size(), path) == 0 &&
-                        (field.size() == path.size() || field[path.size()] == '.' ||
-                         field[path.size()] == '[');
-    if (prefix && path.size() >= best) {
-      best = path.size();
-      line = l;
-    }
-  }
-  e.add_context(file, line);
-}
 
 GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
   const Node root = Node::load_file(path);
   root.allow_only({"instrument", "station", "determinations", "options"});
   GyroReduceFile f;
   f.file = path.string();
+  gyro::ReduceInput& in = f.input;
   const Node inst = root.require("instrument");
-  f.instrument = read_instrument(inst);
+  in.instrument = read_instrument(inst);
   const Node st = root.require("station");
   st.allow_only({"name", "latitude_deg"});
   const Node lat = st.require("latitude_deg");
-  f.latitude_rad = lat.angle().rad();
-  if (std::fabs(f.latitude_rad) > units::kPi / 2) lat.fail("latitude must be within +-90 deg");
-  if (auto o = root.get("options")) f.options = read_options(*o);
+  in.latitude_rad = lat.angle().rad();
+  if (std::fabs(in.latitude_rad) > units::kPi / 2) lat.fail("latitude must be within +-90 deg");
+  if (auto o = root.get("options")) in.options = read_options(*o);
   const Node dets = root.require("determinations");
-  f.determinations = read_determinations(dets, f.instrument);
-  if (f.determinations.empty()) dets.fail("no determinations");
+  in.determinations = read_determinations(dets, in.instrument);
+  if (in.determinations.empty()) dets.fail("no determinations");
   // Check that the constants resolve at this latitude, so the error points at the file.
   with_location(lat, [&] {
-    gyro::check_latitude(f.latitude_rad, f.instrument.latitude_limit_rad);
+    gyro::check_latitude(in.latitude_rad, in.instrument.latitude_limit_rad);
     return 0;
   });
-  with_location(inst, [&] { return gyro::resolve_instrument(f.instrument, f.latitude_rad); });
+  with_location(inst, [&] { return gyro::resolve_instrument(in.instrument, in.latitude_rad); });
   f.lines = root.visited_lines();
   return f;
 }
@@ -410,7 +374,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     if (auto v = t->get("zero_position_div")) c.tolerances.zero_position_div = v->positive_number();
   }
   if (auto o = root.get("options")) c.options = read_options(*o);
-  if (auto g = root.get("gravity_model")) c.deflection_model = read_deflection_model(*g, path);
+  if (auto g = root.get("gravity_model")) c.gravity_model = read_gravity_model_ref(*g, path);
   f.lines = root.visited_lines();
   return f;
 }

@@ -69,7 +69,7 @@ void determination_yaml(std::string& o, const gyro::DeterminationInput& d, const
   const std::string in = ind + "  ";
   o += ind + "- mode: " + gyro::to_string(d.mode) + "\n";
   if (!d.label.empty()) o += in + "label: " + q(d.label) + "\n";
-  o += in + "method: " + d.method + "\n";
+  o += in + "method: " + gyro::method_request_name(d.method) + "\n";
   if (d.mode == gyro::Mode::Tracking) {
     o += in + "reversals: [";
     for (std::size_t i = 0; i < d.tracking.reversals_rad.size(); ++i)
@@ -143,14 +143,12 @@ std::string grid_system(const geodesy::GridDefinition& g) {
 
 }  // namespace
 
-std::string reduce_file_yaml(const gyro::InstrumentSpec& instrument, double latitude_rad,
-                             const std::vector<gyro::DeterminationInput>& dets,
-                             const std::string& header) {
+std::string reduce_file_yaml(const gyro::ReduceInput& in, const std::string& header) {
   std::string o = comment_block(header);
-  instrument_yaml(o, instrument);
-  o += "station:\n  latitude_deg: " + num(latitude_rad / units::kDegree) + "\n";
+  instrument_yaml(o, in.instrument);
+  o += "station:\n  latitude_deg: " + num(in.latitude_rad / units::kDegree) + "\n";
   o += "determinations:\n";
-  for (const auto& d : dets) determination_yaml(o, d, "  ");
+  for (const auto& d : in.determinations) determination_yaml(o, d, "  ");
   return o;
 }
 
@@ -205,9 +203,10 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
     o += "  instrument_constant_difference_arcsec: " +
          num(*c.tolerances.instrument_constant_difference_rad / kArcsec) + "\n";
   o += "  zero_position_div: " + num(c.tolerances.zero_position_div) + "\n";
-  if (c.deflection_model)
-    o += "gravity_model: {model: " + q(c.deflection_model->source) + ", eta_sigma_arcsec: " +
-         num(c.deflection_model->sigma_eta_rad / kArcsec) + "}\n";
+  if (c.gravity_model)
+    o += "gravity_model: {model: " + q(c.gravity_model->source) +
+         (c.gravity_model->max_degree >= 0 ? ", max_degree: " + std::to_string(c.gravity_model->max_degree) : "") +
+         ", eta_sigma_arcsec: " + num(c.gravity_model->sigma_eta_rad / kArcsec) + "}\n";
   return o;
 }
 

@@ -49,7 +49,7 @@ json reversal_json(const gyro::ReversalResult& r, bool radians) {
 
 json method_to_json(const gyro::MethodResult& r, gyro::Mode mode) {
   json j;
-  j["method"] = r.method;
+  j["method"] = gyro::to_string(r.method);
   j["north_reading_deg"] = num(r.north.north_rad / kDeg);
   j["north_reading_dms"] = format_direction_dms(Angle::radians(r.north.north_rad), {2, true, false});
   j["sigma_arcsec"] = arcsec(r.north.sigma_rad);
@@ -99,10 +99,10 @@ json method_to_json(const gyro::MethodResult& r, gyro::Mode mode) {
 json determination_to_json(const gyro::DeterminationResult& r) {
   json j = method_to_json(r.primary, r.mode);
   j["mode"] = gyro::to_string(r.mode);
-  j["method"] = r.method;
+  j["method"] = gyro::method_request_name(r.method);
   if (!r.label.empty()) j["label"] = r.label;
-  if (r.method == "all") {
-    j["recommended_method"] = r.primary.method;
+  if (!r.method) {
+    j["recommended_method"] = gyro::to_string(r.primary.method);
     json all = json::array();
     for (const auto& m : r.all) all.push_back(method_to_json(m, r.mode));
     j["results"] = all;
@@ -124,6 +124,27 @@ json determination_to_json(const gyro::DeterminationResult& r) {
   }
   j["warnings"] = strings(r.warnings);
   return j;
+}
+
+json reduce_to_json(const std::string& file, const gyro::ReduceResult& r) {
+  json j;
+  j["file"] = file;
+  j["torsion_ratio"] = {{"value", r.instrument.instrument.torsion_ratio.value},
+                        {"sigma", r.instrument.instrument.torsion_ratio.sigma}};
+  j["notes"] = r.instrument.notes;
+  j["determinations"] = json::array();
+  for (const auto& d : r.determinations) j["determinations"].push_back(determination_to_json(d));
+  return j;
+}
+
+json transit_factor_to_json(const gyro::TransitFactorCalibration& c) {
+  return {{"transit_factor_arcsec_per_div_s", c.factor_rad_per_div_s.value / kArcsec},
+          {"sigma_arcsec_per_div_s", c.factor_rad_per_div_s.sigma / kArcsec},
+          {"computed_arcsec_per_div_s", c.computed_rad_per_div_s / kArcsec},
+          {"amplitudes_div", {c.amplitude1_div.value, c.amplitude2_div.value}},
+          {"time_differences_s", {c.dt1_s.value, c.dt2_s.value}},
+          {"north_reading_deg", c.north_rad / kDeg},
+          {"notes", c.notes}};
 }
 
 json campaign_to_json(const gyro::CampaignResult& r) {
@@ -185,7 +206,7 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   json checks = json::array();
   for (const auto& k : r.checks)
     checks.push_back({{"name", k.name}, {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
-                      {"unit", k.unit}, {"pass", k.pass}});
+                      {"unit", gyro::to_string(k.unit)}, {"pass", k.pass}});
   j["checks"] = checks;
   j["all_checks_pass"] = r.all_checks_pass();
   j["notes"] = strings(r.notes);

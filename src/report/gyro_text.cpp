@@ -6,7 +6,7 @@
 
 #include "meridian/core/dms.hpp"
 #include "meridian/core/units.hpp"
-#include "format.hpp"
+#include "meridian/report/format.hpp"
 
 namespace meridian::report {
 namespace {
@@ -18,7 +18,7 @@ using fmtx::sec;
 using fmtx::sig;
 
 void method_line(std::string& out, const gyro::MethodResult& m) {
-  out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", m.method, dir(m.north.north_rad),
+  out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", gyro::to_string(m.method), dir(m.north.north_rad),
                      sig(m.north.sigma_rad));
 }
 
@@ -27,10 +27,10 @@ void method_line(std::string& out, const gyro::MethodResult& m) {
 std::string determination_text(const gyro::DeterminationResult& r, int index) {
   std::string out = fmt::format("Determination {}{} ({}, method {})\n", index + 1,
                                 r.label.empty() ? "" : " \"" + r.label + "\"", gyro::to_string(r.mode),
-                                r.method);
+                                gyro::method_request_name(r.method));
   auto line = [&](const gyro::MethodResult& m) {
     if (r.mode == gyro::Mode::NonTracking && m.beta) {
-      out += fmt::format("  {:<18} beta {:+9.4f} div  dN {:>10}  N_G {:>15}  sigma {:>7}", m.method,
+      out += fmt::format("  {:<18} beta {:+9.4f} div  dN {:>10}  N_G {:>15}  sigma {:>7}", gyro::to_string(m.method),
                          m.beta->beta_div.value, sec(m.north.delta_n_rad, 3), dir(m.north.north_rad, 2),
                          sig(m.north.sigma_rad));
       if (m.approximation_error_rad != 0.0)
@@ -40,9 +40,9 @@ std::string determination_text(const gyro::DeterminationResult& r, int index) {
       method_line(out, m);
     }
   };
-  if (r.method == "all") {
+  if (!r.method) {
     for (const auto& m : r.all) line(m);
-    out += fmt::format("  recommended: {}\n", r.primary.method);
+    out += fmt::format("  recommended: {}\n", gyro::to_string(r.primary.method));
   } else {
     line(r.primary);
   }
@@ -51,6 +51,28 @@ std::string determination_text(const gyro::DeterminationResult& r, int index) {
                        r.zero_position_used->value, r.zero_position_used->sigma,
                        sec(r.primary.north.zero_correction_rad));
   for (const auto& w : r.warnings) out += "  warning: " + w + "\n";
+  return out;
+}
+
+std::string reduce_text(const std::string& file, const gyro::ReduceResult& r) {
+  const gyro::Instrument& inst = r.instrument.instrument;
+  std::string out = fmt::format("{}: {} determination(s), lambda = {:.5f}, tau = {:.1f}\"/div\n", file,
+                                r.determinations.size(), inst.torsion_ratio.value, inst.scale_value_rad / kArcsec);
+  for (const auto& n : r.instrument.notes) out += "  note: " + n + "\n";
+  for (std::size_t i = 0; i < r.determinations.size(); ++i)
+    out += determination_text(r.determinations[i], static_cast<int>(i));
+  return out;
+}
+
+std::string transit_factor_text(const gyro::TransitFactorCalibration& c) {
+  std::string out = fmt::format("transit factor c = {:.4f} \"/(div s)  sigma {:.4f}\n",
+                                c.factor_rad_per_div_s.value / kArcsec, c.factor_rad_per_div_s.sigma / kArcsec);
+  if (c.computed_rad_per_div_s > 0)
+    out += fmt::format("computed (1+lambda) tau pi/(2 T_B) = {:.4f} \"/(div s)\n", c.computed_rad_per_div_s / kArcsec);
+  out += fmt::format("B1 = {:.3f} div, dt1 = {:+.3f} s; B2 = {:.3f} div, dt2 = {:+.3f} s\n", c.amplitude1_div.value,
+                     c.dt1_s.value, c.amplitude2_div.value, c.dt2_s.value);
+  out += "gyro north N = " + format_direction_dms(Angle::radians(c.north_rad)) + "\n";
+  for (const auto& n : c.notes) out += "note: " + n + "\n";
   return out;
 }
 
@@ -78,7 +100,7 @@ std::string campaign_text(const gyro::CampaignResult& r) {
                     const std::vector<gyro::Uncertain>& ag, const std::vector<gyro::Uncertain>& e) {
       for (std::size_t i = 0; i < d.size(); ++i)
         out += fmt::format("  {:<6} {:<20} N_G {:>15}  A_G {:>15}  E {:>9}  sigma {}\n", when,
-                           d[i].primary.method, dir(d[i].primary.north.north_rad), dir(ag[i].value),
+                           gyro::to_string(d[i].primary.method), dir(d[i].primary.north.north_rad), dir(ag[i].value),
                            sec(e[i].value), sig(e[i].sigma));
     };
     list("before", r.known_before, r.known_gyro_azimuths_before, r.instrument_constant->before);
@@ -91,7 +113,7 @@ std::string campaign_text(const gyro::CampaignResult& r) {
   for (std::size_t i = 0; i < r.determinations.size(); ++i) {
     const auto& d = r.determinations[i];
     out += fmt::format("  {:<2} {:<20} N_G {:>15}  sigma {:>6}  A_G {:>15}  sigma {}\n", i + 1,
-                       d.label.empty() ? d.primary.method : d.label, dir(d.primary.north.north_rad),
+                       d.label.empty() ? gyro::to_string(d.primary.method) : d.label, dir(d.primary.north.north_rad),
                        sig(d.primary.north.sigma_rad), dir(r.gyro_azimuths[i].value),
                        sig(r.gyro_azimuths[i].sigma));
   }
@@ -116,7 +138,7 @@ std::string campaign_text(const gyro::CampaignResult& r) {
   if (r.checks.empty()) out += "  (none applicable)\n";
   for (const auto& k : r.checks)
     out += fmt::format("  [{}] {}: {:.2f} {} (tolerance {:.2f})\n", k.pass ? "PASS" : "FAIL", k.name,
-                       k.value, k.unit, k.tolerance);
+                       k.value, gyro::to_string(k.unit), k.tolerance);
   if (!r.notes.empty()) out += "\nNotes\n";
   for (const auto& n : r.notes) out += "  - " + n + "\n";
   if (!r.warnings.empty()) out += "\nWarnings\n";

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "meridian/core/error.hpp"
+#include "meridian/core/version.hpp"
 #include "meridian/report/web_assets.hpp"
 
 namespace meridian::report {
@@ -192,8 +194,18 @@ std::string html_escape(const std::string& text) {
   return out;
 }
 
+bool html_reports_available() { return web_assets().available; }
+
+std::string html_reports_unavailable_message() {
+  return "this meridian was built without HTML reports (the report JavaScript in web/node_modules was "
+         "missing when it was configured): run `bash scripts/setup.sh`, then configure and build again";
+}
+
+std::string report_generator() { return std::string("meridian ") + version(); }
+
 std::string render_html(const Document& doc) {
   const WebAssets& js = web_assets();
+  if (!js.available) throw Error(html_reports_unavailable_message());
   Renderer r;
   r.out.reserve(js.vega_js.size() + js.vega_lite_js.size() + js.vega_embed_js.size() + 200000);
   r.out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";

@@ -100,7 +100,7 @@ TEST(AzimuthChain, ClosedFormWithSigma) {
 TEST(Campaign, NoiseFreeSimulationRecoversTruth) {
   CampaignTruth t = noise_free_truth();
   const auto sim = simulate_campaign(t, 7);
-  const auto r = process_campaign(sim.input);
+  const auto r = process(sim.input);
   EXPECT_NEAR(r.instrument_constant_used_rad.value / kArcsec, t.instrument_constant_rad / kArcsec, 0.01);
   EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), 0.0, 0.01);
   EXPECT_TRUE(r.all_checks_pass());
@@ -112,7 +112,7 @@ TEST(Campaign, NoiseFreeSimulationRecoversTruth) {
 TEST(Campaign, GridAzimuthAgreesWithGeographicLibTool) {
   // Spec §8.5: T = α − γ + δ with γ from TransverseMercatorProj, to 0.001".
   const auto sim = simulate_campaign(example_campaign_truth(), 11);
-  const auto r = process_campaign(sim.input);
+  const auto r = process(sim.input);
   const auto& e = sim.input.grid.ellipsoid;
   const double gamma_tool = tool_convergence_deg(r.station.lat_rad / kDeg, r.station.lon_rad / kDeg,
                                                  sim.input.grid.central_meridian_rad / kDeg, e.a_m, e.f);
@@ -128,7 +128,7 @@ TEST(Campaign, NoisySimulationWithinReportedSigma) {
   const int runs = 40;
   for (int s = 0; s < runs; ++s) {
     const auto sim = simulate_campaign(example_campaign_truth(), 1000 + static_cast<std::uint64_t>(s));
-    const auto r = process_campaign(sim.input);
+    const auto r = process(sim.input);
     const double err = diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad);
     const double sig = r.chain.grid_azimuth_rad.sigma / kArcsec;
     EXPECT_LT(std::fabs(err), 3.5 * sig) << "seed " << 1000 + s;
@@ -142,9 +142,9 @@ TEST(Campaign, NoisySimulationWithinReportedSigma) {
 TEST(Campaign, MissingInstrumentConstantIsAnError) {
   auto sim = simulate_campaign(example_campaign_truth(), 3);
   sim.input.known_line.reset();
-  EXPECT_THROW(process_campaign(sim.input), InputError);
+  EXPECT_THROW(process(sim.input), InputError);
   sim.input.instrument_constant_rad = Uncertain{25 * kArcsec, 5 * kArcsec};
-  EXPECT_NO_THROW(process_campaign(sim.input));
+  EXPECT_NO_THROW(process(sim.input));
 }
 
 TEST(Campaign, LatitudeBeyondLimitIsRejected) {
@@ -169,8 +169,10 @@ TEST(Campaign, EtaFromAGravityModelRecoversTruth) {
   t.eta_known_rad = eta_at(t.known_station);
   ASSERT_GT(std::fabs(t.eta_station_rad / kArcsec), 0.5);  // a deflection worth correcting
   auto sim = simulate_campaign(t, 21);
-  sim.input.deflection_model = DeflectionModel{field, "synthetic", "synthetic (degree 60)", 1.5 * kArcsec};
-  const auto r = process_campaign(sim.input);
+  const DeflectionModel deflection{"synthetic (degree 60)", 1.5 * kArcsec, [&](double lat, double lon, double h) {
+    return field->evaluate(gravity::GeodeticPoint{lat, lon, h}, gravity::Quantities::Deflection).eta_astro_rad;
+  }};
+  const auto r = process(sim.input, nullptr, &deflection);
   ASSERT_TRUE(r.chain.laplace_applied);
   EXPECT_NEAR(r.chain.laplace_correction_rad, -t.eta_station_rad * std::tan(r.station.lat_rad), 1e-12);
   EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), 0.0, 0.01);

@@ -12,6 +12,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/io/gyro_files.hpp"
+#include "meridian/io/gyro_jobs.hpp"
 #include "meridian/io/gyro_writers.hpp"
 #include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/synthetic.hpp"
@@ -74,19 +75,20 @@ void expect_error(F&& f, std::initializer_list<std::string> fragments) {
 TEST(GyroFiles, ReadsTheIssueSchema) {
   TempDir d;
   const auto f = io::read_gyro_reduce_file(d.write("obs.yaml", kIssueExample));
-  EXPECT_NEAR(f.instrument.scale_value_rad / kArcsec, 600.0, 1e-9);
-  EXPECT_NEAR(f.instrument.torsion_ratio->value, 0.30, 1e-15);
-  EXPECT_NEAR(f.latitude_rad / units::kDegree, 34.2, 1e-12);
-  ASSERT_EQ(f.determinations.size(), 2u);
-  const auto& n = f.determinations[0];
+  EXPECT_NEAR(f.input.instrument.scale_value_rad / kArcsec, 600.0, 1e-9);
+  EXPECT_NEAR(f.input.instrument.torsion_ratio->value, 0.30, 1e-15);
+  EXPECT_NEAR(f.input.latitude_rad / units::kDegree, 34.2, 1e-12);
+  ASSERT_EQ(f.input.determinations.size(), 2u);
+  const auto& n = f.input.determinations[0];
   EXPECT_EQ(n.mode, gyro::Mode::NonTracking);
-  EXPECT_EQ(n.method, "transit");
+  ASSERT_TRUE(n.method);
+  EXPECT_EQ(gyro::to_string(*n.method), "transit");
   ASSERT_EQ(n.nontracking.crossings.size(), 1u);
   EXPECT_EQ(n.nontracking.crossings[0].first_direction, +1);
   EXPECT_DOUBLE_EQ(n.nontracking.crossings[0].times_s[1], 269.066);
   EXPECT_NEAR(n.nontracking.period_s->value, 440.0, 0);
   EXPECT_TRUE(n.zero_position.has_value());
-  const auto& t = f.determinations[1];
+  const auto& t = f.input.determinations[1];
   EXPECT_EQ(t.mode, gyro::Mode::Tracking);
   EXPECT_NEAR(t.tracking.reversals_rad[1] / units::kDegree, 44 / 60.0 + 50 / 3600.0, 1e-12);
   EXPECT_EQ(f.lines.at("determinations[1]"), 17);
@@ -102,8 +104,9 @@ TEST(GyroFiles, ReadsJsonAsIs) {
 	]
 })";
   const auto f = io::read_gyro_reduce_file(d.write("obs.json", json));
-  EXPECT_NEAR(f.latitude_rad / units::kDegree, 34.2, 1e-12);
-  EXPECT_NEAR(f.determinations[0].tracking.reversals_rad[0] / units::kDegree, 359.6866, 1e-12);
+  EXPECT_NEAR(f.input.latitude_rad / units::kDegree, 34.2, 1e-12);
+  EXPECT_FALSE(f.input.determinations[0].method);  // "all"
+  EXPECT_NEAR(f.input.determinations[0].tracking.reversals_rad[0] / units::kDegree, 359.6866, 1e-12);
 }
 
 TEST(GyroFiles, ErrorsNameFileLineAndField) {
@@ -183,16 +186,32 @@ TEST(GyroFiles, LocateErrorUsesInnermostRecordedField) {
 
 TEST(GyroFiles, CampaignGravityModelBesideTheFile) {
   TempDir d;
-  const auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 5);
+  auto truth = gyro::example_campaign_truth();
+  truth.give_eta = false;  // so the model is used
+  const auto sim = gyro::simulate_campaign(truth, 5);
   gravity::write_egm_files(gravity::make_synthetic_model({30, 2, 1e-5}), d.write("m.txt", "").parent_path() / "m");
   std::string yaml = io::campaign_file_yaml(sim.input);
   const auto good = d.write("c.yaml", yaml + "gravity_model: {model: m.egm, eta_sigma_arcsec: 2}\n");
+  // The reader names the model; it does not load it.
   const auto f = io::read_campaign_file(good);
-  ASSERT_TRUE(f.campaign.deflection_model);
-  EXPECT_NEAR(f.campaign.deflection_model->sigma_eta_rad / kArcsec, 2.0, 1e-12);
-  EXPECT_NE(f.campaign.deflection_model->description.find("degree 30"), std::string::npos);
+  ASSERT_TRUE(f.campaign.gravity_model);
+  EXPECT_EQ(f.campaign.gravity_model->source, "m.egm");
+  EXPECT_EQ(f.campaign.gravity_model->lookup, (good.parent_path() / "m.egm").string());
+  EXPECT_NEAR(f.campaign.gravity_model->sigma_eta_rad / kArcsec, 2.0, 1e-12);
   ASSERT_TRUE(f.campaign.line.from.height_m);
   EXPECT_NEAR(*f.campaign.line.from.height_m, 341.7, 1e-9);
-  expect_error([&] { io::read_campaign_file(d.write("bad.yaml", yaml + "gravity_model: {model: nowhere.gfc}\n")); },
-               {"bad.yaml:", "gravity_model.model"});
+  // Loaded once, shared between files.
+  io::DeflectionModels models;
+  const gyro::DeflectionModel& m = models.get(*f.campaign.gravity_model);
+  EXPECT_NE(m.description.find("degree 30"), std::string::npos);
+  EXPECT_NEAR(m.sigma_eta_rad / kArcsec, 2.0, 1e-12);
+  EXPECT_EQ(&models.get(*f.campaign.gravity_model), &m);
+  const auto job = io::run_campaign_file(good, &models);
+  int noted = 0;
+  for (const auto& n : job.result.notes) noted += n.find("from the gravity model " + m.description) != std::string::npos;
+  EXPECT_EQ(noted, 2);  // at the known station and at the station
+  EXPECT_TRUE(job.result.chain.laplace_applied);
+  // A model that cannot be found is reported at its line when the job runs.
+  expect_error([&] { io::run_campaign_file(d.write("bad.yaml", yaml + "gravity_model: {model: nowhere.gfc}\n")); },
+               {"bad.yaml:", "gravity_model.model", "not found"});
 }

@@ -52,7 +52,7 @@ TEST(Html, InlinesTheVegaLibrariesAndNeedsNoNetwork) {
 
 TEST(Html, CampaignDocumentHasEverySection) {
   const auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 4);
-  const auto r = gyro::process_campaign(sim.input);
+  const auto r = gyro::process(sim.input);
   const Document d = gyro_campaign_document("c.yaml", sim.input, r);
   std::vector<std::string> ids;
   for (const auto& s : d.sections) ids.push_back(s.id);
@@ -60,9 +60,27 @@ TEST(Html, CampaignDocumentHasEverySection) {
                          "line-determination-1", "line-determination-3", "notes"})
     EXPECT_NE(std::find(ids.begin(), ids.end(), id), ids.end()) << id;
   const std::string html = render_html(d);
-  // Oscillation + residuals + methods + zero position for 6 non-tracking runs,
-  // tracking + residuals + methods + zero position for 1, plus 2 summaries.
-  EXPECT_EQ(count(html, "data-vega-spec="), 6 * 4 + 4 + 2);
+  // Per determination: its observations with the model, the residuals of a
+  // fit with redundancy, every method side by side (method "all") and the
+  // motor-off runs; plus the E and A_G spread plots.
+  int expected = 2;
+  auto add = [&](const std::vector<gyro::DeterminationInput>& in, const std::vector<gyro::DeterminationResult>& res) {
+    ASSERT_EQ(in.size(), res.size());
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      ++expected;
+      const auto& p = res[i].primary;
+      bool fitted = p.fit.has_value() || (p.reversal && p.reversal->dof > 0);
+      for (const auto& m : res[i].all) fitted = fitted || m.fit.has_value();
+      if (fitted) ++expected;
+      if (res[i].all.size() > 1) ++expected;
+      if (in[i].zero_before || in[i].zero_after) ++expected;
+    }
+  };
+  add(sim.input.known_line->before, r.known_before);
+  add(sim.input.known_line->after, r.known_after);
+  add(sim.input.line.determinations, r.determinations);
+  EXPECT_GE(expected, 10);
+  EXPECT_EQ(count(html, "data-vega-spec="), expected);
   EXPECT_NE(html.find("Grid azimuth"), std::string::npos);
   EXPECT_NE(html.find("PASS"), std::string::npos);
 }

@@ -4,7 +4,6 @@
 /// known line before and after, determinations on the unknown line, and the
 /// azimuth chain down to the grid azimuth, with tolerance checks.
 
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,12 +13,9 @@
 #include "meridian/geodesy/grid.hpp"
 #include "meridian/gyro/azimuth_chain.hpp"
 #include "meridian/gyro/calibration.hpp"
+#include "meridian/gyro/deflection_model.hpp"
 #include "meridian/gyro/determination.hpp"
 #include "meridian/gyro/instrument_spec.hpp"
-
-namespace meridian::gravity {
-class GravityField;
-}
 
 namespace meridian::gyro {
 
@@ -32,16 +28,6 @@ struct PointInput {
   /// Ellipsoidal height (m), used to evaluate η from a gravity model; 0 with
   /// a note when absent (η changes by well under 0.1″ per 100 m).
   std::optional<double> height_m;
-};
-
-/// η from a global gravity model for points whose η is not given (spec §6,
-/// step 3). The model's plumb-line direction at the point is used: η =
-/// (Λ − λ)·cos φ of the model's gravity vector (gravity::FieldValues::eta_astro_rad).
-struct DeflectionModel {
-  std::shared_ptr<const gravity::GravityField> field;
-  std::string source;                        ///< name or path as given (for notes and writers)
-  std::string description;                   ///< e.g. "EGM2008 (degree 2190)"
-  double sigma_eta_rad = 1.5 * units::kArcsecond;  ///< commission error assumed for η
 };
 
 /// The known line's azimuth and its kind.
@@ -67,7 +53,7 @@ struct LineInput {
 struct Tolerances {
   std::optional<double> determination_difference_rad;  ///< default from the accuracy class
   std::optional<double> instrument_constant_difference_rad;  ///< default: same as above
-  double zero_position_div = 0.5;
+  double zero_position_div = kDefaultZeroPositionTolerance_div;
 };
 
 struct CampaignInput {
@@ -80,7 +66,9 @@ struct CampaignInput {
   LineInput line;
   Tolerances tolerances;
   ReduceOptions options;
-  std::optional<DeflectionModel> deflection_model;
+  /// A gravity model giving η at the points whose η is not stated; loaded
+  /// by the caller (see deflection_model.hpp).
+  std::optional<GravityModelRef> gravity_model;
 };
 
 /// A point resolved in both coordinate systems.
@@ -90,12 +78,16 @@ struct PointResult {
   geodesy::GridPoint grid;
 };
 
+/// Unit of a check's value and tolerance.
+enum class CheckUnit { Arcsec, Div };
+std::string to_string(CheckUnit u);  ///< "arcsec", "div"
+
 /// A pass/fail check for the report.
 struct Check {
   std::string name;
   double value = 0.0;       ///< in `unit`
   double tolerance = 0.0;   ///< in `unit`
-  std::string unit;         ///< "arcsec" or "div"
+  CheckUnit unit = CheckUnit::Arcsec;
   bool pass = true;
 };
 
@@ -128,9 +120,15 @@ struct CampaignResult {
 PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercatorGrid& grid,
                           const std::string& field, std::vector<std::string>& warnings);
 
-/// Process a campaign. Errors carry field paths such as
-/// "line.determinations[1].crossings[0].times_s" (the reader adds file/line).
-/// `progress`, when given, is told about each determination reduced.
-CampaignResult process_campaign(const CampaignInput& in, Progress* progress = nullptr);
+/// Process a campaign: the instrument constant from the known line (or as
+/// given), every determination of the line, the tolerance checks and the
+/// azimuth chain to the grid azimuth. Errors carry field paths such as
+/// "line.determinations[1].crossings[0].times_s" (io::locate_error adds the
+/// file and line). `progress`, when given, is told about each determination
+/// reduced. `deflection`, when given, supplies η at the points whose η is
+/// not stated; it is required when the input names a gravity_model
+/// (InputError otherwise).
+CampaignResult process(const CampaignInput& in, Progress* progress = nullptr,
+                       const DeflectionModel* deflection = nullptr);
 
 }  // namespace meridian::gyro

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "meridian/gyro/campaign.hpp"
 
@@ -34,8 +35,8 @@ struct CampaignTruth {
   int line_tracking = 1;                   ///< tracking determinations on the line
   double amplitude_div = 9.0;              ///< B of the non-tracking oscillations
   double max_clamp_offset_arcmin = 6.0;    ///< |N_G − N′| drawn up to this
-  double sigma_time_s = 0.1;               ///< white timing noise (0 = noise-free)
-  double sigma_reading_div = 0.05;         ///< white reading noise (0 = noise-free)
+  double sigma_time_s = kDefaultSigmaTime_s;               ///< white timing noise (0 = noise-free)
+  double sigma_reading_div = kDefaultSigmaReading_div;         ///< white reading noise (0 = noise-free)
   double sigma_tracking_arcsec = 8.0;      ///< tracking reversal reading noise
   double sigma_pointing_arcsec = 2.0;      ///< target pointing noise
   double known_azimuth_sigma_arcsec = 3.0; ///< σ stated for the known azimuth
@@ -50,6 +51,7 @@ struct SimulatedCampaign {
   CampaignInput input;
   double true_grid_azimuth_rad = 0.0;      ///< T of the chord C→D
   double true_known_grid_azimuth_rad = 0.0;
+  std::vector<std::string> truth;          ///< the truth in words, one line each (for the file header)
 };
 
 /// Deterministic for a given seed. Throws InputError for unusable truths

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "meridian/gyro/instrument.hpp"
@@ -20,14 +21,29 @@ namespace meridian::gyro {
 enum class Mode { Tracking, NonTracking };
 std::string to_string(Mode m);  ///< "tracking", "non-tracking"
 
+/// A reduction method of either mode: non-tracking (transit,
+/// time-difference, direct, timed-amplitude-1/-2, lsq) or tracking
+/// (two-point, schuler, lsq-linear, lsq).
+using Method = std::variant<NonTrackingMethod, ReversalMethod>;
+
+/// The method's name as written in files and reports.
+std::string to_string(const Method& m);
+
+/// The method of `mode` called `name`; "all" is not a method (see
+/// DeterminationInput::method). Throws InputError listing the names accepted
+/// for that mode.
+Method method_from_string(Mode mode, const std::string& name);
+
+/// A requested method's name: "all" when every applicable method is run.
+std::string method_request_name(const std::optional<Method>& requested);
+
 /// A determination as read from a field book.
 struct DeterminationInput {
   std::string label;                 ///< free text, e.g. "D1 (known line, before)"
   Mode mode = Mode::NonTracking;
-  /// Method name (nontracking: transit, time-difference, direct,
-  /// timed-amplitude-1, timed-amplitude-2, lsq; tracking: two-point,
-  /// schuler, lsq-linear, lsq) or "all".
-  std::string method = "all";
+  /// The method to run (of this determination's mode); none: every
+  /// applicable method ("all" in files), reporting the recommended one.
+  std::optional<Method> method;
   double clamp_reading_rad = 0.0;    ///< N′ (non-tracking only)
   NonTrackingObservations nontracking;
   TrackingObservations tracking;
@@ -42,13 +58,13 @@ struct DeterminationInput {
 /// Options that apply to all determinations.
 struct ReduceOptions {
   ReversalMethod zero_position_method = ReversalMethod::Schuler;
-  double zero_position_tolerance_div = 0.5;
+  double zero_position_tolerance_div = kDefaultZeroPositionTolerance_div;
   UnifiedFitOptions unified_fit;
 };
 
 /// The outcome of one method.
 struct MethodResult {
-  std::string method;                       ///< method name as in DeterminationInput::method
+  Method method;                            ///< the method that gave this result
   NorthReading north;                       ///< N_G, σ, ΔN, zero-position correction
   /// Non-tracking: the method's approximation error carried to N_G,
   /// (1+λ)·τ·(β_method − β_exact) in radians; 0 for exact methods.
@@ -61,13 +77,13 @@ struct MethodResult {
 struct DeterminationResult {
   std::string label;
   Mode mode = Mode::NonTracking;
-  std::string method;                       ///< as requested ("all" allowed)
+  std::optional<Method> method;             ///< as requested (none: all)
   /// The result reported for the determination: the requested method, or
-  /// with "all" the recommended one (non-tracking: lsq when it can be run,
+  /// with all methods the recommended one (non-tracking: lsq when it can be run,
   /// else direct, timed-amplitude, transit, time-difference in that order;
   /// tracking: lsq, else lsq-linear, schuler, two-point).
   MethodResult primary;
-  std::vector<MethodResult> all;            ///< every applicable method, when method == "all"
+  std::vector<MethodResult> all;            ///< every applicable method, when all were requested
   ZeroPosition zero_position_used;          ///< α_p applied (if any)
   std::optional<ZeroPositionSummary> zero_position;  ///< from before/after runs
   std::vector<std::string> warnings;

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "meridian/core/uncertain.hpp"
+#include "meridian/gyro/defaults.hpp"
 
 namespace meridian::gyro {
 
@@ -26,8 +27,8 @@ struct Instrument {
   /// set, the transit method uses ΔN = c·B·Δt instead of the computed
   /// (1+λ)·τ·π/(2T_B).
   std::optional<Uncertain> transit_factor_rad_per_div_s;
-  double sigma_time_s = 0.1;             ///< stopwatch timing σ (s)
-  double sigma_reading_div = 0.05;       ///< scale reading σ (div)
+  double sigma_time_s = kDefaultSigmaTime_s;          ///< stopwatch timing σ (s)
+  double sigma_reading_div = kDefaultSigmaReading_div;  ///< scale reading σ (div)
 };
 
 /// Tape zero position α_p (div) with its σ; absent means "not observed"

@@ -27,11 +27,11 @@ struct InstrumentSpec {
   std::optional<Uncertain> free_period_s;         ///< T_F (with T_A gives λ = (T_A/T_F)²)
   /// Calibrated transit factor c (rad/(div·s)) valid at constants_latitude.
   std::optional<Uncertain> transit_factor_rad_per_div_s;
-  double sigma_time_s = 0.1;
-  double sigma_reading_div = 0.05;
+  double sigma_time_s = kDefaultSigmaTime_s;
+  double sigma_reading_div = kDefaultSigmaReading_div;
   double latitude_limit_rad = kDefaultLatitudeLimit_rad;
   /// Nominal accuracy class (arcsec), e.g. 15 or 25: sets default tolerances.
-  double accuracy_class_arcsec = 15.0;
+  double accuracy_class_arcsec = kDefaultAccuracyClass_arcsec;
 };
 
 /// Instrument constants at `station_lat_rad`, plus what was done to get them.

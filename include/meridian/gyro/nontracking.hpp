@@ -32,8 +32,8 @@ struct NonTrackingObservations {
   std::vector<double> reversals_div;       ///< reversal (turning-point) readings, alternating
   std::vector<double> reversal_times_s;    ///< optional, same length as reversals_div when given
   std::optional<Uncertain> period_s;       ///< T_B when known (s)
-  double sigma_time_s = 0.1;               ///< per-determination timing σ (s)
-  double sigma_reading_div = 0.05;         ///< per-determination reading σ (div)
+  double sigma_time_s = kDefaultSigmaTime_s;               ///< per-determination timing σ (s)
+  double sigma_reading_div = kDefaultSigmaReading_div;         ///< per-determination reading σ (div)
 };
 
 /// The transit and time-difference methods warn when their approximation

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "meridian/gyro/determination.hpp"
+#include "meridian/gyro/reduce.hpp"
 
 namespace meridian::gyro {
 
@@ -27,5 +28,12 @@ struct TransitFactorCalibration {
 TransitFactorCalibration calibrate_transit_factor(const DeterminationInput& first,
                                                   const DeterminationInput& second,
                                                   const Instrument& inst);
+
+/// The `gyro transit-factor` workflow: a reduce input holding exactly the
+/// two determinations (clamped east and west of north) at one station; the
+/// instrument is resolved at the station latitude. Throws InputError
+/// (field "determinations") for any other number of determinations, and
+/// the errors above with field paths "determinations[i]…".
+TransitFactorCalibration calibrate_transit_factor(const ReduceInput& in);
 
 }  // namespace meridian::gyro

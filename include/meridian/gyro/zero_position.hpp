@@ -31,7 +31,7 @@ struct ZeroPositionSummary {
   std::optional<ZeroPositionEstimate> after;
   Uncertain mean_div;                   ///< α_p used for the correction (mean of the runs given)
   std::optional<double> difference_div; ///< after − before, when both exist
-  double tolerance_div = 0.5;
+  double tolerance_div = kDefaultZeroPositionTolerance_div;
   bool within_tolerance = true;
   std::vector<std::string> warnings;
 };
@@ -45,10 +45,10 @@ ZeroPositionEstimate estimate_zero_position(const ZeroPositionRun& run, Reversal
 /// Combine before/after runs (either may be absent, not both). The mean's σ
 /// is the σ of the mean of the runs' centres, widened to half their
 /// difference when that is larger (the drift is then the dominant error).
-/// A difference above `tolerance_div` (default 0.5 div) is a warning.
+/// A difference above `tolerance_div` is a warning.
 ZeroPositionSummary summarise_zero_position(const std::optional<ZeroPositionRun>& before,
                                             const std::optional<ZeroPositionRun>& after,
                                             ReversalMethod method, double sigma_reading_div,
-                                            double tolerance_div = 0.5);
+                                            double tolerance_div = kDefaultZeroPositionTolerance_div);
 
 }  // namespace meridian::gyro

@@ -9,29 +9,19 @@
 #include <string>
 #include <vector>
 
-#include "meridian/core/error.hpp"
+#include "meridian/io/document.hpp"
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/determination.hpp"
 #include "meridian/gyro/instrument_spec.hpp"
+#include "meridian/gyro/reduce.hpp"
 
 namespace meridian::io {
 
-/// Line (1-based) of each determination, point and section of a file, by
-/// field path ("determinations[2]", "line.determinations[0]", …).
-using FieldLines = std::map<std::string, int>;
-
-/// Give an error thrown while processing a file's contents the file name
-/// and the line of the innermost recorded field that contains its field.
-void locate_error(Error& e, const std::string& file, const FieldLines& lines);
-
-/// Contents of a `meridian gyro reduce` file.
+/// Contents of a `meridian gyro reduce` (or `transit-factor`) file.
 struct GyroReduceFile {
   std::string file;
-  gyro::InstrumentSpec instrument;
-  double latitude_rad = 0.0;                       ///< station latitude φ
-  std::vector<gyro::DeterminationInput> determinations;
-  FieldLines lines;
-  gyro::ReduceOptions options;
+  gyro::ReduceInput input;
+  FieldLines lines;       ///< for io::locate_error
 };
 
 /// Read a reduce file. Throws ParseError/InputError with file, line, field.
@@ -40,8 +30,8 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path);
 /// Contents of a `meridian gyro campaign` file.
 struct CampaignFile {
   std::string file;
-  gyro::CampaignInput campaign;
-  FieldLines lines;
+  gyro::CampaignInput campaign;  ///< its gravity_model, if any, is named, not loaded
+  FieldLines lines;              ///< for io::locate_error
 };
 
 CampaignFile read_campaign_file(const std::filesystem::path& path);

@@ -12,10 +12,9 @@
 namespace meridian::io {
 
 /// A `meridian gyro reduce` file. `header` is written as leading comment
-/// lines (e.g. the command and the truth of a simulation).
-std::string reduce_file_yaml(const gyro::InstrumentSpec& instrument, double latitude_rad,
-                             const std::vector<gyro::DeterminationInput>& determinations,
-                             const std::string& header = {});
+/// lines (e.g. the command and the truth of a simulation). The reduce
+/// options are not written (the readers' defaults apply).
+std::string reduce_file_yaml(const gyro::ReduceInput& input, const std::string& header = {});
 
 /// A `meridian gyro campaign` file.
 std::string campaign_file_yaml(const gyro::CampaignInput& campaign, const std::string& header = {});

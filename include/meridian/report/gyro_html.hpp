@@ -10,6 +10,7 @@
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/determination.hpp"
 #include "meridian/gyro/instrument_spec.hpp"
+#include "meridian/gyro/reduce.hpp"
 #include "meridian/report/html.hpp"
 
 namespace meridian::report {
@@ -17,11 +18,8 @@ namespace meridian::report {
 /// `meridian gyro reduce`: one section per determination with the
 /// oscillation plot (observations and fitted model), residuals, zero-position
 /// runs and, for `method: all`, every method side by side.
-/// `inputs` and `results` are parallel.
-Document gyro_reduce_document(const std::string& file, const gyro::ResolvedInstrument& instrument,
-                              double latitude_rad,
-                              const std::vector<gyro::DeterminationInput>& inputs,
-                              const std::vector<gyro::DeterminationResult>& results);
+Document gyro_reduce_document(const std::string& file, const gyro::ReduceInput& input,
+                              const gyro::ReduceResult& result);
 
 /// `meridian gyro campaign`: result and azimuth chain, checks, calibration,
 /// the line's determinations, then every determination in detail.

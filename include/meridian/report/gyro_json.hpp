@@ -7,8 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
+
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/determination.hpp"
+#include "meridian/gyro/reduce.hpp"
+#include "meridian/gyro/transit_calibration.hpp"
 
 namespace meridian::report {
 
@@ -20,7 +24,14 @@ nlohmann::json method_to_json(const gyro::MethodResult& r, gyro::Mode mode);
 /// method "all" the array `results` (one entry per applicable method).
 nlohmann::json determination_to_json(const gyro::DeterminationResult& r);
 
+/// `meridian gyro reduce --json`: file, torsion_ratio {value, sigma},
+/// notes, determinations.
+nlohmann::json reduce_to_json(const std::string& file, const gyro::ReduceResult& r);
+
 /// A whole campaign.
 nlohmann::json campaign_to_json(const gyro::CampaignResult& r);
+
+/// `meridian gyro transit-factor --json` (factors in ″/(div·s)).
+nlohmann::json transit_factor_to_json(const gyro::TransitFactorCalibration& c);
 
 }  // namespace meridian::report

@@ -8,10 +8,24 @@
 
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/determination.hpp"
+#include "meridian/gyro/reduce.hpp"
+#include "meridian/gyro/transit_calibration.hpp"
 
 namespace meridian::report {
 
+/// One determination (`index` is 0-based, printed 1-based): every method's
+/// β, ΔN, N_G and σ, the recommended one, the zero-position correction, warnings.
 std::string determination_text(const gyro::DeterminationResult& r, int index);
+
+/// `meridian gyro reduce`: a header line (file, count, λ, τ), the
+/// instrument notes, then every determination.
+std::string reduce_text(const std::string& file, const gyro::ReduceResult& r);
+
+/// `meridian gyro campaign`: stations, calibration, the line's
+/// determinations, the azimuth chain, checks, notes and warnings.
 std::string campaign_text(const gyro::CampaignResult& r);
+
+/// `meridian gyro transit-factor`.
+std::string transit_factor_text(const gyro::TransitFactorCalibration& c);
 
 }  // namespace meridian::report

@@ -93,11 +93,23 @@ struct Document {
   std::string footer;             ///< e.g. "meridian 0.1.0"
 };
 
+/// True when this build embeds the report JavaScript and can write HTML
+/// reports (see web_assets.hpp).
+bool html_reports_available();
+
+/// What to do to get HTML reports in a build without them (one sentence).
+std::string html_reports_unavailable_message();
+
+/// "meridian <version>": the generator named in every report's footer.
+std::string report_generator();
+
 /// Render the whole page. Every Plot becomes a container rendered by
 /// vega-embed (SVG renderer). When rendering finishes the page sets
 /// `data-render-status="complete"`, `data-plots-expected`,
 /// `data-plots-rendered` and `data-render-errors` (a JSON array of console
 /// errors and failed plots) on <body>, so a headless browser can check it.
+/// Throws Error with html_reports_unavailable_message() in a build without
+/// HTML reports.
 std::string render_html(const Document& doc);
 
 /// Escape text for HTML element content and attribute values.

@@ -1,6 +1,10 @@
 #pragma once
-// Private to the io module: a YAML/JSON node that knows its file, line and
-// field path, so every error names where the bad value is.
+/// \file document.hpp
+/// A YAML/JSON document whose every node knows its file, line and field
+/// path, so every error names where the bad value is
+/// ("campaign.yaml:41: line.determinations[1].crossings[0].times_s: …").
+/// Workflow readers (io/gyro_files.hpp, later io/nav_*, io/dov_*) are built on
+/// it; it knows no workflow.
 
 #include <filesystem>
 #include <initializer_list>
@@ -14,12 +18,27 @@
 #include <yaml-cpp/yaml.h>
 
 #include "meridian/core/angle.hpp"
+#include "meridian/core/error.hpp"
 
-namespace meridian::io::detail {
+namespace meridian::io {
+
+/// Line (1-based) of each node of a file by field path ("determinations[2]",
+/// "line.determinations[0].crossings[1]", …), as recorded while reading.
+using FieldLines = std::map<std::string, int>;
+
+/// Give an error thrown while processing a file's contents (its context has
+/// a field path but no file) the file name and the line of the innermost
+/// recorded field that contains its field. Errors that already name a file
+/// are left as they are.
+void locate_error(Error& e, const std::string& file, const FieldLines& lines);
+
+/// One node of a YAML or JSON document (JSON is read by the YAML parser as
+/// is). Accessors check the type and range and throw ParseError/InputError
+/// with file, line and field path. Copies share the document.
 
 class Node {
  public:
-  using LineMap = std::map<std::string, int>;
+  using LineMap = FieldLines;
 
   Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
        std::shared_ptr<LineMap> lines);
@@ -80,4 +99,4 @@ class Node {
   std::shared_ptr<LineMap> lines_;
 };
 
-}  // namespace meridian::io::detail
+}  // namespace meridian::io

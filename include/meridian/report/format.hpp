@@ -1,5 +1,8 @@
 #pragma once
-// Private to the report module: how angles and σ are printed in reports.
+/// \file format.hpp
+/// How angles and σ are printed in every workflow's reports (text, HTML):
+/// directions in DMS, σ and corrections in arc-seconds, "n/a" for what
+/// cannot be stated.
 
 #include <cmath>
 #include <string>

@@ -1,0 +1,62 @@
+#pragma once
+/// \file gyro_jobs.hpp
+/// Running a gyro file from disk to result: read it, load the engines it
+/// names (a gravity model for η), process it, and give every error the file
+/// and line of the field it concerns. Shared by `meridian gyro reduce`,
+/// `gyro campaign`, `gyro transit-factor` and `demo`, and by any program
+/// that processes field books.
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "meridian/core/progress.hpp"
+#include "meridian/gyro/campaign.hpp"
+#include "meridian/gyro/reduce.hpp"
+#include "meridian/gyro/transit_calibration.hpp"
+#include "meridian/io/gyro_files.hpp"
+
+namespace meridian::io {
+
+/// Gravity models named by campaign files, each loaded once (by its lookup
+/// path and truncation) and shared between the files that name it: loading
+/// a degree-2190 model takes a noticeable fraction of a second and 77 MB.
+class DeflectionModels {
+ public:
+  /// The loaded model for `ref` (loaded now if new). η is the prime-vertical
+  /// component of the model's plumb line (gravity::FieldValues::eta_astro_rad).
+  /// Throws the gravity module's InputError/ParseError/IoError when the model
+  /// cannot be found or read (field "gravity_model.model" when the error
+  /// names no file of its own).
+  const gyro::DeflectionModel& get(const gyro::GravityModelRef& ref);
+
+ private:
+  std::map<std::pair<std::string, int>, std::shared_ptr<const gyro::DeflectionModel>> loaded_;
+};
+
+/// A reduce file and its result.
+struct ReduceJob {
+  GyroReduceFile file;
+  gyro::ReduceResult result;
+};
+
+/// Read and reduce a `gyro reduce` file.
+ReduceJob run_reduce_file(const std::filesystem::path& path, Progress* progress = nullptr);
+
+/// A campaign file and its result.
+struct CampaignJob {
+  CampaignFile file;
+  gyro::CampaignResult result;
+};
+
+/// Read a campaign file, load its gravity model (through `models` when
+/// given, so several files share one load) and process it.
+CampaignJob run_campaign_file(const std::filesystem::path& path, DeflectionModels* models = nullptr,
+                              Progress* progress = nullptr);
+
+/// Read a reduce file with two determinations and calibrate the transit factor.
+gyro::TransitFactorCalibration run_transit_factor_file(const std::filesystem::path& path);
+
+}  // namespace meridian::io

@@ -1,0 +1,7 @@
+#include "meridian/core/version.hpp"
+
+namespace meridian {
+
+const char* version() noexcept { return MERIDIAN_VERSION; }
+
+}  // namespace meridian

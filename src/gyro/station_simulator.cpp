@@ -1,0 +1,92 @@
+#include "meridian/gyro/station_simulator.hpp"
+
+#include <fmt/format.h>
+
+#include "meridian/core/dms.hpp"
+
+namespace meridian::gyro {
+namespace {
+
+constexpr double kArcsec = units::kArcsecond;
+
+NoiseModel noise_model(const StationSimulation& s, double sigma) {
+  switch (s.noise) {
+    case NoiseModel::Markov1: return NoiseModel::markov1(sigma, s.rho1, sigma);
+    case NoiseModel::Markov2: return NoiseModel::markov2(sigma, s.rho1, s.rho2, sigma);
+    case NoiseModel::White: break;
+  }
+  return NoiseModel::white(sigma);
+}
+
+std::string dms3(double rad) { return format_direction_dms(Angle::radians(rad), {3, true, false}); }
+
+}  // namespace
+
+SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed, Progress* progress) {
+  SimulatedStation out;
+  InstrumentSpec& spec = out.input.instrument;
+  spec.scale_value_rad = s.scale_value_rad;
+  // Noise-free data still carry realistic weights.
+  spec.sigma_time_s = s.sigma_time_s > 0 ? s.sigma_time_s : kDefaultSigmaTime_s;
+  spec.sigma_reading_div = s.sigma_reading_div > 0 ? s.sigma_reading_div : kDefaultSigmaReading_div;
+  out.input.latitude_rad = s.latitude_rad;
+  double lambda = s.torsion_ratio, period = s.period_s;
+  if (s.physics) {
+    const GyroPeriods p = periods_from_physics(*s.physics, s.latitude_rad);
+    lambda = p.torsion_ratio;
+    period = p.nontracking_s;
+    out.truth.push_back(fmt::format(
+        "From physics at latitude {:.4f} deg: T_A = {:.3f} s, T_B = {:.3f} s, T_F = {:.3f} s, lambda = {:.5f}",
+        units::rad_to_deg(s.latitude_rad), p.tracking_s, p.nontracking_s, p.free_s, p.torsion_ratio));
+  }
+  spec.torsion_ratio = Uncertain{lambda, 0.0};
+  const Instrument inst = resolve_instrument(spec, s.latitude_rad).instrument;
+  for (int i = 0; i < s.determinations; ++i) {
+    report_progress(progress, static_cast<std::size_t>(i), static_cast<std::size_t>(s.determinations), "simulating");
+    const std::uint64_t det_seed = seed + static_cast<std::uint64_t>(i);
+    DeterminationInput d;
+    d.mode = s.mode;
+    if (s.mode == Mode::NonTracking) {
+      d.clamp_reading_rad = s.clamp_rad;
+      NonTrackingSimulation n;
+      n.beta_div = s.beta_div;
+      n.amplitude_div = s.amplitude_div;
+      n.period_s = period;
+      n.t0_s = s.t0_s;
+      n.damping_per_s = s.damping_per_s;
+      n.levels_div = s.levels_div;
+      n.crossings_per_level = s.crossings_per_level;
+      n.reversals = s.reversals;
+      n.record_reversal_times = false;
+      n.time_noise = noise_model(s, s.sigma_time_s);
+      n.reading_noise = noise_model(s, s.sigma_reading_div);
+      if (s.known_period) n.known_period_s = period;
+      n.reported_sigma_time_s = spec.sigma_time_s;
+      n.reported_sigma_reading_div = spec.sigma_reading_div;
+      d.nontracking = simulate_nontracking(n, det_seed);
+      if (i == 0) {
+        const NorthReading north = north_from_nontracking(d.clamp_reading_rad, Uncertain{s.beta_div, 0.0}, inst);
+        out.truth.push_back(fmt::format(
+            "Truth: beta = {} div, N_G = {} (delta N = {:+.3f}\"), B = {} div, T_B = {} s, t0 = {} s, k = {} 1/s",
+            s.beta_div, dms3(north.north_rad), north.delta_n_rad / kArcsec, s.amplitude_div, period, s.t0_s,
+            s.damping_per_s));
+      }
+    } else {
+      TrackingSimulation t;
+      t.centre_rad = s.centre_rad;
+      t.amplitude_rad = s.tracking_amplitude_div * inst.scale_value_rad;
+      t.kappa = s.kappa;
+      t.reversals = s.tracking_reversals;
+      t.reading_noise = noise_model(s, s.sigma_tracking_rad);
+      d.tracking.reversals_rad = simulate_tracking(t, det_seed);
+      if (s.sigma_tracking_rad > 0) d.tracking.sigma_reading_rad = s.sigma_tracking_rad;
+      if (i == 0)
+        out.truth.push_back(fmt::format("Truth: M = {} (= N_G without zero-position correction), A = {} div, kappa = {}",
+                                        dms3(t.centre_rad), s.tracking_amplitude_div, s.kappa));
+    }
+    out.input.determinations.push_back(std::move(d));
+  }
+  return out;
+}
+
+}  // namespace meridian::gyro

@@ -1,0 +1,70 @@
+#include "meridian/io/gyro_jobs.hpp"
+
+#include <fmt/format.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/model_lookup.hpp"
+
+namespace meridian::io {
+namespace {
+
+// Run `body`, giving its errors the file and line of the field they name.
+template <class F>
+auto located(const std::string& file, const FieldLines& lines, F&& body) {
+  try {
+    return body();
+  } catch (Error& e) {
+    locate_error(e, file, lines);
+    throw;
+  }
+}
+
+}  // namespace
+
+const gyro::DeflectionModel& DeflectionModels::get(const gyro::GravityModelRef& ref) {
+  const auto key = std::make_pair(ref.lookup, ref.max_degree);
+  if (const auto it = loaded_.find(key); it != loaded_.end()) return *it->second;
+  gravity::GravityModelData data;
+  try {
+    data = gravity::load_model(ref.lookup, gravity::Truncation{ref.max_degree, -1});
+  } catch (const Error& e) {
+    if (!e.context().file.empty()) throw;  // a bad model file names itself
+    throw InputError(e.message(), {"", std::nullopt, "gravity_model.model"});
+  }
+  auto field = std::make_shared<const gravity::GravityField>(data);
+  auto model = std::make_shared<gyro::DeflectionModel>();
+  model->description = fmt::format("{} (degree {})", data.name.empty() ? ref.source : data.name,
+                                   data.coefficients.max_degree());
+  model->sigma_eta_rad = ref.sigma_eta_rad;
+  model->eta_rad = [field](double lat_rad, double lon_rad, double height_m) {
+    return field->evaluate(gravity::GeodeticPoint{lat_rad, lon_rad, height_m}, gravity::Quantities::Deflection)
+        .eta_astro_rad;
+  };
+  return *loaded_.emplace(key, std::move(model)).first->second;
+}
+
+ReduceJob run_reduce_file(const std::filesystem::path& path, Progress* progress) {
+  ReduceJob job{read_gyro_reduce_file(path), {}};
+  job.result = located(job.file.file, job.file.lines, [&] { return gyro::process(job.file.input, progress); });
+  return job;
+}
+
+CampaignJob run_campaign_file(const std::filesystem::path& path, DeflectionModels* models, Progress* progress) {
+  CampaignJob job{read_campaign_file(path), {}};
+  const CampaignFile& f = job.file;
+  job.result = located(f.file, f.lines, [&] {
+    DeflectionModels own;
+    const gyro::DeflectionModel* deflection = nullptr;
+    if (f.campaign.gravity_model) deflection = &(models ? *models : own).get(*f.campaign.gravity_model);
+    return gyro::process(f.campaign, progress, deflection);
+  });
+  return job;
+}
+
+gyro::TransitFactorCalibration run_transit_factor_file(const std::filesystem::path& path) {
+  const GyroReduceFile f = read_gyro_reduce_file(path);
+  return located(f.file, f.lines, [&] { return gyro::calibrate_transit_factor(f.input); });
+}
+
+}  // namespace meridian::io
