@@ -10,8 +10,9 @@
 
 namespace meridian {
 
-/// An immutable plane angle. Arithmetic keeps the unit; use the named
-/// factories and accessors to convert at the edges.
+/// A plane angle: a small value type (one double, in radians) that is
+/// copied, not shared. Arithmetic keeps the unit; use the named factories
+/// and accessors to convert at the edges.
 class Angle {
  public:
   constexpr Angle() = default;
