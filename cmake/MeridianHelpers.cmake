@@ -24,15 +24,20 @@ function(meridian_add_module name)
   set_property(GLOBAL APPEND PROPERTY MERIDIAN_MODULES ${t})
 endfunction()
 
-# meridian_add_test(name SOURCES ... LIBS ...): one GoogleTest executable,
-# each test case registered with CTest.
+# meridian_add_test(name SOURCES ... LIBS ... [LABEL label]): one GoogleTest
+# executable, each test case registered with CTest under the CTest label
+# `label` (default `unit`; e.g. `reference` for cross-checks that run an
+# external reference tool, selectable with ctest -L / -LE).
 function(meridian_add_test name)
-  cmake_parse_arguments(T "" "" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(T "" "LABEL" "SOURCES;LIBS" ${ARGN})
+  if(NOT T_LABEL)
+    set(T_LABEL unit)
+  endif()
   add_executable(${name} ${T_SOURCES})
   target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main GTest::gmock)
   meridian_warnings(${name})
   target_compile_definitions(${name} PRIVATE
     MERIDIAN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     MERIDIAN_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${T_LABEL})
 endfunction()

@@ -6,12 +6,12 @@
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/geodesy/frames.hpp"
 
 namespace meridian::geodesy {
 
 double laplace_correction_rad(double eta_rad, double lat_rad) {
-  constexpr double kMaxEta_rad = 0.01;
-  if (!std::isfinite(eta_rad) || std::abs(eta_rad) > kMaxEta_rad)
+  if (!std::isfinite(eta_rad) || std::abs(eta_rad) > kMaxDeflection_rad)
     throw InputError(fmt::format(
         "deflection component eta = {} rad ({}\") is not finite or exceeds 0.01 rad; "
         "is it in radians?",

@@ -9,6 +9,7 @@
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/geodesy/azimuth_chain.hpp"
 #include "meridian/gyro/simulator.hpp"
 
 namespace meridian::gyro {
@@ -151,12 +152,13 @@ SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) 
   auto gyro_azimuth_for = [&](const PointResult& from, const PointResult& to, double eta,
                               double* grid_az) {
     const double T = std::atan2(to.grid.y_east_m - from.grid.y_east_m, to.grid.x_north_m - from.grid.x_north_m);
-    *grid_az = wrap_positive_rad(T);
     const double delta = geodesy::arc_to_chord(grid, from.grid.x_north_m, from.grid.y_east_m,
                                                to.grid.x_north_m, to.grid.y_east_m);
-    const double alpha = T + from.grid.convergence_rad - delta;
-    const double A = alpha + eta * std::tan(from.lat_rad);
-    return wrap_positive_rad(A - t.instrument_constant_rad);
+    const geodesy::AzimuthSteps s = geodesy::azimuth_steps(
+        geodesy::AzimuthKind::Grid, {T, 0.0},
+        {from.lat_rad, Uncertain{eta, 0.0}, from.grid.convergence_rad, delta});
+    *grid_az = s.grid_rad.value;
+    return wrap_positive_rad(s.astronomic_rad.value - t.instrument_constant_rad);
   };
   const double ag_line = gyro_azimuth_for(c.point, d, t.eta_station_rad, &out.true_grid_azimuth_rad);
   const double ag_known = gyro_azimuth_for(a.point, b, t.eta_known_rad, &out.true_known_grid_azimuth_rad);

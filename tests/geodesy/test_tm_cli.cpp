@@ -8,7 +8,8 @@
 // the algorithm of GeographicLib::TransverseMercator, so agreement is at
 // the print precision) and without (exact, Lee's elliptic-function
 // formulation, an independent algorithm). Tolerances: 1 mm in position,
-// 0.001″ in γ, 1e-9 in k.
+// 0.001″ in γ, 1e-9 in k. Built as test_geodesy_reference (CTest label
+// `reference`); it fails when the tool is missing.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -142,8 +143,10 @@ struct MaxDiff {
 
 void compare(bool series) {
   const std::string exe = find_on_path(kTool);
-  ASSERT_FALSE(exe.empty()) << kTool << " not found on PATH; install the Debian package "
-                            << "geographiclib-tools (apt-get install geographiclib-tools)";
+  // A missing tool is a failure, not a skip: these are the reference checks.
+  ASSERT_FALSE(exe.empty()) << "reference tool " << kTool << " not found on PATH; it comes with "
+                            << "the Debian package geographiclib-tools, which scripts/setup.sh "
+                            << "installs (apt-get install geographiclib-tools)";
   MaxDiff fwd, rev;
   for (const Case& c : cases()) {
     const mg::GridDefinition& d = c.def;

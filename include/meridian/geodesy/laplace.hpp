@@ -11,8 +11,9 @@ namespace meridian::geodesy {
 /// terms are neglected (horizontal sightings).
 ///
 /// eta_rad: radians, positive when the astronomic longitude exceeds the
-/// geodetic one; |η| ≤ 0.01 rad (≈ 34′, far above the largest deflections on
-/// Earth, about 1′; larger values are almost surely a unit error).
+/// geodetic one (sign convention: geodesy/frames.hpp); |η| ≤ 0.01 rad
+/// (kMaxDeflection_rad ≈ 34′, far above the largest deflections on Earth,
+/// about 1′; larger values are almost surely a unit error).
 /// lat_rad: radians, north positive, |φ| < π/2. Example: η = +5″ at
 /// φ = 45° N gives −5″. Throws InputError for non-finite values or values
 /// out of range.

@@ -13,6 +13,8 @@
 ///   geocentric latitude at the point and γ = |∇U| the normal gravity at the
 ///   point (GeographicLib SphericalAnomaly xi, eta). Positive ξ: plumb line
 ///   points north of the ellipsoid normal (astronomic latitude greater).
+///   Frames (ECEF, ENU, geocentric local) and the ξ, η sign convention are
+///   stated once in geodesy/frames.hpp.
 /// * Geoid height N = T(φ, λ, h = 0)/γ0(φ) + correction (Bruns; GeographicLib
 ///   GeoidHeight), γ0 Somigliana's normal gravity on the ellipsoid.
 /// * Spherical anomaly Δg = −∂T/∂r − 2T/r (GeographicLib Dg01).
@@ -63,7 +65,8 @@ enum class Quantities : unsigned {
   All = 3u,
 };
 
-/// Results at one point. NaN where not requested.
+/// Results at one point. NaN where not requested. Frames and deflection
+/// signs: geodesy/frames.hpp.
 struct FieldValues {
   double disturbing_potential_m2_s2;  ///< T at the point (m²/s²)
   double xi_rad;                      ///< north–south deflection ξ (rad)

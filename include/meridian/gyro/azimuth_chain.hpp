@@ -8,7 +8,10 @@
 ///   T   = α − γ (+ δ)             grid azimuth of the chord (δ when the target is known)
 ///
 /// Angles in radians; azimuths clockwise from north, normalised to [0, 2π).
-/// Errors of A_G, E and η are independent; γ and δ are exact.
+/// Errors of A_G, E and η are independent; γ and δ are exact. The steps from
+/// A on are geodesy::azimuth_from_astronomic (geodesy/azimuth_chain.hpp:
+/// formulas, signs, errors); this layer adds the gyro step A = A_G + E,
+/// σ_A = hypot(σ_AG, σ_E), and the notes on steps not applied.
 
 #include <optional>
 #include <string>
@@ -42,6 +45,8 @@ struct AzimuthChainResult {
   std::vector<std::string> notes;
 };
 
+/// The chain of one line. Throws InputError as geodesy::azimuth_from_astronomic
+/// (e.g. |η| > 0.01 rad or |φ| ≥ 90° when η is given).
 AzimuthChainResult azimuth_chain(const AzimuthChainInput& in);
 
 }  // namespace meridian::gyro
