@@ -139,37 +139,30 @@ class CampaignRun {
 
   // The known line's azimuth as an astronomic azimuth (the inverse chain).
   Uncertain known_astronomic_azimuth(const KnownLineInput& k, const std::optional<PointResult>& known_target) {
-    Uncertain a = k.azimuth.value_rad;
-    const double phi = res_.known_station->lat_rad;
-    if (k.azimuth.kind == KnownAzimuth::Kind::Grid) {
-      double alpha = a.value + res_.known_station->grid.convergence_rad;
+    const PointResult& from = *res_.known_station;
+    geodesy::AzimuthReduction red;
+    red.latitude_rad = from.lat_rad;
+    red.convergence_rad = from.grid.convergence_rad;
+    if (k.azimuth.kind == geodesy::AzimuthKind::Grid) {
       if (known_target) {
-        const double delta = geodesy::arc_to_chord(grid_, res_.known_station->grid.x_north_m,
-                                                   res_.known_station->grid.y_east_m, known_target->grid.x_north_m,
-                                                   known_target->grid.y_east_m);
-        alpha -= delta;
+        red.arc_to_chord_rad = geodesy::arc_to_chord(grid_, from.grid.x_north_m, from.grid.y_east_m,
+                                                     known_target->grid.x_north_m, known_target->grid.y_east_m);
         res_.notes.push_back(fmt::format("known line: geodetic azimuth = grid + gamma - delta "
                                          "(gamma {:.2f}\", delta {:.2f}\")",
-                                         res_.known_station->grid.convergence_rad / units::kArcsecond,
-                                         delta / units::kArcsecond));
+                                         from.grid.convergence_rad / units::kArcsecond,
+                                         *red.arc_to_chord_rad / units::kArcsecond));
       } else {
         res_.notes.push_back("known line: geodetic azimuth = grid + gamma (no target coordinates, "
                              "arc-to-chord correction neglected)");
       }
-      a.value = alpha;
     }
-    if (k.azimuth.kind != KnownAzimuth::Kind::Astronomic) {
-      if (const auto eta = eta_at(k.from, *res_.known_station)) {
-        // Laplace inverted: A = α + η·tan φ.
-        a.value += eta->value * std::tan(phi);
-        a.sigma = std::hypot(a.sigma, eta->sigma * std::tan(phi));
-      } else {
+    if (k.azimuth.kind != geodesy::AzimuthKind::Astronomic) {
+      red.eta_rad = eta_at(k.from, from);
+      if (!red.eta_rad)
         res_.notes.push_back("known line: eta unknown at the known station; the deflection is "
                              "absorbed into E (E relates gyro to geodetic azimuths)");
-      }
     }
-    a.value = wrap_positive_rad(a.value);
-    return a;
+    return geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red).astronomic_rad;
   }
 
   // Step 1: the instrument constant E from determinations on the known line.

@@ -174,10 +174,7 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
     o += "known_line:\n";
     point_yaml(o, "from", k.from, "  ");
     if (k.to) point_yaml(o, "to", *k.to, "  ");
-    const char* kind = k.azimuth.kind == gyro::KnownAzimuth::Kind::Grid ? "grid"
-                       : k.azimuth.kind == gyro::KnownAzimuth::Kind::Geodetic ? "geodetic"
-                                                                               : "astronomic";
-    o += std::string("  azimuth: {kind: ") + kind + ", value: " + dms(k.azimuth.value_rad.value) +
+    o += "  azimuth: {kind: " + geodesy::to_string(k.azimuth.kind) + ", value: " + dms(k.azimuth.value_rad.value) +
          ", sigma_arcsec: " + num(k.azimuth.value_rad.sigma / kArcsec) + "}\n";
     if (!k.before.empty()) {
       o += "  before:\n";

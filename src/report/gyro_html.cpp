@@ -209,16 +209,12 @@ Section checks_section(const gyro::CampaignResult& r) {
   return checks;
 }
 
-std::string azimuth_kind_name(gyro::KnownAzimuth::Kind k) {
-  return k == gyro::KnownAzimuth::Kind::Grid ? "grid" : k == gyro::KnownAzimuth::Kind::Geodetic ? "geodetic" : "astronomic";
-}
-
 // E from each determination on the known line, before and after.
 Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignResult& r) {
   Section cal{"calibration", "Calibration on the known line", {}, 2};
   cal.blocks.push_back(KeyValueList{
       "",
-      {{"known azimuth given", fmt::format("{} ({})", dir(k.azimuth.value_rad.value, 2), azimuth_kind_name(k.azimuth.kind))},
+      {{"known azimuth given", fmt::format("{} ({})", dir(k.azimuth.value_rad.value, 2), geodesy::to_string(k.azimuth.kind))},
        {"known astronomic azimuth used",
         dir(r.known_astronomic_azimuth_rad->value, 2) + "  sigma " + sig(r.known_astronomic_azimuth_rad->sigma, 1)}}});
   Table t;

@@ -10,6 +10,7 @@
 
 #include "meridian/core/progress.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/geodesy/azimuth_chain.hpp"
 #include "meridian/geodesy/grid.hpp"
 #include "meridian/gyro/azimuth_chain.hpp"
 #include "meridian/gyro/calibration.hpp"
@@ -30,9 +31,11 @@ struct PointInput {
   std::optional<double> height_m;
 };
 
-/// The known line's azimuth and its kind.
+/// The known line's azimuth and its kind (converted to astronomic by the
+/// geodesy azimuth chain).
 struct KnownAzimuth {
-  enum class Kind { Astronomic, Geodetic, Grid } kind = Kind::Astronomic;
+  using Kind = geodesy::AzimuthKind;
+  Kind kind = Kind::Astronomic;
   Uncertain value_rad;
 };
 
