@@ -19,7 +19,8 @@ using Eigen::VectorXd;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // (Q_vv)_ii = Σ_ii − ‖(L·Q1)_i‖² loses about ε·Σ_ii to cancellation; below this fraction
-// of Σ_ii the observation is uncontrolled and w_i is undefined.
+// of Σ_ii the observation is uncontrolled and w_i is undefined (likewise (P·Q_vv·P)_ii
+// against (Σ⁻¹)_ii for Baarda's w).
 constexpr double kTinyQvv = 1e-12;
 
 // The scaled QR of the whitened design; throws NumericalError naming the first
@@ -36,6 +37,23 @@ detail::ScaledQr full_rank_qr(MatrixXd w, double tol) {
         "normal matrix is singular: parameter {} is not determined by the observations "
         "(its column of A depends linearly on the others; rank {} of {})", s.column_at(k), k, u));
   return s;
+}
+
+// Baarda's w for correlated observations: P·v = L⁻ᵀ·ṽ and P·Q_vv·P = L⁻ᵀ·(I − Q1·Q1ᵀ)·L⁻¹,
+// so (P·Q_vv·P)_ii = (Σ⁻¹)_ii − ‖(L⁻ᵀ·Q1)_i‖² with (Σ⁻¹)_ii the squared norm of column i of L⁻¹.
+VectorXd w_statistics(const VectorXd& vw, const MatrixXd& lt_q1, const CovarianceFactor& cov) {
+  const Index n = vw.size();
+  VectorXd pv = vw;
+  cov.whiten_transposed(pv);
+  MatrixXd linv = MatrixXd::Identity(n, n);
+  cov.whiten(linv);
+  VectorXd w(n);
+  for (Index i = 0; i < n; ++i) {
+    const double pii = linv.col(i).squaredNorm();
+    const double pqp = pii - lt_q1.row(i).squaredNorm();
+    w(i) = pqp > kTinyQvv * pii ? pv(i) / std::sqrt(pqp) : kNaN;
+  }
+  return w;
 }
 
 // Statistics from the whitened, scaled factorisation  L⁻¹·A·S⁻¹·P = Q·R.
@@ -83,14 +101,18 @@ LeastSquaresResult finish(const detail::ScaledQr& s, const VectorXd& lw,
   MatrixXd cm = std::move(q1);
   cov.whiten_transposed(cm);
   res.redundancy.resize(n);
+  res.qvv_diagonal.resize(n);
   res.standardized_residuals.resize(n);
   const VectorXd& var = cov.variances();
   for (Index i = 0; i < n; ++i) {
     res.redundancy(i) = 1.0 - b.row(i).dot(cm.row(i));
     const double qvv = var(i) - b.row(i).squaredNorm();
+    res.qvv_diagonal(i) = qvv;
     res.standardized_residuals(i) =
         qvv > kTinyQvv * var(i) ? res.residuals(i) / std::sqrt(qvv) : kNaN;
   }
+  res.w_statistics =
+      cov.is_diagonal() ? res.standardized_residuals : w_statistics(vw, cm, cov);
 
   res.dof = static_cast<int>(n - u);
   res.sigma0 = res.dof > 0 ? std::sqrt(res.vtpv / res.dof) : kNaN;
