@@ -49,72 +49,78 @@ double evaluate(const char* what, F f) {
   return r;
 }
 
+// The distributions, with their parameters checked first (Boost would throw domain_error).
+bm::chi_squared_distribution<double> chi_squared(double dof) {
+  check_dof(dof);
+  return bm::chi_squared_distribution<double>(dof);
+}
+
+bm::students_t_distribution<double> students_t(double dof) {
+  check_dof(dof);
+  return bm::students_t_distribution<double>(dof);
+}
+
+bm::fisher_f_distribution<double> fisher_f(double dof1, double dof2) {
+  check_dof(dof1, "numerator degrees of freedom");
+  check_dof(dof2, "denominator degrees of freedom");
+  return bm::fisher_f_distribution<double>(dof1, dof2);
+}
+
+// x with P(X > x) = p.
+template <typename Distribution>
+double upper_quantile(const Distribution& d, double p, const char* what) {
+  return evaluate(what, [&] { return bm::quantile(bm::complement(d, p)); });
+}
+
+// P(X > x).
+template <typename Distribution>
+double upper_probability(const Distribution& d, double x, const char* what) {
+  return evaluate(what, [&] { return bm::cdf(bm::complement(d, x)); });
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
 
 double chi_squared_upper_quantile(double alpha, double dof) {
   check_alpha(alpha);
-  check_dof(dof);
-  return evaluate("χ² quantile", [&] {
-    return bm::quantile(bm::complement(bm::chi_squared_distribution<double>(dof), alpha));
-  });
+  return upper_quantile(chi_squared(dof), alpha, "χ² quantile");
 }
 
 double chi_squared_upper_probability(double x, double dof) {
   check_statistic(x, "χ² statistic");
-  check_dof(dof);
-  return evaluate("χ² tail probability", [&] {
-    return bm::cdf(bm::complement(bm::chi_squared_distribution<double>(dof), x));
-  });
+  return upper_probability(chi_squared(dof), x, "χ² tail probability");
 }
 
 double normal_two_sided_critical(double alpha) {
   check_alpha(alpha);
-  return evaluate("normal quantile", [&] {
-    return bm::quantile(bm::complement(bm::normal_distribution<double>(), 0.5 * alpha));
-  });
+  return upper_quantile(bm::normal_distribution<double>(), 0.5 * alpha, "normal quantile");
 }
 
 double normal_two_sided_probability(double z) {
   check_finite(z, "normal statistic");
-  return evaluate("normal tail probability", [&] {
-    return 2.0 * bm::cdf(bm::complement(bm::normal_distribution<double>(), std::abs(z)));
-  });
+  return 2.0 * upper_probability(bm::normal_distribution<double>(), std::abs(z),
+                                 "normal tail probability");
 }
 
 double student_t_two_sided_critical(double alpha, double dof) {
   check_alpha(alpha);
-  check_dof(dof);
-  return evaluate("Student t quantile", [&] {
-    return bm::quantile(bm::complement(bm::students_t_distribution<double>(dof), 0.5 * alpha));
-  });
+  return upper_quantile(students_t(dof), 0.5 * alpha, "Student t quantile");
 }
 
 double student_t_two_sided_probability(double t, double dof) {
   check_finite(t, "t statistic");
-  check_dof(dof);
-  return evaluate("Student t tail probability", [&] {
-    return 2.0 * bm::cdf(bm::complement(bm::students_t_distribution<double>(dof), std::abs(t)));
-  });
+  return 2.0 * upper_probability(students_t(dof), std::abs(t), "Student t tail probability");
 }
 
 double fisher_f_upper_quantile(double alpha, double dof1, double dof2) {
   check_alpha(alpha);
-  check_dof(dof1, "numerator degrees of freedom");
-  check_dof(dof2, "denominator degrees of freedom");
-  return evaluate("F quantile", [&] {
-    return bm::quantile(bm::complement(bm::fisher_f_distribution<double>(dof1, dof2), alpha));
-  });
+  return upper_quantile(fisher_f(dof1, dof2), alpha, "F quantile");
 }
 
 double fisher_f_upper_probability(double x, double dof1, double dof2) {
   check_statistic(x, "F statistic");
-  check_dof(dof1, "numerator degrees of freedom");
-  check_dof(dof2, "denominator degrees of freedom");
-  return evaluate("F tail probability", [&] {
-    return bm::cdf(bm::complement(bm::fisher_f_distribution<double>(dof1, dof2), x));
-  });
+  return upper_probability(fisher_f(dof1, dof2), x, "F tail probability");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <string>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -37,20 +36,11 @@ using meridian::adjust::student_t_two_sided_probability;
 using meridian::adjust::w_test;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
-
-template <typename E, typename F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
-}
 
 MatrixXd line_design(Index n) {
   MatrixXd A(n, 2);
@@ -215,10 +205,11 @@ TEST(Distributions, ArgumentErrorsThrowInsteadOfNaN) {
   }
   EXPECT_THROW(static_cast<void>(normal_two_sided_probability(kNaN)), InputError);
   EXPECT_THROW(static_cast<void>(student_t_two_sided_probability(-kInf, 3)), InputError);
-  EXPECT_THAT(message_of<InputError>([] { chi_squared_upper_quantile(1.0, 3); }),
-              HasSubstr("must be in (0, 1), is 1"));
-  EXPECT_THAT(message_of<InputError>([] { chi_squared_upper_quantile(0.05, 0.0); }),
-              HasSubstr("degrees of freedom must be finite and ≥ 1, is 0"));
+  EXPECT_THAT([] { chi_squared_upper_quantile(1.0, 3); },
+              ThrowsMessage<InputError>(HasSubstr("must be in (0, 1), is 1")));
+  EXPECT_THAT(
+      [] { chi_squared_upper_quantile(0.05, 0.0); },
+      ThrowsMessage<InputError>(HasSubstr("degrees of freedom must be finite and ≥ 1, is 0")));
   // Extreme but valid arguments give finite numbers.
   EXPECT_TRUE(std::isfinite(chi_squared_upper_quantile(1e-300, 1)));
   EXPECT_TRUE(std::isfinite(normal_two_sided_critical(1e-300)));
@@ -325,8 +316,8 @@ TEST(Statistics, GlobalTestErrors) {
   A << 1, 1, 1, 3;
   const LeastSquaresResult r0 = solve_linear_diagonal(A, VectorXd::Ones(2), VectorXd::Ones(2));
   ASSERT_EQ(r0.dof, 0);
-  EXPECT_THAT(message_of<InputError>([&] { global_test(r0, 0.05); }),
-              HasSubstr("degrees of freedom ≥ 1"));
+  EXPECT_THAT([&] { global_test(r0, 0.05); },
+              ThrowsMessage<InputError>(HasSubstr("degrees of freedom ≥ 1")));
   EXPECT_THROW(static_cast<void>(global_test(-1.0, 3, 0.05)), InputError);
   EXPECT_THROW(static_cast<void>(global_test(kNaN, 3, 0.05)), InputError);
   EXPECT_THROW(static_cast<void>(global_test(kInf, 3, 0.05)), InputError);
@@ -455,8 +446,8 @@ TEST(Statistics, WTestErrors) {
   const VectorXd w = VectorXd::Zero(3);
   for (double k : {0.0, -1.0, kNaN, kInf})
     EXPECT_THROW(static_cast<void>(w_test(w, k)), InputError) << k;
-  EXPECT_THAT(message_of<InputError>([] { w_test((VectorXd(2) << 0.0, kInf).finished(), 3.0); }),
-              HasSubstr("observation 1"));
+  EXPECT_THAT([] { w_test((VectorXd(2) << 0.0, kInf).finished(), 3.0); },
+              ThrowsMessage<InputError>(HasSubstr("observation 1")));
   LeastSquaresResult r;
   r.w_statistics = w;
   for (double a : {0.0, 1.0, 3.0, kNaN})
