@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config python3
   libeigen3-dev libgeographiclib-dev geographiclib-tools
-  libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev
+  libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium fonts-dejavu-core fonts-liberation
 )

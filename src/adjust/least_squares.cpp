@@ -1,6 +1,5 @@
 #include "meridian/adjust/least_squares.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -8,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "detail.hpp"
 
 namespace meridian::adjust {
 namespace {
@@ -16,65 +16,49 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // (Q_vv)_ii = Σ_ii − ‖(L·Q1)_i‖² loses about ε·Σ_ii to cancellation; below this fraction
-// of Σ_ii the observation is uncontrolled and w_i is undefined.
+// of Σ_ii the observation is uncontrolled and w_i is undefined (likewise (P·Q_vv·P)_ii
+// against (Σ⁻¹)_ii for Baarda's w).
 constexpr double kTinyQvv = 1e-12;
 
-void check_finite(const MatrixXd& m, const char* name) {
-  for (Index j = 0; j < m.cols(); ++j)
-    for (Index i = 0; i < m.rows(); ++i)
-      if (!std::isfinite(m(i, j)))
-        throw InputError(
-            fmt::format("{} has a non-finite value ({}) at ({}, {})", name, m(i, j), i, j));
-}
-
-void check_finite(const VectorXd& v, const char* name) {
-  for (Index i = 0; i < v.size(); ++i)
-    if (!std::isfinite(v(i)))
-      throw InputError(fmt::format("{} has a non-finite value ({}) at index {}", name, v(i), i));
-}
-
-// A column-pivoted QR of W·S⁻¹, S = diag(scale) the column norms of W, so the rank test
-// is independent of the parameters' units.
-struct ScaledQr {
-  Eigen::ColPivHouseholderQR<MatrixXd> qr;
-  VectorXd scale;
-};
-
-// Throws NumericalError naming the first undetermined parameter when a column is zero or
-// |R_kk| ≤ tol·|R_00|.
-ScaledQr scaled_qr(MatrixXd w, double tol) {
+// The scaled QR of the whitened design; throws NumericalError naming the first
+// undetermined parameter when a column is zero or |R_kk| ≤ tol·|R_00|.
+detail::ScaledQr full_rank_qr(MatrixXd w, double tol) {
   const Index u = w.cols();
-  ScaledQr s;
-  s.scale.resize(u);
-  for (Index j = 0; j < u; ++j) {
-    const double norm = w.col(j).stableNorm();
-    if (!(norm > 0.0))
-      throw NumericalError(fmt::format(
-          "normal matrix is singular: parameter {} is not determined by the observations "
-          "(its column of A is zero)", j));
-    s.scale(j) = norm;
-    w.col(j) /= norm;
-  }
-  s.qr.compute(w);
-  const MatrixXd& qr = s.qr.matrixQR();
-  const double r00 = std::abs(qr(0, 0));
-  for (Index k = 0; k < u; ++k) {
-    if (!(std::abs(qr(k, k)) > tol * r00)) {
-      const Index j = s.qr.colsPermutation().indices()(k);
-      throw NumericalError(fmt::format(
-          "normal matrix is singular: parameter {} is not determined by the observations "
-          "(its column of A depends linearly on the others; rank {} of {})", j, k, u));
-    }
-  }
+  detail::ScaledQr s = detail::scaled_qr(std::move(w));
+  if (s.first_zero_column >= 0)
+    throw NumericalError(fmt::format(
+        "normal matrix is singular: parameter {} is not determined by the observations "
+        "(its column of A is zero)", s.first_zero_column));
+  if (const Index k = s.rank(tol); k < u)
+    throw NumericalError(fmt::format(
+        "normal matrix is singular: parameter {} is not determined by the observations "
+        "(its column of A depends linearly on the others; rank {} of {})", s.column_at(k), k, u));
   return s;
 }
 
+// Baarda's w for correlated observations: P·v = L⁻ᵀ·ṽ and P·Q_vv·P = L⁻ᵀ·(I − Q1·Q1ᵀ)·L⁻¹,
+// so (P·Q_vv·P)_ii = (Σ⁻¹)_ii − ‖(L⁻ᵀ·Q1)_i‖² with (Σ⁻¹)_ii the squared norm of column i of L⁻¹.
+VectorXd w_statistics(const VectorXd& vw, const MatrixXd& lt_q1, const CovarianceFactor& cov) {
+  const Index n = vw.size();
+  VectorXd pv = vw;
+  cov.whiten_transposed(pv);
+  MatrixXd linv = MatrixXd::Identity(n, n);
+  cov.whiten(linv);
+  VectorXd w(n);
+  for (Index i = 0; i < n; ++i) {
+    const double pii = linv.col(i).squaredNorm();
+    const double pqp = pii - lt_q1.row(i).squaredNorm();
+    w(i) = pqp > kTinyQvv * pii ? pv(i) / std::sqrt(pqp) : kNaN;
+  }
+  return w;
+}
+
 // Statistics from the whitened, scaled factorisation  L⁻¹·A·S⁻¹·P = Q·R.
-LeastSquaresResult finish(const ScaledQr& s, const VectorXd& lw, const CovarianceFactor& cov) {
+LeastSquaresResult finish(const detail::ScaledQr& s, const VectorXd& lw,
+                          const CovarianceFactor& cov) {
   const auto& qr = s.qr;
   const Index n = lw.size();
   const Index u = s.scale.size();
@@ -117,14 +101,18 @@ LeastSquaresResult finish(const ScaledQr& s, const VectorXd& lw, const Covarianc
   MatrixXd cm = std::move(q1);
   cov.whiten_transposed(cm);
   res.redundancy.resize(n);
+  res.qvv_diagonal.resize(n);
   res.standardized_residuals.resize(n);
   const VectorXd& var = cov.variances();
   for (Index i = 0; i < n; ++i) {
     res.redundancy(i) = 1.0 - b.row(i).dot(cm.row(i));
     const double qvv = var(i) - b.row(i).squaredNorm();
+    res.qvv_diagonal(i) = qvv;
     res.standardized_residuals(i) =
         qvv > kTinyQvv * var(i) ? res.residuals(i) / std::sqrt(qvv) : kNaN;
   }
+  res.w_statistics =
+      cov.is_diagonal() ? res.standardized_residuals : w_statistics(vw, cm, cov);
 
   res.dof = static_cast<int>(n - u);
   res.sigma0 = res.dof > 0 ? std::sqrt(res.vtpv / res.dof) : kNaN;
@@ -161,7 +149,7 @@ CovarianceFactor::CovarianceFactor(const MatrixXd& sigma_ll) {
   if (n == 0 || sigma_ll.cols() != n)
     throw InputError(fmt::format("observation covariance must be square and non-empty, is {}×{}",
                                  sigma_ll.rows(), sigma_ll.cols()));
-  check_finite(sigma_ll, "observation covariance");
+  detail::check_finite(sigma_ll, "observation covariance");
   variances_ = sigma_ll.diagonal();
   for (Index i = 0; i < n; ++i)
     if (!(variances_(i) > 0.0))
@@ -190,7 +178,7 @@ CovarianceFactor::CovarianceFactor(const MatrixXd& sigma_ll) {
         "observation covariance is not positive definite (its Cholesky factorisation fails)");
   lower_ = llt.matrixL();
   // LLT accepts any positive pivot; a pivot at rounding level means a perfect correlation.
-  const double tiny = 8.0 * static_cast<double>(n) * kEps;
+  const double tiny = 8.0 * static_cast<double>(n) * detail::kEps;
   for (Index i = 1; i < n; ++i) {
     if (!(lower_(i, i) * lower_(i, i) > tiny * variances_(i)))
       throw NumericalError(fmt::format(
@@ -254,13 +242,12 @@ LeastSquaresResult solve_linear(const MatrixXd& A, const VectorXd& l,
   if (sigma_ll.size() != n)
     throw InputError(fmt::format("observation covariance is {}×{} but A has {} rows",
                                  sigma_ll.size(), sigma_ll.size(), n));
-  check_finite(A, "design matrix A");
-  check_finite(l, "observation vector l");
+  detail::check_finite(A, "design matrix A");
+  detail::check_finite(l, "observation vector l");
   if (std::isnan(options.rank_tolerance) || std::isinf(options.rank_tolerance))
     throw InputError(fmt::format("rank tolerance must be finite, is {}", options.rank_tolerance));
-  const double tol = options.rank_tolerance > 0.0
-                        ? options.rank_tolerance
-                        : 100.0 * static_cast<double>(std::max(n, u)) * kEps;
+  const double tol = options.rank_tolerance > 0.0 ? options.rank_tolerance
+                                                 : detail::default_rank_tolerance(n, u);
 
   // The triangular solves are backward stable with one perturbation of L for all columns, so
   // an exact dependency among the columns of A stays at rounding level in L⁻¹·A.
@@ -268,7 +255,7 @@ LeastSquaresResult solve_linear(const MatrixXd& A, const VectorXd& l,
   sigma_ll.whiten(aw);
   VectorXd lw = l;
   sigma_ll.whiten(lw);
-  return finish(scaled_qr(std::move(aw), tol), lw, sigma_ll);
+  return finish(full_rank_qr(std::move(aw), tol), lw, sigma_ll);
 }
 
 LeastSquaresResult solve_linear(const MatrixXd& A, const VectorXd& l, const MatrixXd& sigma_ll) {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "detail.hpp"
 
 namespace meridian::adjust {
 namespace {
@@ -16,19 +17,12 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // LM damping stays within these bounds: below, the augmented system of a rank-deficient
 // Jacobian is singular to working precision; above, the step is zero anyway.
 constexpr double kMinDamping = 1e-20;
 constexpr double kMaxDamping = 1e300;
-
-Index first_non_finite(const VectorXd& v) {
-  for (Index i = 0; i < v.size(); ++i)
-    if (!std::isfinite(v(i))) return i;
-  return -1;
-}
 
 // Undamped Gauss–Newton step for min ‖J̃·δ + r̃‖, as the basic solution when J̃ is rank
 // deficient (rank tested as in the linear solver, on unit columns).
@@ -40,27 +34,20 @@ struct GaussNewtonStep {
 
 GaussNewtonStep gauss_newton_step(const MatrixXd& jw, const VectorXd& rw, double tol) {
   const Index u = jw.cols();
-  VectorXd scale(u);
-  MatrixXd js = jw;
-  for (Index j = 0; j < u; ++j) {
-    const double norm = js.col(j).stableNorm();
-    scale(j) = norm > 0.0 ? norm : 1.0;
-    js.col(j) /= scale(j);
-  }
-  const Eigen::ColPivHouseholderQR<MatrixXd> qr(js);
+  const detail::ScaledQr s = detail::scaled_qr(jw);
+  const auto& qr = s.qr;
   const MatrixXd& r = qr.matrixQR();
-  const auto& perm = qr.colsPermutation().indices();
   GaussNewtonStep step;
-  const double r00 = std::abs(r(0, 0));
-  while (step.rank < u && std::abs(r(step.rank, step.rank)) > tol * r00) ++step.rank;
-  if (step.rank < u) step.dependent = perm(step.rank);
+  step.rank = s.rank(tol);
+  if (step.rank < u) step.dependent = s.column_at(step.rank);
   VectorXd c = -rw;
   c.applyOnTheLeft(qr.householderQ().adjoint());
   VectorXd y = VectorXd::Zero(u);
   const Index k = step.rank;
   y.head(k) = r.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(c.head(k));
+  const auto& perm = qr.colsPermutation().indices();
   step.delta.resize(u);
-  for (Index i = 0; i < u; ++i) step.delta(perm(i)) = y(i) / scale(perm(i));
+  for (Index i = 0; i < u; ++i) step.delta(perm(i)) = y(i) / s.scale(perm(i));
   return step;
 }
 
@@ -78,11 +65,12 @@ VectorXd lm_step(const MatrixXd& jw, const VectorXd& rw, const VectorXd& d, doub
   return ds.cwiseQuotient(d);
 }
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------
+// The steps of solve_nonlinear.
 
-NonlinearResult solve_nonlinear(const NonlinearModel& model, const VectorXd& l,
-                                const MatrixXd& sigma_ll, const VectorXd& x0,
-                                const NonlinearOptions& options) {
+// Sizes, finiteness and options; returns the step scale (ones unless given).
+VectorXd validate(const NonlinearModel& model, const VectorXd& l, const MatrixXd& sigma_ll,
+                  const VectorXd& x0, const NonlinearOptions& options) {
   const Index n = l.size();
   const Index u = x0.size();
   if (!model.predict) throw InputError("non-linear model has no prediction function");
@@ -92,12 +80,8 @@ NonlinearResult solve_nonlinear(const NonlinearModel& model, const VectorXd& l,
   if (sigma_ll.rows() != n || sigma_ll.cols() != n)
     throw InputError(fmt::format("observation covariance is {}×{} but l has {} entries",
                                  sigma_ll.rows(), sigma_ll.cols(), n));
-  if (const Index i = first_non_finite(l); i >= 0)
-    throw InputError(fmt::format("observation vector l has a non-finite value ({}) at index {}",
-                                 l(i), i));
-  if (const Index i = first_non_finite(x0); i >= 0)
-    throw InputError(fmt::format("starting point x0 has a non-finite value ({}) at index {}",
-                                 x0(i), i));
+  detail::check_finite(l, "observation vector l");
+  detail::check_finite(x0, "starting point x0");
   if (options.max_iterations < 1)
     throw InputError(fmt::format("max_iterations must be ≥ 1, is {}", options.max_iterations));
   if (!(std::isfinite(options.step_tolerance) && options.step_tolerance > 0.0))
@@ -113,38 +97,52 @@ NonlinearResult solve_nonlinear(const NonlinearModel& model, const VectorXd& l,
                                  options.difference_step));
   if (!std::isfinite(options.rank_tolerance))
     throw InputError(fmt::format("rank_tolerance must be finite, is {}", options.rank_tolerance));
-  VectorXd scale = VectorXd::Ones(u);
-  if (options.step_scale.size() != 0) {
-    if (options.step_scale.size() != u)
-      throw InputError(fmt::format("step_scale has {} entries for {} parameters",
-                                   options.step_scale.size(), u));
-    for (Index j = 0; j < u; ++j)
-      if (!(std::isfinite(options.step_scale(j)) && options.step_scale(j) > 0.0))
-        throw InputError(fmt::format("step_scale[{}] must be positive and finite, is {}", j,
-                                     options.step_scale(j)));
-    scale = options.step_scale;
-  }
+  if (options.step_scale.size() == 0) return VectorXd::Ones(u);
+  if (options.step_scale.size() != u)
+    throw InputError(fmt::format("step_scale has {} entries for {} parameters",
+                                 options.step_scale.size(), u));
+  for (Index j = 0; j < u; ++j)
+    if (!(std::isfinite(options.step_scale(j)) && options.step_scale(j) > 0.0))
+      throw InputError(fmt::format("step_scale[{}] must be positive and finite, is {}", j,
+                                   options.step_scale(j)));
+  return options.step_scale;
+}
 
-  const CovarianceFactor cov(sigma_ll);
-  double rank_tol = options.rank_tolerance;
-  if (!(rank_tol > 0.0)) {
-    rank_tol = 100.0 * static_cast<double>(std::max(n, u)) * kEps;
-    // Central differences carry relative errors ≈ ε/h, which would hide an exact dependency.
-    if (!model.jacobian) rank_tol = std::max(rank_tol, 1000.0 * kEps / options.difference_step);
-  }
+double rank_tolerance(const NonlinearModel& model, const NonlinearOptions& options, Index n,
+                      Index u) {
+  if (options.rank_tolerance > 0.0) return options.rank_tolerance;
+  const double tol = detail::default_rank_tolerance(n, u);
+  // Central differences carry relative errors ≈ ε/h, which would hide an exact dependency.
+  return model.jacobian ? tol
+                        : std::max(tol, 1000.0 * detail::kEps / options.difference_step);
+}
 
-  const auto predict = [&](const VectorXd& x) {
-    VectorXd f = model.predict(x);
-    if (f.size() != n)
+// The whitened problem r̃(x) = L⁻¹(f(x) − l) with the model's size checks.
+class Problem {
+ public:
+  Problem(const NonlinearModel& model, const VectorXd& l, const CovarianceFactor& cov,
+          const NonlinearOptions& options, VectorXd scale)
+      : model_(model), l_(l), cov_(cov), options_(options), scale_(std::move(scale)) {}
+
+  Index n() const { return l_.size(); }
+  Index u() const { return scale_.size(); }
+
+  VectorXd predict(const VectorXd& x) const {
+    VectorXd f = model_.predict(x);
+    if (f.size() != n())
       throw InputError(fmt::format("model returned {} predicted observations, expected {}",
-                                   f.size(), n));
+                                   f.size(), n()));
     return f;
-  };
-  int steps = 0;
-  const auto jacobian = [&](const VectorXd& x) {
+  }
+
+  // ∂f/∂x at x, analytic or by central differences; `steps` (the steps taken so far) only
+  // labels error messages.
+  MatrixXd jacobian(const VectorXd& x, int steps) const {
+    const Index n = this->n();
+    const Index u = this->u();
     MatrixXd j;
-    if (model.jacobian) {
-      j = model.jacobian(x);
+    if (model_.jacobian) {
+      j = model_.jacobian(x);
       if (j.rows() != n || j.cols() != u)
         throw InputError(fmt::format("model Jacobian is {}×{}, expected {}×{}", j.rows(),
                                      j.cols(), n, u));
@@ -153,152 +151,215 @@ NonlinearResult solve_nonlinear(const NonlinearModel& model, const VectorXd& l,
       for (Index c = 0; c < u; ++c) {
         VectorXd xp = x;
         VectorXd xm = x;
-        const double h = options.difference_step * (std::abs(x(c)) + scale(c));
+        const double h = options_.difference_step * (std::abs(x(c)) + scale_(c));
         xp(c) += h;
         xm(c) -= h;
         const VectorXd fp = predict(xp);
         const VectorXd fm = predict(xm);
-        if (first_non_finite(fp) >= 0 || first_non_finite(fm) >= 0)
+        if (detail::first_non_finite(fp) >= 0 || detail::first_non_finite(fm) >= 0)
           throw NumericalError(fmt::format(
               "model prediction is not finite when differencing parameter {} by ±{:.3g} "
               "(iteration {})", c, h, steps));
         j.col(c) = (fp - fm) / (xp(c) - xm(c));  // the representable step
       }
     }
-    for (Index c = 0; c < u; ++c)
-      for (Index i = 0; i < n; ++i)
-        if (!std::isfinite(j(i, c)))
-          throw NumericalError(fmt::format(
-              "Jacobian is not finite at ({}, {}) (iteration {})", i, c, steps));
+    if (const detail::Cell bad = detail::first_non_finite(j); bad.found())
+      throw NumericalError(fmt::format("Jacobian is not finite at ({}, {}) (iteration {})",
+                                       bad.row, bad.col, steps));
     return j;
-  };
-  // Whitened misclosure r̃ = L⁻¹(f(x) − l); vᵀPv = ‖r̃‖².
-  const auto whitened_residual = [&](const VectorXd& f) {
-    VectorXd r = f - l;
-    cov.whiten(r);
-    return r;
-  };
-  const auto small = [&](const VectorXd& delta, const VectorXd& x) {
-    for (Index j = 0; j < u; ++j)
-      if (!(std::abs(delta(j)) <= options.step_tolerance * (std::abs(x(j)) + scale(j))))
-        return false;
-    return true;
-  };
-
-  VectorXd x = x0;
-  VectorXd f = predict(x);
-  if (const Index i = first_non_finite(f); i >= 0)
-    throw NumericalError(fmt::format(
-        "model prediction is not finite at the starting point (observation {} is {})", i, f(i)));
-  VectorXd rw = whitened_residual(f);
-  double cost = rw.squaredNorm();
-  MatrixXd jac = jacobian(x);
-  MatrixXd jw = jac;
-  cov.whiten(jw);
-
-  VectorXd d = VectorXd::Zero(u);  // Marquardt scaling, the largest column norms seen (Moré)
-  double lambda = options.initial_damping;
-  double nu = 2.0;
-  VectorXd last_step;
-
-  while (true) {
-    const GaussNewtonStep gn = gauss_newton_step(jw, rw, rank_tol);
-    if (small(gn.delta, x)) break;
-    if (steps == options.max_iterations) {
-      Index worst = 0;
-      double worst_ratio = 0.0;
-      for (Index j = 0; j < u; ++j) {
-        const double ratio =
-            std::abs(last_step(j)) / (options.step_tolerance * (std::abs(x(j)) + scale(j)));
-        if (!(ratio <= worst_ratio)) {
-          worst = j;
-          worst_ratio = ratio;
-        }
-      }
-      throw NumericalError(fmt::format(
-          "no convergence within {} iterations: the last step changed parameter {} by {:.3g} "
-          "({:.3g} times its tolerance), vᵀPv = {:.6g}",
-          options.max_iterations, worst, last_step(worst), worst_ratio, cost));
-    }
-
-    if (!options.levenberg_marquardt) {
-      if (gn.rank < u)
-        throw NumericalError(fmt::format(
-            "normal matrix is singular: parameter {} is not determined by the observations "
-            "(Jacobian rank {} of {} at iteration {})", gn.dependent, gn.rank, u, steps + 1));
-      x += gn.delta;
-      last_step = gn.delta;
-      ++steps;
-      f = predict(x);
-      if (const Index i = first_non_finite(f); i >= 0)
-        throw NumericalError(fmt::format(
-            "model prediction is not finite after Gauss–Newton step {} (observation {}); "
-            "Levenberg–Marquardt damping may help", steps, i));
-      rw = whitened_residual(f);
-      cost = rw.squaredNorm();
-      jac = jacobian(x);
-      jw = jac;
-      cov.whiten(jw);
-      continue;
-    }
-
-    // Damped trial steps until vᵀPv decreases (Nielsen's update of λ).
-    for (Index j = 0; j < u; ++j) d(j) = std::max(d(j), jw.col(j).stableNorm());
-    const VectorXd dd = (d.array() > 0.0).select(d, VectorXd::Ones(u));
-    bool stalled = false;
-    while (true) {
-      const VectorXd delta = lm_step(jw, rw, dd, lambda);
-      const VectorXd x_new = x + delta;
-      const VectorXd f_new = predict(x_new);
-      VectorXd rw_new;
-      double cost_new = kInf;
-      if (first_non_finite(f_new) < 0) {
-        rw_new = whitened_residual(f_new);
-        cost_new = rw_new.squaredNorm();
-      }
-      if (cost_new < cost) {
-        const double predicted = cost - (rw + jw * delta).squaredNorm();
-        const double rho = predicted > 0.0 ? (cost - cost_new) / predicted : 1.0;
-        lambda = std::max(kMinDamping,
-                          lambda * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
-        nu = 2.0;
-        x = x_new;
-        f = f_new;
-        rw = std::move(rw_new);
-        cost = cost_new;
-        last_step = delta;
-        ++steps;
-        break;
-      }
-      // A step below the tolerance that cannot reduce vᵀPv: the minimum is reached to
-      // rounding level even if the Gauss–Newton step is larger than the tolerance.
-      if (small(delta, x)) {
-        stalled = true;
-        break;
-      }
-      lambda *= nu;
-      nu *= 2.0;
-      if (!(lambda < kMaxDamping))
-        throw NumericalError(fmt::format(
-            "Levenberg–Marquardt damping overflowed at iteration {} without reducing "
-            "vᵀPv = {:.6g}", steps + 1, cost));
-    }
-    if (stalled) break;
-    jac = jacobian(x);
-    jw = jac;
-    cov.whiten(jw);
   }
 
-  // Statistics of the linearised problem l − f(x) + v = J·Δx at the last iterate.
+  // Whitened misclosure r̃ = L⁻¹(f(x) − l); vᵀPv = ‖r̃‖².
+  VectorXd whitened_residual(const VectorXd& f) const {
+    VectorXd r = f - l_;
+    cov_.whiten(r);
+    return r;
+  }
+
+  MatrixXd whitened(MatrixXd m) const {
+    cov_.whiten(m);
+    return m;
+  }
+
+  // The convergence test: every |δ_j| ≤ step_tolerance·(|x_j| + step_scale_j).
+  bool small(const VectorXd& delta, const VectorXd& x) const {
+    for (Index j = 0; j < u(); ++j)
+      if (!(std::abs(delta(j)) <= tolerance(j, x))) return false;
+    return true;
+  }
+  double tolerance(Index j, const VectorXd& x) const {
+    return options_.step_tolerance * (std::abs(x(j)) + scale_(j));
+  }
+
+  const VectorXd& observations() const { return l_; }
+  const CovarianceFactor& covariance() const { return cov_; }
+
+ private:
+  const NonlinearModel& model_;
+  const VectorXd& l_;
+  const CovarianceFactor& cov_;
+  const NonlinearOptions& options_;
+  VectorXd scale_;
+};
+
+// The current iterate with its prediction, whitened misclosure, vᵀPv and Jacobians.
+struct Iterate {
+  VectorXd x;
+  VectorXd f;           // f(x)
+  VectorXd rw;          // r̃ = L⁻¹(f − l)
+  double cost = 0.0;    // vᵀPv = ‖r̃‖²
+  MatrixXd jac;         // J(x)
+  MatrixXd jw;          // L⁻¹·J(x)
+  VectorXd last_step;   // the last step taken (empty before the first)
+  int steps = 0;        // steps taken
+};
+
+void relinearise(const Problem& pb, Iterate& it) {
+  it.jac = pb.jacobian(it.x, it.steps);
+  it.jw = pb.whitened(it.jac);
+}
+
+Iterate start(const Problem& pb, const VectorXd& x0) {
+  Iterate it;
+  it.x = x0;
+  it.f = pb.predict(it.x);
+  if (const Index i = detail::first_non_finite(it.f); i >= 0)
+    throw NumericalError(fmt::format(
+        "model prediction is not finite at the starting point (observation {} is {})", i,
+        it.f(i)));
+  it.rw = pb.whitened_residual(it.f);
+  it.cost = it.rw.squaredNorm();
+  relinearise(pb, it);
+  return it;
+}
+
+[[noreturn]] void throw_no_convergence(const Problem& pb, const Iterate& it,
+                                       int max_iterations) {
+  Index worst = 0;
+  double worst_ratio = 0.0;
+  for (Index j = 0; j < pb.u(); ++j) {
+    const double ratio = std::abs(it.last_step(j)) / pb.tolerance(j, it.x);
+    if (!(ratio <= worst_ratio)) {
+      worst = j;
+      worst_ratio = ratio;
+    }
+  }
+  throw NumericalError(fmt::format(
+      "no convergence within {} iterations: the last step changed parameter {} by {:.3g} "
+      "({:.3g} times its tolerance), vᵀPv = {:.6g}",
+      max_iterations, worst, it.last_step(worst), worst_ratio, it.cost));
+}
+
+// One plain (undamped, unchecked) Gauss–Newton step; relinearises at the new iterate.
+void gauss_newton_iteration(const Problem& pb, Iterate& it, const GaussNewtonStep& gn) {
+  const Index u = pb.u();
+  if (gn.rank < u)
+    throw NumericalError(fmt::format(
+        "normal matrix is singular: parameter {} is not determined by the observations "
+        "(Jacobian rank {} of {} at iteration {})", gn.dependent, gn.rank, u, it.steps + 1));
+  it.x += gn.delta;
+  it.last_step = gn.delta;
+  ++it.steps;
+  it.f = pb.predict(it.x);
+  if (const Index i = detail::first_non_finite(it.f); i >= 0)
+    throw NumericalError(fmt::format(
+        "model prediction is not finite after Gauss–Newton step {} (observation {}); "
+        "Levenberg–Marquardt damping may help", it.steps, i));
+  it.rw = pb.whitened_residual(it.f);
+  it.cost = it.rw.squaredNorm();
+  relinearise(pb, it);
+}
+
+// Levenberg–Marquardt damping state: Marquardt scaling d (the largest column norms of L⁻¹·J
+// seen, Moré), λ and Nielsen's factor ν.
+struct Damping {
+  VectorXd d;
+  double lambda = 0.0;
+  double nu = 2.0;
+};
+
+enum class LmOutcome { Accepted, Stalled };
+
+// Damped trial steps from the iterate until vᵀPv decreases (Nielsen's update of λ); then
+// the iterate moves (Accepted, not yet relinearised). Stalled: a trial step below the
+// tolerance fails to reduce vᵀPv, i.e. the minimum is reached to rounding level even if the
+// Gauss–Newton step is larger than the tolerance.
+LmOutcome levenberg_marquardt_iteration(const Problem& pb, Iterate& it, Damping& dm) {
+  const Index u = pb.u();
+  for (Index j = 0; j < u; ++j) dm.d(j) = std::max(dm.d(j), it.jw.col(j).stableNorm());
+  const VectorXd dd = (dm.d.array() > 0.0).select(dm.d, VectorXd::Ones(u));
+  while (true) {
+    const VectorXd delta = lm_step(it.jw, it.rw, dd, dm.lambda);
+    VectorXd x_new = it.x + delta;
+    VectorXd f_new = pb.predict(x_new);
+    VectorXd rw_new;
+    double cost_new = kInf;
+    if (detail::first_non_finite(f_new) < 0) {
+      rw_new = pb.whitened_residual(f_new);
+      cost_new = rw_new.squaredNorm();
+    }
+    if (cost_new < it.cost) {
+      const double predicted = it.cost - (it.rw + it.jw * delta).squaredNorm();
+      const double rho = predicted > 0.0 ? (it.cost - cost_new) / predicted : 1.0;
+      dm.lambda = std::max(kMinDamping,
+                           dm.lambda * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
+      dm.nu = 2.0;
+      it.x = std::move(x_new);
+      it.f = std::move(f_new);
+      it.rw = std::move(rw_new);
+      it.cost = cost_new;
+      it.last_step = delta;
+      ++it.steps;
+      return LmOutcome::Accepted;
+    }
+    if (pb.small(delta, it.x)) return LmOutcome::Stalled;
+    dm.lambda *= dm.nu;
+    dm.nu *= 2.0;
+    if (!(dm.lambda < kMaxDamping))
+      throw NumericalError(fmt::format(
+          "Levenberg–Marquardt damping overflowed at iteration {} without reducing "
+          "vᵀPv = {:.6g}", it.steps + 1, it.cost));
+  }
+}
+
+// Statistics of the linearised problem l − f(x) + v = J·Δx at the last iterate; x̂ = x + Δx.
+NonlinearResult final_statistics(const Problem& pb, const Iterate& it, double rank_tol) {
   LinearOptions lin_options;
   lin_options.rank_tolerance = rank_tol;
-  const LeastSquaresResult lin = solve_linear(jac, l - f, cov, lin_options);
+  const LeastSquaresResult lin =
+      solve_linear(it.jac, pb.observations() - it.f, pb.covariance(), lin_options);
   NonlinearResult res;
   static_cast<LeastSquaresResult&>(res) = lin;
-  res.x = x + lin.x;
-  res.iterations = steps;
+  res.x = it.x + lin.x;
+  res.iterations = it.steps;
   res.converged = true;
   return res;
+}
+
+}  // namespace
+
+NonlinearResult solve_nonlinear(const NonlinearModel& model, const VectorXd& l,
+                                const MatrixXd& sigma_ll, const VectorXd& x0,
+                                const NonlinearOptions& options) {
+  VectorXd scale = validate(model, l, sigma_ll, x0, options);
+  const CovarianceFactor cov(sigma_ll);
+  const double rank_tol = rank_tolerance(model, options, l.size(), x0.size());
+  const Problem pb(model, l, cov, options, std::move(scale));
+
+  Iterate it = start(pb, x0);
+  Damping damping{VectorXd::Zero(pb.u()), options.initial_damping, 2.0};
+  while (true) {
+    const GaussNewtonStep gn = gauss_newton_step(it.jw, it.rw, rank_tol);
+    if (pb.small(gn.delta, it.x)) break;  // converged
+    if (it.steps == options.max_iterations) throw_no_convergence(pb, it, options.max_iterations);
+    if (!options.levenberg_marquardt) {
+      gauss_newton_iteration(pb, it, gn);
+      continue;
+    }
+    if (levenberg_marquardt_iteration(pb, it, damping) == LmOutcome::Stalled) break;
+    relinearise(pb, it);
+  }
+  return final_statistics(pb, it, rank_tol);
 }
 
 }  // namespace meridian::adjust

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "meridian/adjust/statistics.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
@@ -330,11 +331,247 @@ void assign_cycles(std::vector<TimeObs>& times, const Params& p) {
   }
 }
 
-// Upper 99 % point of χ²(ν), Wilson–Hilferty.
-double chi2_99(int nu) {
-  const double v = nu;
-  const double a = 2.0 / (9.0 * v);
-  return v * std::pow(1.0 - a + 2.326347874 * std::sqrt(a), 3);
+// ---------------------------------------------------------------------------------------------
+// The steps of fit_nontracking.
+
+// The observation equations: every crossing time on its phase branch, the reversal
+// readings (sides alternate; the first from its neighbour, or from the start β when there
+// is only one), period_s as an observation of T_B when given with σ > 0; the parameters
+// (β, B, t0[, T_B][, k]) with the start values in `fixed`.
+Problem build_problem(const NonTrackingObservations& obs, const UnifiedFitOptions& options,
+                      const Start& st) {
+  Problem pb;
+  pb.damped = options.estimate_damping;
+  for (std::size_t c = 0; c < obs.crossings.size(); ++c) {
+    const Crossing& cr = obs.crossings[c];
+    for (std::size_t k = 0; k < cr.times_s.size(); ++k)
+      pb.times.push_back(TimeObs{c, k, cr.level_div,
+                                 (k % 2 == 0) ? cr.first_direction : -cr.first_direction,
+                                 cr.times_s[k], 0});
+  }
+  const auto& rv = obs.reversals_div;
+  if (!rv.empty()) {
+    int side = rv.size() >= 2 ? (rv[0] > rv[1] ? 1 : -1) : (rv[0] > st.beta ? 1 : -1);
+    for (std::size_t k = 0; k < rv.size(); ++k, side = -side)
+      pb.readings.push_back(
+          ReadingObs{k, rv[k], side, obs.reversal_times_s.empty() ? 0.0 : obs.reversal_times_s[k]});
+  }
+  pb.period_obs = options.use_known_period && obs.period_s && obs.period_s->sigma > 0.0;
+  if (pb.period_obs) {
+    pb.period_value = obs.period_s->value;
+    pb.period_sigma = obs.period_s->sigma;
+  }
+  pb.fixed = {st.beta, st.amp, st.t0, st.period, 0.0};
+  pb.free = {kBeta, kAmp, kT0};
+  if (!fixed_period(obs, options)) pb.free.push_back(kPeriod);
+  if (pb.damped) pb.free.push_back(kDamping);
+  return pb;
+}
+
+// Observed values l and their (diagonal) covariance, in the order of Problem::predict.
+struct WeightedObservations {
+  Eigen::VectorXd l;
+  Eigen::MatrixXd sigma_ll;
+};
+
+WeightedObservations weighted_observations(const Problem& pb,
+                                           const NonTrackingObservations& obs) {
+  const int n = pb.n();
+  WeightedObservations w;
+  w.l.resize(n);
+  Eigen::VectorXd sd(n);
+  Eigen::Index r = 0;
+  for (const TimeObs& o : pb.times) {
+    w.l(r) = o.time;
+    sd(r++) = obs.sigma_time_s;
+  }
+  for (const ReadingObs& o : pb.readings) {
+    w.l(r) = o.reading;
+    sd(r++) = obs.sigma_reading_div;
+  }
+  if (pb.period_obs) {
+    w.l(r) = pb.period_value;
+    sd(r++) = pb.period_sigma;
+  }
+  w.sigma_ll = sd.array().square().matrix().asDiagonal();
+  return w;
+}
+
+// Convergence scaled per parameter: times by T_B, k by 1e-3/s, β and B by 1 div.
+adjust::NonlinearOptions solver_options(const Problem& pb, double period_start_s) {
+  const auto u = static_cast<Eigen::Index>(pb.free.size());
+  adjust::NonlinearOptions nl;
+  nl.step_tolerance = 1e-10;
+  nl.step_scale.resize(u);
+  for (Eigen::Index j = 0; j < u; ++j) {
+    const int p = pb.free[static_cast<std::size_t>(j)];
+    nl.step_scale(j) = (p == kT0 || p == kPeriod) ? period_start_s : (p == kDamping ? 1e-3 : 1.0);
+  }
+  return nl;
+}
+
+struct Solution {
+  adjust::NonlinearResult lsq;  // of the last pass
+  Params p{};                   // all five parameters at the solution
+  int iterations = 0;           // summed over the passes
+};
+
+// Solve; re-assign the phase branches from the solution and repeat when any passage changed
+// branch (a poor start can put one on the wrong cycle). Updates pb.times' cycles.
+Solution solve(Problem& pb, const WeightedObservations& w, const adjust::NonlinearOptions& nl) {
+  const auto u = static_cast<Eigen::Index>(pb.free.size());
+  Eigen::VectorXd x(u);
+  for (Eigen::Index j = 0; j < u; ++j) x(j) = pb.fixed[pb.free[static_cast<std::size_t>(j)]];
+  assign_cycles(pb.times, pb.fixed);
+
+  Solution sol;
+  for (int pass = 0;; ++pass) {
+    const Problem& cp = pb;
+    adjust::NonlinearModel model;
+    model.predict = [&cp](const Eigen::VectorXd& xx) { return cp.predict(xx); };
+    model.jacobian = [&cp](const Eigen::VectorXd& xx) { return cp.jacobian(xx); };
+    sol.lsq = adjust::solve_nonlinear(model, w.l, w.sigma_ll, x, nl);
+    sol.iterations += sol.lsq.iterations;
+    x = sol.lsq.x;
+    std::vector<TimeObs> again = pb.times;
+    assign_cycles(again, pb.expand(x));
+    bool same = true;
+    for (std::size_t k = 0; k < again.size(); ++k)
+      same = same && again[k].cycle == pb.times[k].cycle;
+    if (same) break;
+    if (pass >= 4)
+      throw NumericalError("the unified fit does not settle on one phase branch per crossing "
+                           "(the crossing times may be mislabelled: check first_direction)",
+                           ErrorContext{"", std::nullopt, "crossings"});
+    pb.times = std::move(again);
+  }
+  sol.p = pb.expand(x);
+  return sol;
+}
+
+// B > 0, T_B > 0, and every timed level reached by the fitted oscillation.
+void check_solution(const Problem& pb, const Params& p) {
+  if (!(p[kAmp] > 0.0) || !(p[kPeriod] > 0.0))
+    throw NumericalError(fmt::format("the unified fit converged to B = {} div, T_B = {} s",
+                                     num(p[kAmp]), num(p[kPeriod])),
+                         ErrorContext{"", std::nullopt, "crossings"});
+  for (const TimeObs& o : pb.times) {
+    const double t = predict_time(o, p, pb.damped);
+    const double reach = p[kAmp] * (pb.damped ? std::exp(-p[kDamping] * (t - p[kT0])) : 1.0);
+    if (!(std::abs(o.level - p[kBeta]) < reach))
+      throw NumericalError(
+          fmt::format("level {} div is not reached by the fitted oscillation (β = {} div, "
+                      "B = {} div): |a − β| ≥ B",
+                      num(o.level), num(p[kBeta]), num(reach)),
+          ErrorContext{"", std::nullopt, fmt::format("crossings[{}].level_div", o.group)});
+  }
+}
+
+// Parameters with their a-priori σ, the covariance in full parameter order, fit statistics
+// and the residuals of every observation.
+UnifiedFitResult map_result(const Problem& pb, const Solution& sol) {
+  const adjust::NonlinearResult& res = sol.lsq;
+  const Params& p = sol.p;
+  const auto u = static_cast<Eigen::Index>(pb.free.size());
+  UnifiedFitResult out;
+  const int full = pb.damped ? 5 : 4;
+  out.covariance = Eigen::MatrixXd::Zero(full, full);
+  for (Eigen::Index a = 0; a < u; ++a)
+    for (Eigen::Index b = 0; b < u; ++b)
+      out.covariance(pb.free[static_cast<std::size_t>(a)], pb.free[static_cast<std::size_t>(b)]) =
+          res.cofactor(a, b);
+  const auto sig = [&](int i) { return std::sqrt(out.covariance(i, i)); };
+  out.beta_div = {p[kBeta], sig(kBeta)};
+  out.amplitude_div = {p[kAmp], sig(kAmp)};
+  out.t0_s = {p[kT0], sig(kT0)};
+  out.period_s = {p[kPeriod], sig(kPeriod)};
+  out.damping_per_s = pb.damped ? Uncertain{p[kDamping], sig(kDamping)} : Uncertain{0.0, 0.0};
+  out.dof = res.dof;
+  out.sigma0 = res.dof > 0 ? res.sigma0 : std::numeric_limits<double>::quiet_NaN();
+  out.iterations = sol.iterations;
+
+  Eigen::Index r = 0;
+  for (const TimeObs& o : pb.times) {
+    out.residuals.push_back(UnifiedFitResidual{UnifiedFitResidual::Kind::CrossingTime,
+                                               static_cast<int>(o.group), static_cast<int>(o.index),
+                                               o.time, res.residuals(r),
+                                               res.standardized_residuals(r), res.redundancy(r)});
+    ++r;
+  }
+  for (const ReadingObs& o : pb.readings) {
+    out.residuals.push_back(UnifiedFitResidual{UnifiedFitResidual::Kind::ReversalReading, 0,
+                                               static_cast<int>(o.index), o.reading,
+                                               res.residuals(r), res.standardized_residuals(r),
+                                               res.redundancy(r)});
+    ++r;
+  }
+  if (pb.period_obs)
+    out.period_residual = UnifiedFitPeriodResidual{pb.period_value, res.residuals(r),
+                                                   res.standardized_residuals(r),
+                                                   res.redundancy(r)};
+  return out;
+}
+
+void add_assumptions(UnifiedFitResult& out, const Problem& pb, bool period_fixed,
+                     const Start& st) {
+  out.assumptions.push_back(pb.damped ? "damping k estimated" : "k = 0 (damping neglected)");
+  if (period_fixed)
+    out.assumptions.push_back("T_B held fixed at period_s (given with σ = 0)");
+  else if (pb.period_obs)
+    out.assumptions.push_back("period_s used as an observation of T_B");
+  else
+    out.assumptions.push_back("T_B estimated from the crossing times");
+  if (!pb.readings.empty())
+    out.assumptions.push_back(pb.damped ? "reversal readings a_r = β ± B·e^{−k(t_r − t0)} at the "
+                                          "given reversal times"
+                                        : "reversal readings a_r = β ± B");
+  out.assumptions.push_back("σ are a priori (from σ_t, σ_a, σ(T_B)); σ̂0 reported separately");
+  out.assumptions.push_back("start values from the " + st.source + " method");
+}
+
+// Significance of the global test of the fit.
+constexpr double kGlobalTestAlpha = 0.01;
+// Critical value of the w-test for a blunder warning; |w| > 3.0 corresponds to α0 ≈ 0.27 %
+// two-sided per observation.
+constexpr double kBlunderCriticalW = 3.0;
+
+// Warnings from the adjust global test (vᵀPv against χ²) and the w-test of the crossing
+// times and reversal readings (the period observation is not tested).
+void add_diagnostics(UnifiedFitResult& out, const Problem& pb,
+                     const adjust::NonlinearResult& res) {
+  if (out.dof <= 0) return;
+  const adjust::GlobalTestResult global = adjust::global_test(res, kGlobalTestAlpha);
+  if (global.rejected)
+    out.warnings.push_back(fmt::format(
+        "lsq: σ̂0 = {:.2f} ({} degrees of freedom) fails the χ² test at 99 % (vᵀPv = {:.2f} > "
+        "{:.2f}): the observations disagree with the model or their σ are too small",
+        out.sigma0, out.dof, global.vtpv, global.critical_value));
+  const auto tested = static_cast<Eigen::Index>(pb.times.size() + pb.readings.size());
+  const adjust::DataSnoopingResult w =
+      adjust::w_test(res.w_statistics.head(tested), kBlunderCriticalW);
+  if (!w.rejected.empty()) {
+    const auto i = static_cast<std::size_t>(w.largest_index);
+    const std::string where =
+        i < pb.times.size()
+            ? fmt::format("crossings[{}].times_s[{}]", pb.times[i].group, pb.times[i].index)
+            : fmt::format("reversals_div[{}]", pb.readings[i - pb.times.size()].index);
+    out.warnings.push_back(fmt::format(
+        "lsq: the largest standardised residual is {:.2f} at {} (possible blunder)", w.largest_w,
+        where));
+  }
+}
+
+// Every applicable simple method on the same data, for the comparison table.
+void compare_simple_methods(UnifiedFitResult& out, const NonTrackingObservations& obs,
+                            const Instrument& inst) {
+  for (NonTrackingMethod m : applicable_methods(obs)) {
+    if (m == NonTrackingMethod::LeastSquares) continue;
+    try {
+      out.simple_methods.push_back(reduce_nontracking(m, obs, inst));
+    } catch (const Error& e) {
+      out.warnings.push_back(fmt::format("{} (comparison table): {}", to_string(m), e.what()));
+    }
+  }
 }
 
 }  // namespace
@@ -362,195 +599,15 @@ UnifiedFitResult fit_nontracking(const NonTrackingObservations& obs, const Instr
     throw InputError(why->second, ErrorContext{"", std::nullopt, why->first});
 
   const Start st = start_values(obs, inst);
-  Problem pb;
-  pb.damped = options.estimate_damping;
-  for (std::size_t c = 0; c < obs.crossings.size(); ++c) {
-    const Crossing& cr = obs.crossings[c];
-    for (std::size_t k = 0; k < cr.times_s.size(); ++k)
-      pb.times.push_back(TimeObs{c, k, cr.level_div,
-                                 (k % 2 == 0) ? cr.first_direction : -cr.first_direction,
-                                 cr.times_s[k], 0});
-  }
-  // Sides of the reversals alternate; the first from its neighbour (or from
-  // the start β when there is only one).
-  const auto& rv = obs.reversals_div;
-  if (!rv.empty()) {
-    int side = rv.size() >= 2 ? (rv[0] > rv[1] ? 1 : -1) : (rv[0] > st.beta ? 1 : -1);
-    for (std::size_t k = 0; k < rv.size(); ++k, side = -side)
-      pb.readings.push_back(
-          ReadingObs{k, rv[k], side, obs.reversal_times_s.empty() ? 0.0 : obs.reversal_times_s[k]});
-  }
-  pb.period_obs = options.use_known_period && obs.period_s && obs.period_s->sigma > 0.0;
-  if (pb.period_obs) {
-    pb.period_value = obs.period_s->value;
-    pb.period_sigma = obs.period_s->sigma;
-  }
-  const bool fix_t = fixed_period(obs, options);
-  pb.fixed = {st.beta, st.amp, st.t0, st.period, 0.0};
-  pb.free = {kBeta, kAmp, kT0};
-  if (!fix_t) pb.free.push_back(kPeriod);
-  if (pb.damped) pb.free.push_back(kDamping);
-  const auto u = static_cast<Eigen::Index>(pb.free.size());
+  Problem pb = build_problem(obs, options, st);
+  const WeightedObservations w = weighted_observations(pb, obs);
+  const Solution sol = solve(pb, w, solver_options(pb, st.period));
+  check_solution(pb, sol.p);
 
-  // Observations and their σ.
-  const int n = pb.n();
-  Eigen::VectorXd l(n);
-  Eigen::VectorXd sd(n);
-  {
-    Eigen::Index r = 0;
-    for (const TimeObs& o : pb.times) {
-      l(r) = o.time;
-      sd(r++) = obs.sigma_time_s;
-    }
-    for (const ReadingObs& o : pb.readings) {
-      l(r) = o.reading;
-      sd(r++) = obs.sigma_reading_div;
-    }
-    if (pb.period_obs) {
-      l(r) = pb.period_value;
-      sd(r++) = pb.period_sigma;
-    }
-  }
-  const Eigen::MatrixXd sigma_ll = sd.array().square().matrix().asDiagonal();
-
-  adjust::NonlinearOptions nl;
-  nl.step_tolerance = 1e-10;
-  nl.step_scale.resize(u);
-  for (Eigen::Index j = 0; j < u; ++j) {
-    const int p = pb.free[static_cast<std::size_t>(j)];
-    nl.step_scale(j) = (p == kT0 || p == kPeriod) ? st.period : (p == kDamping ? 1e-3 : 1.0);
-  }
-
-  Eigen::VectorXd x(u);
-  for (Eigen::Index j = 0; j < u; ++j) x(j) = pb.fixed[pb.free[static_cast<std::size_t>(j)]];
-  assign_cycles(pb.times, pb.fixed);
-
-  // Solve; re-assign the phase branches from the solution and repeat when
-  // any passage changed branch (a poor start can put one on the wrong cycle).
-  adjust::NonlinearResult res;
-  int iterations = 0;
-  for (int pass = 0;; ++pass) {
-    const Problem& cp = pb;
-    adjust::NonlinearModel model;
-    model.predict = [&cp](const Eigen::VectorXd& xx) { return cp.predict(xx); };
-    model.jacobian = [&cp](const Eigen::VectorXd& xx) { return cp.jacobian(xx); };
-    res = adjust::solve_nonlinear(model, l, sigma_ll, x, nl);
-    iterations += res.iterations;
-    x = res.x;
-    std::vector<TimeObs> again = pb.times;
-    assign_cycles(again, pb.expand(x));
-    bool same = true;
-    for (std::size_t k = 0; k < again.size(); ++k)
-      same = same && again[k].cycle == pb.times[k].cycle;
-    if (same) break;
-    if (pass >= 4)
-      throw NumericalError("the unified fit does not settle on one phase branch per crossing "
-                           "(the crossing times may be mislabelled: check first_direction)",
-                           ErrorContext{"", std::nullopt, "crossings"});
-    pb.times = std::move(again);
-  }
-
-  const Params p = pb.expand(x);
-  if (!(p[kAmp] > 0.0) || !(p[kPeriod] > 0.0))
-    throw NumericalError(fmt::format("the unified fit converged to B = {} div, T_B = {} s",
-                                     num(p[kAmp]), num(p[kPeriod])),
-                         ErrorContext{"", std::nullopt, "crossings"});
-  // Every timed level must be reached by the fitted oscillation.
-  for (const TimeObs& o : pb.times) {
-    const double t = predict_time(o, p, pb.damped);
-    const double reach = p[kAmp] * (pb.damped ? std::exp(-p[kDamping] * (t - p[kT0])) : 1.0);
-    if (!(std::abs(o.level - p[kBeta]) < reach))
-      throw NumericalError(
-          fmt::format("level {} div is not reached by the fitted oscillation (β = {} div, "
-                      "B = {} div): |a − β| ≥ B",
-                      num(o.level), num(p[kBeta]), num(reach)),
-          ErrorContext{"", std::nullopt, fmt::format("crossings[{}].level_div", o.group)});
-  }
-
-  UnifiedFitResult out;
-  const int full = pb.damped ? 5 : 4;
-  out.covariance = Eigen::MatrixXd::Zero(full, full);
-  for (Eigen::Index a = 0; a < u; ++a)
-    for (Eigen::Index b = 0; b < u; ++b)
-      out.covariance(pb.free[static_cast<std::size_t>(a)], pb.free[static_cast<std::size_t>(b)]) =
-          res.cofactor(a, b);
-  const auto sig = [&](int i) { return std::sqrt(out.covariance(i, i)); };
-  out.beta_div = {p[kBeta], sig(kBeta)};
-  out.amplitude_div = {p[kAmp], sig(kAmp)};
-  out.t0_s = {p[kT0], sig(kT0)};
-  out.period_s = {p[kPeriod], sig(kPeriod)};
-  out.damping_per_s = pb.damped ? Uncertain{p[kDamping], sig(kDamping)} : Uncertain{0.0, 0.0};
-  out.dof = res.dof;
-  out.sigma0 = res.dof > 0 ? res.sigma0 : std::numeric_limits<double>::quiet_NaN();
-  out.iterations = iterations;
-
-  Eigen::Index r = 0;
-  for (const TimeObs& o : pb.times) {
-    out.residuals.push_back(UnifiedFitResidual{UnifiedFitResidual::Kind::CrossingTime,
-                                               static_cast<int>(o.group), static_cast<int>(o.index),
-                                               o.time, res.residuals(r),
-                                               res.standardized_residuals(r), res.redundancy(r)});
-    ++r;
-  }
-  for (const ReadingObs& o : pb.readings) {
-    out.residuals.push_back(UnifiedFitResidual{UnifiedFitResidual::Kind::ReversalReading, 0,
-                                               static_cast<int>(o.index), o.reading,
-                                               res.residuals(r), res.standardized_residuals(r),
-                                               res.redundancy(r)});
-    ++r;
-  }
-  if (pb.period_obs)
-    out.period_residual = UnifiedFitPeriodResidual{pb.period_value, res.residuals(r),
-                                                   res.standardized_residuals(r),
-                                                   res.redundancy(r)};
-
-  out.assumptions.push_back(pb.damped ? "damping k estimated" : "k = 0 (damping neglected)");
-  if (fix_t)
-    out.assumptions.push_back("T_B held fixed at period_s (given with σ = 0)");
-  else if (pb.period_obs)
-    out.assumptions.push_back("period_s used as an observation of T_B");
-  else
-    out.assumptions.push_back("T_B estimated from the crossing times");
-  if (!pb.readings.empty())
-    out.assumptions.push_back(pb.damped ? "reversal readings a_r = β ± B·e^{−k(t_r − t0)} at the "
-                                          "given reversal times"
-                                        : "reversal readings a_r = β ± B");
-  out.assumptions.push_back("σ are a priori (from σ_t, σ_a, σ(T_B)); σ̂0 reported separately");
-  out.assumptions.push_back("start values from the " + st.source + " method");
-
-  if (out.dof > 0) {
-    const double chi2 = res.vtpv;
-    const double lim = chi2_99(out.dof);
-    if (chi2 > lim)
-      out.warnings.push_back(fmt::format(
-          "lsq: σ̂0 = {:.2f} ({} degrees of freedom) fails the χ² test at 99 % (vᵀPv = {:.2f} > "
-          "{:.2f}): the observations disagree with the model or their σ are too small",
-          out.sigma0, out.dof, chi2, lim));
-    // Largest standardised residual.
-    double worst = 0.0;
-    std::string where;
-    for (const auto& v : out.residuals)
-      if (std::isfinite(v.standardized) && std::abs(v.standardized) > std::abs(worst)) {
-        worst = v.standardized;
-        where = v.kind == UnifiedFitResidual::Kind::CrossingTime
-                    ? fmt::format("crossings[{}].times_s[{}]", v.group, v.index)
-                    : fmt::format("reversals_div[{}]", v.index);
-      }
-    if (std::abs(worst) > 3.0)
-      out.warnings.push_back(fmt::format(
-          "lsq: the largest standardised residual is {:.2f} at {} (possible blunder)", worst,
-          where));
-  }
-
-  if (!options.compare_simple_methods) return out;
-  for (NonTrackingMethod m : applicable_methods(obs)) {
-    if (m == NonTrackingMethod::LeastSquares) continue;
-    try {
-      out.simple_methods.push_back(reduce_nontracking(m, obs, inst));
-    } catch (const Error& e) {
-      out.warnings.push_back(fmt::format("{} (comparison table): {}", to_string(m), e.what()));
-    }
-  }
+  UnifiedFitResult out = map_result(pb, sol);
+  add_assumptions(out, pb, fixed_period(obs, options), st);
+  add_diagnostics(out, pb, sol.lsq);
+  if (options.compare_simple_methods) compare_simple_methods(out, obs, inst);
   return out;
 }
 

@@ -26,9 +26,20 @@ struct LeastSquaresResult {
   /// r_i = (Q_vv·Σ_ll⁻¹)_ii with Q_vv = Σ_ll − A·Q_xx·Aᵀ; sum = dof. For independent
   /// observations r_i = 1 − h_ii ∈ [0, 1]; with correlations single values may leave [0, 1].
   Eigen::VectorXd redundancy;
+  /// (Q_vv)_ii = Σ_ii − (A·Q_xx·Aᵀ)_ii: a-priori variance of the residual v_i (units of l_i
+  /// squared), ≥ 0 up to rounding; σ_vi = sqrt((Q_vv)_ii).
+  Eigen::VectorXd qvv_diagonal;
   /// w_i = v_i / sqrt((Q_vv)_ii) with the a-priori σ0 = 1 (dimensionless, ~N(0,1) under the
   /// model); NaN where (Q_vv)_ii ≤ 1e-12·Σ_ii, i.e. the observation is not controlled.
   Eigen::VectorXd standardized_residuals;
+  /// Baarda's w-test statistic for an outlier in observation i alone (Baarda 1968;
+  /// Teunissen, Testing theory, 2006): w_i = (P·v)_i / sqrt((P·Q_vv·P)_ii), P = Σ_ll⁻¹,
+  /// dimensionless, ~N(0,1) under the model, same sign as v_i. Equals standardized_residuals
+  /// (exactly) for a diagonal Σ_ll; with correlated observations v_i/σ_vi is not the w-test
+  /// statistic and this is the one to test. NaN where (P·Q_vv·P)_ii ≤ 1e-12·(Σ_ll⁻¹)_ii, i.e.
+  /// an outlier in observation i cannot be told from a change of the parameters.
+  /// See adjust/statistics.hpp for the tests.
+  Eigen::VectorXd w_statistics;
   double vtpv = 0.0;                  ///< vᵀ Σ_ll⁻¹ v
   int dof = 0;                        ///< degrees of freedom n − u
   double sigma0 = 0.0;                ///< a-posteriori σ̂0 = sqrt(vᵀPv / dof); NaN when dof = 0
