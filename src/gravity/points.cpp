@@ -12,7 +12,8 @@ std::size_t points_chunk_size(const PointsOptions& options) noexcept {
   return options.along_track() ? 200000 : 16384;
 }
 
-std::vector<FieldValues> evaluate_points(const GravityField& field, std::span<const GeodeticPoint> points,
+std::vector<FieldValues> evaluate_points(const GravityField& field,
+                                         std::span<const GeodeticPoint> points,
                                          const PointsOptions& options) {
   if (!options.along_track()) return field.evaluate(points);
   TrackOptions to;

@@ -34,8 +34,10 @@ PointsSummary::PointsSummary(std::size_t sample_capacity) : sample_(sample_capac
 
 void PointsSummary::add(const GeodeticPoint& p, const FieldValues& v) {
   // Check all three first so the statistics never disagree on the count.
-  for (const auto& [x, name] : {std::pair{v.xi_rad, "xi_rad"}, {v.eta_rad, "eta_rad"}, {v.geoid_m, "geoid_m"}})
-    if (!std::isfinite(x)) throw InputError(fmt::format("value {} is not finite", x), {"", std::nullopt, name});
+  for (const auto& [x, name] :
+       {std::pair{v.xi_rad, "xi_rad"}, {v.eta_rad, "eta_rad"}, {v.geoid_m, "geoid_m"}})
+    if (!std::isfinite(x))
+      throw InputError(fmt::format("value {} is not finite", x), {"", std::nullopt, name});
   xi_.add(v.xi_rad);
   eta_.add(v.eta_rad);
   geoid_.add(v.geoid_m);
@@ -52,7 +54,8 @@ void PointsSummary::add(const GeodeticPoint& p, const FieldValues& v) {
   sample_.add(p, v);
 }
 
-void PointsSummary::add(std::span<const GeodeticPoint> points, std::span<const FieldValues> values) {
+void PointsSummary::add(std::span<const GeodeticPoint> points,
+                        std::span<const FieldValues> values) {
   if (points.size() != values.size())
     throw InputError(fmt::format("{} points but {} results", points.size(), values.size()));
   for (std::size_t i = 0; i < points.size(); ++i) add(points[i], values[i]);

@@ -32,7 +32,9 @@ bool same_name(std::string_view a, std::string_view b) {
   return true;
 }
 
-bool is_bracketed_unit(std::string_view f) { return f.size() >= 2 && f.front() == '[' && f.back() == ']'; }
+bool is_bracketed_unit(std::string_view f) {
+  return f.size() >= 2 && f.front() == '[' && f.back() == ']';
+}
 
 std::string column_list(const std::vector<Column>& cs) {
   std::string s;
@@ -57,7 +59,8 @@ void split(Delimiter delimiter, std::string_view line, std::vector<std::string_v
   std::size_t b = 0;
   while (true) {
     const auto e = line.find(d, b);
-    out.push_back(trim(line.substr(b, e == std::string_view::npos ? std::string_view::npos : e - b)));
+    out.push_back(
+        trim(line.substr(b, e == std::string_view::npos ? std::string_view::npos : e - b)));
     if (e == std::string_view::npos) return;
     b = e + 1;
   }
@@ -99,8 +102,10 @@ std::optional<double> to_finite_double(std::string_view text) noexcept {
   }
   if (text.empty()) return std::nullopt;
   double v = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v, std::chars_format::general);
-  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
+  const auto r =
+      std::from_chars(text.data(), text.data() + text.size(), v, std::chars_format::general);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v))
+    return std::nullopt;
   return v;
 }
 
@@ -112,8 +117,9 @@ std::size_t Record::size() const noexcept {
 
 std::string_view Record::field(std::size_t column) const {
   if (column >= size())
-    throw InputError(fmt::format("missing: the line has only {} field{}", size(), size() == 1 ? "" : "s"),
-                     context(column));
+    throw InputError(
+        fmt::format("missing: the line has only {} field{}", size(), size() == 1 ? "" : "s"),
+        context(column));
   const std::size_t k = chunk_->first_field_[index_] + column;
   const std::size_t begin = k == 0 ? 0 : chunk_->field_end_[k - 1];
   return std::string_view(chunk_->text_).substr(begin, chunk_->field_end_[k] - begin);
@@ -142,12 +148,14 @@ void Record::add_context(Error& e, std::size_t column, FieldLabel label) const {
 double Record::number(std::size_t column, FieldLabel label) const {
   const std::string_view text = field(column);
   if (const auto v = to_finite_double(text)) return *v;
-  throw ParseError(fmt::format("{}{}\"{}\" is not a number", label.noun, label.noun.empty() ? "" : " ", text),
-                   context(column, label));
+  throw ParseError(
+      fmt::format("{}{}\"{}\" is not a number", label.noun, label.noun.empty() ? "" : " ", text),
+      context(column, label));
 }
 
 Angle Record::angle(std::size_t column, FieldLabel label) const {
-  return parse(column, [](std::string_view t) { return parse_angle(t); }, label);
+  return parse(
+      column, [](std::string_view t) { return parse_angle(t); }, label);
 }
 
 // ------------------------------------------------------------- RecordChunk
@@ -208,7 +216,8 @@ void RecordReader::start() {
   int first_line = 0;
   if (!next_content_line(first, first_line)) {
     if (format_.header == HeaderMode::Present)
-      throw ParseError("no header line: the input has no line of column names", {source(), std::nullopt, ""});
+      throw ParseError("no header line: the input has no line of column names",
+                       {source(), std::nullopt, ""});
     return;
   }
   const std::string_view t = trim(first);
@@ -216,8 +225,9 @@ void RecordReader::start() {
   if (format_.header == HeaderMode::Auto && is_letter(t.front())) {
     std::vector<std::string_view> f;
     split(delimiter_ == Delimiter::Auto ? detect_delimiter(t) : delimiter_, t, f);
-    header = std::all_of(f.begin(), f.end(),
-                         [](std::string_view x) { return !x.empty() && (is_letter(x.front()) || is_bracketed_unit(x)); });
+    header = std::all_of(f.begin(), f.end(), [](std::string_view x) {
+      return !x.empty() && (is_letter(x.front()) || is_bracketed_unit(x));
+    });
   }
   if (header) {
     header_line_ = first_line;
@@ -227,14 +237,16 @@ void RecordReader::start() {
   } else {
     pending_.emplace(std::move(first), first_line);
   }
-  if (delimiter_ == Delimiter::Auto) delimiter_ = detect_delimiter(pending_ ? std::string_view(pending_->first) : t);
+  if (delimiter_ == Delimiter::Auto)
+    delimiter_ = detect_delimiter(pending_ ? std::string_view(pending_->first) : t);
   if (!header) return;
   std::vector<std::string_view> f;
   split(delimiter_, t, f);
   auto& cols = layout_->columns;
   for (std::size_t i = 0; i < f.size(); ++i) {
     // A unit standing apart ("lat [deg]" split on whitespace) joins its name.
-    if (delimiter_ == Delimiter::Whitespace && is_bracketed_unit(f[i]) && !cols.empty() && cols.back().unit.empty()) {
+    if (delimiter_ == Delimiter::Whitespace && is_bracketed_unit(f[i]) && !cols.empty() &&
+        cols.back().unit.empty()) {
       cols.back().unit = std::string(trim(f[i].substr(1, f[i].size() - 2)));
       continue;
     }
@@ -267,14 +279,17 @@ std::size_t RecordReader::require_column(std::string_view name) {
   if (const auto i = find_column(name)) return *i;
   const auto& cs = header();
   if (cs.empty())
-    throw InputError(fmt::format("no column \"{}\": the input has no header line of column names", name),
-                     {source(), std::nullopt, ""});
-  throw InputError(fmt::format("no column \"{}\" in the header (columns: {})", name, column_list(cs)),
-                   {source(), header_line_, ""});
+    throw InputError(
+        fmt::format("no column \"{}\": the input has no header line of column names", name),
+        {source(), std::nullopt, ""});
+  throw InputError(
+      fmt::format("no column \"{}\" in the header (columns: {})", name, column_list(cs)),
+      {source(), header_line_, ""});
 }
 
 bool RecordReader::next(RecordChunk& chunk, std::size_t max_records) {
-  if (max_records == 0) throw InputError("a chunk must hold at least one record", {source(), std::nullopt, ""});
+  if (max_records == 0)
+    throw InputError("a chunk must hold at least one record", {source(), std::nullopt, ""});
   if (!started_) start();
   chunk.clear();
   chunk.layout_ = layout_;

@@ -137,7 +137,8 @@ std::vector<std::uint64_t> expected_indices(std::uint64_t n, std::size_t capacit
 
 std::vector<std::uint64_t> sampled(std::uint64_t n, std::size_t capacity) {
   ThinnedSample s(capacity);
-  for (std::uint64_t i = 0; i < n; ++i) s.add({static_cast<double>(i) * 1e-6, 0, 0}, values(0, 0, static_cast<double>(i)));
+  for (std::uint64_t i = 0; i < n; ++i)
+    s.add({static_cast<double>(i) * 1e-6, 0, 0}, values(0, 0, static_cast<double>(i)));
   std::vector<std::uint64_t> out;
   for (const auto& p : s.points()) {
     EXPECT_EQ(p.geoid_m, static_cast<double>(p.index));  // the point's own values are kept
@@ -149,8 +150,8 @@ std::vector<std::uint64_t> sampled(std::uint64_t n, std::size_t capacity) {
 
 TEST(ThinnedSample, FollowsTheRuleBoundedAndSpreadOverTheWholeLine) {
   for (std::size_t cap : {1u, 2u, 3u, 7u, 64u, 100u}) {
-    for (std::uint64_t n : {0ull, 1ull, 5ull, 63ull, 64ull, 65ull, 99ull, 100ull, 101ull, 199ull, 200ull, 201ull,
-                            1000ull, 4097ull}) {
+    for (std::uint64_t n : {0ull, 1ull, 5ull, 63ull, 64ull, 65ull, 99ull, 100ull, 101ull, 199ull,
+                            200ull, 201ull, 1000ull, 4097ull}) {
       const auto got = sampled(n, cap);
       EXPECT_EQ(got, expected_indices(n, cap)) << "n " << n << " capacity " << cap;
       EXPECT_LE(got.size(), cap);
@@ -180,7 +181,8 @@ TEST(GravityPoints, ChunkEvaluationAgreesWithTheModelAtEveryPoint) {
   o.seed = 5;
   const GravityField field(make_synthetic_model(o));
   std::vector<GeodeticPoint> line;
-  for (int i = 0; i < 2000; ++i) line.push_back({(47.0 + i * 2e-4) * kDeg, (8.0 + i * 3e-4) * kDeg, 400.0 + i * 0.1});
+  for (int i = 0; i < 2000; ++i)
+    line.push_back({(47.0 + i * 2e-4) * kDeg, (8.0 + i * 3e-4) * kDeg, 400.0 + i * 0.1});
   // Scattered: the full model at each point, one at a time.
   const auto all = evaluate_points(field, line, PointsOptions{});
   ASSERT_EQ(all.size(), line.size());
@@ -198,12 +200,14 @@ TEST(GravityPoints, ChunkEvaluationAgreesWithTheModelAtEveryPoint) {
   const auto interp = evaluate_points(field, line, track);
   double worst = 0, worst_n = 0;
   for (std::size_t i = 0; i < line.size(); ++i) {
-    worst = std::max({worst, std::abs(interp[i].xi_rad - all[i].xi_rad), std::abs(interp[i].eta_rad - all[i].eta_rad)});
+    worst = std::max({worst, std::abs(interp[i].xi_rad - all[i].xi_rad),
+                      std::abs(interp[i].eta_rad - all[i].eta_rad)});
     worst_n = std::max(worst_n, std::abs(interp[i].geoid_m - all[i].geoid_m));
   }
   EXPECT_LT(worst, 1.5 * track.track_tolerance_rad);
   EXPECT_LT(worst_n, 1.5 * track.track_tolerance_geoid_m);
-  EXPECT_THROW(evaluate_points(field, std::vector<GeodeticPoint>{{2.0, 0, 0}}, PointsOptions{}), InputError);
+  EXPECT_THROW(evaluate_points(field, std::vector<GeodeticPoint>{{2.0, 0, 0}}, PointsOptions{}),
+               InputError);
 }
 
 }  // namespace

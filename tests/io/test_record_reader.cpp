@@ -60,7 +60,8 @@ std::string first_error(const std::string& text, RecordFormat format = {}) {
 }
 
 TEST(RecordReader, SkipsCommentsAndBlankLinesAndKeepsFileLineNumbers) {
-  const std::string text = "# survey line 7\n\n  # indented comment\n1,2,3  # trailing\n\t\n4, 5 ,6\n# end\n";
+  const std::string text =
+      "# survey line 7\n\n  # indented comment\n1,2,3  # trailing\n\t\n4, 5 ,6\n# end\n";
   const auto recs = read_all(text, 100);
   ASSERT_EQ(recs.size(), 2u);
   EXPECT_EQ(recs[0], (Rec{4, {"1", "2", "3"}}));
@@ -125,7 +126,8 @@ TEST(RecordReader, FindsColumnsByNameIgnoringCase) {
   EXPECT_EQ(r.find_column("lat"), std::optional<std::size_t>(0));
   EXPECT_EQ(r.require_column("lon"), 1u);
   EXPECT_EQ(r.find_column("h"), std::nullopt);
-  EXPECT_EQ(error_of([&] { r.require_column("x"); }), "p.csv:1: no column \"x\" in the header (columns: Lat, LON, h_m)");
+  EXPECT_EQ(error_of([&] { r.require_column("x"); }),
+            "p.csv:1: no column \"x\" in the header (columns: Lat, LON, h_m)");
   RecordChunk c;
   ASSERT_TRUE(r.next(c, 5));
   EXPECT_EQ(c[0].field_name(2), "h_m");
@@ -204,16 +206,25 @@ TEST(RecordReader, NumberAndAngleHelpers) {
   EXPECT_EQ(c[0].number(2), 150.0);
   EXPECT_EQ(error_of([&] { c[1].number(2); }), "points.csv:3: h_m: \"5x\" is not a number");
   EXPECT_EQ(error_of([&] { c[2].number(2); }), "points.csv:4: h_m: \"nan\" is not a number");
-  EXPECT_EQ(error_of([&] { c[3].number(2, {"h", "height"}); }), "points.csv:5: h: height \"\" is not a number");
-  EXPECT_EQ(error_of([&] { c[4].number(2); }), "points.csv:6: h_m: missing: the line has only 2 fields");
-  EXPECT_EQ(error_of([&] { c[5].angle(1); }), "points.csv:7: lon: cannot read angle \"abc\": unexpected \"abc\"");
+  EXPECT_EQ(error_of([&] {
+              c[3].number(2, {"h", "height"});
+            }),
+            "points.csv:5: h: height \"\" is not a number");
+  EXPECT_EQ(error_of([&] { c[4].number(2); }),
+            "points.csv:6: h_m: missing: the line has only 2 fields");
+  EXPECT_EQ(error_of([&] { c[5].angle(1); }),
+            "points.csv:7: lon: cannot read angle \"abc\": unexpected \"abc\"");
   EXPECT_EQ(error_of([&] { c[5].angle(1, {"longitude"}); }),
             "points.csv:7: longitude: cannot read angle \"abc\": unexpected \"abc\"");
   // Any parser: its errors get the record's place; a field it names is kept.
-  EXPECT_EQ(error_of([&] { c[5].parse(2, [](std::string_view) -> int { throw InputError("too big"); }); }),
+  EXPECT_EQ(error_of([&] {
+              c[5].parse(2, [](std::string_view) -> int { throw InputError("too big"); });
+            }),
             "points.csv:7: h_m: too big");
   EXPECT_EQ(error_of([&] {
-              c[5].parse(2, [](std::string_view) -> int { throw InputError("too big", {"", {}, "height"}); });
+              c[5].parse(2, [](std::string_view) -> int {
+                throw InputError("too big", {"", {}, "height"});
+              });
             }),
             "points.csv:7: height: too big");
   EXPECT_EQ(c[5].parse(2, [](std::string_view t) { return std::string(t) + "!"; }), "3!");
@@ -230,13 +241,15 @@ TEST(RecordReader, ColumnIndexWhenThereIsNoHeader) {
 TEST(RecordReader, FiniteDoubles) {
   for (const char* ok : {"0", "-0.5", "+3e-4", ".5", "5.", "1E3", "123456789012"})
     EXPECT_TRUE(to_finite_double(ok).has_value()) << ok;
-  for (const char* bad : {"", "+", "-", "+-1", "1e", "0x10", " 1", "1 ", "nan", "inf", "-infinity", "1e999", "1,5"})
+  for (const char* bad :
+       {"", "+", "-", "+-1", "1e", "0x10", " 1", "1 ", "nan", "inf", "-infinity", "1e999", "1,5"})
     EXPECT_FALSE(to_finite_double(bad).has_value()) << bad;
   EXPECT_EQ(*to_finite_double("+2.5"), 2.5);
 }
 
 TEST(RecordReader, BadHeadersNameTheLineAndColumn) {
-  EXPECT_EQ(first_error("# c\nlat,lon,LAT\n1,2,3\n"), "t.csv:2: column \"LAT\" appears twice in the header");
+  EXPECT_EQ(first_error("# c\nlat,lon,LAT\n1,2,3\n"),
+            "t.csv:2: column \"LAT\" appears twice in the header");
   EXPECT_EQ(first_error("lat,lon [deg\n1,2\n"),
             "t.csv:1: column 2: header field \"lon [deg\": the unit's \"[\" is not closed");
   EXPECT_EQ(first_error("lat,lon [deg] x\n1,2\n"),

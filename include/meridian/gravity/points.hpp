@@ -65,7 +65,8 @@ std::size_t points_chunk_size(const PointsOptions& options) noexcept;
 /// TrackOptions{track_tolerance_rad, track_tolerance_geoid_m} when
 /// options.along_track(). Result i belongs to points[i]. Throws InputError
 /// for a point outside the model's range (field "points[i]").
-std::vector<FieldValues> evaluate_points(const GravityField& field, std::span<const GeodeticPoint> points,
+std::vector<FieldValues> evaluate_points(const GravityField& field,
+                                         std::span<const GeodeticPoint> points,
                                          const PointsOptions& options);
 
 }  // namespace meridian::gravity

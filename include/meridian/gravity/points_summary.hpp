@@ -40,7 +40,8 @@ class RunningStatistics {
  private:
   std::uint64_t n_ = 0;
   double mean_ = 0, m2_ = 0;
-  double min_ = std::numeric_limits<double>::infinity(), max_ = -std::numeric_limits<double>::infinity();
+  double min_ = std::numeric_limits<double>::infinity(),
+         max_ = -std::numeric_limits<double>::infinity();
 };
 
 /// Extent of the points (geodetic latitude and longitude as given, height).
@@ -67,8 +68,8 @@ class PointsSummary {
   void add(std::span<const GeodeticPoint> points, std::span<const FieldValues> values);
 
   std::uint64_t count() const noexcept { return xi_.count(); }
-  const RunningStatistics& xi_rad() const noexcept { return xi_; }    ///< ξ, rad
-  const RunningStatistics& eta_rad() const noexcept { return eta_; }  ///< η, rad
+  const RunningStatistics& xi_rad() const noexcept { return xi_; }      ///< ξ, rad
+  const RunningStatistics& eta_rad() const noexcept { return eta_; }    ///< η, rad
   const RunningStatistics& geoid_m() const noexcept { return geoid_; }  ///< N, m
   const BoundingBox& bounds() const noexcept { return box_; }
   const ThinnedSample& sample() const noexcept { return sample_; }

@@ -90,8 +90,10 @@ std::optional<double> to_finite_double(std::string_view text) noexcept;
 
 /// How a field is named in an error (Record::number, Record::angle, Record::parse).
 struct FieldLabel {
-  std::string_view field = {};  ///< the field in the error context; empty: the column's name, else "column N"
-  std::string_view noun = {};   ///< Record::number only: put before the quoted text ("height" → `height "5x" is not a number`)
+  std::string_view field =
+      {};  ///< the field in the error context; empty: the column's name, else "column N"
+  std::string_view noun = {};  ///< Record::number only: put before the quoted text ("height" →
+                               ///< `height "5x" is not a number`)
 };
 
 class RecordChunk;
@@ -170,10 +172,11 @@ class RecordChunk {
     std::vector<Column> columns;
   };
   void clear();
-  std::string text_;                      // every field's text, back to back
-  std::vector<std::size_t> field_end_;    // end of each field in text_
-  std::vector<std::size_t> first_field_;  // per record, index of its first field; one extra at the end
-  std::vector<int> lines_;                // per record
+  std::string text_;                    // every field's text, back to back
+  std::vector<std::size_t> field_end_;  // end of each field in text_
+  std::vector<std::size_t>
+      first_field_;         // per record, index of its first field; one extra at the end
+  std::vector<int> lines_;  // per record
   std::shared_ptr<const Layout> layout_;
 };
 
