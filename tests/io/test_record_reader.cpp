@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "meridian/core/error.hpp"
@@ -44,19 +45,12 @@ std::vector<Rec> read_all(const std::string& text, std::size_t chunk, RecordForm
   return out;
 }
 
-// The message of the Error that `f` throws ("" when none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+// Throws meridian::Error with exactly this message (file:line: field: text).
+auto throws(const char* message) { return testing::ThrowsMessage<Error>(testing::StrEq(message)); }
 
-std::string first_error(const std::string& text, RecordFormat format = {}) {
-  return error_of([&] { read_all(text, 10, format); });
+// Reading all of `text`, for throws().
+auto reading(const std::string& text, RecordFormat format = {}) {
+  return [text, format] { read_all(text, 10, format); };
 }
 
 TEST(RecordReader, SkipsCommentsAndBlankLinesAndKeepsFileLineNumbers) {
@@ -116,8 +110,8 @@ TEST(RecordReader, ExplicitHeaderModes) {
   ASSERT_EQ(h.size(), 2u);
   EXPECT_EQ(h[0].name, "1");
   EXPECT_EQ(recs.size(), 1u);
-  EXPECT_EQ(first_error("# nothing\n", {Delimiter::Auto, HeaderMode::Present}),
-            "t.csv: no header line: the input has no line of column names");
+  EXPECT_THAT(reading("# nothing\n", {Delimiter::Auto, HeaderMode::Present}),
+              throws("t.csv: no header line: the input has no line of column names"));
 }
 
 TEST(RecordReader, FindsColumnsByNameIgnoringCase) {
@@ -126,8 +120,8 @@ TEST(RecordReader, FindsColumnsByNameIgnoringCase) {
   EXPECT_EQ(r.find_column("lat"), std::optional<std::size_t>(0));
   EXPECT_EQ(r.require_column("lon"), 1u);
   EXPECT_EQ(r.find_column("h"), std::nullopt);
-  EXPECT_EQ(error_of([&] { r.require_column("x"); }),
-            "p.csv:1: no column \"x\" in the header (columns: Lat, LON, h_m)");
+  EXPECT_THAT(([&] { r.require_column("x"); }),
+              throws("p.csv:1: no column \"x\" in the header (columns: Lat, LON, h_m)"));
   RecordChunk c;
   ASSERT_TRUE(r.next(c, 5));
   EXPECT_EQ(c[0].field_name(2), "h_m");
@@ -204,29 +198,28 @@ TEST(RecordReader, NumberAndAngleHelpers) {
   EXPECT_NEAR(c[0].angle(0).deg(), 37.84, 1e-12);
   EXPECT_NEAR(c[0].angle(1).rad(), -0.5 * units::kDegree, 1e-15);
   EXPECT_EQ(c[0].number(2), 150.0);
-  EXPECT_EQ(error_of([&] { c[1].number(2); }), "points.csv:3: h_m: \"5x\" is not a number");
-  EXPECT_EQ(error_of([&] { c[2].number(2); }), "points.csv:4: h_m: \"nan\" is not a number");
-  EXPECT_EQ(error_of([&] {
-              c[3].number(2, {"h", "height"});
-            }),
-            "points.csv:5: h: height \"\" is not a number");
-  EXPECT_EQ(error_of([&] { c[4].number(2); }),
-            "points.csv:6: h_m: missing: the line has only 2 fields");
-  EXPECT_EQ(error_of([&] { c[5].angle(1); }),
-            "points.csv:7: lon: cannot read angle \"abc\": unexpected \"abc\"");
-  EXPECT_EQ(error_of([&] { c[5].angle(1, {"longitude"}); }),
-            "points.csv:7: longitude: cannot read angle \"abc\": unexpected \"abc\"");
+  EXPECT_THAT(([&] { c[1].number(2); }), throws("points.csv:3: h_m: \"5x\" is not a number"));
+  EXPECT_THAT(([&] { c[2].number(2); }), throws("points.csv:4: h_m: \"nan\" is not a number"));
+  EXPECT_THAT(([&] {
+                c[3].number(2, {"h", "height"});
+              }),
+              throws("points.csv:5: h: height \"\" is not a number"));
+  EXPECT_THAT(([&] { c[4].number(2); }),
+              throws("points.csv:6: h_m: missing: the line has only 2 fields"));
+  EXPECT_THAT(([&] { c[5].angle(1); }),
+              throws("points.csv:7: lon: cannot read angle \"abc\": unexpected \"abc\""));
+  EXPECT_THAT(([&] { c[5].angle(1, {"longitude"}); }),
+              throws("points.csv:7: longitude: cannot read angle \"abc\": unexpected \"abc\""));
   // Any parser: its errors get the record's place; a field it names is kept.
-  EXPECT_EQ(error_of([&] {
-              c[5].parse(2, [](std::string_view) -> int { throw InputError("too big"); });
-            }),
-            "points.csv:7: h_m: too big");
-  EXPECT_EQ(error_of([&] {
-              c[5].parse(2, [](std::string_view) -> int {
-                throw InputError("too big", {"", {}, "height"});
-              });
-            }),
-            "points.csv:7: height: too big");
+  EXPECT_THAT(
+      ([&] { c[5].parse(2, [](std::string_view) -> int { throw InputError("too big"); }); }),
+      throws("points.csv:7: h_m: too big"));
+  EXPECT_THAT(([&] {
+                c[5].parse(2, [](std::string_view) -> int {
+                  throw InputError("too big", {"", {}, "height"});
+                });
+              }),
+              throws("points.csv:7: height: too big"));
   EXPECT_EQ(c[5].parse(2, [](std::string_view t) { return std::string(t) + "!"; }), "3!");
 }
 
@@ -235,7 +228,7 @@ TEST(RecordReader, ColumnIndexWhenThereIsNoHeader) {
   RecordReader r(in, "<stdin>");
   RecordChunk c;
   ASSERT_TRUE(r.next(c, 1));
-  EXPECT_EQ(error_of([&] { c[0].number(2); }), "<stdin>:1: column 3: \"x\" is not a number");
+  EXPECT_THAT(([&] { c[0].number(2); }), throws("<stdin>:1: column 3: \"x\" is not a number"));
 }
 
 TEST(RecordReader, FiniteDoubles) {
@@ -248,12 +241,14 @@ TEST(RecordReader, FiniteDoubles) {
 }
 
 TEST(RecordReader, BadHeadersNameTheLineAndColumn) {
-  EXPECT_EQ(first_error("# c\nlat,lon,LAT\n1,2,3\n"),
-            "t.csv:2: column \"LAT\" appears twice in the header");
-  EXPECT_EQ(first_error("lat,lon [deg\n1,2\n"),
-            "t.csv:1: column 2: header field \"lon [deg\": the unit's \"[\" is not closed");
-  EXPECT_EQ(first_error("lat,lon [deg] x\n1,2\n"),
-            "t.csv:1: column 2: header field \"lon [deg] x\": text after the unit's \"]\"");
+  EXPECT_THAT(reading("# c\nlat,lon,LAT\n1,2,3\n"),
+              throws("t.csv:2: column \"LAT\" appears twice in the header"));
+  EXPECT_THAT(
+      reading("lat,lon [deg\n1,2\n"),
+      throws("t.csv:1: column 2: header field \"lon [deg\": the unit's \"[\" is not closed"));
+  EXPECT_THAT(
+      reading("lat,lon [deg] x\n1,2\n"),
+      throws("t.csv:1: column 2: header field \"lon [deg] x\": text after the unit's \"]\""));
   EXPECT_EQ(parse_column(" dg [ mGal ] ").name, "dg");
   EXPECT_EQ(parse_column(" dg [ mGal ] ").unit, "mGal");
   EXPECT_THROW(parse_column("[deg]"), ParseError);

@@ -3,6 +3,8 @@
 // sign note. Expected counts follow from the input and the thinning rule.
 
 #include <algorithm>
+#include <iterator>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -17,12 +19,6 @@ using namespace meridian;
 using namespace meridian::report;
 
 namespace {
-
-int count(const std::string& s, const std::string& what) {
-  int n = 0;
-  for (std::size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + what.size())) ++n;
-  return n;
-}
 
 const Section* find_section(const Document& d, const std::string& id) {
   for (const auto& s : d.sections)
@@ -80,7 +76,10 @@ TEST(GravityPointsDocument, HasSummaryMapsAndDefinitions) {
     }
     if (html_reports_available()) {
       const std::string html = render_html(d);
-      EXPECT_EQ(count(html, "data-vega-spec="), static_cast<int>(mapped.size()));
+      const std::regex spec("data-vega-spec=");
+      EXPECT_EQ(std::distance(std::sregex_iterator(html.begin(), html.end(), spec),
+                              std::sregex_iterator()),
+                static_cast<long>(mapped.size()));
     }
   }
 }
