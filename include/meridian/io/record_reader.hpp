@@ -45,6 +45,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "meridian/core/angle.hpp"
@@ -90,10 +91,11 @@ std::optional<double> to_finite_double(std::string_view text) noexcept;
 
 /// How a field is named in an error (Record::number, Record::angle, Record::parse).
 struct FieldLabel {
-  std::string_view field =
-      {};  ///< the field in the error context; empty: the column's name, else "column N"
-  std::string_view noun = {};  ///< Record::number only: put before the quoted text ("height" →
-                               ///< `height "5x" is not a number`)
+  /// The field in the error context; empty: the column's name, else "column N".
+  std::string_view field = {};
+  /// Record::number only: put before the quoted text ("height" gives
+  /// `height "5x" is not a number`).
+  std::string_view noun = {};
 };
 
 class RecordChunk;
@@ -174,8 +176,8 @@ class RecordChunk {
   void clear();
   std::string text_;                    // every field's text, back to back
   std::vector<std::size_t> field_end_;  // end of each field in text_
-  std::vector<std::size_t>
-      first_field_;         // per record, index of its first field; one extra at the end
+  // Per record, the index of its first field in field_end_; one extra at the end.
+  std::vector<std::size_t> first_field_;
   std::vector<int> lines_;  // per record
   std::shared_ptr<const Layout> layout_;
 };
