@@ -1,23 +1,15 @@
-// meridian gravity point | points | synth-model
+// meridian gravity point | points | synth-model | geoid-grid
 
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <iterator>
 #include <memory>
-#include <sstream>
+#include <optional>
 #include <string>
-#include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
 #include "commands.hpp"
 #include "meridian/core/atomic_file.hpp"
-#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/gravity/egm_format.hpp"
@@ -25,8 +17,14 @@
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/icgem.hpp"
 #include "meridian/gravity/model_lookup.hpp"
+#include "meridian/gravity/points.hpp"
 #include "meridian/gravity/synthetic.hpp"
-#include "meridian/gravity/track.hpp"
+#include "meridian/io/gravity_jobs.hpp"
+#include "meridian/io/gravity_points.hpp"
+#include "meridian/report/gravity_html.hpp"
+#include "meridian/report/gravity_json.hpp"
+#include "meridian/report/gravity_text.hpp"
+#include "meridian/report/html.hpp"
 
 namespace meridian::cli {
 namespace {
@@ -44,7 +42,7 @@ struct PointArgs : ModelArgs {
 };
 
 struct PointsArgs : ModelArgs {
-  std::string input, output;
+  std::string input, output, report;
   double track_tolerance_arcsec = 0;  // > 0: rows are one track, interpolated
   bool quiet = false;
 };
@@ -64,165 +62,40 @@ gravity::GravityModelData load(const ModelArgs& a) {
   return gravity::load_model(a.model, {a.max_degree, -1});
 }
 
-double parse_coordinate(const std::string& text, const char* what, double limit_deg) {
-  Angle a = Angle::radians(0);
-  try {
-    a = parse_angle(text);
-  } catch (Error& e) {
-    e.add_context("", std::nullopt, what);
-    throw;
-  }
-  if (std::abs(a.deg()) > limit_deg)
-    throw InputError(fmt::format("{} {} deg is outside [-{}, {}]", what, a.deg(), limit_deg, limit_deg), {"", {}, what});
-  return a.rad();
-}
-
 int run_point(const PointArgs& a) {
   const gravity::GravityModelData m = load(a);
   const gravity::GravityField field(m, {false, a.threads});
-  const gravity::GeodeticPoint p{parse_coordinate(a.lat, "latitude", 90), parse_coordinate(a.lon, "longitude", 540), a.h};
-  const gravity::FieldValues v = field.evaluate(p);
-  const double xi = units::rad_to_arcsec(v.xi_rad), eta = units::rad_to_arcsec(v.eta_rad);
-  std::string out;
-  if (a.json) {
-    const nlohmann::json j = {{"model", m.name},
-                              {"model_file", m.source_file},
-                              {"max_degree", field.max_degree()},
-                              {"latitude_deg", units::rad_to_deg(p.lat_rad)},
-                              {"longitude_deg", units::rad_to_deg(p.lon_rad)},
-                              {"height_m", p.height_m},
-                              {"xi_arcsec", xi},
-                              {"eta_arcsec", eta},
-                              {"geoid_m", v.geoid_m},
-                              {"gravity_anomaly_mgal", v.anomaly_m_s2 * 1e5},
-                              {"xi_astro_arcsec", units::rad_to_arcsec(v.xi_astro_rad)},
-                              {"eta_astro_arcsec", units::rad_to_arcsec(v.eta_astro_rad)},
-                              {"disturbing_potential_m2_s2", v.disturbing_potential_m2_s2}};
-    out = j.dump(2) + "\n";
-  } else {
-    out = fmt::format(
-        "model {} (degree {}, {})\npoint lat {:.9f} deg, lon {:.9f} deg, h {:.3f} m\n"
-        "xi_arcsec  {:.9f}\neta_arcsec {:.9f}\ngeoid_m    {:.9f}\n",
-        m.name, field.max_degree(), m.source_file, units::rad_to_deg(p.lat_rad), units::rad_to_deg(p.lon_rad), p.height_m,
-        xi, eta, v.geoid_m);
-  }
-  emit("", out);
+  const gravity::GeodeticPoint p{io::parse_latitude_rad(a.lat), io::parse_longitude_rad(a.lon), a.h};
+  const gravity::PointResult r{gravity::model_info(m, field), p, field.evaluate(p)};
+  emit("", a.json ? report::gravity_point_to_json(r).dump(2) + "\n" : report::gravity_point_text(r));
   return kOk;
 }
 
-// Reads lat,lon[,h] rows a chunk at a time, so a survey line of millions of
-// samples never sits in memory: '#' comments, blank lines and one
-// non-numeric header line are skipped.
-class PointReader {
- public:
-  PointReader(std::istream& in, std::string name) : in_(in), name_(std::move(name)) {}
-
-  /// Append up to `max` points to `out` (cleared first); false at the end.
-  bool next(std::vector<gravity::GeodeticPoint>& out, std::size_t max) {
-    out.clear();
-    std::string line;
-    while (out.size() < max && std::getline(in_, line)) {
-      ++line_no_;
-      bytes_ += line.size() + 1;
-      if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-      std::vector<std::string> f;
-      std::stringstream ss(line);
-      for (std::string cell; std::getline(ss, cell, ',');) {
-        const auto b = cell.find_first_not_of(" \t\r"), e = cell.find_last_not_of(" \t\r");
-        f.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
-      }
-      const bool first = !seen_data_;
-      seen_data_ = true;
-      if (first && !f.empty() && !f[0].empty() && std::isalpha(static_cast<unsigned char>(f[0][0]))) continue;
-      try {
-        out.push_back(parse(f));
-      } catch (Error& e) {
-        e.add_context(name_, line_no_);
-        throw;
-      }
-    }
-    return !out.empty();
-  }
-  std::size_t bytes_read() const { return bytes_; }
-
- private:
-  static gravity::GeodeticPoint parse(const std::vector<std::string>& f) {
-    if (f.size() < 2 || f.size() > 3)
-      throw InputError(fmt::format("expected lat,lon[,h] (2 or 3 fields), got {}", f.size()));
-    gravity::GeodeticPoint p{parse_coordinate(f[0], "latitude", 90), parse_coordinate(f[1], "longitude", 540), 0.0};
-    if (f.size() == 3) {
-      std::size_t used = 0;
-      try {
-        p.height_m = std::stod(f[2], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != f[2].size() || f[2].empty()) throw ParseError("height \"" + f[2] + "\" is not a number", {"", {}, "h"});
-    }
-    gravity::GravityField::check_point(p);
-    return p;
-  }
-  std::istream& in_;
-  std::string name_;
-  int line_no_ = 0;
-  std::size_t bytes_ = 0;
-  bool seen_data_ = false;
-};
-
 int run_points(const PointsArgs& a) {
-  std::ifstream file;
-  std::istream* in = &std::cin;
-  std::string name = "<stdin>";
-  std::size_t total_bytes = 0;  // unknown for stdin
-  if (!a.input.empty() && a.input != "-") {
-    file.open(a.input);
-    if (!file) throw IoError("cannot open input file", {a.input, {}, ""});
-    in = &file;
-    name = a.input;
-    std::error_code ec;
-    total_bytes = static_cast<std::size_t>(std::filesystem::file_size(a.input, ec));
-  }
+  require_html_reports_for(a.report);
+  io::PointsInput input(a.input);
   const gravity::GravityModelData m = load(a);
   const gravity::GravityField field(m, {false, a.threads});
+  gravity::PointsOptions options;
+  if (a.track_tolerance_arcsec > 0) options.track_tolerance_rad = units::arcsec_to_rad(a.track_tolerance_arcsec);
   // With a file output nothing appears unless the whole run succeeds.
-  std::unique_ptr<AtomicFileWriter> writer;
-  if (!a.output.empty() && a.output != "-") writer = std::make_unique<AtomicFileWriter>(a.output);
-  auto put = [&](const std::string& text) {
-    if (writer) writer->write(text);
+  std::optional<AtomicFileWriter> csv;
+  if (!a.output.empty() && a.output != "-") csv.emplace(a.output);
+  const io::TextSink write = [&](std::string_view text) {
+    if (csv) csv->write(text);
     else std::fwrite(text.data(), 1, text.size(), stdout);
   };
-  put("lat_deg,lon_deg,h_m,xi_arcsec,eta_arcsec,geoid_m\n");
   TerminalProgress progress(a.quiet);
-  PointReader reader(*in, name);
-  // Track interpolation works on a stretch of line at a time; chunks are
-  // long enough that their ends cost little.
-  const std::size_t chunk = a.track_tolerance_arcsec > 0 ? 200000 : 16384;
-  std::vector<gravity::GeodeticPoint> pts;
-  std::size_t done = 0;
-  while (reader.next(pts, chunk)) {
-    std::vector<gravity::FieldValues> v;
-    if (a.track_tolerance_arcsec > 0) {
-      gravity::TrackOptions to;
-      to.tolerance_rad = units::arcsec_to_rad(a.track_tolerance_arcsec);
-      to.tolerance_geoid_m = 1e-4;
-      v = gravity::evaluate_track(field, pts, gravity::Quantities::All, to).values;
-    } else {
-      v = field.evaluate(pts);
-    }
-    fmt::memory_buffer b;
-    for (std::size_t i = 0; i < pts.size(); ++i)
-      fmt::format_to(std::back_inserter(b), "{:.10f},{:.10f},{:.4f},{:.9f},{:.9f},{:.9f}\n",
-                     units::rad_to_deg(pts[i].lat_rad), units::rad_to_deg(pts[i].lon_rad), pts[i].height_m,
-                     units::rad_to_arcsec(v[i].xi_rad), units::rad_to_arcsec(v[i].eta_rad), v[i].geoid_m);
-    put(fmt::to_string(b));
-    done += pts.size();
-    if (total_bytes > 0) progress.update(reader.bytes_read(), total_bytes, "points (bytes of input)");
-    else progress.update(done, 0, "points");
-  }
+  const gravity::PointsSummary summary = io::run_gravity_points(input, field, options, write, &progress);
   progress.finish();
-  if (writer) writer->commit();
+  // The report is made before anything is committed, and written after the CSV.
+  const std::string html =
+      a.report.empty() ? std::string()
+                       : report::render_html(report::gravity_points_document(input.name(), gravity::model_info(m, field),
+                                                                             options, summary));
+  if (csv) csv->commit();
   else std::fflush(stdout);
+  if (!a.report.empty()) write_file_atomically(a.report, html);
   return kOk;
 }
 
@@ -239,25 +112,13 @@ int run_synth(const SynthArgs& a) {
 
 int run_grid(const GridArgs& a) {
   const gravity::GeoidGrid g = gravity::read_geoid_grid(a.grid);
-  const double lat = parse_coordinate(a.lat, "latitude", 90), lon = parse_coordinate(a.lon, "longitude", 540);
+  const double lat = io::parse_latitude_rad(a.lat), lon = io::parse_longitude_rad(a.lon);
   gravity::GridInterpolation interp;
   if (a.interpolation == "bicubic") interp = gravity::GridInterpolation::Bicubic;
   else if (a.interpolation == "bilinear") interp = gravity::GridInterpolation::Bilinear;
   else throw InputError("unknown interpolation \"" + a.interpolation + "\" (bilinear or bicubic)", {"", {}, "--interpolation"});
-  const double n = gravity::grid_geoid_height_m(g, lat, lon, interp);
-  const gravity::GridDeflection d = gravity::grid_deflection_fallback(g, lat, lon);
-  std::string out;
-  if (a.json) {
-    const nlohmann::json j = {{"grid", g.source_file}, {"interpolation", a.interpolation},
-                              {"latitude_deg", units::rad_to_deg(lat)}, {"longitude_deg", units::rad_to_deg(lon)},
-                              {"geoid_m", n}, {"fallback_xi_arcsec", units::rad_to_arcsec(d.xi_rad)},
-                              {"fallback_eta_arcsec", units::rad_to_arcsec(d.eta_rad)}, {"fallback_method", d.method}};
-    out = j.dump(2) + "\n";
-  } else {
-    out = fmt::format("grid {} ({})\ngeoid_m    {:.6f}\nxi_arcsec  {:.3f}  [{}]\neta_arcsec {:.3f}  [{}]\n", g.source_file,
-                      a.interpolation, n, units::rad_to_arcsec(d.xi_rad), d.method, units::rad_to_arcsec(d.eta_rad), d.method);
-  }
-  emit("", out);
+  const gravity::GridPointResult r = gravity::evaluate_grid_point(g, lat, lon, interp);
+  emit("", a.json ? report::geoid_grid_to_json(r).dump(2) + "\n" : report::geoid_grid_text(r));
   return kOk;
 }
 
@@ -292,6 +153,8 @@ void add_gravity_commands(CLI::App& app, int& exit_code) {
   points->add_option("--track-tolerance-arcsec", ps->track_tolerance_arcsec,
                      "Treat the rows as one survey line: evaluate a subset and interpolate, with xi/eta error at most "
                      "this (checked at every interval's midpoint; geoid to 0.1 mm)");
+  points->add_option("--report", ps->report,
+                     "Also write a self-contained HTML report (statistics, maps of xi, eta, N) to this file");
   points->add_flag("-q,--quiet", ps->quiet, "No progress bar");
   points->callback([ps, &exit_code] { exit_code = guarded([&] { return run_points(*ps); }); });
 

@@ -187,4 +187,20 @@ GridDeflection grid_deflection_fallback(const GeoidGrid& g, double lat_rad, doub
   return d;
 }
 
+const char* to_string(GridInterpolation interpolation) noexcept {
+  return interpolation == GridInterpolation::Bilinear ? "bilinear" : "bicubic";
+}
+
+GridPointResult evaluate_grid_point(const GeoidGrid& grid, double lat_rad, double lon_rad,
+                                    GridInterpolation interpolation) {
+  GridPointResult r;
+  r.grid_file = grid.source_file;
+  r.interpolation = interpolation;
+  r.lat_rad = lat_rad;
+  r.lon_rad = lon_rad;
+  r.geoid_m = grid_geoid_height_m(grid, lat_rad, lon_rad, interpolation);
+  r.fallback = grid_deflection_fallback(grid, lat_rad, lon_rad);
+  return r;
+}
+
 }  // namespace meridian::gravity

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""Renders every HTML report that `meridian demo` writes in headless Chromium
-and fails on a JavaScript error, a plot that did not render, a missing
-section, a page that would need the network, or a PDF that does not print.
+"""Renders every HTML report that `meridian demo` writes, and a
+`meridian gravity points --report` page made here from a small synthetic
+model, in headless Chromium and fails on a JavaScript error, a plot that did
+not render, a missing section, a page that would need the network, or a PDF
+that does not print.
 
 Usage: check_reports.py --meridian build/meridian --out DIR [--screenshots]
 """
@@ -25,7 +27,11 @@ REQUIRED = {
     "campaign.html": ["result", "checks", "calibration", "line", "line-determination-1", "notes"],
     "spec-scenario-2.html": ["summary", "determination-1"],
     "tracking.html": ["summary", "determination-1"],
+    "gravity-points.html": ["summary", "maps", "definitions"],
 }
+
+# The gravity points page: a 20 x 20 grid of points over a region.
+GRAVITY_POINTS = 400
 
 
 def find_chromium():
@@ -71,6 +77,29 @@ def check_page(chromium, path):
     return errors
 
 
+def write_gravity_report(meridian, out):
+    """A synthetic model, a few hundred points and `gravity points --report`;
+    returns an error message or None."""
+    model = os.path.join(out, "gravity-model")
+    synth = subprocess.run([meridian, "gravity", "synth-model", "--degree", "60", "--seed", "1", "--out", model],
+                           capture_output=True, text=True)
+    if synth.returncode != 0:
+        return "meridian gravity synth-model: " + synth.stderr
+    points = os.path.join(out, "gravity-points.csv")
+    side = int(GRAVITY_POINTS ** 0.5)
+    with open(points, "w", encoding="utf-8") as f:
+        f.write("lat [deg],lon [deg],h [m]\n")
+        for i in range(side):
+            for j in range(side):
+                f.write(f"{44 + 0.25 * i:.4f},{5 + 0.3 * j:.4f},{50 * (i + j)}\n")
+    run = subprocess.run([meridian, "gravity", "points", "--model", model + ".gfc", "--input", points,
+                          "-o", os.path.join(out, "gravity-points-out.csv"), "-q",
+                          "--report", os.path.join(out, "gravity-points.html")], capture_output=True, text=True)
+    if run.returncode != 0:
+        return "meridian gravity points --report: " + run.stderr
+    return None
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--meridian", required=True)
@@ -86,8 +115,12 @@ def main():
     if demo.returncode != 0:
         print("FAIL: meridian demo:", demo.stderr)
         return 1
-    pages = sorted(glob.glob(os.path.join(args.out, "*.html")))
     passed = failed = 0
+    problem = write_gravity_report(args.meridian, args.out)
+    if problem:
+        failed += 1
+        print("FAIL", problem)
+    pages = sorted(glob.glob(os.path.join(args.out, "*.html")))
     for page in pages:
         errs = check_page(chromium, page)
         if errs:
@@ -102,7 +135,7 @@ def main():
     for name in REQUIRED:
         if not os.path.exists(os.path.join(args.out, name)):
             failed += 1
-            print(f"FAIL {name} was not written by meridian demo")
+            print(f"FAIL {name} was not written")
     # The campaign report prints to a PDF.
     pdf = os.path.join(args.out, "campaign.pdf")
     p = subprocess.run([args.meridian, "report", "pdf", os.path.join(args.out, "campaign.html"), "-o", pdf],

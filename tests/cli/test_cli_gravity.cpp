@@ -155,3 +155,70 @@ TEST_F(GravityCli, GeoidGridCommandLabelsTheFallbackDeflection) {
 }
 
 }  // namespace
+
+namespace {
+
+// Files in the test directory whose name marks an unfinished atomic write.
+int temporary_files(const fs::path& dir) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos) ++n;
+  return n;
+}
+
+int occurrences(const std::string& s, const std::string& what) {
+  int n = 0;
+  for (std::size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + what.size())) ++n;
+  return n;
+}
+
+TEST_F(GravityCli, PointsReportIsWrittenAfterTheCsvAndHasTheMaps) {
+  ASSERT_EQ(run("gravity synth-model --degree 30 --seed 4 --out m").code, 0);
+  std::string csv = "lat [deg],lon [deg],h [m]\n";
+  const int n = 300;
+  for (int i = 0; i < n; ++i) csv += std::to_string(44 + i * 0.01) + "," + std::to_string(6 + i * 0.02) + ",100\n";
+  write("pts.csv", csv);
+  const CmdResult plain = run("gravity points --model m.gfc --input pts.csv -o plain.csv");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const CmdResult r = run("gravity points --model m.gfc --input pts.csv -o out.csv --report r.html");
+  if (r.code != 0 && r.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The report does not change the CSV.
+  EXPECT_EQ(slurp(dir_ / "out.csv"), slurp(dir_ / "plain.csv"));
+  const std::string html = slurp(dir_ / "r.html");
+  // One map per mapped quantity (xi, eta, N), each drawing every point of
+  // this short run.
+  const std::vector<std::string> mapped = {"xi (arcsec)", "eta (arcsec)", "N (m)"};
+  EXPECT_EQ(occurrences(html, "data-vega-spec="), static_cast<int>(mapped.size()));
+  for (const auto& m : mapped) EXPECT_NE(html.find(m), std::string::npos) << m;
+  EXPECT_EQ(occurrences(html, "All " + std::to_string(n) + " points are drawn."), static_cast<int>(mapped.size()));
+  for (const char* id : {"summary", "maps", "definitions"})
+    EXPECT_NE(html.find(std::string("<section id=\"") + id + "\""), std::string::npos) << id;
+  EXPECT_NE(html.find("astronomic minus geodetic"), std::string::npos);
+  EXPECT_EQ(temporary_files(dir_), 0);
+  // From stdin to stdout, the same rows.
+  const CmdResult piped = run("gravity points --model m.gfc --report piped.html", csv);
+  ASSERT_EQ(piped.code, 0) << piped.err;
+  EXPECT_EQ(piped.out, slurp(dir_ / "plain.csv"));
+  EXPECT_NE(slurp(dir_ / "piped.html").find("&lt;stdin&gt;"), std::string::npos);
+}
+
+TEST_F(GravityCli, BadCsvLeavesNoReport) {
+  ASSERT_EQ(run("gravity synth-model --degree 10 --seed 2 --out m").code, 0);
+  write("bad.csv", "lat,lon\n10,20\n11,x\n");
+  CmdResult r = run("gravity points --model m.egm --input bad.csv -o out.csv --report r.html");
+  if (r.code != 0 && r.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << r.err;
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("bad.csv:3: longitude"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r.html"));
+  EXPECT_FALSE(fs::exists(dir_ / "out.csv"));
+  // A report from an earlier run is left as it was.
+  write("r.html", "earlier report");
+  r = run("gravity points --model m.egm --report r.html", "10,20\n95,0\n");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("<stdin>:2: latitude"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir_ / "r.html"), "earlier report");
+  EXPECT_EQ(temporary_files(dir_), 0);
+}
+
+}  // namespace

@@ -48,6 +48,9 @@ GeoidGrid read_geoid_grid(const std::filesystem::path& path);
 
 enum class GridInterpolation { Bilinear, Bicubic };
 
+/// "bilinear" or "bicubic", as the CLI option and the JSON output name them.
+const char* to_string(GridInterpolation interpolation) noexcept;
+
 /// Interpolated geoid height (m) at geodetic (lat_rad, lon_rad). Bicubic is
 /// Keys' cubic convolution (a = −1/2; exact for quadratics) on the 4×4
 /// nodes around the point, falling back to bilinear where those are not all
@@ -67,5 +70,18 @@ struct GridDeflection {
 };
 GridDeflection grid_deflection_fallback(const GeoidGrid& grid, double lat_rad, double lon_rad,
                                         double a_m = 6378137.0, double f = 1 / 298.257223563);
+
+/// `meridian gravity geoid-grid`: N and the labelled fallback deflection at one point.
+struct GridPointResult {
+  std::string grid_file;  ///< GeoidGrid::source_file
+  GridInterpolation interpolation = GridInterpolation::Bicubic;
+  double lat_rad = 0, lon_rad = 0;
+  double geoid_m = 0;       ///< grid_geoid_height_m
+  GridDeflection fallback;  ///< grid_deflection_fallback on the default ellipsoid (FALLBACK ONLY)
+};
+
+/// grid_geoid_height_m and grid_deflection_fallback at one point (errors as theirs).
+GridPointResult evaluate_grid_point(const GeoidGrid& grid, double lat_rad, double lon_rad,
+                                    GridInterpolation interpolation = GridInterpolation::Bicubic);
 
 }  // namespace meridian::gravity

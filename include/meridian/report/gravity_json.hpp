@@ -1,0 +1,24 @@
+#pragma once
+/// \file gravity_json.hpp
+/// JSON views of the gravity commands (their `--json` output). The keys are
+/// a stable contract for scripts (docs/gravity-field.md §5).
+
+#include <nlohmann/json.hpp>
+
+#include "meridian/gravity/geoid_grid.hpp"
+#include "meridian/gravity/points.hpp"
+
+namespace meridian::report {
+
+/// `meridian gravity point --json`: model, model_file, max_degree,
+/// latitude_deg, longitude_deg, height_m, xi_arcsec, eta_arcsec, geoid_m,
+/// gravity_anomaly_mgal, xi_astro_arcsec, eta_astro_arcsec,
+/// disturbing_potential_m2_s2.
+nlohmann::json gravity_point_to_json(const gravity::PointResult& r);
+
+/// `meridian gravity geoid-grid --json`: grid, interpolation, latitude_deg,
+/// longitude_deg, geoid_m, fallback_xi_arcsec, fallback_eta_arcsec,
+/// fallback_method.
+nlohmann::json geoid_grid_to_json(const gravity::GridPointResult& r);
+
+}  // namespace meridian::report
