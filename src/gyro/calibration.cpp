@@ -30,10 +30,12 @@ AzimuthMean mean_direction(const std::vector<Uncertain>& v) {
     double vv = 0;
     for (double xi : x) vv += (xi - mean) * (xi - mean);
     m.sigma_empirical = std::sqrt(vv / (n * (n - 1.0)));
+    m.one_run_sigma = std::sqrt(vv / (n - 1.0));
     const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
     m.max_difference = *hi - *lo;
   } else {
     m.sigma_empirical = std::numeric_limits<double>::quiet_NaN();
+    m.one_run_sigma = std::numeric_limits<double>::quiet_NaN();
   }
   double sigma = m.sigma_propagated;
   if (std::isfinite(m.sigma_empirical) && m.sigma_empirical > sigma) sigma = m.sigma_empirical;

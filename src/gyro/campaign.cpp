@@ -10,7 +10,14 @@
 
 namespace meridian::gyro {
 
-std::string to_string(CheckUnit u) { return u == CheckUnit::Div ? "div" : "arcsec"; }
+std::string to_string(CheckUnit u) {
+  switch (u) {
+    case CheckUnit::Div: return "div";
+    case CheckUnit::Runs: return "runs";
+    case CheckUnit::Arcsec: break;
+  }
+  return "arcsec";
+}
 
 // Grid coordinates are authoritative when given (mine surveys work on the
 // grid); geographic ones given as well are only checked for consistency.
@@ -68,21 +75,29 @@ class CampaignRun {
     if (in.gravity_model && !deflection)
       throw InputError("the campaign names a gravity model but it was not loaded",
                        {"", std::nullopt, "gravity_model"});
-    det_tol_ = in.tolerances.determination_difference_rad.value_or(
-        default_determination_tolerance_rad(in.instrument.accuracy_class_arcsec));
-    e_tol_ = in.tolerances.instrument_constant_difference_rad.value_or(det_tol_);
+    try {
+      limits_ = apply_tolerances(regulation_limits(in.instrument.accuracy_class_arcsec), in.tolerances);
+    } catch (Error& e) {
+      e.add_context("", std::nullopt, "instrument.accuracy_class_arcsec");
+      throw;
+    }
     options_ = in.options;
-    options_.zero_position_tolerance_div = in.tolerances.zero_position_div;
+    options_.zero_position_tolerance_div = limits_.zero_position_drift_div;
   }
 
   CampaignResult run() {
     res_.name = in_.name;
+    res_.limits = limits_;
     res_.notes.push_back("grid: " + geodesy::describe(in_.grid));
     resolve_station();
     if (in_.known_line) calibrate_on_known_line();
     else use_given_instrument_constant();
     reduce_line();
+    check_programme();
     check_zero_positions();
+    check_line_runs();
+    check_instrument_constants();
+    check_duplicated_runs();
     reduce_azimuth_chain();
     return std::move(res_);
   }
@@ -179,14 +194,14 @@ class CampaignRun {
 
     const Uncertain a = known_astronomic_azimuth(k, known_target);
     res_.known_astronomic_azimuth_rad = a;
-    res_.instrument_constant =
-        instrument_constant(a, res_.known_gyro_azimuths_before, res_.known_gyro_azimuths_after, e_tol_);
+    res_.instrument_constant = instrument_constant(a, res_.known_gyro_azimuths_before, res_.known_gyro_azimuths_after,
+                                                   limits_.constant_means_rad);
     res_.instrument_constant_used_rad = res_.instrument_constant->mean;
     for (const auto& w : res_.instrument_constant->warnings) res_.warnings.push_back(w);
-    if (res_.instrument_constant->difference_rad)
-      res_.checks.push_back({"instrument constant, after - before",
-                             *res_.instrument_constant->difference_rad / units::kArcsecond,
-                             e_tol_ / units::kArcsecond, CheckUnit::Arcsec, res_.instrument_constant->within_tolerance});
+    if (known_target)
+      res_.known_grid_azimuth_from_coordinates_rad =
+          wrap_positive_rad(std::atan2(known_target->grid.y_east_m - res_.known_station->grid.y_east_m,
+                                       known_target->grid.x_north_m - res_.known_station->grid.x_north_m));
   }
 
   void use_given_instrument_constant() {
@@ -197,7 +212,7 @@ class CampaignRun {
     res_.notes.push_back("instrument constant E given, not calibrated in this campaign");
   }
 
-  // Step 2: the determinations on the unknown line and their agreement.
+  // Step 2: the determinations on the unknown line.
   void reduce_line() {
     if (in_.line.determinations.empty())
       throw InputError("no determination on the line", {"", std::nullopt, "line.determinations"});
@@ -205,31 +220,191 @@ class CampaignRun {
                                      "line.determinations", res_.gyro_azimuths);
     report_progress(progress_, done_, total_, "determinations");
     res_.gyro_azimuth_mean = mean_direction(res_.gyro_azimuths);
-    if (res_.gyro_azimuths.size() < 2) {
-      res_.warnings.push_back("only one determination on the line: no independent check");
-      return;
-    }
-    const double spread = res_.gyro_azimuth_mean.max_difference;
-    const bool ok = spread <= det_tol_;
-    res_.checks.push_back({"line determinations, largest difference", spread / units::kArcsecond,
-                           det_tol_ / units::kArcsecond, CheckUnit::Arcsec, ok});
-    if (!ok)
-      res_.warnings.push_back(fmt::format("gyro azimuths of the line differ by {:.1f}\" (tolerance {:.1f}\")",
-                                          spread / units::kArcsecond, det_tol_ / units::kArcsecond));
   }
 
-  // Zero-position stability of every determination with runs before and after.
+  // The checks of the regulations (regulations.hpp), in the order of its table.
+  void add_check(std::string name, double value, double limit, CheckUnit unit, const std::optional<double>& override_,
+                 const char* override_key, bool minimum = false) {
+    const bool pass = minimum ? value >= limit : std::fabs(value) <= limit;
+    res_.checks.push_back({std::move(name), value, limit, unit, pass, minimum,
+                           override_ ? fmt::format("tolerances.{} in the file", override_key) : limits_.source});
+  }
+  void add_angle_check(std::string name, double value_rad, double limit_rad, const std::optional<double>& override_,
+                       const char* override_key) {
+    add_check(std::move(name), value_rad / units::kArcsecond, limit_rad / units::kArcsecond, CheckUnit::Arcsec,
+              override_, override_key);
+  }
+
+  // The programme of one orientation: runs before, on the line and after.
+  void check_programme() {
+    if (!in_.known_line) return;
+    const auto runs = [](std::size_t n) { return static_cast<double>(n); };
+    const std::optional<double> none;
+    add_check("programme: runs on the known line before", runs(in_.known_line->before.size()),
+              limits_.min_runs_before, CheckUnit::Runs, none, "", true);
+    add_check("programme: runs on the line", runs(in_.line.determinations.size()), limits_.min_runs_line,
+              CheckUnit::Runs, none, "", true);
+    add_check("programme: runs on the known line after", runs(in_.known_line->after.size()), limits_.min_runs_after,
+              CheckUnit::Runs, none, "", true);
+  }
+
+  // Every run: its zero position observed, within its limit, and stable.
   void check_zero_positions() {
+    const Tolerances& t = in_.tolerances;
     auto checks = [&](const std::vector<DeterminationResult>& v, const std::string& what) {
-      for (std::size_t i = 0; i < v.size(); ++i)
-        if (v[i].zero_position && v[i].zero_position->difference_div)
-          res_.checks.push_back({fmt::format("zero position after - before, {}[{}]", what, i),
-                                 *v[i].zero_position->difference_div, v[i].zero_position->tolerance_div,
-                                 CheckUnit::Div, v[i].zero_position->within_tolerance});
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const std::string run = fmt::format("{}[{}]{}", what, i, v[i].label.empty() ? "" : " (" + v[i].label + ")");
+        if (!v[i].zero_position_used) {
+          res_.warnings.push_back(fmt::format(
+              "{}: no zero position observed: the correction -lambda tau alpha_p is not applied (it reaches "
+              "{:.0f}\" at the limit |alpha_p| = {} div)",
+              run,
+              res_.instrument_station.instrument.torsion_ratio.value * res_.instrument_station.instrument.scale_value_rad *
+                  limits_.zero_position_div / units::kArcsecond,
+              limits_.zero_position_div));
+          res_.checks.push_back({"zero position observed, " + run, 0.0, 1.0, CheckUnit::Runs, false, true,
+                                 "coal-mine surveying regulations: zero position before and after every run"});
+          continue;
+        }
+        const auto& z = v[i].zero_position;
+        if (z) {
+          double largest = 0.0;
+          for (const auto* e : {&z->before, &z->after})
+            if (*e && std::fabs((*e)->fit.centre.value) > std::fabs(largest)) largest = (*e)->fit.centre.value;
+          add_check("zero position |alpha_p|, " + run, largest, limits_.zero_position_div, CheckUnit::Div,
+                    t.zero_position_limit_div, "zero_position_limit_div");
+          if (z->difference_div)
+            add_check("zero position after - before, " + run, *z->difference_div, limits_.zero_position_drift_div,
+                      CheckUnit::Div, t.zero_position_div, "zero_position_div");
+        } else {
+          add_check("zero position |alpha_p| (given), " + run, v[i].zero_position_used->value,
+                    limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div, "zero_position_limit_div");
+        }
+      }
     };
     checks(res_.known_before, "known_line.before");
     checks(res_.known_after, "known_line.after");
     checks(res_.determinations, "line.determinations");
+  }
+
+  // Any two runs on the line, and their one-run standard deviation.
+  void check_line_runs() {
+    if (res_.gyro_azimuths.size() < 2) {
+      res_.warnings.push_back("only one determination on the line: no independent check");
+      return;
+    }
+    res_.line_one_run_sigma_rad = res_.gyro_azimuth_mean.one_run_sigma;
+    const double spread = res_.gyro_azimuth_mean.max_difference;
+    add_angle_check("any two runs on the line, gyro azimuths", spread, limits_.run_difference_rad,
+                    in_.tolerances.determination_difference_rad, "determination_difference_arcsec");
+    if (!res_.checks.back().pass)
+      res_.warnings.push_back(fmt::format("gyro azimuths of the line differ by {:.1f}\" (limit {:.1f}\")",
+                                          spread / units::kArcsecond, limits_.run_difference_rad / units::kArcsecond));
+  }
+
+  // The instrument constants on the known line: any two runs, the before and
+  // after means, their plausibility, and the given azimuth of the known line
+  // against its coordinates.
+  void check_instrument_constants() {
+    const Tolerances& t = in_.tolerances;
+    if (res_.instrument_constant) {
+      const InstrumentConstantResult& e = *res_.instrument_constant;
+      std::vector<Uncertain> all = e.before;
+      all.insert(all.end(), e.after.begin(), e.after.end());
+      if (all.size() >= 2) {
+        const AzimuthMean m = mean_direction(all);
+        res_.constant_one_run_sigma_rad = m.one_run_sigma;
+        add_angle_check("any two runs on the known line, instrument constants", m.max_difference,
+                        limits_.constant_difference_rad, t.instrument_constant_difference_rad,
+                        "instrument_constant_difference_arcsec");
+      }
+      if (e.difference_rad)
+        add_angle_check("instrument constant, mean after - mean before", *e.difference_rad, limits_.constant_means_rad,
+                        t.instrument_constant_means_rad ? t.instrument_constant_means_rad
+                                                        : t.instrument_constant_difference_rad,
+                        t.instrument_constant_means_rad ? "instrument_constant_means_arcsec"
+                                                        : "instrument_constant_difference_arcsec");
+      check_known_azimuth();
+    }
+    const double e = res_.instrument_constant_used_rad.value;
+    add_angle_check("instrument constant |E| plausible", e, limits_.instrument_constant_max_rad,
+                    t.instrument_constant_max_rad, "instrument_constant_max_arcsec");
+    if (!res_.checks.back().pass)
+      res_.warnings.push_back(fmt::format(
+          "the instrument constant E = {:+.1f}\" is implausibly large: check the known azimuth, its kind "
+          "({}) and the target readings of the known line",
+          e / units::kArcsecond, in_.known_line ? geodesy::to_string(in_.known_line->azimuth.kind) : "given"));
+  }
+
+  // The given azimuth of the known line against the azimuth of its chord
+  // from the coordinates in the same file, both as grid azimuths (a given
+  // geodetic or astronomic azimuth goes through the chain; an astronomic one
+  // keeps its deflection, a few arc-seconds, as no η is applied here).
+  void check_known_azimuth() {
+    if (!res_.known_grid_azimuth_from_coordinates_rad) return;
+    const KnownLineInput& k = *in_.known_line;
+    const PointResult& from = *res_.known_station;
+    const PointResult to = resolve_point(*k.to, grid_, "known_line.to", res_.warnings);
+    geodesy::AzimuthReduction red;
+    red.latitude_rad = from.lat_rad;
+    red.convergence_rad = from.grid.convergence_rad;
+    red.arc_to_chord_rad =
+        geodesy::arc_to_chord(grid_, from.grid.x_north_m, from.grid.y_east_m, to.grid.x_north_m, to.grid.y_east_m);
+    if (k.azimuth.kind == geodesy::AzimuthKind::Astronomic) red.eta_rad = k.from.eta_rad;
+    const double given_grid = geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red).grid_rad.value;
+    const double diff = wrap_signed_rad(given_grid - *res_.known_grid_azimuth_from_coordinates_rad);
+    const auto& override_ = in_.tolerances.known_azimuth_coordinates_rad;
+    const double limit = override_.value_or(
+        std::max(3.0 * k.azimuth.value_rad.sigma, limits_.accuracy_class_arcsec * units::kArcsecond));
+    res_.checks.push_back({fmt::format("known line: the given {} azimuth against its coordinates",
+                                       geodesy::to_string(k.azimuth.kind)),
+                           diff / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
+                           std::fabs(diff) <= limit, false,
+                           override_ ? "tolerances.known_azimuth_coordinates_arcsec in the file"
+                                     : "Meridian plausibility limit: max(3 sigma of the given azimuth, the class)"});
+    if (!res_.checks.back().pass)
+      res_.warnings.push_back(fmt::format(
+          "the given azimuth of the known line differs by {:+.1f}\" from the azimuth of the coordinates of "
+          "{} and {}: check the azimuth, its kind and the coordinates",
+          diff / units::kArcsecond, from.name, to.name));
+  }
+
+
+  // The same observations booked twice (a copied run) count once, not twice.
+  void check_duplicated_runs() {
+    struct Run {
+      std::string name;
+      const DeterminationInput* in;
+    };
+    std::vector<Run> runs;
+    auto add = [&](const std::vector<DeterminationInput>& v, const char* what) {
+      for (std::size_t i = 0; i < v.size(); ++i) runs.push_back({fmt::format("{}[{}]", what, i), &v[i]});
+    };
+    if (in_.known_line) {
+      add(in_.known_line->before, "known_line.before");
+      add(in_.known_line->after, "known_line.after");
+    }
+    add(in_.line.determinations, "line.determinations");
+    std::vector<std::string> pairs;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      for (std::size_t j = i + 1; j < runs.size(); ++j)
+        if (same_observations(*runs[i].in, *runs[j].in)) pairs.push_back(runs[i].name + " and " + runs[j].name);
+    res_.checks.push_back({"no run booked twice", static_cast<double>(pairs.size()), 0.0, CheckUnit::Runs,
+                           pairs.empty(), false, "Meridian: identical observations in two runs"});
+    for (const auto& p : pairs)
+      res_.warnings.push_back(p + " have identical observations: one run was booked twice");
+  }
+
+  static bool same_observations(const DeterminationInput& a, const DeterminationInput& b) {
+    if (a.mode != b.mode) return false;
+    if (a.mode == Mode::Tracking) return a.tracking.reversals_rad == b.tracking.reversals_rad;
+    const auto& x = a.nontracking;
+    const auto& y = b.nontracking;
+    if (x.crossings.size() != y.crossings.size() || x.reversals_div != y.reversals_div) return false;
+    for (std::size_t i = 0; i < x.crossings.size(); ++i)
+      if (x.crossings[i].level_div != y.crossings[i].level_div || x.crossings[i].times_s != y.crossings[i].times_s)
+        return false;
+    return !x.crossings.empty() || !x.reversals_div.empty();
   }
 
   // Step 3: mean A_G + E → astronomic → geodetic → grid azimuth of C→D.
@@ -252,7 +427,7 @@ class CampaignRun {
   const DeflectionModel* deflection_;
   const geodesy::TransverseMercatorGrid grid_;
   std::size_t done_ = 0, total_ = 0;
-  double det_tol_ = 0.0, e_tol_ = 0.0;
+  RegulationLimits limits_;
   ReduceOptions options_;
   CampaignResult res_;
 };

@@ -70,15 +70,4 @@ ResolvedInstrument resolve_instrument(const InstrumentSpec& spec, double station
   return out;
 }
 
-double default_determination_tolerance_rad(double accuracy_class_arcsec) {
-  double t;
-  if (accuracy_class_arcsec <= 15.0)
-    t = 40.0;
-  else if (accuracy_class_arcsec <= 25.0)
-    t = 70.0;
-  else
-    t = 2.8 * accuracy_class_arcsec * std::sqrt(2.0);
-  return t * units::kArcsecond;
-}
-
 }  // namespace meridian::gyro

@@ -284,6 +284,31 @@ gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesyste
   return r;
 }
 
+// Overrides of the class limits (gyro/regulations.hpp).
+gyro::Tolerances read_tolerances(const Node& t) {
+  t.allow_only({"determination_difference_arcsec", "instrument_constant_difference_arcsec",
+                "instrument_constant_means_arcsec", "orientation_difference_arcsec", "orientation_mean_sigma_arcsec",
+                "zero_position_div", "zero_position_limit_div", "known_azimuth_coordinates_arcsec",
+                "instrument_constant_max_arcsec"});
+  gyro::Tolerances r;
+  auto arcsec = [&](const char* key, std::optional<double>& out) {
+    if (auto v = t.get(key)) out = v->positive_number() * kArcsec;
+  };
+  auto div = [&](const char* key, std::optional<double>& out) {
+    if (auto v = t.get(key)) out = v->positive_number();
+  };
+  arcsec("determination_difference_arcsec", r.determination_difference_rad);
+  arcsec("instrument_constant_difference_arcsec", r.instrument_constant_difference_rad);
+  arcsec("instrument_constant_means_arcsec", r.instrument_constant_means_rad);
+  arcsec("orientation_difference_arcsec", r.orientation_difference_rad);
+  arcsec("orientation_mean_sigma_arcsec", r.orientation_mean_sigma_rad);
+  div("zero_position_div", r.zero_position_div);
+  div("zero_position_limit_div", r.zero_position_limit_div);
+  arcsec("known_azimuth_coordinates_arcsec", r.known_azimuth_coordinates_rad);
+  arcsec("instrument_constant_max_arcsec", r.instrument_constant_max_rad);
+  return r;
+}
+
 }  // namespace
 
 GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
@@ -364,15 +389,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   for (std::size_t i = 0; i < c.line.determinations.size(); ++i)
     if (!c.line.determinations[i].target_reading_rad)
       dets.elements()[i].fail("every line determination needs target_reading");
-  if (auto t = root.get("tolerances")) {
-    t->allow_only({"determination_difference_arcsec", "instrument_constant_difference_arcsec",
-                   "zero_position_div"});
-    if (auto v = t->get("determination_difference_arcsec"))
-      c.tolerances.determination_difference_rad = v->positive_number() * kArcsec;
-    if (auto v = t->get("instrument_constant_difference_arcsec"))
-      c.tolerances.instrument_constant_difference_rad = v->positive_number() * kArcsec;
-    if (auto v = t->get("zero_position_div")) c.tolerances.zero_position_div = v->positive_number();
-  }
+  if (auto t = root.get("tolerances")) c.tolerances = read_tolerances(*t);
   if (auto o = root.get("options")) c.options = read_options(*o);
   if (auto g = root.get("gravity_model")) c.gravity_model = read_gravity_model_ref(*g, path);
   f.lines = root.visited_lines();

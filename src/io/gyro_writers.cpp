@@ -193,13 +193,24 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
   if (c.line.to) point_yaml(o, "to", *c.line.to, "  ");
   o += "  determinations:\n";
   for (const auto& d : c.line.determinations) determination_yaml(o, d, "    ");
-  o += "tolerances:\n";
-  if (c.tolerances.determination_difference_rad)
-    o += "  determination_difference_arcsec: " + num(*c.tolerances.determination_difference_rad / kArcsec) + "\n";
-  if (c.tolerances.instrument_constant_difference_rad)
-    o += "  instrument_constant_difference_arcsec: " +
-         num(*c.tolerances.instrument_constant_difference_rad / kArcsec) + "\n";
-  o += "  zero_position_div: " + num(c.tolerances.zero_position_div) + "\n";
+  const gyro::Tolerances& t = c.tolerances;
+  std::string tol;
+  auto arcsec = [&](const char* key, const std::optional<double>& v) {
+    if (v) tol += std::string("  ") + key + ": " + num(*v / kArcsec) + "\n";
+  };
+  auto div = [&](const char* key, const std::optional<double>& v) {
+    if (v) tol += std::string("  ") + key + ": " + num(*v) + "\n";
+  };
+  arcsec("determination_difference_arcsec", t.determination_difference_rad);
+  arcsec("instrument_constant_difference_arcsec", t.instrument_constant_difference_rad);
+  arcsec("instrument_constant_means_arcsec", t.instrument_constant_means_rad);
+  arcsec("orientation_difference_arcsec", t.orientation_difference_rad);
+  arcsec("orientation_mean_sigma_arcsec", t.orientation_mean_sigma_rad);
+  div("zero_position_div", t.zero_position_div);
+  div("zero_position_limit_div", t.zero_position_limit_div);
+  arcsec("known_azimuth_coordinates_arcsec", t.known_azimuth_coordinates_rad);
+  arcsec("instrument_constant_max_arcsec", t.instrument_constant_max_rad);
+  if (!tol.empty()) o += "tolerances:\n" + tol;
   if (c.gravity_model)
     o += "gravity_model: {model: " + q(c.gravity_model->source) +
          (c.gravity_model->max_degree >= 0 ? ", max_degree: " + std::to_string(c.gravity_model->max_degree) : "") +

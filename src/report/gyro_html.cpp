@@ -199,13 +199,20 @@ Section checks_section(const gyro::CampaignResult& r) {
   Section checks{"checks", "Tolerance checks", {}, 2};
   CheckList cl;
   for (const auto& k : r.checks) {
-    const bool div = k.unit == gyro::CheckUnit::Div;
-    const int dec = div ? 2 : 1;
-    const std::string unit = div ? " div" : "\"";
+    const bool div = k.unit == gyro::CheckUnit::Div, runs = k.unit == gyro::CheckUnit::Runs;
+    const int dec = div ? 2 : runs ? 0 : 1;
+    const std::string unit = div ? " div" : runs ? "" : "\"";
     cl.checks.push_back({k.name, fmt::format("{:.{}f}{}", k.value, dec, unit),
-                         fmt::format("{:.{}f}{}", k.tolerance, dec, unit), k.pass});
+                         fmt::format("{}{:.{}f}{}", k.minimum ? "at least " : "", k.tolerance, dec, unit), k.pass});
   }
+  checks.blocks.push_back(Paragraph{"Limits: " + r.limits.source + "."});
   checks.blocks.push_back(cl);
+  std::vector<KeyValue> m;
+  if (r.constant_one_run_sigma_rad)
+    m.push_back({"instrument constant, one run (m = sqrt([vv]/(n-1)))", sig(*r.constant_one_run_sigma_rad, 1)});
+  if (r.line_one_run_sigma_rad)
+    m.push_back({"gyro azimuth on the line, one run", sig(*r.line_one_run_sigma_rad, 1)});
+  if (!m.empty()) checks.blocks.push_back(KeyValueList{"One-run standard deviations", m});
   return checks;
 }
 

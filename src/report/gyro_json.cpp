@@ -206,8 +206,13 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   json checks = json::array();
   for (const auto& k : r.checks)
     checks.push_back({{"name", k.name}, {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
-                      {"unit", gyro::to_string(k.unit)}, {"pass", k.pass}});
+                      {"unit", gyro::to_string(k.unit)}, {"pass", k.pass}, {"minimum", k.minimum},
+                      {"source", k.source}});
   j["checks"] = checks;
+  j["limits_source"] = r.limits.source;
+  j["instrument_constant_one_run_sigma_arcsec"] =
+      r.constant_one_run_sigma_rad ? arcsec(*r.constant_one_run_sigma_rad) : json(nullptr);
+  j["line_one_run_sigma_arcsec"] = r.line_one_run_sigma_rad ? arcsec(*r.line_one_run_sigma_rad) : json(nullptr);
   j["all_checks_pass"] = r.all_checks_pass();
   j["notes"] = strings(r.notes);
   j["warnings"] = strings(r.warnings);

@@ -54,6 +54,17 @@ std::string determination_text(const gyro::DeterminationResult& r, int index) {
   return out;
 }
 
+std::string check_text(const gyro::Check& k) {
+  const bool runs = k.unit == gyro::CheckUnit::Runs;
+  const int decimals = runs ? 0 : 2;
+  const std::string unit = runs ? "" : " " + gyro::to_string(k.unit);
+  if (k.minimum)
+    return fmt::format("[{}] {}: {:.{}f}{} (at least {:.{}f})", k.pass ? "PASS" : "FAIL", k.name, k.value, decimals,
+                       unit, k.tolerance, decimals);
+  return fmt::format("[{}] {}: {:.{}f}{} (limit {:.{}f})", k.pass ? "PASS" : "FAIL", k.name, k.value, decimals, unit,
+                     k.tolerance, decimals);
+}
+
 std::string reduce_text(const std::string& file, const gyro::ReduceResult& r) {
   const gyro::Instrument& inst = r.instrument.instrument;
   std::string out = fmt::format("{}: {} determination(s), lambda = {:.5f}, tau = {:.1f}\"/div\n", file,
@@ -134,11 +145,16 @@ std::string campaign_text(const gyro::CampaignResult& r) {
                      c.arc_to_chord_applied ? sec(c.arc_to_chord_rad) : std::string("not applied"));
   out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n\n", dir(c.grid_azimuth_rad.value),
                      sig(c.grid_azimuth_rad.sigma));
-  out += "Checks\n";
+  out += fmt::format("Checks (limits: {})\n", r.limits.source);
   if (r.checks.empty()) out += "  (none applicable)\n";
-  for (const auto& k : r.checks)
-    out += fmt::format("  [{}] {}: {:.2f} {} (tolerance {:.2f})\n", k.pass ? "PASS" : "FAIL", k.name,
-                       k.value, gyro::to_string(k.unit), k.tolerance);
+  for (const auto& k : r.checks) out += "  " + check_text(k) + "\n";
+  if (r.constant_one_run_sigma_rad || r.line_one_run_sigma_rad) {
+    out += "  one-run standard deviations m = sqrt([vv]/(n-1)):";
+    if (r.constant_one_run_sigma_rad) out += " instrument constant " + sig(*r.constant_one_run_sigma_rad);
+    if (r.constant_one_run_sigma_rad && r.line_one_run_sigma_rad) out += ",";
+    if (r.line_one_run_sigma_rad) out += " gyro azimuth on the line " + sig(*r.line_one_run_sigma_rad);
+    out += "\n";
+  }
   if (!r.notes.empty()) out += "\nNotes\n";
   for (const auto& n : r.notes) out += "  - " + n + "\n";
   if (!r.warnings.empty()) out += "\nWarnings\n";

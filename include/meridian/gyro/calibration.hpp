@@ -16,6 +16,9 @@ struct AzimuthMean {
   Uncertain mean;                  ///< mean (radians, normalised to [0, 2π)); sigma = the one used
   double sigma_propagated = 0.0;   ///< sqrt(Σσ_i²)/n from the individual σ
   double sigma_empirical = 0.0;    ///< sqrt(Σv²/(n(n−1))), NaN for n = 1
+  /// One-run standard deviation (一次测定中误差) m = sqrt(Σv²/(n−1)) of the
+  /// values about their mean, NaN for n = 1.
+  double one_run_sigma = 0.0;
   double max_difference = 0.0;     ///< largest |a_i − a_j| (radians)
   int count = 0;
 };

@@ -17,6 +17,7 @@
 #include "meridian/gyro/deflection_model.hpp"
 #include "meridian/gyro/determination.hpp"
 #include "meridian/gyro/instrument_spec.hpp"
+#include "meridian/gyro/regulations.hpp"
 
 namespace meridian::gyro {
 
@@ -53,12 +54,6 @@ struct LineInput {
   std::vector<DeterminationInput> determinations;  ///< each with a target reading
 };
 
-struct Tolerances {
-  std::optional<double> determination_difference_rad;  ///< default from the accuracy class
-  std::optional<double> instrument_constant_difference_rad;  ///< default: same as above
-  double zero_position_div = kDefaultZeroPositionTolerance_div;
-};
-
 struct CampaignInput {
   std::string name;
   InstrumentSpec instrument;
@@ -67,7 +62,7 @@ struct CampaignInput {
   /// E given directly (signed, radians) when there is no known line.
   std::optional<Uncertain> instrument_constant_rad;
   LineInput line;
-  Tolerances tolerances;
+  Tolerances tolerances;                     ///< overrides of the class limits (regulations.hpp)
   ReduceOptions options;
   /// A gravity model giving η at the points whose η is not stated; loaded
   /// by the caller (see deflection_model.hpp).
@@ -82,17 +77,21 @@ struct PointResult {
 };
 
 /// Unit of a check's value and tolerance.
-enum class CheckUnit { Arcsec, Div };
-std::string to_string(CheckUnit u);  ///< "arcsec", "div"
+enum class CheckUnit { Arcsec, Div, Runs };
+std::string to_string(CheckUnit u);  ///< "arcsec", "div", "runs"
 
-/// A pass/fail check for the report.
+/// A pass/fail check for the report: `value` against the limit `tolerance`
+/// (at most, or at least for a minimum such as a number of runs).
 struct Check {
   std::string name;
   double value = 0.0;       ///< in `unit`
-  double tolerance = 0.0;   ///< in `unit`
+  double tolerance = 0.0;   ///< the limit, in `unit`
   CheckUnit unit = CheckUnit::Arcsec;
   bool pass = true;
+  bool minimum = false;     ///< true: the value must be at least the limit
+  std::string source;       ///< where the limit comes from (regulations, class, the file)
 };
+
 
 struct CampaignResult {
   std::string name;
@@ -110,7 +109,16 @@ struct CampaignResult {
   std::vector<Uncertain> gyro_azimuths;      ///< A_G per determination of the unknown line
   AzimuthMean gyro_azimuth_mean;
   AzimuthChainResult chain;
+  RegulationLimits limits;                   ///< the limits the checks used
   std::vector<Check> checks;
+  /// One-run standard deviations (一次测定中误差, AzimuthMean::one_run_sigma)
+  /// of the instrument constants on the known line and of the gyro azimuths
+  /// on the line (radians), where there are two runs or more.
+  std::optional<double> constant_one_run_sigma_rad;
+  std::optional<double> line_one_run_sigma_rad;
+  /// Grid azimuth of the known line from its end points' coordinates (chord,
+  /// atan2(Δy, Δx)), when both are given.
+  std::optional<double> known_grid_azimuth_from_coordinates_rad;
   std::vector<std::string> notes;
   std::vector<std::string> warnings;
   bool all_checks_pass() const;

@@ -30,7 +30,8 @@ struct InstrumentSpec {
   double sigma_time_s = kDefaultSigmaTime_s;
   double sigma_reading_div = kDefaultSigmaReading_div;
   double latitude_limit_rad = kDefaultLatitudeLimit_rad;
-  /// Nominal accuracy class (arcsec), e.g. 15 or 25: sets default tolerances.
+  /// Nominal accuracy class (arcsec), e.g. 5, 15 or 25: sets the limits of
+  /// the checks (regulations.hpp).
   double accuracy_class_arcsec = kDefaultAccuracyClass_arcsec;
 };
 
@@ -48,9 +49,5 @@ struct ResolvedInstrument {
 /// latitude is beyond the limit.
 ResolvedInstrument resolve_instrument(const InstrumentSpec& spec, double station_lat_rad);
 
-/// Default tolerance for the difference between determinations of one line:
-/// 40″ for an instrument of class ≤ 15″, 70″ for class ≤ 25″, else
-/// 2.8·class·sqrt(2) (two determinations at the 95 % level), in radians.
-double default_determination_tolerance_rad(double accuracy_class_arcsec);
 
 }  // namespace meridian::gyro

@@ -25,6 +25,9 @@ std::string reduce_text(const std::string& file, const gyro::ReduceResult& r);
 /// determinations, the azimuth chain, checks, notes and warnings.
 std::string campaign_text(const gyro::CampaignResult& r);
 
+/// One check as a line: "[PASS] name: value unit (limit L)".
+std::string check_text(const gyro::Check& k);
+
 /// `meridian gyro transit-factor`.
 std::string transit_factor_text(const gyro::TransitFactorCalibration& c);
 

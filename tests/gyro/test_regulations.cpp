@@ -1,0 +1,174 @@
+// The checks of the coal-mine surveying regulations (gyro/regulations.hpp,
+// spec §7.1) on simulated campaigns with one field mistake each.
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "meridian/core/angle.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/gyro/campaign.hpp"
+#include "meridian/gyro/campaign_simulator.hpp"
+#include "meridian/gyro/regulations.hpp"
+
+using namespace meridian;
+using namespace meridian::gyro;
+
+namespace {
+constexpr double kArcsec = units::kArcsecond;
+constexpr double kDeg = units::kDegree;
+
+SimulatedCampaign clean(std::uint64_t seed = 3) {
+  CampaignTruth t = example_campaign_truth();
+  t.known_before = 3;
+  t.known_after = 3;
+  return simulate_campaign(t, seed);
+}
+
+const Check* find_check(const CampaignResult& r, const std::string& prefix) {
+  for (const auto& c : r.checks)
+    if (c.name.rfind(prefix, 0) == 0) return &c;
+  return nullptr;
+}
+
+bool has_warning(const CampaignResult& r, const std::string& text) {
+  return std::any_of(r.warnings.begin(), r.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+}  // namespace
+
+TEST(Regulations, LimitsFollowTheAccuracyClass) {
+  const RegulationLimits c15 = regulation_limits(15);
+  EXPECT_NEAR(c15.run_difference_rad / kArcsec, 40, 1e-12);
+  EXPECT_NEAR(c15.constant_difference_rad / kArcsec, 40, 1e-12);
+  EXPECT_NEAR(c15.orientation_difference_rad / kArcsec, 40, 1e-12);
+  EXPECT_NEAR(c15.orientation_mean_sigma_rad / kArcsec, 10, 1e-12);
+  EXPECT_NEAR(c15.zero_position_div, 0.5, 0);
+  const RegulationLimits c25 = regulation_limits(20);  // a 20" instrument is held to the 25" column
+  EXPECT_NEAR(c25.run_difference_rad / kArcsec, 70, 1e-12);
+  EXPECT_NEAR(c25.orientation_difference_rad / kArcsec, 60, 1e-12);
+  EXPECT_NEAR(c25.orientation_mean_sigma_rad / kArcsec, 15, 1e-12);
+  const RegulationLimits c5 = regulation_limits(5);
+  EXPECT_NEAR(c5.run_difference_rad / kArcsec, 10, 1e-12);
+  EXPECT_NEAR(c5.constant_means_rad / kArcsec, 15, 1e-12);
+  EXPECT_NEAR(regulation_limits(50).run_difference_rad / kArcsec, 140, 1e-9);  // 70" × 50/25
+  EXPECT_THROW(regulation_limits(0), InputError);
+  Tolerances t;
+  t.instrument_constant_difference_rad = 30 * kArcsec;
+  const RegulationLimits o = apply_tolerances(c15, t);
+  EXPECT_NEAR(o.constant_difference_rad / kArcsec, 30, 1e-12);
+  EXPECT_NEAR(o.constant_means_rad / kArcsec, 30, 1e-12);  // the same limit for the means unless set apart
+  t.instrument_constant_means_rad = 35 * kArcsec;
+  EXPECT_NEAR(apply_tolerances(c15, t).constant_means_rad / kArcsec, 35, 1e-12);
+}
+
+TEST(Regulations, CleanCampaignPassesEveryCheck) {
+  const auto sim = clean();
+  const CampaignResult r = process(sim.input);
+  for (const auto& c : r.checks) EXPECT_TRUE(c.pass) << c.name << " " << c.value << " " << c.tolerance;
+  EXPECT_TRUE(r.all_checks_pass());
+  ASSERT_NE(find_check(r, "programme: runs on the known line before"), nullptr);
+  ASSERT_NE(find_check(r, "zero position |alpha_p|"), nullptr);
+  ASSERT_NE(find_check(r, "any two runs on the known line"), nullptr);
+  ASSERT_TRUE(r.constant_one_run_sigma_rad && r.line_one_run_sigma_rad);
+  // m = sqrt([vv]/(n-1)) of the instrument constants, recomputed here.
+  std::vector<double> e;
+  for (const auto* v : {&r.instrument_constant->before, &r.instrument_constant->after})
+    for (const auto& x : *v) e.push_back(wrap_signed_rad(x.value));
+  double mean = 0, vv = 0;
+  for (double x : e) mean += x / static_cast<double>(e.size());
+  for (double x : e) vv += (x - mean) * (x - mean);
+  EXPECT_NEAR(*r.constant_one_run_sigma_rad / kArcsec, std::sqrt(vv / static_cast<double>(e.size() - 1)) / kArcsec,
+              1e-9);
+}
+
+TEST(Regulations, InstrumentConstantsOfSingleRunsAreCompared) {
+  // One run on the known line pointed 80" off: its E spreads from the others
+  // while the before and after means still agree within 40".
+  auto sim = clean();
+  sim.input.known_line->before[1].target_reading_rad->value += 80 * kArcsec;
+  const CampaignResult r = process(sim.input);
+  const Check* runs = find_check(r, "any two runs on the known line");
+  ASSERT_NE(runs, nullptr);
+  EXPECT_FALSE(runs->pass);
+  double lo = 1e9, hi = -1e9;
+  for (const auto* v : {&r.instrument_constant->before, &r.instrument_constant->after})
+    for (const auto& x : *v) {
+      lo = std::min(lo, wrap_signed_rad(x.value) / kArcsec);
+      hi = std::max(hi, wrap_signed_rad(x.value) / kArcsec);
+    }
+  EXPECT_NEAR(runs->value, hi - lo, 1e-6);
+  EXPECT_GT(runs->value, 60.0);
+  EXPECT_TRUE(find_check(r, "instrument constant, mean after - mean before")->pass);
+  EXPECT_FALSE(r.all_checks_pass());
+}
+
+TEST(Regulations, KnownAzimuthDisagreeingWithCoordinatesFails) {
+  auto sim = clean();
+  sim.input.known_line->azimuth.value_rad.value += 1.0 * kDeg;
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "known line: the given grid azimuth against its coordinates");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_NEAR(c->value, 3600.0, 0.5);
+  EXPECT_FALSE(find_check(r, "instrument constant |E| plausible")->pass);
+  EXPECT_TRUE(has_warning(r, "differs by +3600.0"));
+}
+
+TEST(Regulations, MissingZeroPositionIsReportedAndFails) {
+  auto sim = clean();
+  auto& d = sim.input.line.determinations[0];
+  d.zero_before.reset();
+  d.zero_after.reset();
+  d.zero_position.reset();
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "zero position observed, line.determinations[0]");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_TRUE(has_warning(r, "line.determinations[0]"));
+  EXPECT_TRUE(has_warning(r, "no zero position observed"));
+}
+
+TEST(Regulations, ZeroPositionBeyondItsLimitFails) {
+  auto sim = clean();
+  for (double& a : sim.input.line.determinations[1].zero_before->reversals_div) a += 0.8;
+  for (double& a : sim.input.line.determinations[1].zero_after->reversals_div) a += 0.8;
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "zero position |alpha_p|, line.determinations[1]");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_GT(std::fabs(c->value), 0.5);
+}
+
+TEST(Regulations, RunBookedTwiceIsFlagged) {
+  auto sim = clean();
+  sim.input.line.determinations.push_back(sim.input.line.determinations[0]);
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "no run booked twice");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_TRUE(has_warning(r, "line.determinations[0] and line.determinations[3]"));
+}
+
+TEST(Regulations, ShortProgrammeFailsAndClassSetsTheLimit) {
+  auto sim = clean();
+  sim.input.known_line->after.resize(1);
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "programme: runs on the known line after");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_TRUE(c->minimum);
+  // A 5"-class instrument is held to 10" between runs on the line.
+  auto five = clean();
+  five.input.instrument.accuracy_class_arcsec = 5;
+  const CampaignResult r5 = process(five.input);
+  EXPECT_NEAR(find_check(r5, "any two runs on the line")->tolerance, 10.0, 1e-12);
+  five.input.tolerances.determination_difference_rad = 25 * kArcsec;
+  const CampaignResult r25 = process(five.input);
+  const Check* o = find_check(r25, "any two runs on the line");
+  EXPECT_NEAR(o->tolerance, 25.0, 1e-12);
+  EXPECT_NE(o->source.find("tolerances.determination_difference_arcsec"), std::string::npos);
+}
