@@ -110,4 +110,14 @@ Uncertain rescale_torsion_ratio(Uncertain lambda0, double lat0_rad, double lat_r
   return {lambda0.value * f, lambda0.sigma * f};
 }
 
+Uncertain rescale_transit_factor(Uncertain c0, double lambda0, double lat0_rad, double lat_rad,
+                                 double latitude_limit_rad) {
+  if (!std::isfinite(c0.value) || c0.value <= 0.0)
+    throw InputError(fmt::format("transit factor c must be finite and > 0 (got {})", c0.value));
+  require_sigma(c0.sigma, "the transit factor c");
+  const double lambda = rescale_torsion_ratio({lambda0, 0.0}, lat0_rad, lat_rad, latitude_limit_rad).value;
+  const double f = std::pow((1.0 + lambda) / (1.0 + lambda0), 1.5) * std::sqrt(std::cos(lat_rad) / std::cos(lat0_rad));
+  return {c0.value * f, c0.sigma * f};
+}
+
 }  // namespace meridian::gyro

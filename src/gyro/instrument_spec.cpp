@@ -48,24 +48,29 @@ ResolvedInstrument resolve_instrument(const InstrumentSpec& spec, double station
     throw InputError(fmt::format("torsion ratio must be >= 0 (got {})", lambda0.value),
                      {"", std::nullopt, "torsion_ratio"});
 
-  bool same_latitude = true;
+  // λ and a calibrated c hold at constants_latitude (or at the station):
+  // rescale them; say so only where the printed value changes.
+  inst.torsion_ratio = lambda0;
+  inst.transit_factor_rad_per_div_s = spec.transit_factor_rad_per_div_s;
   if (spec.constants_latitude_rad) {
     const double lat0 = *spec.constants_latitude_rad;
-    same_latitude = std::fabs(lat0 - station_lat_rad) < 1e-9;
     inst.torsion_ratio = rescale_torsion_ratio(lambda0, lat0, station_lat_rad, spec.latitude_limit_rad);
-    if (!same_latitude)
+    const auto shown = [](double v, int decimals) { return fmt::format("{:.{}f}", v, decimals); };
+    if (shown(lambda0.value, 5) != shown(inst.torsion_ratio.value, 5))
       out.notes.push_back(fmt::format("lambda rescaled from {:.5f} at {:.4f} deg to {:.5f} at {:.4f} deg",
                                       lambda0.value, lat0 / units::kDegree, inst.torsion_ratio.value,
                                       station_lat_rad / units::kDegree));
-  } else {
-    inst.torsion_ratio = lambda0;
-  }
-  if (spec.transit_factor_rad_per_div_s) {
-    if (same_latitude)
-      inst.transit_factor_rad_per_div_s = spec.transit_factor_rad_per_div_s;
-    else
-      out.notes.push_back("calibrated transit factor c not used: it was determined at another "
-                          "latitude; c = (1+lambda)*tau*pi/(2 T_B) is computed instead");
+    if (spec.transit_factor_rad_per_div_s) {
+      const Uncertain c0 = *spec.transit_factor_rad_per_div_s;
+      inst.transit_factor_rad_per_div_s =
+          rescale_transit_factor(c0, lambda0.value, lat0, station_lat_rad, spec.latitude_limit_rad);
+      const double c = inst.transit_factor_rad_per_div_s->value;
+      if (shown(c0.value / units::kArcsecond, 4) != shown(c / units::kArcsecond, 4))
+        out.notes.push_back(fmt::format(
+            "calibrated transit factor c rescaled from {:.4f} at {:.4f} deg to {:.4f} \"/(div s) at {:.4f} deg",
+            c0.value / units::kArcsecond, lat0 / units::kDegree, c / units::kArcsecond,
+            station_lat_rad / units::kDegree));
+    }
   }
   return out;
 }

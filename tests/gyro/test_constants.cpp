@@ -104,6 +104,24 @@ TEST(Constants, RescaleTorsionRatioMatchesPhysics) {
   EXPECT_THROW(rescale_torsion_ratio({0.3, 0.0}, phi0, deg_to_rad(80.0)), InputError);
 }
 
+TEST(Constants, RescaleTransitFactorMatchesPhysics) {
+  // c = (1+λ)·τ·π/(2 T_B) from the periods the physics gives at each latitude.
+  const double tau = 600.0 * meridian::units::kArcsecond;
+  auto c_at = [&](double phi) {
+    const GyroPeriods p = periods_from_physics(typical_gyro(), phi);
+    return (1.0 + p.torsion_ratio) * tau * meridian::units::kPi / (2.0 * p.nontracking_s);
+  };
+  for (double d : {0.0012, 1.0, 15.0, -20.0}) {
+    const double phi0 = deg_to_rad(32.64), phi = deg_to_rad(32.64 + d);
+    const double lam0 = periods_from_physics(typical_gyro(), phi0).torsion_ratio;
+    const Uncertain c = rescale_transit_factor({c_at(phi0), 0.01 * c_at(phi0)}, lam0, phi0, phi);
+    EXPECT_NEAR(c.value / c_at(phi), 1.0, 1e-12) << d;
+    EXPECT_NEAR(c.sigma / c.value, 0.01, 1e-12);
+  }
+  EXPECT_DOUBLE_EQ(rescale_transit_factor({1e-5, 0.0}, 0.2, 0.5, 0.5).value, 1e-5);
+  EXPECT_THROW(rescale_transit_factor({-1e-5, 0.0}, 0.2, 0.5, 0.6), InputError);
+}
+
 TEST(Constants, LatitudeLimit) {
   try {
     periods_from_physics(typical_gyro(), deg_to_rad(80.0));

@@ -90,4 +90,18 @@ Uncertain torsion_ratio_from_nontracking_period(Uncertain tracking_period_s,
 Uncertain rescale_torsion_ratio(Uncertain lambda0, double lat0_rad, double lat_rad,
                                 double latitude_limit_rad = kDefaultLatitudeLimit_rad);
 
+/// A transit factor c calibrated at latitude φ0 rescaled to latitude φ.
+/// With c = (1+λ)·τ·π/(2T_B), T_B = 2π·sqrt(J_z/(D_K(1+λ))), D_K ∝ cos φ and
+/// λ ∝ 1/cos φ (spec §1, §4.1):
+///   c(φ) = c(φ0)·((1+λ)/(1+λ0))^{3/2}·sqrt(cos φ / cos φ0),  λ = λ0·cos φ0/cos φ.
+/// The calibrated value keeps whatever the model does not describe; only the
+/// latitude dependence of the model is applied. σ scales by the same factor
+/// (the σ of λ0 changes the factor by far less than σ(c0) for any latitude
+/// difference where a calibration is still used).
+/// \param c0 c(φ0) with σ (rad/(div·s), > 0). \param lambda0 λ(φ0) (≥ 0).
+/// \param lat0_rad, lat_rad latitudes φ0 and φ (radians), both checked against
+/// `latitude_limit_rad`. Throws InputError for invalid values.
+Uncertain rescale_transit_factor(Uncertain c0, double lambda0, double lat0_rad, double lat_rad,
+                                 double latitude_limit_rad = kDefaultLatitudeLimit_rad);
+
 }  // namespace meridian::gyro

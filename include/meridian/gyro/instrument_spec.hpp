@@ -42,9 +42,10 @@ struct ResolvedInstrument {
 };
 
 /// Resolve λ (given, or from periods) and rescale it to the station
-/// latitude by λ(φ) = λ(φ0)·cos φ0/cos φ. A calibrated c is not rescaled
-/// (it depends on T_B and λ): it is used only when φ0 is absent or equals the
-/// station latitude, otherwise dropped with a note. Throws InputError when
+/// latitude by λ(φ) = λ(φ0)·cos φ0/cos φ; a calibrated c is rescaled with
+/// it (rescale_transit_factor in constants.hpp). A note records each
+/// rescaling that changes the printed value (λ to 5 decimals, c to
+/// 0.0001″/(div·s)). Throws InputError when
 /// neither λ nor usable periods are given, when both are, or when the
 /// latitude is beyond the limit.
 ResolvedInstrument resolve_instrument(const InstrumentSpec& spec, double station_lat_rad);
