@@ -7,6 +7,7 @@
 
 #include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/gyro/plausibility.hpp"
 
 namespace meridian::gyro {
 namespace {
@@ -108,6 +109,7 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
   out.zero_position_used = zero;
 
   if (in.mode == Mode::NonTracking) {
+    check_plausible(in.nontracking);
     check_levels_reached(in.nontracking);
     if (!in.method) {
       std::vector<NonTrackingMethod> methods = applicable_methods(in.nontracking);

@@ -12,6 +12,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
+#include "meridian/gyro/plausibility.hpp"
 #include "meridian/gyro/regulations.hpp"
 
 using namespace meridian;
@@ -171,4 +172,38 @@ TEST(Regulations, ShortProgrammeFailsAndClassSetsTheLimit) {
   const Check* o = find_check(r25, "any two runs on the line");
   EXPECT_NEAR(o->tolerance, 25.0, 1e-12);
   EXPECT_NE(o->source.find("tolerances.determination_difference_arcsec"), std::string::npos);
+}
+
+TEST(Plausibility, TimesBookedAsMinutesDotSecondsAreAnErrorNamingTheRun) {
+  auto sim = clean();
+  auto& d = sim.input.line.determinations[0];
+  ASSERT_EQ(d.mode, Mode::NonTracking);
+  // 4 min 39.6 s booked as 4.396 and so on: the period collapses to seconds.
+  for (auto& c : d.nontracking.crossings)
+    for (double& t : c.times_s) t = std::floor(t / 60.0) + std::fmod(t, 60.0) / 100.0;
+  try {
+    (void)process(sim.input);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().field.rfind("line.determinations[0].crossings[", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("m.ss"), std::string::npos) << e.what();
+  }
+  // Without a stated period the bound is what a gyro-theodolite can do.
+  NonTrackingObservations o;
+  o.crossings.push_back({0.0, {4.4, 8.0, 11.4}, +1});
+  EXPECT_THROW(check_plausible(o), InputError);
+  o.crossings[0].times_s = {51.8, 247.3, 470.0};
+  EXPECT_NO_THROW(check_plausible(o));
+  o.period_s = Uncertain{418.0, 0.0};
+  EXPECT_NO_THROW(check_plausible(o));
+  o.period_s = Uncertain{200.0, 0.0};  // the passages say 418 s
+  EXPECT_THROW(check_plausible(o), InputError);
+  o.period_s.reset();
+  o.reversals_div = {7.7, -94.0};  // a decimal point lost
+  try {
+    check_plausible(o);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().field, "reversals_div[1]");
+  }
 }
