@@ -1,5 +1,6 @@
 #include "meridian/gyro/campaign.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@ std::string to_string(CheckUnit u) {
   switch (u) {
     case CheckUnit::Div: return "div";
     case CheckUnit::Runs: return "runs";
+    case CheckUnit::Observers: return "observers";
     case CheckUnit::Arcsec: break;
   }
   return "arcsec";
@@ -98,6 +100,7 @@ class CampaignRun {
     check_line_runs();
     check_instrument_constants();
     check_duplicated_runs();
+    check_observers();
     reduce_azimuth_chain();
     return std::move(res_);
   }
@@ -369,6 +372,38 @@ class CampaignRun {
           diff / units::kArcsecond, from.name, to.name));
   }
 
+
+  // The regulations want the same observer above (known line) and below
+  // ground (the line); checked where the observers are recorded.
+  void check_observers() {
+    std::vector<std::string> surface, underground;
+    auto collect = [&](const std::vector<DeterminationInput>& v, std::vector<std::string>& out) {
+      for (const auto& d : v) {
+        const std::string& o = d.observer.empty() ? in_.record.observer : d.observer;
+        if (!o.empty() && std::find(out.begin(), out.end(), o) == out.end()) out.push_back(o);
+      }
+    };
+    if (in_.known_line) {
+      collect(in_.known_line->before, surface);
+      collect(in_.known_line->after, surface);
+    }
+    collect(in_.line.determinations, underground);
+    if (surface.empty() && underground.empty()) {
+      res_.notes.push_back("observers not recorded (the regulations want the same observer above and below ground)");
+      return;
+    }
+    std::vector<std::string> all = surface;
+    for (const auto& o : underground)
+      if (std::find(all.begin(), all.end(), o) == all.end()) all.push_back(o);
+    res_.checks.push_back({"the same observer on the known line and on the line", static_cast<double>(all.size()),
+                           1.0, CheckUnit::Observers, all.size() == 1, false,
+                           "coal-mine surveying regulations: the same observer above and below ground"});
+    if (all.size() > 1) {
+      std::string list;
+      for (const auto& o : all) list += (list.empty() ? "" : ", ") + o;
+      res_.warnings.push_back("more than one observer recorded: " + list);
+    }
+  }
 
   // The same observations booked twice (a copied run) count once, not twice.
   void check_duplicated_runs() {

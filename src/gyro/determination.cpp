@@ -7,6 +7,7 @@
 
 #include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
 #include "meridian/gyro/plausibility.hpp"
 
 namespace meridian::gyro {
@@ -68,6 +69,19 @@ M requested_method(const DeterminationInput& in) {
                    {"", std::nullopt, "method"});
 }
 
+// The target rounds reduced; a target reading given as well must agree.
+TargetDirection reduce_target(const DeterminationInput& in) {
+  TargetDirection t = reduce_target_rounds(in.target_rounds, in.target_round_sigma_rad);
+  if (in.target_reading_rad) {
+    const double d = wrap_signed_rad(in.target_reading_rad->value - t.reading_rad.value);
+    if (std::fabs(d) > 0.5 * units::kArcsecond)
+      throw InputError(fmt::format("target_reading differs by {:+.1f}\" from the mean of the target rounds",
+                                   units::rad_to_arcsec(d)),
+                       {"", std::nullopt, "target_reading"});
+  }
+  return t;
+}
+
 }  // namespace
 
 std::string to_string(Mode m) { return m == Mode::Tracking ? "tracking" : "non-tracking"; }
@@ -107,6 +121,7 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
     for (const auto& w : out.zero_position->warnings) out.warnings.push_back(w);
   }
   out.zero_position_used = zero;
+  if (!in.target_rounds.empty()) out.target = reduce_target(in);
 
   if (in.mode == Mode::NonTracking) {
     check_plausible(in.nontracking);
@@ -168,10 +183,10 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
 }
 
 Uncertain gyro_azimuth(const DeterminationResult& r, const DeterminationInput& in) {
-  if (!in.target_reading_rad)
+  if (!r.target && !in.target_reading_rad)
     throw InputError("no target reading for this determination", {"", std::nullopt, "target_reading"});
-  return {wrap_positive_rad(in.target_reading_rad->value - r.primary.north.north_rad),
-          std::hypot(in.target_reading_rad->sigma, r.primary.north.sigma_rad)};
+  const Uncertain t = r.target ? r.target->reading_rad : *in.target_reading_rad;
+  return {wrap_positive_rad(t.value - r.primary.north.north_rad), std::hypot(t.sigma, r.primary.north.sigma_rad)};
 }
 
 }  // namespace meridian::gyro

@@ -8,6 +8,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/ellipsoid.hpp"
 #include "meridian/io/document.hpp"
+#include "gyro_record.hpp"
 
 namespace meridian::io {
 namespace {
@@ -23,13 +24,14 @@ double sigma_or(const Node& n, const std::string& key, double fallback) {
 }
 
 gyro::InstrumentSpec read_instrument(const Node& n) {
-  n.allow_only({"name", "scale_value_arcsec", "scale_value_sigma_arcsec", "torsion_ratio",
+  n.allow_only({"name", "serial", "scale_value_arcsec", "scale_value_sigma_arcsec", "torsion_ratio",
                 "torsion_ratio_sigma", "constants_latitude_deg", "periods",
                 "transit_factor_arcsec_per_div_s", "transit_factor_sigma_arcsec_per_div_s",
                 "sigma_time_s", "sigma_reading_div", "latitude_limit_deg",
                 "accuracy_class_arcsec"});
   gyro::InstrumentSpec s;
   if (auto v = n.get("name")) s.name = v->string();
+  if (auto v = n.get("serial")) s.serial = v->string();
   s.scale_value_rad = n.require("scale_value_arcsec").positive_number() * kArcsec;
   s.sigma_scale_value_rad = sigma_or(n, "scale_value_sigma_arcsec", 0.0) * kArcsec;
   if (auto v = n.get("torsion_ratio")) {
@@ -80,9 +82,12 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
   n.allow_only({"label", "mode", "method", "clamp_reading", "period_s", "period_sigma_s",
                 "zero_position_div", "zero_position_sigma_div", "zero_position", "crossings",
                 "reversals_div", "reversal_times_s", "sigma_time_s", "sigma_reading_div",
-                "reversals", "sigma_reading_arcsec", "target_reading", "target_sigma_arcsec"});
+                "reversals", "sigma_reading_arcsec", "target_reading", "target_sigma_arcsec", "target_rounds",
+                "time", "observer"});
   gyro::DeterminationInput d;
   if (auto v = n.get("label")) d.label = v->string();
+  if (auto v = n.get("time")) d.time = v->string();
+  if (auto v = n.get("observer")) d.observer = v->string();
   const Node mode = n.require("mode");
   const std::string m = mode.string();
   if (m == "non-tracking" || m == "nontracking")
@@ -159,6 +164,22 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
   if (auto v = n.get("target_reading"))
     d.target_reading_rad = Uncertain{v->angle().normalized_positive().rad(),
                                      sigma_or(n, "target_sigma_arcsec", 0.0) * kArcsec};
+  if (auto rounds = n.get("target_rounds")) {
+    for (const Node& r : rounds->elements()) {
+      r.allow_only({"when", "left", "right"});
+      gyro::TargetRound t;
+      const Node when = r.require("when");
+      const std::string w = when.string();
+      if (w == "before") t.when = gyro::TargetRound::When::Before;
+      else if (w == "after") t.when = gyro::TargetRound::When::After;
+      else when.fail(fmt::format("expected before or after, got \"{}\"", w));
+      t.face_left_rad = r.require("left").angle().normalized_positive().rad();
+      t.face_right_rad = r.require("right").angle().normalized_positive().rad();
+      d.target_rounds.push_back(t);
+    }
+    if (d.target_rounds.empty()) rounds->fail("give at least one round");
+    d.target_round_sigma_rad = sigma_or(n, "target_sigma_arcsec", 0.0) * kArcsec;
+  }
   return d;
 }
 
@@ -284,6 +305,15 @@ gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesyste
   return r;
 }
 
+// The record sheet: free text, shown in reports.
+gyro::RecordSheet read_record(const Node& n) {
+  n.allow_only({"observer", "booker", "computed_by", "checked_by", "date", "weather", "temperature", "remarks"});
+  gyro::RecordSheet r;
+  for (const auto& [key, target] : detail::record_fields(r))
+    if (auto v = n.get(key)) *target = v->string();
+  return r;
+}
+
 // Overrides of the class limits (gyro/regulations.hpp).
 gyro::Tolerances read_tolerances(const Node& t) {
   t.allow_only({"determination_difference_arcsec", "instrument_constant_difference_arcsec",
@@ -340,12 +370,13 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
 
 CampaignFile read_campaign_file(const std::filesystem::path& path) {
   const Node root = Node::load_file(path);
-  root.allow_only({"campaign", "instrument", "grid", "known_line", "instrument_constant", "line",
+  root.allow_only({"campaign", "record", "instrument", "grid", "known_line", "instrument_constant", "line",
                    "tolerances", "options", "gravity_model"});
   CampaignFile f;
   f.file = path.string();
   gyro::CampaignInput& c = f.campaign;
   if (auto v = root.get("campaign")) c.name = v->string();
+  if (auto r = root.get("record")) c.record = read_record(*r);
   c.instrument = read_instrument(root.require("instrument"));
   c.grid = read_grid(root.require("grid"));
   if (auto k = root.get("known_line")) {
@@ -368,7 +399,8 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     if (kl.before.empty() && kl.after.empty()) k->fail("give determinations before and/or after");
     for (const auto* list : {&kl.before, &kl.after})
       for (const auto& d : *list)
-        if (!d.target_reading_rad) k->fail("every known-line determination needs target_reading");
+        if (!d.target_reading_rad && d.target_rounds.empty())
+          k->fail("every known-line determination needs target_reading or target_rounds");
     c.known_line = std::move(kl);
   }
   if (auto e = root.get("instrument_constant")) {
@@ -387,8 +419,8 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   c.line.determinations = read_determinations(dets, c.instrument);
   if (c.line.determinations.empty()) dets.fail("no determinations");
   for (std::size_t i = 0; i < c.line.determinations.size(); ++i)
-    if (!c.line.determinations[i].target_reading_rad)
-      dets.elements()[i].fail("every line determination needs target_reading");
+    if (!c.line.determinations[i].target_reading_rad && c.line.determinations[i].target_rounds.empty())
+      dets.elements()[i].fail("every line determination needs target_reading or target_rounds");
   if (auto t = root.get("tolerances")) c.tolerances = read_tolerances(*t);
   if (auto o = root.get("options")) c.options = read_options(*o);
   if (auto g = root.get("gravity_model")) c.gravity_model = read_gravity_model_ref(*g, path);

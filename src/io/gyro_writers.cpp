@@ -7,6 +7,7 @@
 
 #include "meridian/core/dms.hpp"
 #include "meridian/core/units.hpp"
+#include "gyro_record.hpp"
 
 namespace meridian::io {
 namespace {
@@ -39,6 +40,7 @@ std::string comment_block(const std::string& header) {
 void instrument_yaml(std::string& o, const gyro::InstrumentSpec& s) {
   o += "instrument:\n";
   if (!s.name.empty()) o += "  name: " + q(s.name) + "\n";
+  if (!s.serial.empty()) o += "  serial: " + q(s.serial) + "\n";
   o += "  scale_value_arcsec: " + num(s.scale_value_rad / kArcsec) + "\n";
   if (s.sigma_scale_value_rad > 0) o += "  scale_value_sigma_arcsec: " + num(s.sigma_scale_value_rad / kArcsec) + "\n";
   if (s.torsion_ratio) {
@@ -69,6 +71,8 @@ void determination_yaml(std::string& o, const gyro::DeterminationInput& d, const
   const std::string in = ind + "  ";
   o += ind + "- mode: " + gyro::to_string(d.mode) + "\n";
   if (!d.label.empty()) o += in + "label: " + q(d.label) + "\n";
+  if (!d.time.empty()) o += in + "time: " + q(d.time) + "\n";
+  if (!d.observer.empty()) o += in + "observer: " + q(d.observer) + "\n";
   o += in + "method: " + gyro::method_request_name(d.method) + "\n";
   if (d.mode == gyro::Mode::Tracking) {
     o += in + "reversals: [";
@@ -114,6 +118,21 @@ void determination_yaml(std::string& o, const gyro::DeterminationInput& d, const
     if (d.target_reading_rad->sigma > 0)
       o += in + "target_sigma_arcsec: " + num(d.target_reading_rad->sigma / kArcsec) + "\n";
   }
+  if (!d.target_rounds.empty()) {
+    o += in + "target_rounds:\n";
+    for (const auto& r : d.target_rounds)
+      o += in + "  - {when: " + (r.when == gyro::TargetRound::When::Before ? "before" : "after") +
+           ", left: " + dms(r.face_left_rad) + ", right: " + dms(r.face_right_rad) + "}\n";
+    if (!d.target_reading_rad && d.target_round_sigma_rad > 0)
+      o += in + "target_sigma_arcsec: " + num(d.target_round_sigma_rad / kArcsec) + "\n";
+  }
+}
+
+void record_yaml(std::string& o, const gyro::RecordSheet& r) {
+  std::string body;
+  for (const auto& [key, value] : detail::record_fields(r))
+    if (!value->empty()) body += std::string("  ") + key + ": " + q(*value) + "\n";
+  if (!body.empty()) o += "record:\n" + body;
 }
 
 void point_yaml(std::string& o, const char* key, const gyro::PointInput& p, const std::string& ind) {
@@ -155,6 +174,7 @@ std::string reduce_file_yaml(const gyro::ReduceInput& in, const std::string& hea
 std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& header) {
   std::string o = comment_block(header);
   if (!c.name.empty()) o += "campaign: " + q(c.name) + "\n";
+  record_yaml(o, c.record);
   instrument_yaml(o, c.instrument);
   const auto& g = c.grid;
   o += "grid:\n  system: " + grid_system(g) + "\n";

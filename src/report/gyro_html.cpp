@@ -199,7 +199,8 @@ Section checks_section(const gyro::CampaignResult& r) {
   Section checks{"checks", "Tolerance checks", {}, 2};
   CheckList cl;
   for (const auto& k : r.checks) {
-    const bool div = k.unit == gyro::CheckUnit::Div, runs = k.unit == gyro::CheckUnit::Runs;
+    const bool div = k.unit == gyro::CheckUnit::Div;
+    const bool runs = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers;
     const int dec = div ? 2 : runs ? 0 : 1;
     const std::string unit = div ? " div" : runs ? "" : "\"";
     cl.checks.push_back({k.name, fmt::format("{:.{}f}{}", k.value, dec, unit),

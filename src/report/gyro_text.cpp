@@ -55,9 +55,9 @@ std::string determination_text(const gyro::DeterminationResult& r, int index) {
 }
 
 std::string check_text(const gyro::Check& k) {
-  const bool runs = k.unit == gyro::CheckUnit::Runs;
-  const int decimals = runs ? 0 : 2;
-  const std::string unit = runs ? "" : " " + gyro::to_string(k.unit);
+  const bool count = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers;
+  const int decimals = count ? 0 : 2;
+  const std::string unit = count ? "" : " " + gyro::to_string(k.unit);
   if (k.minimum)
     return fmt::format("[{}] {}: {:.{}f}{} (at least {:.{}f})", k.pass ? "PASS" : "FAIL", k.name, k.value, decimals,
                        unit, k.tolerance, decimals);

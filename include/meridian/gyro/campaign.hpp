@@ -54,8 +54,24 @@ struct LineInput {
   std::vector<DeterminationInput> determinations;  ///< each with a target reading
 };
 
+/// The record sheet (记录表) of a job: who observed, booked, computed and
+/// checked it, when and in what conditions, as booked (free text). Shown in
+/// the reports; only the observers enter a check (the regulations want the
+/// same observer above and below ground).
+struct RecordSheet {
+  std::string observer;      ///< of every run unless a run names its own
+  std::string booker;
+  std::string computed_by;
+  std::string checked_by;
+  std::string date;
+  std::string weather;       ///< e.g. "surface overcast, wind 2 m/s; underground 1.2 m/s"
+  std::string temperature;   ///< e.g. "surface 6 C, underground 24 C"
+  std::string remarks;
+};
+
 struct CampaignInput {
   std::string name;
+  RecordSheet record;
   InstrumentSpec instrument;
   geodesy::GridDefinition grid;
   std::optional<KnownLineInput> known_line;
@@ -77,8 +93,8 @@ struct PointResult {
 };
 
 /// Unit of a check's value and tolerance.
-enum class CheckUnit { Arcsec, Div, Runs };
-std::string to_string(CheckUnit u);  ///< "arcsec", "div", "runs"
+enum class CheckUnit { Arcsec, Div, Runs, Observers };
+std::string to_string(CheckUnit u);  ///< "arcsec", "div", "runs", "observers"
 
 /// A pass/fail check for the report: `value` against the limit `tolerance`
 /// (at most, or at least for a minimum such as a number of runs).

@@ -12,6 +12,7 @@
 #include "meridian/gyro/instrument.hpp"
 #include "meridian/gyro/nontracking.hpp"
 #include "meridian/gyro/reversal.hpp"
+#include "meridian/gyro/target_pointing.hpp"
 #include "meridian/gyro/tracking.hpp"
 #include "meridian/gyro/unified_fit.hpp"
 #include "meridian/gyro/zero_position.hpp"
@@ -51,8 +52,15 @@ struct DeterminationInput {
   ZeroPosition zero_position;
   std::optional<ZeroPositionRun> zero_before;  ///< motor-off run before the gyro run
   std::optional<ZeroPositionRun> zero_after;   ///< and after
-  /// Circle reading to the target of this determination (radians, σ of the pointing).
+  /// Circle reading to the target of this determination (radians, σ of the
+  /// pointing), or the rounds it was reduced from (target_rounds), or both
+  /// (they must then agree within 0.5″).
   std::optional<Uncertain> target_reading_rad;
+  std::vector<TargetRound> target_rounds;
+  double target_round_sigma_rad = 0.0;  ///< σ of one round's direction (≥ 0)
+  // The record sheet (shown in reports, not used in the arithmetic).
+  std::string time;       ///< clock time of the run as booked, e.g. "08:40"
+  std::string observer;   ///< when not the campaign's observer
 };
 
 /// Options that apply to all determinations.
@@ -85,6 +93,7 @@ struct DeterminationResult {
   MethodResult primary;
   std::vector<MethodResult> all;            ///< every applicable method, when all were requested
   ZeroPosition zero_position_used;          ///< α_p applied (if any)
+  std::optional<TargetDirection> target;    ///< the target rounds reduced, when given
   std::optional<ZeroPositionSummary> zero_position;  ///< from before/after runs
   std::vector<std::string> warnings;
 };
@@ -96,7 +105,8 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
                                          const ReduceOptions& options = {});
 
 /// Gyro azimuth A_G = r − N_G of a determination that has a target reading
-/// (radians, σ combining pointing and N_G). Throws InputError otherwise.
+/// or rounds (radians, σ combining pointing and N_G). Throws InputError
+/// otherwise.
 Uncertain gyro_azimuth(const DeterminationResult& r, const DeterminationInput& in);
 
 }  // namespace meridian::gyro

@@ -15,6 +15,7 @@ namespace meridian::gyro {
 
 struct InstrumentSpec {
   std::string name;
+  std::string serial;                          ///< serial number (record sheet only)
   double scale_value_rad = 0.0;                ///< τ (rad/div), > 0
   double sigma_scale_value_rad = 0.0;
   /// λ given directly, with σ. Mutually exclusive with the periods.

@@ -1,0 +1,54 @@
+#include "meridian/gyro/target_pointing.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "meridian/core/angle.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+
+namespace meridian::gyro {
+
+TargetDirection reduce_target_rounds(const std::vector<TargetRound>& rounds, double sigma_pointing_rad) {
+  if (rounds.empty()) throw InputError("no target round", {"", std::nullopt, "target_rounds"});
+  if (!(sigma_pointing_rad >= 0.0) || !std::isfinite(sigma_pointing_rad))
+    throw InputError("the pointing sigma must be finite and >= 0", {"", std::nullopt, "target_sigma_arcsec"});
+  TargetDirection t;
+  for (std::size_t i = 0; i < rounds.size(); ++i) {
+    const double left = rounds[i].face_left_rad;
+    const double right_as_left = rounds[i].face_right_rad - units::kPi;
+    const double two_c = wrap_signed_rad(left - right_as_left);
+    if (std::fabs(two_c) > units::kDegree)
+      throw InputError(fmt::format("face left {:.4f} deg and face right {:.4f} deg are not 180 deg apart "
+                                   "(2C = {:.0f}\"): a face or a reading booked wrong",
+                                   units::rad_to_deg(left), units::rad_to_deg(rounds[i].face_right_rad),
+                                   units::rad_to_arcsec(two_c)),
+                       {"", std::nullopt, fmt::format("target_rounds[{}]", i)});
+    t.two_c_rad.push_back(two_c);
+    t.round_rad.push_back(wrap_positive_rad(left - two_c / 2.0));
+  }
+  // Mean about the first round (rounds may straddle 0°).
+  const double first = t.round_rad.front();
+  double sum = 0.0, lo = 0.0, hi = 0.0;
+  for (double r : t.round_rad) {
+    const double d = wrap_signed_rad(r - first);
+    sum += d;
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  const double n = static_cast<double>(t.round_rad.size());
+  const double mean = sum / n;
+  double sigma = sigma_pointing_rad / std::sqrt(n);
+  if (t.round_rad.size() >= 2) {
+    double vv = 0.0;
+    for (double r : t.round_rad) vv += std::pow(wrap_signed_rad(r - first) - mean, 2);
+    sigma = std::max(sigma, std::sqrt(vv / (n * (n - 1.0))));
+  }
+  t.reading_rad = {wrap_positive_rad(first + mean), sigma};
+  t.spread_rad = hi - lo;
+  return t;
+}
+
+}  // namespace meridian::gyro
