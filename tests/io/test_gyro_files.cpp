@@ -259,11 +259,9 @@ TEST(GyroFiles, CampaignXiAndZenithAngles) {
 
   // As a surveyor writes it: zenith_angle in DMS or degrees beside from/to.
   auto with = [&](const std::string& from, const std::string& to) {
-    std::string s = yaml;
-    const auto pos = s.find(from);
+    const auto pos = yaml.find(from);
     EXPECT_NE(pos, std::string::npos) << from;
-    s.replace(pos, from.size(), to);
-    return d.write("bad.yaml", s);
+    return d.write("bad.yaml", std::string(yaml).replace(pos, from.size(), to));
   };
   const auto deg = io::read_campaign_file(with("  zenith_angle: \"110 12 05.5000\"", "  zenith_angle: 95.5"));
   EXPECT_NEAR(*deg.campaign.line.zenith_angle_rad / units::kDegree, 95.5, 1e-12);
