@@ -15,12 +15,16 @@ AzimuthChainResult azimuth_chain(const AzimuthChainInput& in) {
   // A = A_G + E; the rest of the chain is geodesy's.
   const Uncertain a{wrap_positive_rad(ag + in.instrument_constant_rad.value),
                     std::hypot(sag, in.instrument_constant_rad.sigma)};
-  const geodesy::AzimuthSteps s = geodesy::azimuth_from_astronomic(
-      a, {in.latitude_rad, in.eta_rad, in.convergence_rad, in.arc_to_chord_rad});
+  const geodesy::AzimuthSteps s =
+      geodesy::azimuth_from_astronomic(a, {in.latitude_rad, in.eta_rad, in.convergence_rad,
+                                           in.arc_to_chord_rad, in.xi_rad, in.zenith_distance_rad});
   r.astronomic_azimuth_rad = s.astronomic_rad;
   r.geodetic_azimuth_rad = s.geodetic_rad;
   r.grid_azimuth_rad = s.grid_rad;
   r.laplace_correction_rad = s.laplace_correction_rad;
+  r.zenith_correction_rad = s.zenith_correction_rad;
+  r.zenith_distance_rad = in.zenith_distance_rad;
+  r.zenith_term_applied = s.zenith_term_applied;
   r.convergence_rad = s.convergence_rad;
   r.arc_to_chord_rad = s.arc_to_chord_rad;
   r.laplace_applied = s.laplace_applied;

@@ -6,8 +6,11 @@
 #include <fmt/format.h>
 
 #include "meridian/core/angle.hpp"
+#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/geodesy/laplace.hpp"
+#include "meridian/geodesy/sight.hpp"
 
 namespace meridian::gyro {
 
@@ -142,17 +145,103 @@ class CampaignRun {
     return out;
   }
 
-  // η at a point: as given, else from the deflection model (with a note), else none.
-  std::optional<Uncertain> eta_at(const PointInput& p, const PointResult& r) {
-    if (p.eta_rad) return p.eta_rad;
-    if (!deflection_) return std::nullopt;
+  // ξ and η at a point; either may be unknown.
+  struct PointDeflection {
+    std::optional<Uncertain> xi_rad, eta_rad;
+  };
+
+  // ξ and η at a point: each as given, else from the deflection model (with a
+  // note), else none.
+  PointDeflection deflection_at(const PointInput& p, const PointResult& r) {
+    PointDeflection d{p.xi_rad, p.eta_rad};
+    if (!deflection_ || (d.xi_rad && d.eta_rad)) return d;
     const double h = p.height_m.value_or(0.0);
-    const double eta = deflection_->eta_rad(r.lat_rad, r.lon_rad, h);
-    res_.notes.push_back(fmt::format("{}: eta = {:+.3f}\" (sigma {:.1f}\") from the gravity model {} at h = {:.1f} m{}",
-                                     r.name.empty() ? "point" : r.name, eta / units::kArcsecond,
-                                     deflection_->sigma_eta_rad / units::kArcsecond, deflection_->description, h,
+    const geodesy::Deflection m = deflection_->deflection(r.lat_rad, r.lon_rad, h);
+    std::string what;
+    if (!d.xi_rad) {
+      d.xi_rad = Uncertain{m.xi_rad, deflection_->sigma_xi_rad};
+      what = fmt::format("xi = {:+.3f}\" (sigma {:.1f}\")", m.xi_rad / units::kArcsecond,
+                         deflection_->sigma_xi_rad / units::kArcsecond);
+    }
+    if (!d.eta_rad) {
+      d.eta_rad = Uncertain{m.eta_rad, deflection_->sigma_eta_rad};
+      what += fmt::format("{}eta = {:+.3f}\" (sigma {:.1f}\")", what.empty() ? "" : ", ",
+                          m.eta_rad / units::kArcsecond, deflection_->sigma_eta_rad / units::kArcsecond);
+    }
+    res_.notes.push_back(fmt::format("{}: {} from the gravity model {} at h = {:.1f} m{}",
+                                     r.name.empty() ? "point" : r.name, what, deflection_->description, h,
                                      p.height_m ? "" : " (height not given)"));
-    return Uncertain{eta, deflection_->sigma_eta_rad};
+    return d;
+  }
+
+  // The sight of a line for the zenith-distance term of the Laplace equation.
+  struct Sight {
+    std::string label;                  // e.g. "line D1->D2"
+    std::optional<double> zenith_rad;   // z, when known
+    std::string source;                 // where z came from, for the notes
+  };
+
+  // z of the sight from → to: the booked zenith angle, else from the heights
+  // of both points (rigorous, geodesy/sight.hpp), else unknown. `required`:
+  // the term will be applied, so a z that cannot be used is an error at
+  // `field`; otherwise z only informs a note and such a z is dropped.
+  Sight sight_of(const std::string& what, const std::string& field, const std::optional<double>& booked,
+                 const PointInput& from_in, const PointResult& from, const std::optional<PointInput>& to_in,
+                 const std::optional<PointResult>& to, bool required) {
+    Sight s;
+    const std::string a = from.name.empty() ? "station" : from.name;
+    const std::string b = to && !to->name.empty() ? to->name : "target";
+    s.label = fmt::format("{} {}->{}", what, a, b);
+    if (booked) {
+      s.zenith_rad = *booked;
+      s.source = "booked (zenith_angle)";
+      return s;
+    }
+    if (!to || !to_in || !from_in.height_m || !to_in->height_m) return s;
+    try {
+      const double z = geodesy::sight_zenith_distance_rad({from.lat_rad, from.lon_rad, *from_in.height_m},
+                                                          {to->lat_rad, to->lon_rad, *to_in->height_m},
+                                                          in_.grid.ellipsoid);
+      geodesy::check_zenith_distance(z);
+      s.zenith_rad = z;
+      s.source = fmt::format("from the heights of {} and {}", a, b);
+    } catch (Error& e) {
+      if (!required) return s;
+      e.add_context("", std::nullopt, field + ".to.height_m");
+      throw;
+    }
+    return s;
+  }
+
+  // Notes on the zenith-distance term of a line: its value and where z came
+  // from; a horizontal sight assumed; or, for an inclined sight, that the
+  // term is missing because ξ or η is unknown. Nothing when ξ is unknown and
+  // the sight is (nearly) horizontal.
+  void note_zenith_term(const Sight& s, const PointDeflection& d, const std::string& station, bool applied,
+                        double correction_rad) {
+    // |cot z| from which a missing term is worth a note: 0.1″ per 10″ of deflection.
+    constexpr double kNoteCotZenith = 0.01;
+    const auto zdms = [](double z) { return format_dms(Angle::radians(z), {0, true, false}); };
+    if (applied) {
+      res_.notes.push_back(fmt::format(
+          "{}: zenith distance {} {}; zenith-distance term of the Laplace equation "
+          "-(xi sin(alpha) - eta cos(alpha)) cot(z) = {:+.3f}\"",
+          s.label, zdms(*s.zenith_rad), s.source, correction_rad / units::kArcsecond));
+    } else if (d.xi_rad && d.eta_rad && !s.zenith_rad) {
+      res_.notes.push_back(fmt::format(
+          "{}: no zenith_angle and no heights of both points: the sight is taken as horizontal "
+          "(zenith-distance term of the Laplace equation omitted)",
+          s.label));
+    } else if (s.zenith_rad && std::abs(1.0 / std::tan(*s.zenith_rad)) >= kNoteCotZenith) {
+      const double cot_z = 1.0 / std::tan(*s.zenith_rad);
+      const char* unknown = !d.xi_rad && !d.eta_rad ? "xi and eta" : (!d.xi_rad ? "xi" : "eta");
+      res_.notes.push_back(fmt::format(
+          "{}: the sight is inclined {:+.1f} deg (zenith distance {} {}); the zenith-distance term "
+          "of the Laplace equation, up to {:.2f}\" per 10\" of deflection here, is not applied: {} "
+          "unknown at {}",
+          s.label, 90.0 - *s.zenith_rad / units::kDegree, zdms(*s.zenith_rad), s.source,
+          10.0 * std::abs(cot_z), unknown, station));
+    }
   }
 
   // The known line's azimuth as an astronomic azimuth (the inverse chain).
@@ -174,13 +263,24 @@ class CampaignRun {
                              "arc-to-chord correction neglected)");
       }
     }
-    if (k.azimuth.kind != geodesy::AzimuthKind::Astronomic) {
-      red.eta_rad = eta_at(k.from, from);
-      if (!red.eta_rad)
-        res_.notes.push_back("known line: eta unknown at the known station; the deflection is "
-                             "absorbed into E (E relates gyro to geodetic azimuths)");
+    if (k.azimuth.kind == geodesy::AzimuthKind::Astronomic)
+      return geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red).astronomic_rad;
+    const PointDeflection d = deflection_at(k.from, from);
+    red.eta_rad = d.eta_rad;
+    if (!red.eta_rad)
+      res_.notes.push_back("known line: eta unknown at the known station; the deflection is "
+                           "absorbed into E (E relates gyro to geodetic azimuths)");
+    const bool full = d.xi_rad && d.eta_rad;
+    const Sight sight =
+        sight_of("known line", "known_line", k.zenith_angle_rad, k.from, from, k.to, known_target, full);
+    if (full) {
+      red.xi_rad = d.xi_rad;
+      red.zenith_distance_rad = sight.zenith_rad;
     }
-    return geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red).astronomic_rad;
+    const geodesy::AzimuthSteps steps = geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red);
+    note_zenith_term(sight, d, from.name.empty() ? "the known station" : from.name, steps.zenith_term_applied,
+                     steps.zenith_correction_rad);
+    return steps.astronomic_rad;
   }
 
   // Step 1: the instrument constant E from determinations on the known line.
@@ -448,13 +548,24 @@ class CampaignRun {
     chain.gyro_azimuth_rad = res_.gyro_azimuth_mean.mean;
     chain.instrument_constant_rad = res_.instrument_constant_used_rad;
     chain.latitude_rad = res_.station.lat_rad;
-    chain.eta_rad = eta_at(in_.line.from, res_.station);
+    const PointDeflection d = deflection_at(in_.line.from, res_.station);
+    chain.eta_rad = d.eta_rad;
+    const bool full = d.xi_rad && d.eta_rad;
+    const Sight sight =
+        sight_of("line", "line", in_.line.zenith_angle_rad, in_.line.from, res_.station, in_.line.to,
+                 res_.target, full);
+    if (full) {
+      chain.xi_rad = d.xi_rad;
+      chain.zenith_distance_rad = sight.zenith_rad;
+    }
     chain.convergence_rad = res_.station.grid.convergence_rad;
     if (res_.target)
       chain.arc_to_chord_rad = geodesy::arc_to_chord(grid_, res_.station.grid.x_north_m, res_.station.grid.y_east_m,
                                                      res_.target->grid.x_north_m, res_.target->grid.y_east_m);
     res_.chain = azimuth_chain(chain);
     for (const auto& n : res_.chain.notes) res_.notes.push_back(n);
+    note_zenith_term(sight, d, res_.station.name.empty() ? "the station" : res_.station.name,
+                     res_.chain.zenith_term_applied, res_.chain.zenith_correction_rad);
   }
 
   const CampaignInput& in_;

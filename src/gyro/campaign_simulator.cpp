@@ -10,6 +10,7 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/azimuth_chain.hpp"
+#include "meridian/geodesy/sight.hpp"
 #include "meridian/gyro/simulator.hpp"
 
 namespace meridian::gyro {
@@ -148,25 +149,36 @@ SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) 
   const PointResult d = locate(t.target, grid, "target");
   const PointResult b = locate(t.known_target, grid, "known target");
 
-  // Truth: grid azimuth of the chord → geodetic → astronomic → gyro azimuth.
-  auto gyro_azimuth_for = [&](const PointResult& from, const PointResult& to, double eta,
+  // Truth: grid azimuth of the chord → geodetic → astronomic → gyro azimuth;
+  // with ξ the full Laplace equation, z from the heights of the points.
+  auto gyro_azimuth_for = [&](const PointResult& from, const PointResult& to, const PointInput& from_in,
+                              const PointInput& to_in, double eta, const std::optional<double>& xi,
                               double* grid_az) {
     const double T = std::atan2(to.grid.y_east_m - from.grid.y_east_m, to.grid.x_north_m - from.grid.x_north_m);
     const double delta = geodesy::arc_to_chord(grid, from.grid.x_north_m, from.grid.y_east_m,
                                                to.grid.x_north_m, to.grid.y_east_m);
-    const geodesy::AzimuthSteps s = geodesy::azimuth_steps(
-        geodesy::AzimuthKind::Grid, {T, 0.0},
-        {from.lat_rad, Uncertain{eta, 0.0}, from.grid.convergence_rad, delta});
+    geodesy::AzimuthReduction r{from.lat_rad, Uncertain{eta, 0.0}, from.grid.convergence_rad, delta};
+    if (xi) {
+      r.xi_rad = Uncertain{*xi, 0.0};
+      if (from_in.height_m && to_in.height_m)
+        r.zenith_distance_rad = geodesy::sight_zenith_distance_rad(
+            {from.lat_rad, from.lon_rad, *from_in.height_m}, {to.lat_rad, to.lon_rad, *to_in.height_m},
+            t.grid.ellipsoid);
+    }
+    const geodesy::AzimuthSteps s = geodesy::azimuth_steps(geodesy::AzimuthKind::Grid, {T, 0.0}, r);
     *grid_az = s.grid_rad.value;
     return wrap_positive_rad(s.astronomic_rad.value - t.instrument_constant_rad);
   };
-  const double ag_line = gyro_azimuth_for(c.point, d, t.eta_station_rad, &out.true_grid_azimuth_rad);
-  const double ag_known = gyro_azimuth_for(a.point, b, t.eta_known_rad, &out.true_known_grid_azimuth_rad);
+  const double ag_line = gyro_azimuth_for(c.point, d, t.station, t.target, t.eta_station_rad, t.xi_station_rad,
+                                          &out.true_grid_azimuth_rad);
+  const double ag_known = gyro_azimuth_for(a.point, b, t.known_station, t.known_target, t.eta_known_rad,
+                                           t.xi_known_rad, &out.true_known_grid_azimuth_rad);
 
   KnownLineInput kl;
   kl.from = t.known_station;
   kl.to = t.known_target;
   if (t.give_eta) kl.from.eta_rad = Uncertain{t.eta_known_rad, 0.5 * kArcsec};
+  if (t.give_eta && t.xi_known_rad) kl.from.xi_rad = Uncertain{*t.xi_known_rad, 0.5 * kArcsec};
   kl.azimuth.kind = KnownAzimuth::Kind::Grid;
   kl.azimuth.value_rad = {Rounder{t.round_to_field_precision}(out.true_known_grid_azimuth_rad, 0.01 * kArcsec),
                           t.known_azimuth_sigma_arcsec * kArcsec};
@@ -179,6 +191,7 @@ SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) 
   in.line.from = t.station;
   in.line.to = t.target;
   if (t.give_eta) in.line.from.eta_rad = Uncertain{t.eta_station_rad, 0.5 * kArcsec};
+  if (t.give_eta && t.xi_station_rad) in.line.from.xi_rad = Uncertain{*t.xi_station_rad, 0.5 * kArcsec};
   int k = 0;
   for (int i = 0; i < t.line_nontracking; ++i)
     in.line.determinations.push_back(simulate_determination(t, c, ag_line, false, fmt::format("line, non-tracking #{}", ++k), rng));

@@ -7,6 +7,8 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/ellipsoid.hpp"
+#include "meridian/geodesy/frames.hpp"
+#include "meridian/geodesy/laplace.hpp"
 #include "meridian/io/document.hpp"
 #include "gyro_record.hpp"
 
@@ -220,7 +222,7 @@ gyro::ReduceOptions read_options(const Node& n) {
 
 gyro::PointInput read_point(const Node& n) {
   n.allow_only({"name", "latitude_deg", "longitude_deg", "x_m", "y_m", "eta_arcsec",
-                "eta_sigma_arcsec", "height_m"});
+                "eta_sigma_arcsec", "height_m", "xi_arcsec", "xi_sigma_arcsec"});
   gyro::PointInput p;
   if (auto v = n.get("name")) p.name = v->string();
   if (auto v = n.get("latitude_deg")) {
@@ -237,7 +239,26 @@ gyro::PointInput read_point(const Node& n) {
   if (auto v = n.get("eta_arcsec"))
     p.eta_rad = Uncertain{v->number() * kArcsec, sigma_or(n, "eta_sigma_arcsec", 0.0) * kArcsec};
   if (auto v = n.get("height_m")) p.height_m = v->number();
+  if (auto v = n.get("xi_arcsec")) {
+    const double xi = v->number() * kArcsec;
+    if (std::fabs(xi) > geodesy::kMaxDeflection_rad)
+      v->fail("xi must be within +-0.01 rad (2062.6 arcsec); is it in arc-seconds?");
+    p.xi_rad = Uncertain{xi, sigma_or(n, "xi_sigma_arcsec", 0.0) * kArcsec};
+  } else if (auto s = n.get("xi_sigma_arcsec")) {
+    s->fail("xi_sigma_arcsec given without xi_arcsec");
+  }
   return p;
+}
+
+// A booked zenith angle of a line's sight (DMS or degrees, 10 to 170 deg).
+double read_zenith_angle(const Node& v) {
+  const double z = v.angle().rad();
+  try {
+    geodesy::check_zenith_distance(z);
+  } catch (const Error& e) {
+    v.fail(e.message());
+  }
+  return z;
 }
 
 geodesy::GridDefinition read_grid(const Node& n) {
@@ -295,13 +316,14 @@ geodesy::GridDefinition read_grid(const Node& n) {
 // The model is a path (relative to the campaign file, or as given) or a name
 // found where GeographicLib keeps its models; it is loaded by the caller.
 gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesystem::path& campaign_path) {
-  n.allow_only({"model", "max_degree", "eta_sigma_arcsec"});
+  n.allow_only({"model", "max_degree", "eta_sigma_arcsec", "xi_sigma_arcsec"});
   gyro::GravityModelRef r;
   r.source = n.require("model").string();
   const std::filesystem::path beside = campaign_path.parent_path() / r.source;
   r.lookup = std::filesystem::exists(beside) ? beside.string() : r.source;
   if (auto v = n.get("max_degree")) r.max_degree = v->integer();
   if (auto v = n.get("eta_sigma_arcsec")) r.sigma_eta_rad = v->positive_number() * kArcsec;
+  if (auto v = n.get("xi_sigma_arcsec")) r.sigma_xi_rad = v->positive_number() * kArcsec;
   return r;
 }
 
@@ -380,10 +402,11 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   c.instrument = read_instrument(root.require("instrument"));
   c.grid = read_grid(root.require("grid"));
   if (auto k = root.get("known_line")) {
-    k->allow_only({"from", "to", "azimuth", "before", "after"});
+    k->allow_only({"from", "to", "zenith_angle", "azimuth", "before", "after"});
     gyro::KnownLineInput kl;
     kl.from = read_point(k->require("from"));
     if (auto t = k->get("to")) kl.to = read_point(*t);
+    if (auto z = k->get("zenith_angle")) kl.zenith_angle_rad = read_zenith_angle(*z);
     const Node az = k->require("azimuth");
     az.allow_only({"kind", "value", "sigma_arcsec"});
     const Node kind = az.require("kind");
@@ -412,9 +435,10 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   if (!c.known_line && !c.instrument_constant_rad)
     root.fail("give known_line (calibration on a known line) or instrument_constant");
   const Node line = root.require("line");
-  line.allow_only({"from", "to", "determinations"});
+  line.allow_only({"from", "to", "zenith_angle", "determinations"});
   c.line.from = read_point(line.require("from"));
   if (auto t = line.get("to")) c.line.to = read_point(*t);
+  if (auto z = line.get("zenith_angle")) c.line.zenith_angle_rad = read_zenith_angle(*z);
   const Node dets = line.require("determinations");
   c.line.determinations = read_determinations(dets, c.instrument);
   if (c.line.determinations.empty()) dets.fail("no determinations");

@@ -37,9 +37,11 @@ const gyro::DeflectionModel& DeflectionModels::get(const gyro::GravityModelRef& 
   model->description = fmt::format("{} (degree {})", data.name.empty() ? ref.source : data.name,
                                    data.coefficients.max_degree());
   model->sigma_eta_rad = ref.sigma_eta_rad;
-  model->eta_rad = [field](double lat_rad, double lon_rad, double height_m) {
-    return field->evaluate(gravity::GeodeticPoint{lat_rad, lon_rad, height_m}, gravity::Quantities::Deflection)
-        .eta_astro_rad;
+  model->sigma_xi_rad = ref.sigma_xi_rad;
+  model->deflection = [field](double lat_rad, double lon_rad, double height_m) {
+    const gravity::FieldValues v =
+        field->evaluate(gravity::GeodeticPoint{lat_rad, lon_rad, height_m}, gravity::Quantities::Deflection);
+    return geodesy::Deflection{v.xi_astro_rad, v.eta_astro_rad};
   };
   return *loaded_.emplace(key, std::move(model)).first->second;
 }

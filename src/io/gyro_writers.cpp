@@ -148,6 +148,10 @@ void point_yaml(std::string& o, const char* key, const gyro::PointInput& p, cons
     if (p.eta_rad->sigma > 0) o += in + "eta_sigma_arcsec: " + num(p.eta_rad->sigma / kArcsec) + "\n";
   }
   if (p.height_m) o += in + "height_m: " + num(*p.height_m) + "\n";
+  if (p.xi_rad) {
+    o += in + "xi_arcsec: " + num(p.xi_rad->value / kArcsec) + "\n";
+    if (p.xi_rad->sigma > 0) o += in + "xi_sigma_arcsec: " + num(p.xi_rad->sigma / kArcsec) + "\n";
+  }
 }
 
 std::string grid_system(const geodesy::GridDefinition& g) {
@@ -194,6 +198,7 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
     o += "known_line:\n";
     point_yaml(o, "from", k.from, "  ");
     if (k.to) point_yaml(o, "to", *k.to, "  ");
+    if (k.zenith_angle_rad) o += "  zenith_angle: " + dms(*k.zenith_angle_rad) + "\n";
     o += "  azimuth: {kind: " + geodesy::to_string(k.azimuth.kind) + ", value: " + dms(k.azimuth.value_rad.value) +
          ", sigma_arcsec: " + num(k.azimuth.value_rad.sigma / kArcsec) + "}\n";
     if (!k.before.empty()) {
@@ -211,6 +216,7 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
   o += "line:\n";
   point_yaml(o, "from", c.line.from, "  ");
   if (c.line.to) point_yaml(o, "to", *c.line.to, "  ");
+  if (c.line.zenith_angle_rad) o += "  zenith_angle: " + dms(*c.line.zenith_angle_rad) + "\n";
   o += "  determinations:\n";
   for (const auto& d : c.line.determinations) determination_yaml(o, d, "    ");
   const gyro::Tolerances& t = c.tolerances;
@@ -234,7 +240,8 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
   if (c.gravity_model)
     o += "gravity_model: {model: " + q(c.gravity_model->source) +
          (c.gravity_model->max_degree >= 0 ? ", max_degree: " + std::to_string(c.gravity_model->max_degree) : "") +
-         ", eta_sigma_arcsec: " + num(c.gravity_model->sigma_eta_rad / kArcsec) + "}\n";
+         ", eta_sigma_arcsec: " + num(c.gravity_model->sigma_eta_rad / kArcsec) +
+         ", xi_sigma_arcsec: " + num(c.gravity_model->sigma_xi_rad / kArcsec) + "}\n";
   return o;
 }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/TransverseMercator.hpp>
 
@@ -19,6 +20,7 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/azimuth_chain.hpp"
+#include "meridian/geodesy/frames.hpp"
 #include "meridian/geodesy/grid.hpp"
 
 namespace mg = meridian::geodesy;
@@ -59,6 +61,16 @@ std::vector<mg::AzimuthReduction> reductions() {
        arcsec_to_rad(-2.5)},
       {0.0, eta, 0.0, std::nullopt},
       {deg_to_rad(89.0), Uncertain{arcsec_to_rad(3.0), 0.0}, deg_to_rad(2.0), std::nullopt},
+      // The zenith-distance term: a 20° rise and a 20° decline, a steep 70°
+      // decline with 1′ deflections; ξ without z and z without ξ (not applied).
+      {deg_to_rad(37.85), eta, arcsec_to_rad(-3140.2), arcsec_to_rad(0.31),
+       Uncertain{arcsec_to_rad(5.0), arcsec_to_rad(0.5)}, deg_to_rad(70.0)},
+      {deg_to_rad(-33.9), eta, deg_to_rad(-1.2), std::nullopt,
+       Uncertain{arcsec_to_rad(-7.0), arcsec_to_rad(1.0)}, deg_to_rad(110.0)},
+      {deg_to_rad(52.0), Uncertain{arcsec_to_rad(-60.0), arcsec_to_rad(1.0)}, deg_to_rad(0.7),
+       arcsec_to_rad(0.1), Uncertain{arcsec_to_rad(60.0), arcsec_to_rad(1.0)}, deg_to_rad(160.0)},
+      {deg_to_rad(37.85), eta, 0.0, std::nullopt, Uncertain{arcsec_to_rad(5.0), 0.0}, std::nullopt},
+      {deg_to_rad(37.85), eta, 0.0, std::nullopt, std::nullopt, deg_to_rad(70.0)},
   };
 }
 
@@ -121,6 +133,9 @@ TEST(AzimuthChain, RoundTripsForEveryKind) {
           }
           EXPECT_EQ(t.laplace_correction_rad, s.laplace_correction_rad);
           EXPECT_EQ(t.laplace_applied, s.laplace_applied);
+          // c_z(α) evaluated at α from the forward iteration or as given.
+          EXPECT_NEAR(t.zenith_correction_rad, s.zenith_correction_rad, 1e-17);
+          EXPECT_EQ(t.zenith_term_applied, s.zenith_term_applied);
           EXPECT_EQ(t.arc_to_chord_applied, s.arc_to_chord_applied);
         }
       }
@@ -328,4 +343,245 @@ TEST(AzimuthChain, GridLineAgreesWithGeographicLib) {
       "[ azimuth  ] grid chain vs GeographicLib chord: max |dT| %.2e\" (from alpha), "
       "%.2e\" (from A); inverse max |d alpha| %.2e\"; max |delta| %.3f\"\n",
       worst_fwd, worst_astro, worst_inv, worst_delta);
+}
+
+// ---------------------------------------------------------------------------
+// The zenith-distance term: A − α = η·tan φ + (ξ·sin α − η·cos α)·cot z.
+
+namespace {
+
+mg::AzimuthReduction full(double lat_deg, double xi_as, double eta_as, double z_deg,
+                          double sxi_as = 0.0, double seta_as = 0.0) {
+  mg::AzimuthReduction r;
+  r.latitude_rad = deg_to_rad(lat_deg);
+  r.eta_rad = Uncertain{arcsec_to_rad(eta_as), arcsec_to_rad(seta_as)};
+  r.xi_rad = Uncertain{arcsec_to_rad(xi_as), arcsec_to_rad(sxi_as)};
+  r.zenith_distance_rad = deg_to_rad(z_deg);
+  return r;
+}
+
+}  // namespace
+
+TEST(AzimuthChainZenithTerm, HandFormulas) {
+  const double phi = deg_to_rad(37.85), xi = arcsec_to_rad(6.0), eta = arcsec_to_rad(-4.2);
+  const double z = deg_to_rad(70.0), cot_z = 1.0 / std::tan(z);
+  for (double a_deg : {0.0, 30.0, 90.0, 123.456, 200.0, 359.9}) {
+    SCOPED_TRACE(a_deg);
+    const double a = deg_to_rad(a_deg);
+    const mg::AzimuthSteps s = mg::azimuth_from_astronomic({a, 0.0}, full(37.85, 6.0, -4.2, 70.0));
+    ASSERT_TRUE(s.laplace_applied);
+    ASSERT_TRUE(s.zenith_term_applied);
+    const double alpha = s.geodetic_rad.value;
+    // α satisfies the equation with α in the term.
+    const double rhs =
+        a - eta * std::tan(phi) - (xi * std::sin(alpha) - eta * std::cos(alpha)) * cot_z;
+    EXPECT_NEAR(angle_diff(alpha, rhs), 0.0, 2e-15);
+    EXPECT_NEAR(s.laplace_correction_rad, -eta * std::tan(phi), 1e-20);
+    EXPECT_NEAR(s.zenith_correction_rad, -(xi * std::sin(alpha) - eta * std::cos(alpha)) * cot_z,
+                1e-20);
+    EXPECT_NEAR(angle_diff(alpha, a), s.laplace_correction_rad + s.zenith_correction_rad, 1e-15);
+    // With A in the term instead: the same to second order (θ²·cot z·(tan φ + cot z) ≈ 1e-10 rad).
+    const double alpha_a = a - eta * std::tan(phi) - (xi * std::sin(a) - eta * std::cos(a)) * cot_z;
+    EXPECT_NEAR(angle_diff(alpha, alpha_a), 0.0, 5e-10);
+    // The inverse from α gives A back, with the same correction.
+    const mg::AzimuthSteps i =
+        mg::azimuth_steps(AzimuthKind::Geodetic, {alpha, 0.0}, full(37.85, 6.0, -4.2, 70.0));
+    EXPECT_NEAR(angle_diff(i.astronomic_rad.value, a), 0.0, 2e-15);
+    EXPECT_NEAR(i.zenith_correction_rad, s.zenith_correction_rad, 1e-17);
+  }
+}
+
+TEST(AzimuthChainZenithTerm, Signs) {
+  // ξ = +5″ (astronomic zenith north of the normal), sight due east 20°
+  // upwards: A − α = +ξ·cot z, α = A − 1.820″ (η = 0); downwards the opposite.
+  const double cot70 = 1.0 / std::tan(deg_to_rad(70.0));
+  auto alpha_minus_a = [&](double lat, double xi, double eta, double az, double z) {
+    const mg::AzimuthSteps s =
+        mg::azimuth_from_astronomic({deg_to_rad(az), 0.0}, full(lat, xi, eta, z));
+    return rad_to_arcsec(angle_diff(s.geodetic_rad.value, deg_to_rad(az)));
+  };
+  EXPECT_NEAR(alpha_minus_a(45.0, 5.0, 0.0, 90.0, 70.0), -5.0 * cot70, 1e-9);
+  EXPECT_NEAR(alpha_minus_a(45.0, 5.0, 0.0, 90.0, 110.0), 5.0 * cot70, 1e-9);  // 20° decline
+  EXPECT_NEAR(alpha_minus_a(45.0, -5.0, 0.0, 90.0, 70.0), 5.0 * cot70, 1e-9);
+  // η = +5″ at φ = 45° N, sight due north 20° upwards: −η·tan φ + η·cot z.
+  EXPECT_NEAR(alpha_minus_a(45.0, 0.0, 5.0, 0.0, 70.0), -5.0 + 5.0 * cot70, 1e-9);
+  // Southern hemisphere: only the first term flips.
+  EXPECT_NEAR(alpha_minus_a(-45.0, 0.0, 5.0, 0.0, 70.0), 5.0 + 5.0 * cot70, 1e-9);
+  // The 20° sight with 5″ deflections: up to 5·√2·cot 70° = 2.57″ from the term.
+  double worst = 0;
+  for (double az = 0; az < 360; az += 1)
+    worst = std::max(worst, std::abs(alpha_minus_a(45.0, 5.0, -5.0, az, 70.0) - 5.0));
+  EXPECT_NEAR(worst, 5.0 * std::sqrt(2.0) * cot70, 1e-3);
+}
+
+TEST(AzimuthChainZenithTerm, SigmaPropagation) {
+  // σ² = σ²_given + (tan φ − cos α·cot z)²·σ²_η + (sin α·cot z)²·σ²_ξ,
+  // and the coefficients are the chain's own derivatives (finite differences).
+  const double phi_deg = 50.0, t = std::tan(deg_to_rad(phi_deg));
+  const double sg = arcsec_to_rad(3.0), sxi = arcsec_to_rad(0.8), seta = arcsec_to_rad(0.5);
+  for (double z_deg : {70.0, 110.0, 150.0})
+    for (double a_deg : {20.0, 135.0, 250.0}) {
+      SCOPED_TRACE(testing::Message() << "z " << z_deg << " A " << a_deg);
+      const double cot_z = 1.0 / std::tan(deg_to_rad(z_deg));
+      const mg::AzimuthReduction r = full(phi_deg, 4.0, -3.0, z_deg, 0.8, 0.5);
+      const mg::AzimuthSteps f =
+          mg::azimuth_steps(AzimuthKind::Astronomic, {deg_to_rad(a_deg), sg}, r);
+      const double alpha = f.geodetic_rad.value;
+      const double k_eta = t - std::cos(alpha) * cot_z, k_xi = std::sin(alpha) * cot_z;
+      const double expect =
+          std::sqrt(sg * sg + k_eta * k_eta * seta * seta + k_xi * k_xi * sxi * sxi);
+      EXPECT_NEAR(f.geodetic_rad.sigma / expect, 1.0, 1e-12);
+      EXPECT_EQ(f.grid_rad.sigma, f.geodetic_rad.sigma);
+      EXPECT_EQ(f.astronomic_rad.sigma, sg);
+      // Finite differences of α with respect to η and ξ: −k_eta and −k_xi (to O(θ cot z)).
+      const double h = arcsec_to_rad(1.0);
+      auto alpha_with = [&](double dxi, double deta) {
+        mg::AzimuthReduction q = r;
+        q.xi_rad->value += dxi;
+        q.eta_rad->value += deta;
+        return mg::azimuth_steps(AzimuthKind::Astronomic, {deg_to_rad(a_deg), 0.0}, q)
+            .geodetic_rad.value;
+      };
+      const double d_eta = angle_diff(alpha_with(0, h), alpha_with(0, -h)) / (2 * h);
+      const double d_xi = angle_diff(alpha_with(h, 0), alpha_with(-h, 0)) / (2 * h);
+      EXPECT_NEAR(d_eta, -k_eta, 1e-3 * std::abs(cot_z));
+      EXPECT_NEAR(d_xi, -k_xi, 1e-3 * std::abs(cot_z));
+      // The inverse: A from α carries the same σ.
+      const mg::AzimuthSteps i = mg::azimuth_steps(AzimuthKind::Geodetic, {alpha, sg}, r);
+      EXPECT_NEAR(i.astronomic_rad.sigma / expect, 1.0, 1e-12);
+      EXPECT_EQ(i.geodetic_rad.sigma, sg);
+    }
+}
+
+TEST(AzimuthChainZenithTerm, AbsentInputsLeaveTheChainBitIdentical) {
+  // ξ without z, or z without ξ: the term is not applied and every output is
+  // the same double as without either.
+  const double phi = 0.6606, eta = -2.03e-5, gamma = -0.0152, delta = 1.5e-6;
+  const mg::AzimuthReduction none{phi, Uncertain{eta, 2.4e-6}, gamma, delta};
+  mg::AzimuthReduction xi_only = none, z_only = none;
+  xi_only.xi_rad = Uncertain{3e-5, 1e-6};
+  z_only.zenith_distance_rad = deg_to_rad(70.0);
+  for (AzimuthKind k : kKinds)
+    for (double v : {0.1234567890123, 3.3, 6.2831, -0.01}) {
+      const mg::AzimuthSteps a = mg::azimuth_steps(k, {v, 1e-5}, none);
+      for (const mg::AzimuthReduction* r : {&xi_only, &z_only}) {
+        const mg::AzimuthSteps b = mg::azimuth_steps(k, {v, 1e-5}, *r);
+        EXPECT_FALSE(b.zenith_term_applied);
+        EXPECT_EQ(b.zenith_correction_rad, 0.0);
+        for (AzimuthKind j : kKinds) {
+          EXPECT_EQ(of_kind(a, j).value, of_kind(b, j).value);
+          EXPECT_EQ(of_kind(a, j).sigma, of_kind(b, j).sigma);
+        }
+      }
+    }
+}
+
+TEST(AzimuthChainZenithTerm, Guards) {
+  using meridian::InputError;
+  for (AzimuthKind k : kKinds) {
+    SCOPED_TRACE(mg::to_string(k));
+    EXPECT_NO_THROW(mg::azimuth_steps(k, {1.0, 0.0}, full(40.0, 5.0, 5.0, 70.0)));
+    // |ξ| > 0.01 rad, with or without z.
+    mg::AzimuthReduction big = full(40.0, 0.0, 5.0, 70.0);
+    big.xi_rad->value = 0.0101;
+    EXPECT_THROW(mg::azimuth_steps(k, {1.0, 0.0}, big), InputError);
+    big.zenith_distance_rad.reset();
+    EXPECT_THROW(mg::azimuth_steps(k, {1.0, 0.0}, big), InputError);
+    // Negative σ(ξ).
+    mg::AzimuthReduction neg = full(40.0, 1.0, 1.0, 70.0);
+    neg.xi_rad->sigma = -1e-6;
+    EXPECT_THROW(mg::azimuth_steps(k, {1.0, 0.0}, neg), InputError);
+    // ξ without η.
+    mg::AzimuthReduction no_eta = full(40.0, 5.0, 5.0, 70.0);
+    no_eta.eta_rad.reset();
+    EXPECT_THROW(mg::azimuth_steps(k, {1.0, 0.0}, no_eta), InputError);
+    // A (near) vertical sight, checked even when the term is not applied.
+    for (double z : {0.0, 5.0, 175.0, 180.0}) {
+      EXPECT_THROW(mg::azimuth_steps(k, {1.0, 0.0}, full(40.0, 5.0, 5.0, z)), InputError) << z;
+      mg::AzimuthReduction z_only{deg_to_rad(40.0), std::nullopt, 0.0, std::nullopt};
+      z_only.zenith_distance_rad = deg_to_rad(z);
+      EXPECT_THROW(mg::azimuth_steps(k, {1.0, 0.0}, z_only), InputError) << z;
+    }
+    mg::AzimuthReduction nan_z = full(40.0, 5.0, 5.0, 70.0);
+    nan_z.zenith_distance_rad = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW(mg::azimuth_steps(k, {1.0, 0.0}, nan_z), InputError);
+  }
+}
+
+// The rigorous, independent check: the astronomic local frame built from the
+// exact astronomic zenith (frames.hpp astronomic_zenith_enu) and the rotation
+// axis (astronomic north: in the plane perpendicular to the zenith, towards
+// the celestial pole); a target direction given by its geodetic azimuth and
+// zenith distance; A − α from the azimuths of that direction in the two
+// frames against the chain's correction. The chain is first order: the
+// residual must be second order in the deflection.
+TEST(AzimuthChainZenithTerm, AgreesWithTheExactFrames) {
+  struct Case {
+    double lat_deg, lon_deg;
+  };
+  const double kDefl[] = {3.0, 10.0, 60.0};  // |ξ|, |η| in arc-seconds
+  double worst[3] = {0, 0, 0}, worst_ratio = 0, worst_laplace_only = 0, worst_mine = 0;
+  for (const Case c : {Case{37.85, 112.55}, Case{-33.9, 18.4}, Case{60.0, -20.0}, Case{5.0, 100.0}})
+    for (int di = 0; di < 3; ++di)
+      for (double sx : {-1.0, 0.0, 1.0})
+        for (double se : {-1.0, 0.0, 1.0})
+          for (double z_deg : {20.0, 45.0, 70.0, 90.0, 110.0, 135.0, 160.0})
+            for (double az_deg = 0.0; az_deg < 360.0; az_deg += 22.5) {
+              const double xi = arcsec_to_rad(sx * kDefl[di]), eta = arcsec_to_rad(se * kDefl[di]);
+              const double phi = deg_to_rad(c.lat_deg), lam = deg_to_rad(c.lon_deg);
+              const double alpha = deg_to_rad(az_deg), z = deg_to_rad(z_deg);
+              // Geodetic ENU → ECEF; the target direction and the astronomic frame in ECEF.
+              const Eigen::Matrix3d r = mg::rotation_ecef_to_enu(phi, lam);
+              const Eigen::Vector3d d =
+                  r.transpose() * Eigen::Vector3d(std::sin(alpha) * std::sin(z),
+                                                  std::cos(alpha) * std::sin(z), std::cos(z));
+              const Eigen::Vector3d up =
+                  r.transpose() * mg::astronomic_zenith_enu(mg::Deflection{xi, eta}, phi);
+              const Eigen::Vector3d pole(0.0, 0.0, 1.0);
+              const Eigen::Vector3d north = (pole - pole.dot(up) * up).normalized();
+              const Eigen::Vector3d east = north.cross(up);
+              const double a_exact = std::atan2(d.dot(east), d.dot(north));
+              const double z_astro = std::acos(std::clamp(d.dot(up), -1.0, 1.0));
+              // The geodetic frame itself gives α back (a check on the construction).
+              const Eigen::Vector3d gn = r.row(1).transpose(), ge = r.row(0).transpose();
+              ASSERT_NEAR(angle_diff(std::atan2(d.dot(ge), d.dot(gn)), alpha), 0.0, 1e-14);
+
+              mg::AzimuthReduction red{phi, Uncertain{eta, 0.0}, 0.0, std::nullopt};
+              red.xi_rad = Uncertain{xi, 0.0};
+              red.zenith_distance_rad = z;
+              // Inverse (known line): α → A with the geodetic z; forward (the
+              // gyro line): A → α with the astronomic z a theodolite books.
+              const double a_chain =
+                  mg::azimuth_steps(AzimuthKind::Geodetic, {alpha, 0.0}, red).astronomic_rad.value;
+              red.zenith_distance_rad = z_astro;
+              const double alpha_chain =
+                  mg::azimuth_from_astronomic({a_exact, 0.0}, red).geodetic_rad.value;
+              const double res = std::max(std::abs(angle_diff(a_chain, a_exact)),
+                                          std::abs(angle_diff(alpha_chain, alpha)));
+              worst[di] = std::max(worst[di], res);
+              // Mine lines: sights within 20° of the horizon, |φ| ≤ 40°, 10″ deflections.
+              if (di == 1 && std::abs(c.lat_deg) <= 40.0 && z_deg >= 70.0 && z_deg <= 110.0)
+                worst_mine = std::max(worst_mine, res);
+              const double theta = std::hypot(xi, eta);
+              if (theta > 0) {
+                // Second order: |res| ≤ C·θ²·(1 + tan²φ + cot²z) with C of order one.
+                const double t = std::tan(phi), ct = 1.0 / std::tan(z);
+                worst_ratio = std::max(worst_ratio, res / (theta * theta * (1 + t * t + ct * ct)));
+              }
+              if (di == 1 && z_deg >= 70.0 && z_deg <= 110.0) {
+                const double laplace_only = alpha + eta * std::tan(phi);
+                worst_laplace_only =
+                    std::max(worst_laplace_only, std::abs(angle_diff(laplace_only, a_exact)));
+              }
+            }
+  std::printf(
+      "[ laplace  ] chain vs exact frames (|lat| to 60 deg, z 20..160 deg), max |residual|: "
+      "%.2e\" (3\"), %.2e\" (10\"), %.2e\" (60\"); 10\" with |lat| <= 40 deg, z 70..110 deg: "
+      "%.2e\"; max residual / (theta^2 (1 + tan^2 phi + cot^2 z)) = %.3f; without the term "
+      "(10\", z 70..110 deg): %.3f\"\n",
+      rad_to_arcsec(worst[0]), rad_to_arcsec(worst[1]), rad_to_arcsec(worst[2]),
+      rad_to_arcsec(worst_mine), worst_ratio, rad_to_arcsec(worst_laplace_only));
+  EXPECT_LT(worst_ratio, 1.0);
+  EXPECT_LT(rad_to_arcsec(worst_mine), 0.001);
+  EXPECT_GT(rad_to_arcsec(worst_laplace_only), 1.0);  // the term matters
 }

@@ -18,6 +18,10 @@
 #include "meridian/gravity/synthetic.hpp"
 #include "meridian/geodesy/grid.hpp"
 
+#include <GeographicLib/Geocentric.hpp>
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/LocalCartesian.hpp>
+
 using namespace meridian;
 using namespace meridian::gyro;
 
@@ -86,6 +90,32 @@ TEST(AzimuthChain, ClosedFormWithSigma) {
   EXPECT_FALSE(r2.notes.empty());
 }
 
+TEST(AzimuthChain, ZenithDistanceTerm) {
+  // α = A − η·tan φ − (ξ·sin α − η·cos α)·cot z, by hand at α ≈ A (second
+  // order: ~1e-10 rad here), σ² + (tan φ − cos α·cot z)²σ²(η) + (sin α·cot z)²σ²(ξ).
+  AzimuthChainInput in;
+  in.gyro_azimuth_rad = {100 * kDeg, 5 * kArcsec};
+  in.instrument_constant_rad = {-30 * kArcsec, 4 * kArcsec};
+  in.latitude_rad = 40 * kDeg;
+  in.eta_rad = Uncertain{6 * kArcsec, 1 * kArcsec};
+  in.xi_rad = Uncertain{-5 * kArcsec, 2 * kArcsec};
+  in.zenith_distance_rad = 110 * kDeg;
+  const auto r = azimuth_chain(in);
+  ASSERT_TRUE(r.zenith_term_applied);
+  ASSERT_TRUE(r.zenith_distance_rad);
+  EXPECT_EQ(*r.zenith_distance_rad, 110 * kDeg);
+  const double a = 100 * kDeg - 30 * kArcsec, cot_z = 1.0 / std::tan(110 * kDeg), t40 = std::tan(40 * kDeg);
+  const double cz = -(-5 * std::sin(a) - 6 * std::cos(a)) * cot_z;  // arc-seconds
+  EXPECT_NEAR(r.zenith_correction_rad / kArcsec, cz, 1e-3);
+  EXPECT_NEAR(diff_arcsec(r.geodetic_azimuth_rad.value, a - 6 * t40 * kArcsec + cz * kArcsec), 0.0, 1e-3);
+  const double k_eta = t40 - std::cos(a) * cot_z, k_xi = std::sin(a) * cot_z;
+  EXPECT_NEAR(r.geodetic_azimuth_rad.sigma / kArcsec, std::sqrt(25 + 16 + k_eta * k_eta + 4 * k_xi * k_xi), 1e-4);
+  EXPECT_EQ(r.notes.size(), 1u);  // only δ not applied
+  // ξ without z (or z without ξ): no term.
+  in.zenith_distance_rad.reset();
+  EXPECT_FALSE(azimuth_chain(in).zenith_term_applied);
+}
+
 TEST(Campaign, NoiseFreeSimulationRecoversTruth) {
   CampaignTruth t = noise_free_truth();
   const auto sim = simulate_campaign(t, 7);
@@ -130,32 +160,180 @@ TEST(Campaign, LatitudeBeyondLimitIsRejected) {
   EXPECT_THROW(simulate_campaign(t, 1), InputError);
 }
 
-TEST(Campaign, EtaFromAGravityModelRecoversTruth) {
-  // The truth's η at both stations is the model's plumb-line η; the campaign
-  // gets no η but the model, and must recover the true grid azimuth.
+TEST(Campaign, DeflectionFromAGravityModelRecoversTruth) {
+  // The truth's ξ, η at both stations are the model's plumb line; the
+  // campaign gets neither but the model, and must recover the true grid
+  // azimuth with the full Laplace equation (the lines slope slightly: the
+  // heights of the example).
   const auto model = gravity::make_synthetic_model({60, 5, 1e-5});
   const auto field = std::make_shared<const gravity::GravityField>(model);
   CampaignTruth t = noise_free_truth();
   t.give_eta = false;
   const geodesy::TransverseMercatorGrid grid(t.grid);
-  auto eta_at = [&](const PointInput& p) {
+  auto values_at = [&](const PointInput& p) {
     const auto g = grid.reverse(*p.x_north_m, *p.y_east_m);
-    return field->evaluate(gravity::GeodeticPoint{g.lat_rad, g.lon_rad, p.height_m.value_or(0.0)}).eta_astro_rad;
+    return field->evaluate(gravity::GeodeticPoint{g.lat_rad, g.lon_rad, p.height_m.value_or(0.0)});
   };
-  t.eta_station_rad = eta_at(t.station);
-  t.eta_known_rad = eta_at(t.known_station);
+  t.eta_station_rad = values_at(t.station).eta_astro_rad;
+  t.eta_known_rad = values_at(t.known_station).eta_astro_rad;
+  t.xi_station_rad = values_at(t.station).xi_astro_rad;
+  t.xi_known_rad = values_at(t.known_station).xi_astro_rad;
   ASSERT_GT(std::fabs(t.eta_station_rad / kArcsec), 0.5);  // a deflection worth correcting
+  ASSERT_GT(std::fabs(*t.xi_station_rad / kArcsec), 0.5);
   auto sim = simulate_campaign(t, 21);
-  const DeflectionModel deflection{"synthetic (degree 60)", 1.5 * kArcsec, [&](double lat, double lon, double h) {
-    return field->evaluate(gravity::GeodeticPoint{lat, lon, h}, gravity::Quantities::Deflection).eta_astro_rad;
-  }};
+  DeflectionModel deflection;
+  deflection.description = "synthetic (degree 60)";
+  deflection.sigma_eta_rad = 1.5 * kArcsec;
+  deflection.sigma_xi_rad = 2.0 * kArcsec;
+  deflection.deflection = [&](double lat, double lon, double h) {
+    const auto v = field->evaluate(gravity::GeodeticPoint{lat, lon, h}, gravity::Quantities::Deflection);
+    return geodesy::Deflection{v.xi_astro_rad, v.eta_astro_rad};
+  };
   const auto r = process(sim.input, nullptr, &deflection);
   ASSERT_TRUE(r.chain.laplace_applied);
   EXPECT_NEAR(r.chain.laplace_correction_rad, -t.eta_station_rad * std::tan(r.station.lat_rad), 1e-12);
+  ASSERT_TRUE(r.chain.zenith_term_applied);
+  ASSERT_TRUE(r.chain.zenith_distance_rad);
+  const double alpha = r.chain.geodetic_azimuth_rad.value, cot_z = 1.0 / std::tan(*r.chain.zenith_distance_rad);
+  EXPECT_NEAR(r.chain.zenith_correction_rad,
+              -(*t.xi_station_rad * std::sin(alpha) - t.eta_station_rad * std::cos(alpha)) * cot_z, 1e-14);
   EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), 0.0, 0.01);
   bool noted = false;
-  for (const auto& n : r.notes) noted = noted || n.find("from the gravity model synthetic (degree 60)") != std::string::npos;
+  for (const auto& n : r.notes)
+    noted = noted || (n.find("xi = ") != std::string::npos && n.find("eta = ") != std::string::npos &&
+                      n.find("from the gravity model synthetic (degree 60)") != std::string::npos);
   EXPECT_TRUE(noted);
-  // σ of η enters the geodetic azimuth: tan φ · 1.5".
-  EXPECT_GT(r.chain.geodetic_azimuth_rad.sigma, r.chain.astronomic_azimuth_rad.sigma);
+  // σ of ξ and η enter the geodetic azimuth.
+  const double phi = r.station.lat_rad;
+  const double k_eta = std::tan(phi) - std::cos(alpha) * cot_z, k_xi = std::sin(alpha) * cot_z;
+  const double sa = r.chain.astronomic_azimuth_rad.sigma;
+  EXPECT_NEAR(r.chain.geodetic_azimuth_rad.sigma,
+              std::sqrt(sa * sa + std::pow(k_eta * 1.5 * kArcsec, 2) + std::pow(k_xi * 2.0 * kArcsec, 2)), 1e-15);
+}
+
+namespace {
+
+// The zenith distance of the sight between two truth points, computed here
+// independently of the library: GeographicLib::LocalCartesian at the station.
+double zenith_distance(const CampaignTruth& t, const PointInput& from, const PointInput& to) {
+  const geodesy::TransverseMercatorGrid grid(t.grid);
+  const auto a = grid.reverse(*from.x_north_m, *from.y_east_m);
+  const auto b = grid.reverse(*to.x_north_m, *to.y_east_m);
+  const GeographicLib::LocalCartesian lc(a.lat_rad / kDeg, a.lon_rad / kDeg, *from.height_m,
+                                         GeographicLib::Geocentric(t.grid.ellipsoid.a_m, t.grid.ellipsoid.f));
+  double x, y, u;
+  lc.Forward(b.lat_rad / kDeg, b.lon_rad / kDeg, *to.height_m, x, y, u);
+  return std::atan2(std::hypot(x, y), u);
+}
+
+// A mine job down a decline: the line C→D falls 20° and the known line A→B
+// rises 8°; ξ and η of a few arc-seconds at both stations.
+CampaignTruth decline_truth() {
+  CampaignTruth t = noise_free_truth();
+  const double s_cd = std::hypot(*t.target.x_north_m - *t.station.x_north_m, *t.target.y_east_m - *t.station.y_east_m);
+  const double s_ab = std::hypot(*t.known_target.x_north_m - *t.known_station.x_north_m,
+                                 *t.known_target.y_east_m - *t.known_station.y_east_m);
+  t.target.height_m = *t.station.height_m - s_cd * std::tan(20 * kDeg);
+  t.known_target.height_m = *t.known_station.height_m + s_ab * std::tan(8 * kDeg);
+  t.xi_station_rad = -6.0 * kArcsec;
+  t.eta_station_rad = -4.2 * kArcsec;
+  t.xi_known_rad = 5.0 * kArcsec;
+  t.eta_known_rad = -4.0 * kArcsec;
+  return t;
+}
+
+// −(ξ·sin α − η·cos α)·cot z by hand.
+double zenith_term(double xi, double eta, double alpha, double z) {
+  return -(xi * std::sin(alpha) - eta * std::cos(alpha)) / std::tan(z);
+}
+
+bool has_note(const CampaignResult& r, std::initializer_list<std::string> parts) {
+  for (const auto& n : r.notes) {
+    bool all = true;
+    for (const auto& p : parts) all = all && n.find(p) != std::string::npos;
+    if (all) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(Campaign, FullLaplaceOnADeclineRecoversTruth) {
+  const CampaignTruth t = decline_truth();
+  const auto sim = simulate_campaign(t, 7);
+  const double z_cd = zenith_distance(t, t.station, t.target);
+  const double z_ab = zenith_distance(t, t.known_station, t.known_target);
+  ASSERT_NEAR(z_cd / kDeg, 110.0, 0.05);
+  ASSERT_NEAR(z_ab / kDeg, 82.0, 0.05);
+
+  const auto r = process(sim.input);
+  ASSERT_TRUE(r.chain.zenith_term_applied);
+  EXPECT_NEAR(*r.chain.zenith_distance_rad, z_cd, 1e-9);
+  const double c_cd = zenith_term(*t.xi_station_rad, t.eta_station_rad, r.chain.geodetic_azimuth_rad.value, z_cd);
+  EXPECT_NEAR(r.chain.zenith_correction_rad / kArcsec, c_cd / kArcsec, 1e-6);
+  EXPECT_GT(std::fabs(c_cd / kArcsec), 1.0);  // a term worth having
+  EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), 0.0, 0.01);
+  EXPECT_NEAR(r.instrument_constant_used_rad.value / kArcsec, t.instrument_constant_rad / kArcsec, 0.01);
+  EXPECT_TRUE(has_note(r, {"line C (shaft bottom)->D (main drift): zenith distance 110°", "from the heights of",
+                           "zenith-distance term"}));
+  EXPECT_TRUE(has_note(r, {"known line A (surface)->B (surface): zenith distance 82°"}));
+
+  // Without ξ at C the term of the line is missing: T misses by −c_cd, and a note says why.
+  auto no_xi = sim.input;
+  no_xi.line.from.xi_rad.reset();
+  const auto r1 = process(no_xi);
+  EXPECT_FALSE(r1.chain.zenith_term_applied);
+  EXPECT_NEAR(diff_arcsec(r1.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), -c_cd / kArcsec, 0.01);
+  EXPECT_TRUE(has_note(r1, {"inclined -20.0 deg", "is not applied: xi unknown at C (shaft bottom)"}));
+
+  // Without ξ anywhere, E also absorbs the known line's term (A_known is
+  // then too large by c_ab): T misses by c_ab − c_cd. α of A→B from
+  // GeographicLib::Geodesic between the points.
+  no_xi.known_line->from.xi_rad.reset();
+  const auto r2 = process(no_xi);
+  const geodesy::TransverseMercatorGrid grid(t.grid);
+  const auto a = grid.reverse(*t.known_station.x_north_m, *t.known_station.y_east_m);
+  const auto b = grid.reverse(*t.known_target.x_north_m, *t.known_target.y_east_m);
+  double s12, azi1, azi2;
+  GeographicLib::Geodesic(t.grid.ellipsoid.a_m, t.grid.ellipsoid.f)
+      .Inverse(a.lat_rad / kDeg, a.lon_rad / kDeg, b.lat_rad / kDeg, b.lon_rad / kDeg, s12, azi1, azi2);
+  const double c_ab = zenith_term(*t.xi_known_rad, t.eta_known_rad, azi1 * kDeg, z_ab);
+  EXPECT_GT(std::fabs(c_ab / kArcsec), 0.3);
+  EXPECT_NEAR(diff_arcsec(r2.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), (c_ab - c_cd) / kArcsec,
+              0.01);
+  EXPECT_TRUE(has_note(r2, {"known line A (surface)->B (surface): the sight is inclined +8.0 deg",
+                            "xi unknown at A (surface)"}));
+
+  // A booked zenith angle (to 1″, as a crew books it) instead of D's height.
+  auto booked = sim.input;
+  booked.line.to->height_m.reset();
+  booked.line.zenith_angle_rad = std::round(z_cd / kArcsec) * kArcsec;
+  const auto r3 = process(booked);
+  ASSERT_TRUE(r3.chain.zenith_term_applied);
+  EXPECT_NEAR(diff_arcsec(r3.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), 0.0, 0.01);
+  EXPECT_TRUE(has_note(r3, {"zenith distance 110°", "booked (zenith_angle)"}));
+
+  // Neither: the sight is taken as horizontal, with a note; T misses by −c_cd.
+  auto flat = booked;
+  flat.line.zenith_angle_rad.reset();
+  const auto r4 = process(flat);
+  EXPECT_FALSE(r4.chain.zenith_term_applied);
+  EXPECT_FALSE(r4.chain.zenith_distance_rad);
+  EXPECT_NEAR(diff_arcsec(r4.chain.grid_azimuth_rad.value, sim.true_grid_azimuth_rad), -c_cd / kArcsec, 0.01);
+  EXPECT_TRUE(has_note(r4, {"no zenith_angle and no heights of both points", "taken as horizontal"}));
+}
+
+TEST(Campaign, NoXiNoNewNotes) {
+  // The example (η given, ξ not, nearly level lines): the zenith-distance
+  // term is not applied and nothing about it is noted, so the outputs of the
+  // existing examples do not change.
+  const auto sim = simulate_campaign(noise_free_truth(), 7);
+  const auto r = process(sim.input);
+  EXPECT_TRUE(r.chain.laplace_applied);
+  EXPECT_FALSE(r.chain.zenith_term_applied);
+  EXPECT_EQ(r.chain.zenith_correction_rad, 0.0);
+  for (const auto& n : r.notes) {
+    EXPECT_EQ(n.find("zenith"), std::string::npos) << n;
+    EXPECT_EQ(n.find("xi"), std::string::npos) << n;
+  }
 }

@@ -15,6 +15,7 @@
 #include "meridian/io/gyro_jobs.hpp"
 #include "meridian/io/gyro_writers.hpp"
 #include "meridian/gravity/egm_format.hpp"
+#include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/synthetic.hpp"
 
 using namespace meridian;
@@ -205,13 +206,77 @@ TEST(GyroFiles, CampaignGravityModelBesideTheFile) {
   const gyro::DeflectionModel& m = models.get(*f.campaign.gravity_model);
   EXPECT_NE(m.description.find("degree 30"), std::string::npos);
   EXPECT_NEAR(m.sigma_eta_rad / kArcsec, 2.0, 1e-12);
+  EXPECT_NEAR(m.sigma_xi_rad / kArcsec, 1.5, 1e-12);  // the default
   EXPECT_EQ(&models.get(*f.campaign.gravity_model), &m);
   const auto job = io::run_campaign_file(good, &models);
   int noted = 0;
-  for (const auto& n : job.result.notes) noted += n.find("from the gravity model " + m.description) != std::string::npos;
+  for (const auto& n : job.result.notes)
+    noted += n.find("from the gravity model " + m.description) != std::string::npos &&
+             n.find("xi = ") != std::string::npos && n.find("eta = ") != std::string::npos;
   EXPECT_EQ(noted, 2);  // at the known station and at the station
   EXPECT_TRUE(job.result.chain.laplace_applied);
+  // ξ is the model's plumb line, as η: the same as evaluating the model here.
+  const auto& st = job.result.station;
+  const gravity::GravityField field(gravity::make_synthetic_model({30, 2, 1e-5}));
+  const auto v = field.evaluate(gravity::GeodeticPoint{st.lat_rad, st.lon_rad, 341.7});
+  EXPECT_NEAR(m.deflection(st.lat_rad, st.lon_rad, 341.7).xi_rad, v.xi_astro_rad, 1e-15);
+  EXPECT_NEAR(m.deflection(st.lat_rad, st.lon_rad, 341.7).eta_rad, v.eta_astro_rad, 1e-15);
+  // Both components known and the heights of C and D given: the term is applied.
+  EXPECT_TRUE(job.result.chain.zenith_term_applied);
+  const auto xs =
+      io::read_campaign_file(d.write("xs.yaml", yaml + "gravity_model: {model: m.egm, xi_sigma_arcsec: 2.5}\n"));
+  EXPECT_NEAR(xs.campaign.gravity_model->sigma_xi_rad / kArcsec, 2.5, 1e-12);
+  EXPECT_NEAR(xs.campaign.gravity_model->sigma_eta_rad / kArcsec, 1.5, 1e-12);
   // A model that cannot be found is reported at its line when the job runs.
   expect_error([&] { io::run_campaign_file(d.write("bad.yaml", yaml + "gravity_model: {model: nowhere.gfc}\n")); },
                {"bad.yaml:", "gravity_model.model", "not found"});
+}
+
+TEST(GyroFiles, CampaignXiAndZenithAngles) {
+  TempDir d;
+  auto truth = gyro::example_campaign_truth();
+  truth.xi_station_rad = -6.0 * kArcsec;
+  truth.xi_known_rad = 5.0 * kArcsec;
+  auto sim = gyro::simulate_campaign(truth, 5);
+  sim.input.line.zenith_angle_rad = (110 * 3600 + 12 * 60 + 5.5) * kArcsec;
+  sim.input.known_line->zenith_angle_rad = (88 * 3600 + 1 * 60 + 2) * kArcsec;
+  const std::string yaml = io::campaign_file_yaml(sim.input);
+  const auto f = io::read_campaign_file(d.write("c.yaml", yaml));
+  const auto& a = sim.input;
+  const auto& b = f.campaign;
+  ASSERT_TRUE(b.line.from.xi_rad);
+  EXPECT_NEAR(b.line.from.xi_rad->value / kArcsec, -6.0, 1e-12);
+  EXPECT_NEAR(b.line.from.xi_rad->sigma, a.line.from.xi_rad->sigma, 1e-15);
+  ASSERT_TRUE(b.known_line->from.xi_rad);
+  EXPECT_NEAR(b.known_line->from.xi_rad->value / kArcsec, 5.0, 1e-12);
+  ASSERT_TRUE(b.line.zenith_angle_rad);
+  EXPECT_NEAR(*b.line.zenith_angle_rad / kArcsec, 110 * 3600 + 12 * 60 + 5.5, 1e-4);
+  ASSERT_TRUE(b.known_line->zenith_angle_rad);
+  EXPECT_NEAR(*b.known_line->zenith_angle_rad / kArcsec, 88 * 3600 + 1 * 60 + 2, 1e-4);
+  EXPECT_FALSE(b.line.to->xi_rad);
+  // Written back the same.
+  EXPECT_EQ(io::campaign_file_yaml(b), yaml);
+
+  // As a surveyor writes it: zenith_angle in DMS or degrees beside from/to.
+  auto with = [&](const std::string& from, const std::string& to) {
+    const auto pos = yaml.find(from);
+    EXPECT_NE(pos, std::string::npos) << from;
+    return d.write("bad.yaml", std::string(yaml).replace(pos, from.size(), to));
+  };
+  const auto deg = io::read_campaign_file(with("  zenith_angle: \"110 12 05.5000\"", "  zenith_angle: 95.5"));
+  EXPECT_NEAR(*deg.campaign.line.zenith_angle_rad / units::kDegree, 95.5, 1e-12);
+  expect_error([&] { io::read_campaign_file(with("  zenith_angle: \"110 12 05.5000\"", "  zenith_angle: 5")); },
+               {"bad.yaml:", "line.zenith_angle", "no usable azimuth"});
+  expect_error([&] { io::read_campaign_file(with("  zenith_angle: \"110 12 05.5000\"", "  zenith_angle: 179.9")); },
+               {"bad.yaml:", "line.zenith_angle"});
+  expect_error([&] { io::read_campaign_file(with("    xi_arcsec: -6\n", "    xi_arcsec: -3000\n")); },
+               {"bad.yaml:", "line.from.xi_arcsec", "0.01 rad"});
+  expect_error([&] { io::read_campaign_file(with("    xi_arcsec: -6\n", "")); },
+               {"bad.yaml:", "line.from", "xi_sigma_arcsec given without xi_arcsec"});
+  // The job applies the term for both lines and names the booked angles.
+  const auto job = io::run_campaign_file(d.write("c2.yaml", yaml));
+  EXPECT_TRUE(job.result.chain.zenith_term_applied);
+  int booked = 0;
+  for (const auto& n : job.result.notes) booked += n.find("booked (zenith_angle)") != std::string::npos;
+  EXPECT_EQ(booked, 2);
 }

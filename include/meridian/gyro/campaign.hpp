@@ -27,9 +27,12 @@ struct PointInput {
   std::optional<double> lat_rad, lon_rad;   ///< geodetic latitude/longitude (radians)
   std::optional<double> x_north_m, y_east_m; ///< grid coordinates on the campaign grid
   std::optional<Uncertain> eta_rad;          ///< η at this point (radians), if known
-  /// Ellipsoidal height (m), used to evaluate η from a gravity model; 0 with
-  /// a note when absent (η changes by well under 0.1″ per 100 m).
+  /// Ellipsoidal height (m), used to evaluate ξ, η from a gravity model (0
+  /// with a note when absent: they change by well under 0.1″ per 100 m) and,
+  /// at both ends of a line, for the zenith distance of its sight.
   std::optional<double> height_m;
+  /// ξ at this point (radians, astro − geodetic, north component), if known.
+  std::optional<Uncertain> xi_rad{};
 };
 
 /// The known line's azimuth and its kind (converted to astronomic by the
@@ -44,6 +47,9 @@ struct KnownLineInput {
   PointInput from;                           ///< where the gyro stands
   std::optional<PointInput> to;              ///< the known target (for δ with a grid azimuth)
   KnownAzimuth azimuth;
+  /// Booked zenith angle of the sight from → to (radians, 10°…170°); else
+  /// from the heights of both points; else horizontal.
+  std::optional<double> zenith_angle_rad;
   std::vector<DeterminationInput> before;    ///< each with a target reading
   std::vector<DeterminationInput> after;
 };
@@ -51,6 +57,9 @@ struct KnownLineInput {
 struct LineInput {
   PointInput from;                           ///< station C
   std::optional<PointInput> to;              ///< target D (grid coordinates give δ)
+  /// Booked zenith angle of the sight C → D (radians, 10°…170°); else from
+  /// the heights of C and D; else horizontal.
+  std::optional<double> zenith_angle_rad;
   std::vector<DeterminationInput> determinations;  ///< each with a target reading
 };
 
@@ -80,7 +89,7 @@ struct CampaignInput {
   LineInput line;
   Tolerances tolerances;                     ///< overrides of the class limits (regulations.hpp)
   ReduceOptions options;
-  /// A gravity model giving η at the points whose η is not stated; loaded
+  /// A gravity model giving ξ, η at the points that do not state them; loaded
   /// by the caller (see deflection_model.hpp).
   std::optional<GravityModelRef> gravity_model;
 };
@@ -152,8 +161,8 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
 /// azimuth chain to the grid azimuth. Errors carry field paths such as
 /// "line.determinations[1].crossings[0].times_s" (io::locate_error adds the
 /// file and line). `progress`, when given, is told about each determination
-/// reduced. `deflection`, when given, supplies η at the points whose η is
-/// not stated; it is required when the input names a gravity_model
+/// reduced. `deflection`, when given, supplies ξ and η at the points that do
+/// not state them; it is required when the input names a gravity_model
 /// (InputError otherwise).
 CampaignResult process(const CampaignInput& in, Progress* progress = nullptr,
                        const DeflectionModel* deflection = nullptr);

@@ -8,6 +8,7 @@
 /// for the bundled example and for end-to-end validation.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,13 @@ struct CampaignTruth {
   PointInput known_station, known_target;  ///< the known line A→B (grid coordinates)
   double eta_station_rad = 0.0;            ///< true η at C (used to simulate)
   double eta_known_rad = 0.0;              ///< true η at A
-  bool give_eta = true;                    ///< write η into the campaign input
+  /// True ξ at C and at A. When given, the truth uses the full Laplace
+  /// equation, with the zenith distance of each line's sight from the
+  /// heights of its points (geodesy/sight.hpp; horizontal when a height is
+  /// missing), and give_eta writes ξ too. None: the truth neglects the
+  /// zenith-distance term (α = A − η·tan φ), as before it existed.
+  std::optional<double> xi_station_rad, xi_known_rad;
+  bool give_eta = true;                    ///< write η (and ξ when known) into the campaign input
   double instrument_constant_rad = 0.0;    ///< true E
   double alpha_p_div = 0.3;                ///< true tape zero position
   double alpha_p_drift_div = 0.05;         ///< change of α_p from before to after each run

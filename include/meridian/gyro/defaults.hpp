@@ -20,5 +20,8 @@ inline constexpr double kDefaultZeroPositionTolerance_div = 0.5;
 inline constexpr double kDefaultAccuracyClass_arcsec = 15.0;
 /// Commission error assumed for η taken from a global gravity model (rad).
 inline constexpr double kDefaultModelEtaSigma_rad = 1.5 * units::kArcsecond;
+/// Commission error assumed for ξ taken from a global gravity model (rad);
+/// global models determine both components about equally well.
+inline constexpr double kDefaultModelXiSigma_rad = 1.5 * units::kArcsecond;
 
 }  // namespace meridian::gyro

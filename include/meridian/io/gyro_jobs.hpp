@@ -1,7 +1,7 @@
 #pragma once
 /// \file gyro_jobs.hpp
 /// Running a gyro file from disk to result: read it, load the engines it
-/// names (a gravity model for η), process it, and give every error the file
+/// names (a gravity model for ξ, η), process it, and give every error the file
 /// and line of the field it concerns. Shared by `meridian gyro reduce`,
 /// `gyro campaign`, `gyro transit-factor` and `demo`, and by any program
 /// that processes field books.
@@ -25,8 +25,9 @@ namespace meridian::io {
 /// a degree-2190 model takes a noticeable fraction of a second and 77 MB.
 class DeflectionModels {
  public:
-  /// The loaded model for `ref` (loaded now if new). η is the prime-vertical
-  /// component of the model's plumb line (gravity::FieldValues::eta_astro_rad).
+  /// The loaded model for `ref` (loaded now if new). ξ and η are the
+  /// components of the model's plumb line (gravity::FieldValues::xi_astro_rad,
+  /// eta_astro_rad).
   /// Throws the gravity module's InputError/ParseError/IoError when the model
   /// cannot be found or read (field "gravity_model.model" when the error
   /// names no file of its own).
