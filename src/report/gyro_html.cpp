@@ -186,6 +186,10 @@ Section campaign_result_section(const gyro::CampaignResult& r) {
       {"astronomic azimuth A = A_G + E", dir(c.astronomic_azimuth_rad.value, 2), sig(c.astronomic_azimuth_rad.sigma, 2), ""},
       {"Laplace correction -eta tan(phi)", c.laplace_applied ? sec(c.laplace_correction_rad, 2) : "not applied", "",
        c.laplace_applied ? "eta at the station" : "eta unknown"},
+      {"zenith-distance term -(xi sin alpha - eta cos alpha) cot z",
+       c.zenith_term_applied ? sec(c.zenith_correction_rad, 2) : "not applied", "",
+       c.zenith_term_applied ? "z = " + format_dms(Angle::radians(*c.zenith_distance_rad), {0, true, false})
+                             : "sight horizontal, or xi/eta unknown"},
       {"geodetic azimuth alpha", dir(c.geodetic_azimuth_rad.value, 2), sig(c.geodetic_azimuth_rad.sigma, 2), ""},
       {"meridian convergence gamma (subtracted)", dms(c.convergence_rad, 2), "exact", "GeographicLib transverse Mercator"},
       {"arc-to-chord correction delta (added)", c.arc_to_chord_applied ? sec(c.arc_to_chord_rad, 2) : "not applied",

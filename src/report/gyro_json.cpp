@@ -199,6 +199,8 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   const auto& c = r.chain;
   j["astronomic_azimuth"] = az(c.astronomic_azimuth_rad);
   j["laplace_correction_arcsec"] = c.laplace_applied ? arcsec(c.laplace_correction_rad) : json(nullptr);
+  j["zenith_distance_term_arcsec"] = c.zenith_term_applied ? arcsec(c.zenith_correction_rad) : json(nullptr);
+  j["zenith_distance_deg"] = c.zenith_distance_rad ? num(*c.zenith_distance_rad / kDeg) : json(nullptr);
   j["geodetic_azimuth"] = az(c.geodetic_azimuth_rad);
   j["convergence_arcsec"] = arcsec(c.convergence_rad);
   j["arc_to_chord_arcsec"] = c.arc_to_chord_applied ? arcsec(c.arc_to_chord_rad) : json(nullptr);

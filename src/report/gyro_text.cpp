@@ -137,6 +137,9 @@ std::string campaign_text(const gyro::CampaignResult& r) {
                      sig(c.astronomic_azimuth_rad.sigma));
   out += fmt::format("  Laplace -eta tan(phi)   = {:>15}\n",
                      c.laplace_applied ? sec(c.laplace_correction_rad) : std::string("not applied"));
+  if (c.zenith_term_applied)
+    out += fmt::format("  -(xi sin a - eta cos a) cot z = {:>9}  (z = {})\n", sec(c.zenith_correction_rad),
+                       format_dms(Angle::radians(*c.zenith_distance_rad), {0, true, false}));
   out += fmt::format("  geodetic azimuth    alpha = {:>13}  sigma {}\n", dir(c.geodetic_azimuth_rad.value),
                      sig(c.geodetic_azimuth_rad.sigma));
   out += fmt::format("  - convergence gamma     = {:>15}\n",
