@@ -61,6 +61,11 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
   return r;
 }
 
+namespace {
+// A point as the user named it, else its role.
+std::string point_label(const PointResult& p, const char* role) { return p.name.empty() ? role : p.name; }
+}  // namespace
+
 bool CampaignResult::all_checks_pass() const {
   for (const auto& c : checks)
     if (!c.pass) return false;
@@ -123,7 +128,7 @@ class CampaignRun {
     res_.station = resolve_point(in_.line.from, grid_, "line.from", res_.warnings);
     if (in_.line.to) res_.target = resolve_point(*in_.line.to, grid_, "line.to", res_.warnings);
     res_.instrument_station = instrument_at(res_.station);
-    for (const auto& n : res_.instrument_station.notes) res_.notes.push_back("station C: " + n);
+    for (const auto& n : res_.instrument_station.notes) res_.notes.push_back(point_label(res_.station, "station") + ": " + n);
   }
 
   // Reduce every determination of `dets`, with their gyro azimuths A_G.
@@ -287,10 +292,12 @@ class CampaignRun {
   void calibrate_on_known_line() {
     const KnownLineInput& k = *in_.known_line;
     res_.known_station = resolve_point(k.from, grid_, "known_line.from", res_.warnings);
-    std::optional<PointResult> known_target;
-    if (k.to) known_target = resolve_point(*k.to, grid_, "known_line.to", res_.warnings);
+    if (k.to) res_.known_target = resolve_point(*k.to, grid_, "known_line.to", res_.warnings);
+    const std::optional<PointResult>& known_target = res_.known_target;
+    res_.known_azimuth_given = k.azimuth;
     res_.instrument_known = instrument_at(*res_.known_station);
-    for (const auto& n : res_.instrument_known->notes) res_.notes.push_back("known station: " + n);
+    for (const auto& n : res_.instrument_known->notes)
+      res_.notes.push_back(point_label(*res_.known_station, "known station") + ": " + n);
     const Instrument& ik = res_.instrument_known->instrument;
     res_.known_before = reduce_all(k.before, ik, "known_line.before", res_.known_gyro_azimuths_before);
     res_.known_after = reduce_all(k.after, ik, "known_line.after", res_.known_gyro_azimuths_after);
@@ -447,7 +454,7 @@ class CampaignRun {
     if (!res_.known_grid_azimuth_from_coordinates_rad) return;
     const KnownLineInput& k = *in_.known_line;
     const PointResult& from = *res_.known_station;
-    const PointResult to = resolve_point(*k.to, grid_, "known_line.to", res_.warnings);
+    const PointResult& to = *res_.known_target;
     geodesy::AzimuthReduction red;
     red.latitude_rad = from.lat_rad;
     red.convergence_rad = from.grid.convergence_rad;

@@ -105,7 +105,13 @@ std::string campaign_text(const gyro::CampaignResult& r) {
 
   if (r.instrument_constant) {
     out += "Calibration on the known line\n";
-    out += fmt::format("  known azimuth (astronomic) {}  sigma {}\n", dir(r.known_astronomic_azimuth_rad->value),
+    const std::string line =
+        r.known_station && r.known_target ? " " + r.known_station->name + "-" + r.known_target->name : "";
+    if (r.known_azimuth_given && r.known_azimuth_given->kind != gyro::KnownAzimuth::Kind::Astronomic)
+      out += fmt::format("  known azimuth{} ({}, given) {}  sigma {}\n", line,
+                         geodesy::to_string(r.known_azimuth_given->kind), dir(r.known_azimuth_given->value_rad.value),
+                         sig(r.known_azimuth_given->value_rad.sigma));
+    out += fmt::format("  known azimuth{} (astronomic) {}  sigma {}\n", line, dir(r.known_astronomic_azimuth_rad->value),
                        sig(r.known_astronomic_azimuth_rad->sigma));
     auto list = [&](const char* when, const std::vector<gyro::DeterminationResult>& d,
                     const std::vector<gyro::Uncertain>& ag, const std::vector<gyro::Uncertain>& e) {

@@ -123,6 +123,8 @@ struct CampaignResult {
   PointResult station;                       ///< C
   std::optional<PointResult> target;         ///< D
   std::optional<PointResult> known_station;
+  std::optional<PointResult> known_target;
+  std::optional<KnownAzimuth> known_azimuth_given;  ///< the known line's azimuth as given, with its kind
   ResolvedInstrument instrument_station;     ///< constants at C
   std::optional<ResolvedInstrument> instrument_known;  ///< constants at the known station
   std::vector<DeterminationResult> known_before, known_after;
