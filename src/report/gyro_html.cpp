@@ -8,6 +8,7 @@
 
 #include "gyro_plots.hpp"
 #include "meridian/report/format.hpp"
+#include "meridian/report/gyro_text.hpp"
 #include "meridian/core/angle.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/grid.hpp"
@@ -75,8 +76,115 @@ Table fit_table(const gyro::UnifiedFitResult& f) {
   return t;
 }
 
+// Stopwatch time as m:ss.s.
+std::string mss(double s) {
+  const double whole_min = std::floor(s / 60.0);
+  return fmt::format("{:.0f}:{:04.1f}", whole_min, s - 60.0 * whole_min);
+}
+
+std::string numbers(const std::vector<double>& v, int decimals) {
+  std::string out;
+  for (double x : v) out += (out.empty() ? "" : ", ") + num(x, decimals);
+  return out;
+}
+
+// Non-tracking: the passages and reversal readings as booked, and the
+// quantities the reduction took from them, so a checker can redo it by hand.
+std::vector<Block> nontracking_observation_blocks(const gyro::DeterminationInput& in, const gyro::DeterminationResult& r,
+                                                  const gyro::Instrument& inst) {
+  const auto& o = in.nontracking;
+  std::vector<Block> b;
+  Table t;
+  t.title = "Timed passages as booked";
+  t.columns = {"crossings", "level (div)", "first passage", "times (s)", "times (m:ss.s)", "t3 - t1 (s)",
+               "dt = -t1 + 2 t2 - t3 (s)"};
+  t.numeric = {false, true, false, true, true, true, true};
+  for (std::size_t i = 0; i < o.crossings.size(); ++i) {
+    const auto& c = o.crossings[i];
+    std::string m;
+    for (double x : c.times_s) m += (m.empty() ? "" : ", ") + mss(x);
+    const bool three = c.times_s.size() >= 3;
+    t.rows.push_back({fmt::format("[{}]", i), num(c.level_div, 2), c.first_direction > 0 ? "east" : "west",
+                      numbers(c.times_s, 1), m, three ? num(c.times_s[2] - c.times_s[0], 1) : "",
+                      three ? num(-c.times_s[0] + 2 * c.times_s[1] - c.times_s[2], 1) : ""});
+  }
+  b.push_back(t);
+  std::vector<KeyValue> kv;
+  if (!o.reversals_div.empty()) kv.push_back({"reversal readings (div)", numbers(o.reversals_div, 2)});
+  if (o.period_s) kv.push_back({"period T_B booked", num(o.period_s->value, 1) + " s"});
+  if (const auto& beta = r.primary.beta) {
+    if (beta->amplitude_div) kv.push_back({"amplitude B used", num(beta->amplitude_div->value, 3) + " div"});
+    if (beta->period_s) kv.push_back({"period T_B used", num(beta->period_s->value, 2) + " s"});
+    if (beta->time_difference_s) kv.push_back({"transit time difference dt", num(beta->time_difference_s->value, 2) + " s"});
+    if (r.primary.method == gyro::Method{gyro::NonTrackingMethod::Transit}) {
+      if (inst.transit_factor_rad_per_div_s)
+        kv.push_back({"transit factor c used (calibrated)",
+                      fmt::format("{:.4f}\"/(div s)", inst.transit_factor_rad_per_div_s->value / kArcsec)});
+      else if (beta->period_s)
+        kv.push_back({"transit factor c used (computed (1+lambda) tau pi/(2 T_B))",
+                      fmt::format("{:.4f}\"/(div s)", (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad *
+                                                        units::kPi / (2.0 * beta->period_s->value) / kArcsec)});
+    }
+  }
+  if (!kv.empty()) b.push_back(KeyValueList{"Quantities of the reduction", kv});
+  return b;
+}
+
+// Tracking: the reversal readings and the successive Schuler means.
+Table tracking_observation_table(const gyro::DeterminationInput& in, const gyro::DeterminationResult& r) {
+  Table t;
+  t.title = "Reversal readings as booked";
+  t.columns = {"#", "circle reading", "successive Schuler mean (r[i-2] + 2 r[i-1] + r[i])/4"};
+  t.numeric = {true, true, true};
+  const auto& means = r.primary.reversal ? r.primary.reversal->partial_means : std::vector<double>{};
+  const auto& rev = in.tracking.reversals_rad;
+  for (std::size_t i = 0; i < rev.size(); ++i)
+    t.rows.push_back({std::to_string(i + 1), dir(rev[i], 0), i >= 2 && i - 2 < means.size() ? dir(means[i - 2], 1) : ""});
+  if (means.size() >= 2) {
+    const auto [lo, hi] = std::minmax_element(means.begin(), means.end(), [&](double a, double b) {
+      return wrap_signed_rad(a - means.front()) < wrap_signed_rad(b - means.front());
+    });
+    t.note = fmt::format("The successive Schuler means spread by {}.", sig(wrap_signed_rad(*hi - *lo), 1));
+  }
+  return t;
+}
+
+// The motor-off runs as booked with their centres.
+Table zero_position_table(const gyro::DeterminationInput& in, const gyro::ZeroPositionSummary& z) {
+  Table t;
+  t.title = "Zero position (motor off) as booked";
+  t.columns = {"run", "reversal readings (div)", "centre alpha_p (div)", "amplitude (div)"};
+  t.numeric = {false, true, true, true};
+  auto row = [&](const char* name, const std::optional<gyro::ZeroPositionRun>& run,
+                 const std::optional<gyro::ZeroPositionEstimate>& e) {
+    if (run && e)
+      t.rows.push_back({name, numbers(run->reversals_div, 2), num(e->fit.centre.value, 3), num(e->amplitude_div, 2)});
+  };
+  row("before", in.zero_before, z.before);
+  row("after", in.zero_after, z.after);
+  t.note = fmt::format("alpha_p used: {} div (sigma {}).", num(z.mean_div.value, 3), num(z.mean_div.sigma, 3));
+  return t;
+}
+
+// The target rounds: faces, 2C and each round's direction.
+Table target_table(const gyro::DeterminationInput& in, const gyro::TargetDirection& d) {
+  Table t;
+  t.title = "Target pointings (rounds)";
+  t.columns = {"round", "face left", "face right", "2C", "direction (L + R - 180)/2"};
+  t.numeric = {false, true, true, true, true};
+  for (std::size_t i = 0; i < in.target_rounds.size(); ++i) {
+    const auto& r = in.target_rounds[i];
+    t.rows.push_back({r.when == gyro::TargetRound::When::Before ? "before the run" : "after the run",
+                      dir(r.face_left_rad, 0), dir(r.face_right_rad, 0), sec(d.two_c_rad[i], 0), dir(d.round_rad[i], 1)});
+  }
+  t.note = fmt::format("Target reading used: {} (sigma {}); rounds spread by {}.", dir(d.reading_rad.value, 1),
+                       sig(d.reading_rad.sigma, 1), sig(d.spread_rad, 1));
+  return t;
+}
+
 // All blocks describing one determination.
-std::vector<Block> determination_blocks(const gyro::DeterminationInput& in, const gyro::DeterminationResult& r) {
+std::vector<Block> determination_blocks(const gyro::DeterminationInput& in, const gyro::DeterminationResult& r,
+                                        const gyro::Instrument& inst) {
   std::vector<Block> b;
   std::vector<KeyValue> kv{{"mode", gyro::to_string(r.mode)}, {"method requested", gyro::method_request_name(r.method)},
                            {"reported method", gyro::to_string(r.primary.method)},
@@ -92,8 +200,19 @@ std::vector<Block> determination_blocks(const gyro::DeterminationInput& in, cons
                               num(r.zero_position_used->sigma, 3), sec(r.primary.north.zero_correction_rad, 2))});
   else
     kv.push_back({"zero position", "not given: no zero-position correction applied"});
-  if (in.target_reading_rad) kv.push_back({"circle reading to the target", dir(in.target_reading_rad->value, 1)});
+  if (r.target) kv.push_back({"circle reading to the target (mean of the rounds)", dir(r.target->reading_rad.value, 1)});
+  else if (in.target_reading_rad)
+    kv.push_back({"circle reading to the target", dir(in.target_reading_rad->value, 1)});
+  if (!in.time.empty()) kv.push_back({"time", in.time});
+  if (!in.observer.empty()) kv.push_back({"observer", in.observer});
   b.push_back(KeyValueList{"", kv});
+  if (r.mode == gyro::Mode::NonTracking) {
+    for (auto& x : nontracking_observation_blocks(in, r, inst)) b.push_back(std::move(x));
+  } else {
+    b.push_back(tracking_observation_table(in, r));
+  }
+  if (r.zero_position) b.push_back(zero_position_table(in, *r.zero_position));
+  if (r.target) b.push_back(target_table(in, *r.target));
   b.push_back(methods_table(r));
   if (r.mode == gyro::Mode::NonTracking) {
     const gyro::UnifiedFitResult* fit = r.primary.fit ? &*r.primary.fit : nullptr;
@@ -165,6 +284,67 @@ Section reduce_summary_section(const gyro::ReduceResult& r) {
 
 std::string line_name(const gyro::CampaignResult& r) {
   return r.station.name + (r.target ? " to " + r.target->name : "");
+}
+
+// The one-page result sheet (成果表) that goes to the mine: the result, what
+// it rests on, whether every check passed, and who answers for it.
+Section result_sheet_section(const gyro::CampaignInput& in, const gyro::CampaignResult& r) {
+  const auto& c = r.chain;
+  Section s{"result-sheet", "Result sheet", {}, 2};
+  s.page_break_after = true;
+  int failed = 0;
+  for (const auto& k : r.checks) failed += k.pass ? 0 : 1;
+  const std::string detail =
+      failed == 0 ? fmt::format("all {} checks pass", r.checks.size())
+                  : fmt::format("{} OF {} CHECKS FAILED: do not use this azimuth before they are resolved", failed,
+                                r.checks.size());
+  s.blocks.push_back(Highlight{"Grid azimuth " + line_name(r),
+                               dir(c.grid_azimuth_rad.value, 1) + "  \u00b1 " + sig(c.grid_azimuth_rad.sigma, 1), detail,
+                               failed > 0});
+  std::vector<KeyValue> job;
+  if (!r.name.empty()) job.push_back({"job", r.name});
+  if (!in.record.date.empty()) job.push_back({"date", in.record.date});
+  job.push_back({"instrument", (in.instrument.name.empty() ? std::string("gyro-theodolite") : in.instrument.name) +
+                                   (in.instrument.serial.empty() ? "" : ", No. " + in.instrument.serial) +
+                                   fmt::format(", {}\" class", in.instrument.accuracy_class_arcsec)});
+  if (in.known_line)
+    job.push_back({"programme (runs before / on the line / after)",
+                   fmt::format("{}-{}-{}", in.known_line->before.size(), in.line.determinations.size(),
+                               in.known_line->after.size())});
+  if (!in.record.weather.empty()) job.push_back({"weather", in.record.weather});
+  if (!in.record.temperature.empty()) job.push_back({"temperature", in.record.temperature});
+  s.blocks.push_back(KeyValueList{"Job", job});
+  Table t;
+  t.title = "Result";
+  t.columns = {"quantity", "value", "sigma"};
+  t.numeric = {false, true, true};
+  t.rows.push_back({"grid azimuth T " + line_name(r), dir(c.grid_azimuth_rad.value, 1), sig(c.grid_azimuth_rad.sigma, 1)});
+  t.rows.push_back({"geodetic azimuth alpha", dir(c.geodetic_azimuth_rad.value, 1), sig(c.geodetic_azimuth_rad.sigma, 1)});
+  t.rows.push_back({"astronomic azimuth A", dir(c.astronomic_azimuth_rad.value, 1), sig(c.astronomic_azimuth_rad.sigma, 1)});
+  t.rows.push_back({"instrument constant E", sec(r.instrument_constant_used_rad.value, 1),
+                    sig(r.instrument_constant_used_rad.sigma, 1)});
+  if (r.constant_one_run_sigma_rad)
+    t.rows.push_back({"instrument constant, one run m", "", sig(*r.constant_one_run_sigma_rad, 1)});
+  t.rows.push_back({fmt::format("gyro azimuth A_G, mean of {} runs", r.gyro_azimuths.size()),
+                    dir(c.gyro_azimuth_rad.value, 1), sig(c.gyro_azimuth_rad.sigma, 1)});
+  if (r.line_one_run_sigma_rad) t.rows.push_back({"gyro azimuth, one run m", "", sig(*r.line_one_run_sigma_rad, 1)});
+  t.rows.push_back({"meridian convergence gamma at " + r.station.name, dms(c.convergence_rad, 2), ""});
+  for (const auto* p : {&r.station, r.target ? &*r.target : nullptr})
+    if (p)
+      t.rows.push_back({"coordinates of " + p->name, fmt::format("x {:.3f} m, y {:.3f} m", p->grid.x_north_m, p->grid.y_east_m),
+                        ""});
+  s.blocks.push_back(t);
+  if (failed > 0) {
+    std::vector<std::string> items;
+    for (const auto& k : r.checks)
+      if (!k.pass) items.push_back(check_text(k));
+    s.blocks.push_back(Notes{"Failed checks", items, true});
+  }
+  s.blocks.push_back(Signatures{{{"observer", in.record.observer},
+                                 {"booker", in.record.booker},
+                                 {"computed by", in.record.computed_by},
+                                 {"checked by", in.record.checked_by}}});
+  return s;
 }
 
 // The grid azimuth and every step of the chain from the field data to it.
@@ -284,10 +464,10 @@ Section line_section(const gyro::CampaignInput& in, const gyro::CampaignResult& 
 // One level-3 section per determination, in detail.
 void add_detail_sections(std::vector<Section>& out, const std::string& prefix, const std::string& title,
                          const std::vector<gyro::DeterminationInput>& ins,
-                         const std::vector<gyro::DeterminationResult>& res) {
+                         const std::vector<gyro::DeterminationResult>& res, const gyro::Instrument& inst) {
   for (std::size_t i = 0; i < res.size(); ++i)
     out.push_back(Section{fmt::format("{}-{}", prefix, i + 1), fmt::format("{} {}: {}", title, i + 1, label_of(res[i], i)),
-                          determination_blocks(ins[i], res[i]), 3});
+                          determination_blocks(ins[i], res[i], inst), 3});
 }
 
 Section notes_section(const gyro::CampaignResult& r) {
@@ -319,7 +499,7 @@ Document gyro_reduce_document(const std::string& file, const gyro::ReduceInput& 
     const auto& d = r.determinations[i];
     doc.sections.push_back(Section{fmt::format("determination-{}", i + 1),
                                    fmt::format("Determination {}{}", i + 1, d.label.empty() ? "" : ": " + d.label),
-                                   determination_blocks(in.determinations[i], d), 2});
+                                   determination_blocks(in.determinations[i], d, r.instrument.instrument), 2});
   }
   return doc;
 }
@@ -337,15 +517,18 @@ Document gyro_campaign_document(const std::string& file, const gyro::CampaignInp
   if (r.target) doc.header.push_back({"target", point_text(*r.target)});
   if (r.known_station) doc.header.push_back({"known station", point_text(*r.known_station)});
 
+  doc.sections.push_back(result_sheet_section(in, r));
   doc.sections.push_back(campaign_result_section(r));
   doc.sections.push_back(checks_section(r));
   if (r.instrument_constant && in.known_line) doc.sections.push_back(calibration_section(*in.known_line, r));
   doc.sections.push_back(line_section(in, r));
   if (in.known_line) {
-    add_detail_sections(doc.sections, "known-before", "Known line, before", in.known_line->before, r.known_before);
-    add_detail_sections(doc.sections, "known-after", "Known line, after", in.known_line->after, r.known_after);
+    const gyro::Instrument& ik = r.instrument_known->instrument;
+    add_detail_sections(doc.sections, "known-before", "Known line, before", in.known_line->before, r.known_before, ik);
+    add_detail_sections(doc.sections, "known-after", "Known line, after", in.known_line->after, r.known_after, ik);
   }
-  add_detail_sections(doc.sections, "line-determination", "Line", in.line.determinations, r.determinations);
+  add_detail_sections(doc.sections, "line-determination", "Line", in.line.determinations, r.determinations,
+                      r.instrument_station.instrument);
   doc.sections.push_back(notes_section(r));
   return doc;
 }

@@ -12,7 +12,8 @@ namespace {
 constexpr const char* kStyle = R"CSS(
 :root { --ink:#1d2733; --muted:#5b6878; --line:#d5dbe3; --pass:#1a7f37; --fail:#c62828; --accent:#0b5cad; }
 * { box-sizing: border-box; }
-body { font-family: "DejaVu Sans", "Liberation Sans", Arial, sans-serif; color: var(--ink);
+body { font-family: "DejaVu Sans", "Liberation Sans", Arial, "Noto Sans CJK SC", "Noto Sans CJK JP",
+       "Noto Sans CJK TC", "WenQuanYi Zen Hei", sans-serif; color: var(--ink);
        margin: 0 auto; max-width: 1000px; padding: 24px; font-size: 14px; line-height: 1.45; }
 h1 { font-size: 24px; margin: 0 0 4px; }
 h2 { font-size: 19px; margin: 28px 0 10px; padding-bottom: 4px; border-bottom: 2px solid var(--line); }
@@ -30,13 +31,21 @@ caption { caption-side: top; text-align: left; font-weight: 600; padding: 4px 0;
 .highlight { border: 2px solid var(--accent); border-radius: 6px; padding: 10px 14px; margin: 10px 0; }
 .highlight .label { color: var(--muted); }
 .highlight .value { font-size: 22px; font-weight: 700; }
+.highlight.alarm { border: 4px solid var(--fail); background: #fdecea; }
+.highlight.alarm .value { color: var(--fail); }
+.highlight.alarm .detail { color: var(--fail); font-size: 24px; font-weight: 800; margin-top: 6px; }
+table.signatures td { height: 34px; vertical-align: bottom; }
+table.signatures td:first-child { width: 22%; color: var(--muted); vertical-align: top; }
+table.signatures td.blank { width: 30%; }
 .notes li { margin: 2px 0; }
 .warnings { border-left: 4px solid var(--fail); padding-left: 10px; }
 figure.plot { margin: 10px 0 16px; }
 figure.plot figcaption { color: var(--muted); font-size: 12px; }
 .vega { min-height: 40px; }
 footer { margin-top: 30px; color: var(--muted); font-size: 11px; border-top: 1px solid var(--line); padding-top: 6px; }
-@page { size: A4; margin: 14mm 12mm; }
+@page { size: A4; margin: 14mm 12mm 16mm;
+  @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #5b6878; } }
+section.page-break { break-after: page; }
 @media print {
   body { max-width: none; padding: 0; font-size: 10.5pt; }
   h2 { break-after: avoid; }
@@ -97,6 +106,19 @@ std::string script_safe(std::string s) {
     }
   }
   return out;
+}
+
+// A CSS string literal: quotes and backslashes escaped, and '<' as an escape
+// so no "</style>" can appear.
+std::string css_string(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += std::string("\\") + c;
+    else if (c == '<') out += "\\3c ";
+    else if (c == '\n' || c == '\r') out += ' ';
+    else out += c;
+  }
+  return out + "\"";
 }
 
 // Inlined library code may contain "</script" inside strings; split it.
@@ -168,8 +190,17 @@ struct Renderer {
     for (const auto& i : n.items) out += "<li>" + html_escape(i) + "</li>";
     out += "</ul></div>\n";
   }
+  void block(const Signatures& s) {
+    out += "<table class=\"signatures\"><thead><tr><th></th><th>name</th><th>signature</th><th>date</th></tr>"
+           "</thead><tbody>";
+    for (const auto& p : s.people)
+      out += "<tr><td>" + html_escape(p.key) + "</td><td>" + html_escape(p.value) +
+             "</td><td class=\"blank\"></td><td class=\"blank\"></td></tr>";
+    out += "</tbody></table>\n";
+  }
   void block(const Highlight& h) {
-    out += "<div class=\"highlight\"><div class=\"label\">" + html_escape(h.label) +
+    out += std::string("<div class=\"highlight") + (h.alarm ? " alarm" : "") + "\"><div class=\"label\">" +
+           html_escape(h.label) +
            "</div><div class=\"value\">" + html_escape(h.value) + "</div>";
     if (!h.detail.empty()) out += "<div class=\"detail\">" + html_escape(h.detail) + "</div>";
     out += "</div>\n";
@@ -212,6 +243,8 @@ std::string render_html(const Document& doc) {
   r.out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
   r.out += "<meta name=\"generator\" content=\"" + html_escape(doc.footer) + "\">\n";
   r.out += "<title>" + html_escape(doc.title) + "</title>\n<style>" + std::string(kStyle) + "</style>\n";
+  r.out += "<style>@page { @bottom-left { content: " + css_string(doc.title) +
+           "; font-size: 8pt; color: #5b6878; } }</style>\n";
   r.out += "<script>" + std::string(kErrorCapture) + "</script>\n</head>\n<body>\n";
   r.out += "<header><h1>" + html_escape(doc.title) + "</h1>";
   if (!doc.subtitle.empty()) r.out += "<div class=\"subtitle\">" + html_escape(doc.subtitle) + "</div>";
@@ -219,7 +252,8 @@ std::string render_html(const Document& doc) {
   r.out += "</header>\n";
   for (const auto& s : doc.sections) {
     const int level = s.level == 3 ? 3 : 2;
-    r.out += fmt::format("<section id=\"{}\"><h{}>{}</h{}>\n", html_escape(s.id), level, html_escape(s.title), level);
+    r.out += fmt::format("<section id=\"{}\"{}><h{}>{}</h{}>\n", html_escape(s.id),
+                         s.page_break_after ? " class=\"page-break\"" : "", level, html_escape(s.title), level);
     for (const auto& b : s.blocks) std::visit([&](const auto& x) { r.block(x); }, b);
     r.out += "</section>\n";
   }

@@ -70,21 +70,34 @@ struct Notes {
 };
 
 /// A prominent result line, e.g. "Grid azimuth C→D  136°35'23.1" ± 7.2"".
+/// With `alarm` (a failed check, a result not to be used) the box is red and
+/// the detail is set in large type.
 struct Highlight {
   std::string label;
   std::string value;
   std::string detail;
+  bool alarm = false;
 };
 
-using Block = std::variant<Paragraph, KeyValueList, Table, CheckList, Plot, Notes, Highlight>;
+/// A block of signature lines for the people who answer for the result
+/// (observer, computed by, checked by, …): role, the name as recorded (may
+/// be empty), and blank space for signature and date.
+struct Signatures {
+  std::vector<KeyValue> people;  ///< key: role, value: name
+};
+
+using Block = std::variant<Paragraph, KeyValueList, Table, CheckList, Plot, Notes, Highlight, Signatures>;
 
 struct Section {
   std::string id;      ///< HTML id (letters, digits, '-'); used by tests to find sections
   std::string title;
   std::vector<Block> blocks;
   int level = 2;       ///< heading level 2 or 3
+  bool page_break_after = false;  ///< printing starts a new page after this section
 };
 
+/// Printed pages carry the title (left) and "page N of M" (right) in the
+/// bottom margin.
 struct Document {
   std::string title;
   std::string subtitle;
