@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "meridian/core/dms.hpp"
 #include "meridian/core/progress.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/azimuth_chain.hpp"
@@ -72,6 +73,7 @@ struct CampaignInput {
   /// A gravity model giving η at the points whose η is not stated; loaded
   /// by the caller (see deflection_model.hpp).
   std::optional<GravityModelRef> gravity_model;
+  AngleUnit angle_unit = AngleUnit::Dms;  ///< the file's `angle_unit:` (circle angles; see ReduceInput)
 };
 
 /// A point resolved in both coordinate systems.
