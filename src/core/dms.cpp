@@ -121,20 +121,27 @@ AngleUnit angle_unit_from_string(std::string_view name) {
 
 std::string to_string(AngleUnit unit) {
   switch (unit) {
-    case AngleUnit::Dms: return "dms";
-    case AngleUnit::Degrees: return "deg";
-    case AngleUnit::Gon: return "gon";
-    case AngleUnit::DddMmss: return "ddd.mmss";
+    case AngleUnit::Dms:
+      return "dms";
+    case AngleUnit::Degrees:
+      return "deg";
+    case AngleUnit::Gon:
+      return "gon";
+    case AngleUnit::DddMmss:
+      return "ddd.mmss";
   }
   return "?";
 }
 
 Angle parse_angle(std::string_view text, AngleUnit unit) {
   switch (unit) {
-    case AngleUnit::Dms: return parse_angle(text);
+    case AngleUnit::Dms:
+      return parse_angle(text);
     case AngleUnit::Degrees:
-    case AngleUnit::Gon: return decimal_in_unit(text, unit);
-    case AngleUnit::DddMmss: return parse_ddd_mmss(text);
+    case AngleUnit::Gon:
+      return decimal_in_unit(text, unit);
+    case AngleUnit::DddMmss:
+      return parse_ddd_mmss(text);
   }
   throw ParseError("unknown angle unit");
 }
@@ -156,7 +163,8 @@ Angle parse_ddd_mmss(std::string_view text) {
       fail_ddd(text, "only digits may follow the point");
   }
   if (frac.size() == 1 || frac.size() == 3)
-    fail_ddd(text, fmt::format("{} digit{} after the point: write minutes and seconds with two digits "
+    fail_ddd(text,
+             fmt::format("{} digit{} after the point: write minutes and seconds with two digits "
                          "each (123.4030 for 123°40'30\", 123.0403 for 123°04'03\")",
                          frac.size(), frac.size() == 1 ? "" : "s"));
   double deg = 0;
@@ -172,10 +180,12 @@ Angle parse_ddd_mmss(std::string_view text) {
   }
   if (min >= 60.0)
     fail_ddd(text, fmt::format("minutes {:02.0f} must be below 60 (decimal degrees booked with the "
-                         "wrong angle_unit?)", min));
+                               "wrong angle_unit?)",
+                               min));
   if (sec >= 60.0)
     fail_ddd(text, fmt::format("seconds {} must be below 60 (decimal degrees booked with the wrong "
-                               "angle_unit?)", sec_text));
+                               "angle_unit?)",
+                               sec_text));
   if (!std::isfinite(deg)) fail_ddd(text, "not a finite number");
   return Angle::degrees(sign * (deg + min / 60.0 + sec / 3600.0));
 }
@@ -205,7 +215,7 @@ double parse_stopwatch_s(std::string_view text) {
   bool sexagesimal = true;
   if (s.find(':') != std::string_view::npos) {
     std::size_t b = 0;
-    for (std::size_t e = s.find(':'); ; e = s.find(':', b)) {
+    for (std::size_t e = s.find(':');; e = s.find(':', b)) {
       parts.push_back(s.substr(b, e == std::string_view::npos ? e : e - b));
       if (e == std::string_view::npos) break;
       b = e + 1;
@@ -240,7 +250,8 @@ double parse_stopwatch_s(std::string_view text) {
     const std::string_view p = parts[i];
     const bool last = i + 1 == parts.size();
     const std::size_t digits = count_digits(p);
-    if (p.empty() || digits == 0) fail_time(text, fmt::format("{} (part {} is empty)", forms, i + 1));
+    if (p.empty() || digits == 0)
+      fail_time(text, fmt::format("{} (part {} is empty)", forms, i + 1));
     if (!last && digits != p.size())
       fail_time(text, "only the seconds may have decimals: " + std::string(forms));
     const auto v = unsigned_decimal(p);

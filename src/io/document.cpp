@@ -68,12 +68,14 @@ Node Node::load_file(const std::filesystem::path& path) {
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    const std::optional<int> line = e.mark.line >= 0 ? std::optional<int>(e.mark.line + 1) : std::nullopt;
+    const std::optional<int> line =
+        e.mark.line >= 0 ? std::optional<int>(e.mark.line + 1) : std::nullopt;
     if (line && indented_with_tab(text, *line))
-      throw ParseError(fmt::format("tabs are not allowed for indentation (line {}); indent with spaces",
-                                   *line),
-                       {*file, line, {}});
-    throw ParseError(fmt::format("syntax error: {} (column {})", e.msg, e.mark.column + 1), {*file, line, {}});
+      throw ParseError(
+          fmt::format("tabs are not allowed for indentation (line {}); indent with spaces", *line),
+          {*file, line, {}});
+    throw ParseError(fmt::format("syntax error: {} (column {})", e.msg, e.mark.column + 1),
+                     {*file, line, {}});
   }
   Node n(root, "", file, std::make_shared<LineMap>());
   if (!root.IsMap()) n.fail("the top level must be a mapping of fields (YAML) or an object (JSON)");

@@ -31,7 +31,8 @@ std::vector<double> increasing_times_s(const Node& n) {
   for (const auto& x : e) t.push_back(x.time_s());
   for (std::size_t i = 1; i < t.size(); ++i)
     if (!(t[i] > t[i - 1]))
-      e[i].fail(fmt::format("times must increase (t{} = {} <= t{} = {})", i + 1, t[i], i, t[i - 1]));
+      e[i].fail(
+          fmt::format("times must increase (t{} = {} <= t{} = {})", i + 1, t[i], i, t[i - 1]));
   return t;
 }
 
@@ -72,7 +73,8 @@ gyro::InstrumentSpec read_instrument(const Node& n) {
     p->allow_only({"tracking_s", "nontracking_s", "free_s", "sigma_s"});
     const double sig = sigma_or(*p, "sigma_s", 0.0);
     if (auto v = p->get("tracking_s")) s.tracking_period_s = Uncertain{positive_time_s(*v), sig};
-    if (auto v = p->get("nontracking_s")) s.nontracking_period_s = Uncertain{positive_time_s(*v), sig};
+    if (auto v = p->get("nontracking_s"))
+      s.nontracking_period_s = Uncertain{positive_time_s(*v), sig};
     if (auto v = p->get("free_s")) s.free_period_s = Uncertain{positive_time_s(*v), sig};
   }
   if (auto v = n.get("constants_latitude_deg")) s.constants_latitude_rad = v->angle().rad();
@@ -380,8 +382,9 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   if (auto e = root.get("instrument_constant")) {
     if (c.known_line) e->fail("give known_line or instrument_constant, not both");
     e->allow_only({"value", "sigma_arcsec"});
-    c.instrument_constant_rad = Uncertain{e->require("value").angle(c.angle_unit).normalized_signed().rad(),
-                                          sigma_or(*e, "sigma_arcsec", 0.0) * kArcsec};
+    c.instrument_constant_rad =
+        Uncertain{e->require("value").angle(c.angle_unit).normalized_signed().rad(),
+                  sigma_or(*e, "sigma_arcsec", 0.0) * kArcsec};
   }
   if (!c.known_line && !c.instrument_constant_rad)
     root.fail("give known_line (calibration on a known line) or instrument_constant");

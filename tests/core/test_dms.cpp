@@ -94,8 +94,8 @@ TEST(ParseDddMmss, CalculatorNotation) {
   EXPECT_NEAR(meridian::parse_ddd_mmss("-0.0116").arcsec(), -76.0, 1e-9);
   EXPECT_NEAR(meridian::parse_ddd_mmss("+12.3000").deg(), 12.5, 1e-12);
   // Through the unit switch as well: 63°27'24.9" booked as 63.27249.
-  EXPECT_NEAR(parse_angle("63.27249", AngleUnit::DddMmss).arcsec(), (63 * 60 + 27) * 3600.0 / 60 + 24.9,
-              1e-7);
+  EXPECT_NEAR(parse_angle("63.27249", AngleUnit::DddMmss).arcsec(),
+              (63 * 60 + 27) * 3600.0 / 60 + 24.9, 1e-7);
 }
 
 TEST(ParseDddMmss, RejectsImpossibleAndAmbiguousDigits) {
@@ -108,7 +108,8 @@ TEST(ParseDddMmss, RejectsImpossibleAndAmbiguousDigits) {
     return std::string("no error");
   };
   // Seconds 99: decimal degrees booked in the wrong unit.
-  EXPECT_NE(message("123.4599").find("seconds 99 must be below 60"), std::string::npos) << message("123.4599");
+  EXPECT_NE(message("123.4599").find("seconds 99 must be below 60"), std::string::npos)
+      << message("123.4599");
   EXPECT_NE(message("123.7530").find("minutes 75 must be below 60"), std::string::npos);
   EXPECT_NE(message("123.4560").find("seconds 60"), std::string::npos);
   // One or three digits after the point do not say which digit is the tens.
@@ -120,17 +121,22 @@ TEST(ParseDddMmss, RejectsImpossibleAndAmbiguousDigits) {
 }
 
 TEST(FormatDddMmss, RoundsCarriesAndReadsBack) {
-  EXPECT_EQ(meridian::format_ddd_mmss(Angle::degrees(123.0 + 45.0 / 60 + 30.5 / 3600)), "123.45305");
-  EXPECT_EQ(meridian::format_ddd_mmss(Angle::degrees(123.0 + 45.0 / 60 + 30.0 / 3600), 0), "123.4530");
+  EXPECT_EQ(meridian::format_ddd_mmss(Angle::degrees(123.0 + 45.0 / 60 + 30.5 / 3600)),
+            "123.45305");
+  EXPECT_EQ(meridian::format_ddd_mmss(Angle::degrees(123.0 + 45.0 / 60 + 30.0 / 3600), 0),
+            "123.4530");
   EXPECT_EQ(meridian::format_ddd_mmss(Angle::arcseconds(-76.0), 0), "-0.0116");
   // 59.96" rounds to a whole minute, 359°59'59.96" to 360°.
   EXPECT_EQ(meridian::format_ddd_mmss(Angle::arcseconds(59.96)), "0.01000");
-  EXPECT_EQ(meridian::format_ddd_mmss(Angle::degrees(360.0) - Angle::arcseconds(0.04)), "360.00000");
+  EXPECT_EQ(meridian::format_ddd_mmss(Angle::degrees(360.0) - Angle::arcseconds(0.04)),
+            "360.00000");
   EXPECT_EQ(meridian::format_ddd_mmss(Angle::arcseconds(-0.01)), "0.00000");  // no "-0"
-  EXPECT_EQ(meridian::format_ddd_mmss(Angle::radians(std::numeric_limits<double>::quiet_NaN())), "nan");
+  EXPECT_EQ(meridian::format_ddd_mmss(Angle::radians(std::numeric_limits<double>::quiet_NaN())),
+            "nan");
   for (double d : {0.0, 12.3456789, -45.000001, 359.999, 123.4567}) {
     const Angle a = Angle::degrees(d);
-    EXPECT_NEAR(meridian::parse_ddd_mmss(meridian::format_ddd_mmss(a, 4)).arcsec(), a.arcsec(), 0.5e-4);
+    EXPECT_NEAR(meridian::parse_ddd_mmss(meridian::format_ddd_mmss(a, 4)).arcsec(), a.arcsec(),
+                0.5e-4);
   }
 }
 
@@ -156,12 +162,12 @@ TEST(ParseAngleInUnit, DegreesAndGonTakeOnlyDecimals) {
 
 TEST(ParseStopwatch, MinutesSecondsAndHours) {
   using meridian::parse_stopwatch_s;
-  EXPECT_DOUBLE_EQ(parse_stopwatch_s("4:07.3"), 247.3);           // 4*60 + 7.3
+  EXPECT_DOUBLE_EQ(parse_stopwatch_s("4:07.3"), 247.3);  // 4*60 + 7.3
   EXPECT_DOUBLE_EQ(parse_stopwatch_s("0:51.8"), 51.8);
-  EXPECT_DOUBLE_EQ(parse_stopwatch_s("18:35.4"), 1115.4);         // 18*60 + 35.4
-  EXPECT_DOUBLE_EQ(parse_stopwatch_s("75:00"), 4500.0);           // minutes may exceed 59
-  EXPECT_DOUBLE_EQ(parse_stopwatch_s("1:02:03.5"), 3723.5);       // 3600 + 120 + 3.5
-  EXPECT_DOUBLE_EQ(parse_stopwatch_s("4'39.6\""), 279.6);         // as booked by hand
+  EXPECT_DOUBLE_EQ(parse_stopwatch_s("18:35.4"), 1115.4);           // 18*60 + 35.4
+  EXPECT_DOUBLE_EQ(parse_stopwatch_s("75:00"), 4500.0);             // minutes may exceed 59
+  EXPECT_DOUBLE_EQ(parse_stopwatch_s("1:02:03.5"), 3723.5);         // 3600 + 120 + 3.5
+  EXPECT_DOUBLE_EQ(parse_stopwatch_s("4'39.6\""), 279.6);           // as booked by hand
   EXPECT_DOUBLE_EQ(parse_stopwatch_s("4\u203239.6\u2033"), 279.6);  // prime and double prime
   EXPECT_DOUBLE_EQ(parse_stopwatch_s("4'39.6"), 279.6);
   EXPECT_DOUBLE_EQ(parse_stopwatch_s(" 279.6 "), 279.6);
@@ -170,14 +176,15 @@ TEST(ParseStopwatch, MinutesSecondsAndHours) {
 
 TEST(ParseStopwatch, RejectsSixtySecondsSignsAndGarbage) {
   using meridian::parse_stopwatch_s;
-  for (const char* bad : {"4:60.0", "4:75", "1:60:00", "-4:07.3", "4:-07", "-279.6", "4:7.3", "4:007",
-                          "4.5:07", "4:", ":07", "1:2:3:4", "abc", "", "4:07.3x", "4'07'", "nan",
-                          "1e2", "4::07"})
+  for (const char* bad :
+       {"4:60.0", "4:75", "1:60:00", "-4:07.3", "4:-07", "-279.6", "4:7.3", "4:007", "4.5:07",
+        "4:", ":07", "1:2:3:4", "abc", "", "4:07.3x", "4'07'", "nan", "1e2", "4::07"})
     EXPECT_THROW(parse_stopwatch_s(bad), meridian::ParseError) << bad;
   try {
     parse_stopwatch_s("4:75.0");
     FAIL();
   } catch (const meridian::ParseError& e) {
-    EXPECT_NE(std::string(e.what()).find("\"4:75.0\": seconds must be below 60"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"4:75.0\": seconds must be below 60"), std::string::npos)
+        << e.what();
   }
 }

@@ -14,12 +14,12 @@
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/gravity/egm_format.hpp"
+#include "meridian/gravity/synthetic.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/io/gyro_files.hpp"
 #include "meridian/io/gyro_jobs.hpp"
 #include "meridian/io/gyro_writers.hpp"
-#include "meridian/gravity/egm_format.hpp"
-#include "meridian/gravity/synthetic.hpp"
 
 using namespace meridian;
 using meridian::AngleUnit;
@@ -236,15 +236,18 @@ station:
 determinations:
   - mode: non-tracking
     method: transit
-    clamp_reading: )" + clamp + R"(
+    clamp_reading: )" +
+         clamp + R"(
     period_s: 440.0
     zero_position_div: 0.0
     crossings:
       - {level_div: 0, times_s: [50.934, 269.066, 490.934], first_direction: east}
     reversals_div: [8.88, -9.12]
-    target_reading: )" + clamp + R"(
+    target_reading: )" +
+         clamp + R"(
   - mode: tracking
-    reversals: )" + reversals + "\n";
+    reversals: )" +
+         reversals + "\n";
 }
 
 // Line of the first error thrown by `f`, and its text.
@@ -272,12 +275,15 @@ TEST(GyroFiles, AngleUnitAppliesToCircleAnglesOnly) {
     double tol_deg;
   } cases[] = {
       {"dms", "\"0 30 30\"", "[\"359 41 12\", \"0 44 50\", \"359 42 04\"]", AngleUnit::Dms, 1e-12},
-      {"deg", "0.508333333333", "[359.686666666667, \"0.747222222222°\", 359.701111111111]", AngleUnit::Degrees, 1e-11},
-      {"gon", "0.564814814815", "[399.651851851852, \"0.830246913580 gon\", 399.668024691358]", AngleUnit::Gon, 1e-11},
+      {"deg", "0.508333333333", "[359.686666666667, \"0.747222222222°\", 359.701111111111]",
+       AngleUnit::Degrees, 1e-11},
+      {"gon", "0.564814814815", "[399.651851851852, \"0.830246913580 gon\", 399.668024691358]",
+       AngleUnit::Gon, 1e-11},
       {"ddd.mmss", "0.3030", "[359.4112, \"0.4450\", 359.4204]", AngleUnit::DddMmss, 1e-12},
   };
   for (const auto& c : cases) {
-    const auto f = io::read_gyro_reduce_file(d.write("u.yaml", reduce_file_in(c.unit, c.clamp, c.reversals)));
+    const auto f =
+        io::read_gyro_reduce_file(d.write("u.yaml", reduce_file_in(c.unit, c.clamp, c.reversals)));
     EXPECT_EQ(f.input.angle_unit, c.expect) << c.unit;
     const auto& n = f.input.determinations[0];
     EXPECT_NEAR(n.clamp_reading_rad / units::kDegree, clamp, c.tol_deg) << c.unit;
@@ -294,27 +300,32 @@ TEST(GyroFiles, AngleUnitIsNeverGuessedAndErrorsNameTheLine) {
   TempDir d;
   // DMS text in a gon book is refused, not reinterpreted.
   auto [line, what] = error_of([&] {
-    io::read_gyro_reduce_file(d.write("g.yaml", reduce_file_in("gon", "\"0 30 30\"", "[1, 2, 1.5]")));
+    io::read_gyro_reduce_file(
+        d.write("g.yaml", reduce_file_in("gon", "\"0 30 30\"", "[1, 2, 1.5]")));
   });
   EXPECT_EQ(line, 10) << what;
   EXPECT_NE(what.find("determinations[0].clamp_reading"), std::string::npos) << what;
   EXPECT_NE(what.find("angle_unit is gon"), std::string::npos) << what;
   // 123.4599 is no ddd.mmss angle (99 seconds); the 4th reversal on its own line.
   std::tie(line, what) = error_of([&] {
-    io::read_gyro_reduce_file(d.write("m.yaml", reduce_file_in("ddd.mmss", "0.3030",
-                                                              "\n      - 359.4112\n      - 0.4450\n"
-                                                              "      - 359.4204\n      - 123.4599")));
+    io::read_gyro_reduce_file(
+        d.write("m.yaml", reduce_file_in("ddd.mmss", "0.3030",
+                                         "\n      - 359.4112\n      - 0.4450\n"
+                                         "      - 359.4204\n      - 123.4599")));
   });
   EXPECT_EQ(line, 22) << what;
   EXPECT_NE(what.find("determinations[1].reversals[3]: cannot read angle \"123.4599\" as ddd.mmss"),
-            std::string::npos) << what;
+            std::string::npos)
+      << what;
   EXPECT_NE(what.find("seconds 99 must be below 60"), std::string::npos) << what;
   std::tie(line, what) = error_of([&] {
     io::read_gyro_reduce_file(d.write("x.yaml", reduce_file_in("grads", "1", "[1, 2, 1.5]")));
   });
   EXPECT_EQ(line, 1);
-  EXPECT_NE(what.find("angle_unit: unknown angle unit \"grads\" (expected dms, deg, gon or ddd.mmss)"),
-            std::string::npos) << what;
+  EXPECT_NE(
+      what.find("angle_unit: unknown angle unit \"grads\" (expected dms, deg, gon or ddd.mmss)"),
+      std::string::npos)
+      << what;
 }
 
 TEST(GyroFiles, StopwatchTimesAsMinutesAndSeconds) {
@@ -345,7 +356,8 @@ TEST(GyroFiles, StopwatchTimesAsMinutesAndSeconds) {
     } catch (const ParseError& e) {
       EXPECT_EQ(e.context().line, 14) << e.what();
       EXPECT_EQ(e.context().field, "determinations[0].crossings[0].times_s[1]") << e.what();
-      EXPECT_NE(std::string(e.what()).find(std::string("cannot read time \"") + bad), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find(std::string("cannot read time \"") + bad),
+                std::string::npos)
           << e.what();
     }
   }
@@ -359,7 +371,9 @@ TEST(GyroFiles, ErrorsAtTheLineOfTheWrongElement) {
                "\n          - 50.934\n          - 269.066\n          - 269.0");
   auto [line, what] = error_of([&] { io::read_gyro_reduce_file(d.write("b.yaml", text)); });
   EXPECT_EQ(line, 17) << what;
-  EXPECT_NE(what.find("determinations[0].crossings[0].times_s[2]: times must increase"), std::string::npos) << what;
+  EXPECT_NE(what.find("determinations[0].crossings[0].times_s[2]: times must increase"),
+            std::string::npos)
+      << what;
 
   // Lines of every element are recorded, in block and flow sequences, so a
   // processing error naming an element is located at it.
@@ -398,20 +412,27 @@ determinations:
 TEST(GyroFiles, TabIndentationIsNamed) {
   TempDir d;
   auto [line, what] = error_of([&] {
-    io::read_gyro_reduce_file(d.write("tab.yaml", "instrument:\n  scale_value_arcsec: 600\n\ttorsion_ratio: 0.3\n"));
+    io::read_gyro_reduce_file(
+        d.write("tab.yaml", "instrument:\n  scale_value_arcsec: 600\n\ttorsion_ratio: 0.3\n"));
   });
   EXPECT_EQ(line, 3);
-  EXPECT_NE(what.find("tab.yaml:3: tabs are not allowed for indentation (line 3)"), std::string::npos) << what;
+  EXPECT_NE(what.find("tab.yaml:3: tabs are not allowed for indentation (line 3)"),
+            std::string::npos)
+      << what;
   std::tie(line, what) = error_of([&] {
     io::read_gyro_reduce_file(d.write("tab2.yaml", "instrument:\n\tscale_value_arcsec: 600\n"));
   });
-  EXPECT_NE(what.find("tab2.yaml:2: tabs are not allowed for indentation (line 2)"), std::string::npos) << what;
+  EXPECT_NE(what.find("tab2.yaml:2: tabs are not allowed for indentation (line 2)"),
+            std::string::npos)
+      << what;
   // A tab elsewhere is no indentation: a comment after a value, a blank line.
-  const auto f = io::read_gyro_reduce_file(d.write("ok.yaml", std::string(kIssueExample) + "\t\n# end\t\n"));
+  const auto f =
+      io::read_gyro_reduce_file(d.write("ok.yaml", std::string(kIssueExample) + "\t\n# end\t\n"));
   EXPECT_EQ(f.input.determinations.size(), 2u);
   // A syntax error in a JSON file indented with tabs is a syntax error.
   std::tie(line, what) = error_of([&] {
-    io::read_gyro_reduce_file(d.write("bad.json", "{\n\t\"instrument\": {\"scale_value_arcsec\": 600,,}\n}\n"));
+    io::read_gyro_reduce_file(
+        d.write("bad.json", "{\n\t\"instrument\": {\"scale_value_arcsec\": 600,,}\n}\n"));
   });
   EXPECT_EQ(what.find("tabs"), std::string::npos) << what;
 }
@@ -426,7 +447,8 @@ TEST(GyroFiles, WritersKeepTheBooksAngleUnit) {
     EXPECT_EQ(yaml.find("angle_unit:") != std::string::npos, unit != AngleUnit::Dms);
     const auto b = io::read_campaign_file(d.write("c.yaml", yaml)).campaign;
     EXPECT_EQ(b.angle_unit, unit);
-    EXPECT_NEAR(a.known_line->azimuth.value_rad.value, b.known_line->azimuth.value_rad.value, 1e-4 * kArcsec);
+    EXPECT_NEAR(a.known_line->azimuth.value_rad.value, b.known_line->azimuth.value_rad.value,
+                1e-4 * kArcsec);
     for (std::size_t i = 0; i < a.line.determinations.size(); ++i) {
       const auto& x = a.line.determinations[i];
       const auto& y = b.line.determinations[i];
@@ -448,7 +470,8 @@ TEST(GyroFiles, WritersKeepTheBooksAngleUnit) {
     r.angle_unit = unit;
     const auto rr = io::read_gyro_reduce_file(d.write("r.yaml", io::reduce_file_yaml(r))).input;
     EXPECT_EQ(rr.angle_unit, unit);
-    EXPECT_NEAR(rr.determinations[0].clamp_reading_rad, r.determinations[0].clamp_reading_rad, 1e-4 * kArcsec);
+    EXPECT_NEAR(rr.determinations[0].clamp_reading_rad, r.determinations[0].clamp_reading_rad,
+                1e-4 * kArcsec);
   }
 }
 
@@ -476,7 +499,8 @@ TEST(GyroFiles, TemplatesReadBack) {
   EXPECT_DOUBLE_EQ(transit.crossings[0].times_s[1], 251.6);
   EXPECT_DOUBLE_EQ(transit.period_s->value, 424.0);
   EXPECT_EQ(c.angle_unit, AngleUnit::Dms);
-  for (const char* mention : {"angle_unit", "ddd.mmss", "gon", "m:ss.s", "三、二、三", "first_direction"})
+  for (const char* mention :
+       {"angle_unit", "ddd.mmss", "gon", "m:ss.s", "三、二、三", "first_direction"})
     EXPECT_NE(text.find(mention), std::string::npos) << mention;
   const auto r = io::read_gyro_reduce_file(d.write("r.yaml", io::reduce_template_yaml())).input;
   ASSERT_EQ(r.determinations.size(), 2u);

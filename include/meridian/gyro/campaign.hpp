@@ -73,7 +73,7 @@ struct CampaignInput {
   /// A gravity model giving η at the points whose η is not stated; loaded
   /// by the caller (see deflection_model.hpp).
   std::optional<GravityModelRef> gravity_model;
-  AngleUnit angle_unit = AngleUnit::Dms;  ///< the file's `angle_unit:` (circle angles; see ReduceInput)
+  AngleUnit angle_unit = AngleUnit::Dms;  ///< the file's `angle_unit:`, as ReduceInput's
 };
 
 /// A point resolved in both coordinate systems.
