@@ -75,14 +75,18 @@ std::optional<double> unsigned_decimal(std::string_view s) {
   return v;
 }
 
+// A leading '-' or '+', removed from `s`: -1 or +1.
+double take_sign(std::string_view& s) {
+  if (s.empty() || (s.front() != '-' && s.front() != '+')) return 1.0;
+  const double sign = s.front() == '-' ? -1.0 : 1.0;
+  s.remove_prefix(1);
+  return sign;
+}
+
 // A plain decimal in `unit`, optionally followed by that unit's own marks.
 Angle decimal_in_unit(std::string_view text, AngleUnit unit) {
   std::string_view s = trim(text);
-  double sign = 1.0;
-  if (!s.empty() && (s.front() == '-' || s.front() == '+')) {
-    sign = s.front() == '-' ? -1.0 : 1.0;
-    s.remove_prefix(1);
-  }
+  const double sign = take_sign(s);
   const bool gon = unit == AngleUnit::Gon;
   const std::string_view marks_deg[] = {"\xC2\xB0", "deg"};
   const std::string_view marks_gon[] = {"gon", "g"};
@@ -148,11 +152,7 @@ Angle parse_angle(std::string_view text, AngleUnit unit) {
 
 Angle parse_ddd_mmss(std::string_view text) {
   std::string_view s = trim(text);
-  double sign = 1.0;
-  if (!s.empty() && (s.front() == '-' || s.front() == '+')) {
-    sign = s.front() == '-' ? -1.0 : 1.0;
-    s.remove_prefix(1);
-  }
+  const double sign = take_sign(s);
   const std::size_t whole = count_digits(s);
   if (whole == 0) fail_ddd(text, "expected digits of degrees");
   std::string_view frac;

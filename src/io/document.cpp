@@ -84,9 +84,15 @@ Node Node::load_file(const std::filesystem::path& path) {
 
 int Node::line() const { return node_.Mark().line + 1; }
 
-void Node::fail(const std::string& message) const {
+std::optional<int> Node::mark_line() const {
   const int l = node_.Mark().line;
-  throw InputError(message, {*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, path_});
+  return l >= 0 ? std::optional<int>(l + 1) : std::nullopt;
+}
+
+void Node::locate(Error& e) const { e.add_context(*file_, mark_line(), path_); }
+
+void Node::fail(const std::string& message) const {
+  throw InputError(message, {*file_, mark_line(), path_});
 }
 
 std::string Node::child_path(const std::string& key) const {
@@ -102,11 +108,7 @@ std::optional<Node> Node::get(const std::string& key) const {
 
 Node Node::require(const std::string& key) const {
   auto c = get(key);
-  if (!c) {
-    const int l = node_.Mark().line;
-    throw InputError(fmt::format("missing field \"{}\"", key),
-                     {*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, child_path(key)});
-  }
+  if (!c) throw InputError(fmt::format("missing field \"{}\"", key), {*file_, mark_line(), child_path(key)});
   return *c;
 }
 
@@ -170,8 +172,7 @@ Angle Node::angle(AngleUnit unit) const {
   try {
     return parse_angle(s, unit);
   } catch (Error& e) {
-    const int l = node_.Mark().line;
-    e.add_context(*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, path_);
+    locate(e);
     throw;
   }
 }
@@ -189,8 +190,7 @@ double Node::time_s() const {
   try {
     return parse_stopwatch_s(s);
   } catch (Error& e) {
-    const int l = node_.Mark().line;
-    e.add_context(*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, path_);
+    locate(e);
     throw;
   }
 }

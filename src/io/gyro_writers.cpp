@@ -234,37 +234,24 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
 }
 
 // The templates are hand-written field books (not generated), so that every
-// line can carry its comment. Their numbers come from simulated runs
-// (tau 600"/div, lambda 0.21, T_B 424 s, 0.15 s stopwatch) with target
-// readings chosen for E = +18"; tests/io checks that they read back and
-// tests/cli that they process with every check passing.
+// line can carry its comment; the parts both kinds share are written once.
+// Their numbers come from simulated runs (tau 600"/div, lambda 0.21, T_B
+// 424 s, 0.15 s stopwatch) with target readings chosen for E = +18";
+// tests/io checks that they read back and tests/cli that they process with
+// every check passing.
+namespace tmpl {
 
-std::string campaign_template_yaml() {
-  return R"yaml(# Gyro field book: a whole orientation job (`meridian gyro template`).
-#
-# Copy this file, replace the example values with your own bookings and run
-#     meridian gyro campaign FILE               (add --strict to fail on a check)
-# The example job is invented but consistent, so it runs as it stands.
-# Every field is explained beside it with its unit; delete what you do not use.
-# Reference: docs/file-formats.md (fields), docs/gyro-theodolite.md (methods,
-# signs, checks, and "Booking the oscillation" for your instrument's scale).
-#
-# Programme of the coal-mine surveying regulations (三、二、三): the instrument
-# constant on the known surface line 3 times before going underground
-# (known_line.before), the underground line 2 times (line.determinations),
-# the known line 3 times after coming up (known_line.after). The example
-# books both modes: tracking (reversal points) and non-tracking (transit).
-#
-# Booking habits accepted:
+constexpr const char* kBookingHabits = R"yaml(# Booking habits accepted:
 # * times in seconds (279.6) or as the stopwatch shows them, "4:39.6" (m:ss.s)
 #   or "1:04:39.6" (h:mm:ss.s); quote them so every YAML tool keeps the text;
 # * circle angles in the unit named by angle_unit (below), never guessed;
 # * scale readings in divisions, positive towards east (see "Booking the
 #   oscillation" for how your eyepiece shows it).
 
-campaign: "Example colliery - main decline P1-P2"   # title of the job, printed on the report
-angle_unit: dms        # how circle angles are booked (clamp_reading, reversals, target_reading,
-                       # known_line.azimuth.value, instrument_constant.value):
+)yaml";
+
+constexpr const char* kAngleUnit = R"yaml(angle_unit: dms        # how circle angles are booked (clamp_reading, reversals, target_reading,
+                       # and in campaigns known_line.azimuth.value, instrument_constant.value):
                        #   dms      (the default) a number is decimal degrees, text is D M S:
                        #            "63°27′24.9″", "63 27 24.9", "63:27:24.9"
                        #   deg      decimal degrees: 63.456917
@@ -273,7 +260,9 @@ angle_unit: dms        # how circle angles are booked (clamp_reading, reversals,
                        # Fields named *_deg (latitudes, longitudes) are always degrees or DMS
                        # text, fields named *_arcsec always arc-seconds, whatever angle_unit says.
 
-instrument:
+)yaml";
+
+constexpr const char* kInstrument = R"yaml(instrument:
   name: "GAK1-type gyro attachment No. 0000 on a 2\" theodolite"   # free text
   scale_value_arcsec: 600           # tau: value of one scale division (arcsec/div); required
   # scale_value_sigma_arcsec: 2     # sigma of tau (arcsec/div)
@@ -294,7 +283,29 @@ instrument:
                                     # (15: 40" between runs, 25: 70")
   # latitude_limit_deg: 75          # stations above this |latitude| (deg) are refused; default 75
 
-grid:                               # the plane grid of the coordinates below
+)yaml";
+
+constexpr const char* kCampaignHead = R"yaml(# Gyro field book: a whole orientation job (`meridian gyro template`).
+#
+# Copy this file, replace the example values with your own bookings and run
+#     meridian gyro campaign FILE               (add --strict to fail on a check)
+# The example job is invented but consistent, so it runs as it stands.
+# Every field is explained beside it with its unit; delete what you do not use.
+# Reference: docs/file-formats.md (fields), docs/gyro-theodolite.md (methods,
+# signs, checks, and "Booking the oscillation" for your instrument's scale).
+#
+# Programme of the coal-mine surveying regulations (三、二、三): the instrument
+# constant on the known surface line 3 times before going underground
+# (known_line.before), the underground line 2 times (line.determinations),
+# the known line 3 times after coming up (known_line.after). The example
+# books both modes: tracking (reversal points) and non-tracking (transit).
+#
+)yaml";
+
+constexpr const char* kCampaignTitle = R"yaml(campaign: "Example colliery - main decline P1-P2"   # title of the job, printed on the report
+)yaml";
+
+constexpr const char* kCampaignRest = R"yaml(grid:                               # the plane grid of the coordinates below
   system: gk3                       # gk3 | gk6 | utm | custom
   zone: 38                          # zone number (gk3 zone 38: central meridian 114 E)
   ellipsoid: CGCS2000               # WGS84 | GRS80 | CGCS2000 | Krassovsky1940 | IAG75
@@ -429,10 +440,8 @@ tolerances:                         # optional; the defaults follow accuracy_cla
 #   model: egm2008                  # a .gfc/.egm file beside this one, or a GeographicLib model name
 #   eta_sigma_arcsec: 1.5
 )yaml";
-}
 
-std::string reduce_template_yaml() {
-  return R"yaml(# Gyro field book: the runs of one station (`meridian gyro template --kind reduce`).
+constexpr const char* kReduceHead = R"yaml(# Gyro field book: the runs of one station (`meridian gyro template --kind reduce`).
 #
 # Copy this file, replace the example values with your own bookings and run
 #     meridian gyro reduce FILE
@@ -444,43 +453,9 @@ std::string reduce_template_yaml() {
 # Reference: docs/file-formats.md (fields), docs/gyro-theodolite.md (methods,
 # signs, and "Booking the oscillation" for your instrument's scale).
 #
-# Booking habits accepted:
-# * times in seconds (279.6) or as the stopwatch shows them, "4:39.6" (m:ss.s)
-#   or "1:04:39.6" (h:mm:ss.s); quote them so every YAML tool keeps the text;
-# * circle angles in the unit named by angle_unit (below), never guessed;
-# * scale readings in divisions, positive towards east (see "Booking the
-#   oscillation" for how your eyepiece shows it).
+)yaml";
 
-angle_unit: dms        # how circle angles are booked (clamp_reading, reversals, target_reading):
-                       #   dms      (the default) a number is decimal degrees, text is D M S:
-                       #            "88°32′31″", "88 32 31", "88:32:31"
-                       #   deg      decimal degrees: 88.541944
-                       #   gon      decimal gon (400 to the circle): 98.3799
-                       #   ddd.mmss calculator notation: 88.3231 = 88°32′31″
-                       # Fields named *_deg (latitudes) are always degrees or DMS text,
-                       # fields named *_arcsec always arc-seconds, whatever angle_unit says.
-
-instrument:
-  name: "GAK1-type gyro attachment No. 0000"   # free text
-  scale_value_arcsec: 600           # tau: value of one scale division (arcsec/div); required
-  # scale_value_sigma_arcsec: 2     # sigma of tau (arcsec/div)
-  torsion_ratio: 0.21               # lambda = D_B/D_K, tape torsion over directive torque (零位改正系数)
-  torsion_ratio_sigma: 0.002        # its sigma (dimensionless)
-  # periods:                        # instead of torsion_ratio: lambda from periods (s or "m:ss.s")
-  #   tracking_s: "7:46.4"          #   T_A, tracking period
-  #   nontracking_s: "7:04.0"       #   T_B, non-tracking period: lambda = (T_A/T_B)^2 - 1
-  #   # free_s: "16:57.0"           #   T_F, motor off: lambda = (T_A/T_F)^2 (instead of nontracking_s)
-  #   sigma_s: 0.5                  #   sigma of each period (s)
-  constants_latitude_deg: 35.8      # latitude where lambda (or the periods, c) was determined (deg);
-                                    # lambda is rescaled to the station: lambda0 cos(phi0)/cos(phi)
-  # transit_factor_arcsec_per_div_s: 2.69        # calibrated transit factor c (arcsec per div.s),
-  # transit_factor_sigma_arcsec_per_div_s: 0.01  # from `meridian gyro transit-factor`
-  sigma_time_s: 0.15                # sigma of one stopwatch time (s); default 0.1
-  sigma_reading_div: 0.05           # sigma of one scale reading (div); default 0.05
-  accuracy_class_arcsec: 15         # class of the instrument (arcsec)
-  # latitude_limit_deg: 75          # stations above this |latitude| (deg) are refused; default 75
-
-station:
+constexpr const char* kReduceRest = R"yaml(station:
   name: "P1"                        # free text
   latitude_deg: "35 47 49.6"        # geodetic latitude of the station (deg or DMS text)
 
@@ -523,6 +498,18 @@ determinations:
 #   zero_position_tolerance_div: 0.5   # limit of the tape zero's drift, after minus before (div)
 #   estimate_damping: false         # unified fit (method lsq): also estimate the damping
 )yaml";
+
+}  // namespace tmpl
+
+std::string campaign_template_yaml() {
+  using namespace tmpl;
+  return std::string(kCampaignHead) + kBookingHabits + kCampaignTitle + kAngleUnit + kInstrument +
+         kCampaignRest;
+}
+
+std::string reduce_template_yaml() {
+  using namespace tmpl;
+  return std::string(kReduceHead) + kBookingHabits + kAngleUnit + kInstrument + kReduceRest;
 }
 
 }  // namespace meridian::io

@@ -224,30 +224,16 @@ TEST(GyroFiles, CampaignGravityModelBesideTheFile) {
 // --- Field-crew habits: angle_unit, stopwatch times, errors at the wrong value's line.
 
 namespace {
-// The issue's example booked in another unit: the same circle readings.
+// The issue's example booked in `unit`: clamp and target reading `clamp`, the
+// tracking run's reversals `reversals` (lines: clamp 10, target 11, reversals 21).
 std::string reduce_file_in(const std::string& unit, const std::string& clamp,
                            const std::string& reversals) {
-  return "angle_unit: " + unit + R"(
-instrument:
-  scale_value_arcsec: 600
-  torsion_ratio: 0.30
-station:
-  latitude_deg: 34.2
-determinations:
-  - mode: non-tracking
-    method: transit
-    clamp_reading: )" +
-         clamp + R"(
-    period_s: 440.0
-    zero_position_div: 0.0
-    crossings:
-      - {level_div: 0, times_s: [50.934, 269.066, 490.934], first_direction: east}
-    reversals_div: [8.88, -9.12]
-    target_reading: )" +
-         clamp + R"(
-  - mode: tracking
-    reversals: )" +
-         reversals + "\n";
+  std::string s = "angle_unit: " + unit + "\n" + kIssueExample;
+  const std::string c = "clamp_reading: \"0 00 00\"\n";
+  s.replace(s.find(c), c.size(), "clamp_reading: " + clamp + "\n    target_reading: " + clamp + "\n");
+  const std::string r = "[\"359 41 12\", \"0 44 50\", \"359 42 04\"]";
+  s.replace(s.find(r), r.size(), reversals);
+  return s;
 }
 
 // Line of the first error thrown by `f`, and its text.
@@ -313,7 +299,7 @@ TEST(GyroFiles, AngleUnitIsNeverGuessedAndErrorsNameTheLine) {
                                          "\n      - 359.4112\n      - 0.4450\n"
                                          "      - 359.4204\n      - 123.4599")));
   });
-  EXPECT_EQ(line, 22) << what;
+  EXPECT_EQ(line, 25) << what;
   EXPECT_NE(what.find("determinations[1].reversals[3]: cannot read angle \"123.4599\" as ddd.mmss"),
             std::string::npos)
       << what;

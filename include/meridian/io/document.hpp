@@ -108,6 +108,9 @@ class Node {
 
  private:
   std::string child_path(const std::string& key) const;
+  std::optional<int> mark_line() const;  ///< 1-based line, when the parser knows it
+  /// Give an error about this node's value its file, line and path.
+  void locate(Error& e) const;
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<const std::string> file_;
