@@ -1,8 +1,11 @@
 // meridian gyro reduce | campaign | simulate | transit-factor
 
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 
 #include "cli_support.hpp"
@@ -48,6 +51,18 @@ struct CampaignArgs {
   bool json = false, strict = false, quiet = false;
 };
 
+// --strict and a failed check: say which on stderr, one line each.
+void print_failed_checks(const gyro::CampaignResult& r) {
+  std::size_t failed = 0;
+  for (const gyro::Check& c : r.checks) {
+    if (c.pass) continue;
+    ++failed;
+    std::cerr << "meridian: check failed: " << report::check_statement(c) << "\n";
+  }
+  std::cerr << fmt::format("meridian: --strict: {} check{} failed; no output file written\n", failed,
+                           failed == 1 ? "" : "s");
+}
+
 int run_campaign(const CampaignArgs& a) {
   require_html_reports_for(a.report);
   TerminalProgress progress(a.quiet);
@@ -55,12 +70,30 @@ int run_campaign(const CampaignArgs& a) {
   progress.finish();
   const gyro::CampaignResult& r = job.result;
   const std::string out = a.json ? report::campaign_to_json(r).dump(2) + "\n" : report::campaign_text(r);
+  if (a.strict && !r.all_checks_pass()) {
+    // A job that fails its checks is not filed: stdout still shows it, no file is written.
+    if (a.output.empty() || a.output == "-") emit("", out);
+    print_failed_checks(r);
+    return kInputError;
+  }
   const std::string html =
       a.report.empty() ? std::string()
                        : report::render_html(report::gyro_campaign_document(job.file.file, job.file.campaign, r));
   emit(a.output, out);
   if (!a.report.empty()) emit(a.report, html);
-  return (a.strict && !r.all_checks_pass()) ? kInputError : kOk;
+  return kOk;
+}
+
+struct TemplateArgs {
+  std::string kind = "campaign", output;
+};
+
+int run_template(const TemplateArgs& a) {
+  if (a.kind == "campaign") emit(a.output, io::campaign_template_yaml());
+  else if (a.kind == "reduce") emit(a.output, io::reduce_template_yaml());
+  else
+    throw InputError("unknown kind \"" + a.kind + "\" (expected campaign or reduce)", {"", std::nullopt, "--kind"});
+  return kOk;
 }
 
 struct TransitArgs {
@@ -151,11 +184,19 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   CLI::App* camp = gyro->add_subcommand("campaign", "Process a whole station campaign to grid azimuths");
   camp->add_option("FILE", ca->file, "Campaign file (YAML or JSON)")->required();
   camp->add_flag("--json", ca->json, "Print JSON instead of text");
-  camp->add_flag("--strict", ca->strict, "Exit with code 1 when a tolerance check fails");
+  camp->add_flag("--strict", ca->strict,
+                 "When a tolerance check fails: list the failed checks on stderr, write no output file, exit 1");
   camp->add_option("-o,--output", ca->output, "Write to this file (atomically) instead of stdout");
   camp->add_option("--report", ca->report, "Also write a self-contained HTML report (plots, tables) to this file");
   camp->add_flag("-q,--quiet", ca->quiet, "No progress bar");
   camp->callback([ca, &exit_code] { exit_code = guarded([&] { return run_campaign(*ca); }); });
+
+  auto tp = std::make_shared<TemplateArgs>();
+  CLI::App* tmpl = gyro->add_subcommand("template", "Write a commented field book to start from");
+  tmpl->add_option("--kind", tp->kind, "campaign (a whole 3-2-3 job) | reduce (the runs of one station)")
+      ->capture_default_str();
+  tmpl->add_option("-o,--output", tp->output, "Write to this file (atomically) instead of stdout");
+  tmpl->callback([tp, &exit_code] { exit_code = guarded([&] { return run_template(*tp); }); });
 
   auto ta = std::make_shared<TransitArgs>();
   CLI::App* tf = gyro->add_subcommand(

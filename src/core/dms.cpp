@@ -3,6 +3,9 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -45,7 +48,223 @@ std::size_t read_unit(std::string_view s, std::string& unit) {
   return 0;
 }
 
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+std::size_t count_digits(std::string_view s) {
+  std::size_t n = 0;
+  while (n < s.size() && std::isdigit(static_cast<unsigned char>(s[n]))) ++n;
+  return n;
+}
+
+// Digits with an optional fraction ("12", "12.5", ".5"); nullopt for anything else.
+std::optional<double> unsigned_decimal(std::string_view s) {
+  const std::size_t whole = count_digits(s);
+  std::size_t n = whole, frac = 0;
+  if (n < s.size() && s[n] == '.') {
+    frac = count_digits(s.substr(n + 1));
+    n += 1 + frac;
+  }
+  if (n != s.size() || whole + frac == 0) return std::nullopt;
+  double v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v, std::chars_format::fixed);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+// A leading '-' or '+', removed from `s`: -1 or +1.
+double take_sign(std::string_view& s) {
+  if (s.empty() || (s.front() != '-' && s.front() != '+')) return 1.0;
+  const double sign = s.front() == '-' ? -1.0 : 1.0;
+  s.remove_prefix(1);
+  return sign;
+}
+
+// A plain decimal in `unit`, optionally followed by that unit's own marks.
+Angle decimal_in_unit(std::string_view text, AngleUnit unit) {
+  std::string_view s = trim(text);
+  const double sign = take_sign(s);
+  const bool gon = unit == AngleUnit::Gon;
+  const std::string_view marks_deg[] = {"\xC2\xB0", "deg"};
+  const std::string_view marks_gon[] = {"gon", "g"};
+  for (std::string_view m : gon ? std::span<const std::string_view>(marks_gon)
+                                : std::span<const std::string_view>(marks_deg)) {
+    if (s.size() >= m.size() && s.substr(s.size() - m.size()) == m) {
+      s = trim(s.substr(0, s.size() - m.size()));
+      break;
+    }
+  }
+  const auto v = unsigned_decimal(s);
+  if (!v)
+    throw ParseError(fmt::format(
+        "cannot read angle \"{}\": angle_unit is {}, so write decimal {} such as \"{}\"", text,
+        to_string(unit), gon ? "gon" : "degrees", gon ? "174.8333" : "157.3500"));
+  return gon ? Angle::gon(sign * *v) : Angle::degrees(sign * *v);
+}
+
+[[noreturn]] void fail_ddd(std::string_view text, const std::string& why) {
+  throw ParseError(
+      fmt::format("cannot read angle \"{}\" as ddd.mmss (123.4530 = 123°45'30\"): {}", text, why));
+}
+
+[[noreturn]] void fail_time(std::string_view text, const std::string& why) {
+  throw ParseError(fmt::format("cannot read time \"{}\": {}", text, why));
+}
+
 }  // namespace
+
+AngleUnit angle_unit_from_string(std::string_view name) {
+  for (AngleUnit u : {AngleUnit::Dms, AngleUnit::Degrees, AngleUnit::Gon, AngleUnit::DddMmss})
+    if (to_string(u) == name) return u;
+  throw ParseError(
+      fmt::format("unknown angle unit \"{}\" (expected dms, deg, gon or ddd.mmss)", name));
+}
+
+std::string to_string(AngleUnit unit) {
+  switch (unit) {
+    case AngleUnit::Dms:
+      return "dms";
+    case AngleUnit::Degrees:
+      return "deg";
+    case AngleUnit::Gon:
+      return "gon";
+    case AngleUnit::DddMmss:
+      return "ddd.mmss";
+  }
+  return "?";
+}
+
+Angle parse_angle(std::string_view text, AngleUnit unit) {
+  switch (unit) {
+    case AngleUnit::Dms:
+      return parse_angle(text);
+    case AngleUnit::Degrees:
+    case AngleUnit::Gon:
+      return decimal_in_unit(text, unit);
+    case AngleUnit::DddMmss:
+      return parse_ddd_mmss(text);
+  }
+  throw ParseError("unknown angle unit");
+}
+
+Angle parse_ddd_mmss(std::string_view text) {
+  std::string_view s = trim(text);
+  const double sign = take_sign(s);
+  const std::size_t whole = count_digits(s);
+  if (whole == 0) fail_ddd(text, "expected digits of degrees");
+  std::string_view frac;
+  if (whole < s.size()) {
+    if (s[whole] != '.') fail_ddd(text, "only digits, one point and a leading sign are allowed");
+    frac = s.substr(whole + 1);
+    if (frac.empty() || count_digits(frac) != frac.size())
+      fail_ddd(text, "only digits may follow the point");
+  }
+  if (frac.size() == 1 || frac.size() == 3)
+    fail_ddd(text,
+             fmt::format("{} digit{} after the point: write minutes and seconds with two digits "
+                         "each (123.4030 for 123°40'30\", 123.0403 for 123°04'03\")",
+                         frac.size(), frac.size() == 1 ? "" : "s"));
+  double deg = 0;
+  std::from_chars(s.data(), s.data() + whole, deg, std::chars_format::fixed);
+  const double min = frac.empty() ? 0.0 : (frac[0] - '0') * 10.0 + (frac[1] - '0');
+  double sec = 0;
+  std::string sec_text = "0";
+  if (frac.size() >= 4) {
+    sec_text = std::string(frac.substr(2, 2));
+    if (frac.size() > 4) sec_text += "." + std::string(frac.substr(4));
+    std::from_chars(sec_text.data(), sec_text.data() + sec_text.size(), sec,
+                    std::chars_format::fixed);
+  }
+  if (min >= 60.0)
+    fail_ddd(text, fmt::format("minutes {:02.0f} must be below 60 (decimal degrees booked with the "
+                               "wrong angle_unit?)",
+                               min));
+  if (sec >= 60.0)
+    fail_ddd(text, fmt::format("seconds {} must be below 60 (decimal degrees booked with the wrong "
+                               "angle_unit?)",
+                               sec_text));
+  if (!std::isfinite(deg)) fail_ddd(text, "not a finite number");
+  return Angle::degrees(sign * (deg + min / 60.0 + sec / 3600.0));
+}
+
+std::string format_ddd_mmss(Angle a, int second_decimals) {
+  const double deg = a.deg();
+  if (std::isnan(deg)) return "nan";
+  if (std::isinf(deg)) return deg > 0 ? "inf" : "-inf";
+  const int dec = second_decimals < 0 ? 0 : (second_decimals > 6 ? 6 : second_decimals);
+  std::int64_t scale = 1;
+  for (int i = 0; i < dec; ++i) scale *= 10;
+  // Integer units of the last printed digit, so rounding carries.
+  const auto total =
+      static_cast<std::int64_t>(std::llround(std::fabs(deg) * 3600.0 * static_cast<double>(scale)));
+  const std::int64_t d = total / (3600 * scale);
+  const std::int64_t m = (total / (60 * scale)) % 60;
+  const std::int64_t s = total % (60 * scale);  // seconds in units of 10^-dec
+  const char* sign = deg < 0 && total > 0 ? "-" : "";
+  return fmt::format("{}{}.{:02}{:0{}}", sign, d, m, s, dec + 2);
+}
+
+double parse_stopwatch_s(std::string_view text) {
+  const std::string_view s = trim(text);
+  if (s.empty()) fail_time(text, "empty");
+  if (s.find('-') != std::string_view::npos) fail_time(text, "a time cannot be negative");
+  std::vector<std::string_view> parts;
+  bool sexagesimal = true;
+  if (s.find(':') != std::string_view::npos) {
+    std::size_t b = 0;
+    for (std::size_t e = s.find(':');; e = s.find(':', b)) {
+      parts.push_back(s.substr(b, e == std::string_view::npos ? e : e - b));
+      if (e == std::string_view::npos) break;
+      b = e + 1;
+    }
+  } else {
+    // m′ss.s″ or m'ss.s" (the seconds mark optional).
+    std::size_t mark = s.find('\'');
+    std::size_t mark_len = 1;
+    if (const std::size_t p = s.find("\xE2\x80\xB2"); p < mark) mark = p, mark_len = 3;
+    if (mark == std::string_view::npos) {
+      sexagesimal = false;
+      parts.push_back(s);
+    } else {
+      std::string_view sec = s.substr(mark + mark_len);
+      for (std::string_view m : {"\"", "\xE2\x80\xB3", "''"})
+        if (sec.size() >= m.size() && sec.substr(sec.size() - m.size()) == m) {
+          sec.remove_suffix(m.size());
+          break;
+        }
+      parts = {trim(s.substr(0, mark)), trim(sec)};
+    }
+  }
+  const char* forms = "expected seconds (279.6) or a stopwatch reading m:ss.s or h:mm:ss.s";
+  if (!sexagesimal) {
+    const auto v = unsigned_decimal(parts[0]);
+    if (!v) fail_time(text, forms);
+    return *v;
+  }
+  if (parts.size() > 3) fail_time(text, "more than three parts (h:mm:ss.s)");
+  double total = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string_view p = parts[i];
+    const bool last = i + 1 == parts.size();
+    const std::size_t digits = count_digits(p);
+    if (p.empty() || digits == 0)
+      fail_time(text, fmt::format("{} (part {} is empty)", forms, i + 1));
+    if (!last && digits != p.size())
+      fail_time(text, "only the seconds may have decimals: " + std::string(forms));
+    const auto v = unsigned_decimal(p);
+    if (!v) fail_time(text, forms);
+    if (i > 0 && digits != 2)
+      fail_time(text, fmt::format("write {} with two digits (e.g. 4:07.3)",
+                                  last ? "seconds" : "minutes"));
+    if (i > 0 && *v >= 60.0)
+      fail_time(text, fmt::format("{} must be below 60", last ? "seconds" : "minutes"));
+    total = total * 60.0 + *v;
+  }
+  return total;
+}
 
 Angle parse_angle(std::string_view text) {
   std::string_view s = text;

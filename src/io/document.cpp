@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -11,6 +12,39 @@
 #include "meridian/core/error.hpp"
 
 namespace meridian::io {
+namespace {
+
+// Whether line `line` (1-based) of a YAML block document has a tab in its
+// leading whitespace. A JSON document (a flow mapping) may indent with tabs.
+bool indented_with_tab(const std::string& text, int line) {
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && text[first] == '{') return false;
+  std::size_t b = 0;
+  for (int l = 1; l < line; ++l) {
+    b = text.find('\n', b);
+    if (b == std::string::npos) return false;
+    ++b;
+  }
+  for (std::size_t i = b; i < text.size() && (text[i] == ' ' || text[i] == '\t'); ++i)
+    if (text[i] == '\t') return true;
+  return false;
+}
+
+// The whole scalar as a number (possibly not finite); nullopt when it is not one.
+std::optional<double> whole_number(const std::string& s) {
+  double v = 0;
+  std::size_t used = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  while (used < s.size() && std::isspace(static_cast<unsigned char>(s[used]))) ++used;
+  if (used != s.size()) return std::nullopt;
+  return v;
+}
+
+}  // namespace
 
 Node::Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
            std::shared_ptr<LineMap> lines)
@@ -34,8 +68,14 @@ Node Node::load_file(const std::filesystem::path& path) {
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
+    const std::optional<int> line =
+        e.mark.line >= 0 ? std::optional<int>(e.mark.line + 1) : std::nullopt;
+    if (line && indented_with_tab(text, *line))
+      throw ParseError(
+          fmt::format("tabs are not allowed for indentation (line {}); indent with spaces", *line),
+          {*file, line, {}});
     throw ParseError(fmt::format("syntax error: {} (column {})", e.msg, e.mark.column + 1),
-                     {*file, e.mark.line >= 0 ? std::optional<int>(e.mark.line + 1) : std::nullopt, {}});
+                     {*file, line, {}});
   }
   Node n(root, "", file, std::make_shared<LineMap>());
   if (!root.IsMap()) n.fail("the top level must be a mapping of fields (YAML) or an object (JSON)");
@@ -44,9 +84,15 @@ Node Node::load_file(const std::filesystem::path& path) {
 
 int Node::line() const { return node_.Mark().line + 1; }
 
-void Node::fail(const std::string& message) const {
+std::optional<int> Node::mark_line() const {
   const int l = node_.Mark().line;
-  throw InputError(message, {*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, path_});
+  return l >= 0 ? std::optional<int>(l + 1) : std::nullopt;
+}
+
+void Node::locate(Error& e) const { e.add_context(*file_, mark_line(), path_); }
+
+void Node::fail(const std::string& message) const {
+  throw InputError(message, {*file_, mark_line(), path_});
 }
 
 std::string Node::child_path(const std::string& key) const {
@@ -62,11 +108,7 @@ std::optional<Node> Node::get(const std::string& key) const {
 
 Node Node::require(const std::string& key) const {
   auto c = get(key);
-  if (!c) {
-    const int l = node_.Mark().line;
-    throw InputError(fmt::format("missing field \"{}\"", key),
-                     {*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, child_path(key)});
-  }
+  if (!c) throw InputError(fmt::format("missing field \"{}\"", key), {*file_, mark_line(), child_path(key)});
   return *c;
 }
 
@@ -81,17 +123,10 @@ std::vector<Node> Node::elements() const {
 double Node::number() const {
   if (!node_.IsScalar()) fail("expected a number");
   const std::string& s = node_.Scalar();
-  double v = 0;
-  std::size_t used = 0;
-  try {
-    v = std::stod(s, &used);
-  } catch (const std::exception&) {
-    fail(fmt::format("expected a number, got \"{}\"", s));
-  }
-  while (used < s.size() && std::isspace(static_cast<unsigned char>(s[used]))) ++used;
-  if (used != s.size()) fail(fmt::format("expected a number, got \"{}\"", s));
-  if (!std::isfinite(v)) fail(fmt::format("expected a finite number, got \"{}\"", s));
-  return v;
+  const auto v = whole_number(s);
+  if (!v) fail(fmt::format("expected a number, got \"{}\"", s));
+  if (!std::isfinite(*v)) fail(fmt::format("expected a finite number, got \"{}\"", s));
+  return *v;
 }
 
 double Node::positive_number() const {
@@ -125,14 +160,19 @@ std::string Node::string() const {
   return node_.Scalar();
 }
 
-Angle Node::angle() const {
-  if (!node_.IsScalar()) fail("expected an angle (DMS text such as \"157 21 00\" or decimal degrees)");
+Angle Node::angle() const { return angle(AngleUnit::Dms); }
+
+Angle Node::angle(AngleUnit unit) const {
+  if (!node_.IsScalar()) {
+    if (unit == AngleUnit::Dms)
+      fail("expected an angle (DMS text such as \"157 21 00\" or decimal degrees)");
+    fail(fmt::format("expected an angle (angle_unit {})", to_string(unit)));
+  }
   const std::string& s = node_.Scalar();
   try {
-    return parse_angle(s);
+    return parse_angle(s, unit);
   } catch (Error& e) {
-    const int l = node_.Mark().line;
-    e.add_context(*file_, l >= 0 ? std::optional<int>(l + 1) : std::nullopt, path_);
+    locate(e);
     throw;
   }
 }
@@ -140,6 +180,24 @@ Angle Node::angle() const {
 std::vector<double> Node::numbers() const {
   std::vector<double> v;
   for (const auto& e : elements()) v.push_back(e.number());
+  return v;
+}
+
+double Node::time_s() const {
+  if (!node_.IsScalar()) fail("expected a time (seconds, or a stopwatch reading m:ss.s)");
+  const std::string& s = node_.Scalar();
+  if (whole_number(s)) return number();  // a number keeps its rules (finite)
+  try {
+    return parse_stopwatch_s(s);
+  } catch (Error& e) {
+    locate(e);
+    throw;
+  }
+}
+
+std::vector<double> Node::times_s() const {
+  std::vector<double> v;
+  for (const auto& e : elements()) v.push_back(e.time_s());
   return v;
 }
 

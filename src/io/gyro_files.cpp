@@ -19,6 +19,37 @@ using gyro::Uncertain;
 
 constexpr double kArcsec = units::kArcsecond;
 
+// A duration booked with a stopwatch (seconds or m:ss.s), > 0.
+double positive_time_s(const Node& n) {
+  const double v = n.time_s();
+  if (!(v > 0)) n.fail(fmt::format("must be positive (got {})", v));
+  return v;
+}
+
+// Stopwatch times of one run, strictly increasing; a time out of order is
+// reported at its own element.
+std::vector<double> increasing_times_s(const Node& n) {
+  const std::vector<Node> e = n.elements();
+  std::vector<double> t;
+  for (const auto& x : e) t.push_back(x.time_s());
+  for (std::size_t i = 1; i < t.size(); ++i)
+    if (!(t[i] > t[i - 1]))
+      e[i].fail(
+          fmt::format("times must increase (t{} = {} <= t{} = {})", i + 1, t[i], i, t[i - 1]));
+  return t;
+}
+
+// The file's angle_unit (default dms: numbers are degrees, text is DMS).
+AngleUnit read_angle_unit(const Node& root) {
+  const auto v = root.get("angle_unit");
+  if (!v) return AngleUnit::Dms;
+  try {
+    return angle_unit_from_string(v->string());
+  } catch (const Error& e) {
+    v->fail(e.message());
+  }
+}
+
 // "value" and "value_sigma"-style pairs: a σ key is optional.
 double sigma_or(const Node& n, const std::string& key, double fallback) {
   auto s = n.get(key);
@@ -45,9 +76,10 @@ gyro::InstrumentSpec read_instrument(const Node& n) {
   if (auto p = n.get("periods")) {
     p->allow_only({"tracking_s", "nontracking_s", "free_s", "sigma_s"});
     const double sig = sigma_or(*p, "sigma_s", 0.0);
-    if (auto v = p->get("tracking_s")) s.tracking_period_s = Uncertain{v->positive_number(), sig};
-    if (auto v = p->get("nontracking_s")) s.nontracking_period_s = Uncertain{v->positive_number(), sig};
-    if (auto v = p->get("free_s")) s.free_period_s = Uncertain{v->positive_number(), sig};
+    if (auto v = p->get("tracking_s")) s.tracking_period_s = Uncertain{positive_time_s(*v), sig};
+    if (auto v = p->get("nontracking_s"))
+      s.nontracking_period_s = Uncertain{positive_time_s(*v), sig};
+    if (auto v = p->get("free_s")) s.free_period_s = Uncertain{positive_time_s(*v), sig};
   }
   if (auto v = n.get("constants_latitude_deg")) s.constants_latitude_rad = v->angle().rad();
   if (auto v = n.get("transit_factor_arcsec_per_div_s"))
@@ -69,7 +101,7 @@ gyro::ZeroPositionRun read_zero_run(const Node& n) {
   n.allow_only({"reversals_div", "times_s"});
   gyro::ZeroPositionRun r;
   r.reversals_div = n.require("reversals_div").numbers();
-  if (auto t = n.get("times_s")) r.times_s = t->numbers();
+  if (auto t = n.get("times_s")) r.times_s = increasing_times_s(*t);
   return r;
 }
 
@@ -80,7 +112,9 @@ int read_direction(const Node& n) {
   n.fail(fmt::format("expected east or west, got \"{}\"", s));
 }
 
-gyro::DeterminationInput read_determination(const Node& n, const gyro::InstrumentSpec& inst) {
+// Circle angles (clamp, reversals, target) are in the file's `unit`.
+gyro::DeterminationInput read_determination(const Node& n, const gyro::InstrumentSpec& inst,
+                                            AngleUnit unit) {
   n.allow_only({"label", "mode", "method", "clamp_reading", "period_s", "period_sigma_s",
                 "zero_position_div", "zero_position_sigma_div", "zero_position", "crossings",
                 "reversals_div", "reversal_times_s", "sigma_time_s", "sigma_reading_div",
@@ -114,38 +148,34 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
     for (const char* k : nontracking_only)
       if (auto v = n.get(k)) v->fail("field of a non-tracking determination given for mode tracking");
     const Node rev = n.require("reversals");
-    for (const auto& e : rev.elements()) d.tracking.reversals_rad.push_back(e.angle().rad());
+    for (const auto& e : rev.elements()) d.tracking.reversals_rad.push_back(e.angle(unit).rad());
     if (auto v = n.get("sigma_reading_arcsec")) d.tracking.sigma_reading_rad = v->positive_number() * kArcsec;
   } else {
     for (const char* k : tracking_only)
       if (auto v = n.get(k)) v->fail("field of a tracking determination given for mode non-tracking");
-    d.clamp_reading_rad = n.require("clamp_reading").angle().rad();
+    d.clamp_reading_rad = n.require("clamp_reading").angle(unit).rad();
     auto& o = d.nontracking;
     o.sigma_time_s = inst.sigma_time_s;
     o.sigma_reading_div = inst.sigma_reading_div;
     if (auto v = n.get("sigma_time_s")) o.sigma_time_s = v->positive_number();
     if (auto v = n.get("sigma_reading_div")) o.sigma_reading_div = v->positive_number();
     if (auto v = n.get("period_s"))
-      o.period_s = Uncertain{v->positive_number(), sigma_or(n, "period_sigma_s", 0.0)};
+      o.period_s = Uncertain{positive_time_s(*v), sigma_or(n, "period_sigma_s", 0.0)};
     if (auto c = n.get("crossings")) {
       for (const auto& e : c->elements()) {
         e.allow_only({"level_div", "times_s", "first_direction"});
         gyro::Crossing x;
         x.level_div = e.require("level_div").number();
         const Node times = e.require("times_s");
-        x.times_s = times.numbers();
+        x.times_s = increasing_times_s(times);
         if (x.times_s.empty()) times.fail("no crossing times");
-        for (std::size_t i = 1; i < x.times_s.size(); ++i)
-          if (!(x.times_s[i] > x.times_s[i - 1]))
-            times.fail(fmt::format("times must increase (t{} = {} <= t{} = {})", i + 1,
-                                   x.times_s[i], i, x.times_s[i - 1]));
         x.first_direction = read_direction(e.require("first_direction"));
         o.crossings.push_back(std::move(x));
       }
     }
     if (auto v = n.get("reversals_div")) o.reversals_div = v->numbers();
     if (auto v = n.get("reversal_times_s")) {
-      o.reversal_times_s = v->numbers();
+      o.reversal_times_s = increasing_times_s(*v);
       if (o.reversal_times_s.size() != o.reversals_div.size())
         v->fail(fmt::format("{} reversal times for {} reversal readings", o.reversal_times_s.size(),
                             o.reversals_div.size()));
@@ -164,7 +194,7 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
     if (!d.zero_before && !d.zero_after) z->fail("give a before and/or an after run");
   }
   if (auto v = n.get("target_reading"))
-    d.target_reading_rad = Uncertain{v->angle().normalized_positive().rad(),
+    d.target_reading_rad = Uncertain{v->angle(unit).normalized_positive().rad(),
                                      sigma_or(n, "target_sigma_arcsec", 0.0) * kArcsec};
   if (auto rounds = n.get("target_rounds")) {
     for (const Node& r : rounds->elements()) {
@@ -175,8 +205,8 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
       if (w == "before") t.when = gyro::TargetRound::When::Before;
       else if (w == "after") t.when = gyro::TargetRound::When::After;
       else when.fail(fmt::format("expected before or after, got \"{}\"", w));
-      t.face_left_rad = r.require("left").angle().normalized_positive().rad();
-      t.face_right_rad = r.require("right").angle().normalized_positive().rad();
+      t.face_left_rad = r.require("left").angle(unit).normalized_positive().rad();
+      t.face_right_rad = r.require("right").angle(unit).normalized_positive().rad();
       d.target_rounds.push_back(t);
     }
     if (d.target_rounds.empty()) rounds->fail("give at least one round");
@@ -198,9 +228,10 @@ auto with_location(const Node& n, F&& f) {
 }
 
 std::vector<gyro::DeterminationInput> read_determinations(const Node& list,
-                                                          const gyro::InstrumentSpec& inst) {
+                                                          const gyro::InstrumentSpec& inst,
+                                                          AngleUnit unit) {
   std::vector<gyro::DeterminationInput> out;
-  for (const auto& e : list.elements()) out.push_back(read_determination(e, inst));
+  for (const auto& e : list.elements()) out.push_back(read_determination(e, inst, unit));
   return out;
 }
 
@@ -250,9 +281,9 @@ gyro::PointInput read_point(const Node& n) {
   return p;
 }
 
-// A booked zenith angle of a line's sight (DMS or degrees, 10 to 170 deg).
-double read_zenith_angle(const Node& v) {
-  const double z = v.angle().rad();
+// A booked zenith angle of a line's sight (in the book's angle unit, 10 to 170 deg).
+double read_zenith_angle(const Node& v, AngleUnit unit) {
+  const double z = v.angle(unit).rad();
   try {
     geodesy::check_zenith_distance(z);
   } catch (const Error& e) {
@@ -365,10 +396,11 @@ gyro::Tolerances read_tolerances(const Node& t) {
 
 GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
   const Node root = Node::load_file(path);
-  root.allow_only({"instrument", "station", "determinations", "options"});
+  root.allow_only({"angle_unit", "instrument", "station", "determinations", "options"});
   GyroReduceFile f;
   f.file = path.string();
   gyro::ReduceInput& in = f.input;
+  in.angle_unit = read_angle_unit(root);
   const Node inst = root.require("instrument");
   in.instrument = read_instrument(inst);
   const Node st = root.require("station");
@@ -378,7 +410,7 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
   if (std::fabs(in.latitude_rad) > units::kPi / 2) lat.fail("latitude must be within +-90 deg");
   if (auto o = root.get("options")) in.options = read_options(*o);
   const Node dets = root.require("determinations");
-  in.determinations = read_determinations(dets, in.instrument);
+  in.determinations = read_determinations(dets, in.instrument, in.angle_unit);
   if (in.determinations.empty()) dets.fail("no determinations");
   // Check that the constants resolve at this latitude, so the error points at the file.
   with_location(lat, [&] {
@@ -392,11 +424,12 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
 
 CampaignFile read_campaign_file(const std::filesystem::path& path) {
   const Node root = Node::load_file(path);
-  root.allow_only({"campaign", "record", "instrument", "grid", "known_line", "instrument_constant", "line",
-                   "tolerances", "options", "gravity_model"});
+  root.allow_only({"campaign", "angle_unit", "record", "instrument", "grid", "known_line", "instrument_constant",
+                   "line", "tolerances", "options", "gravity_model"});
   CampaignFile f;
   f.file = path.string();
   gyro::CampaignInput& c = f.campaign;
+  c.angle_unit = read_angle_unit(root);
   if (auto v = root.get("campaign")) c.name = v->string();
   if (auto r = root.get("record")) c.record = read_record(*r);
   c.instrument = read_instrument(root.require("instrument"));
@@ -406,7 +439,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     gyro::KnownLineInput kl;
     kl.from = read_point(k->require("from"));
     if (auto t = k->get("to")) kl.to = read_point(*t);
-    if (auto z = k->get("zenith_angle")) kl.zenith_angle_rad = read_zenith_angle(*z);
+    if (auto z = k->get("zenith_angle")) kl.zenith_angle_rad = read_zenith_angle(*z, c.angle_unit);
     const Node az = k->require("azimuth");
     az.allow_only({"kind", "value", "sigma_arcsec"});
     const Node kind = az.require("kind");
@@ -415,10 +448,10 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     else if (ks == "geodetic") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Geodetic;
     else if (ks == "grid") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Grid;
     else kind.fail(fmt::format("unknown azimuth kind \"{}\" (expected astronomic, geodetic or grid)", ks));
-    kl.azimuth.value_rad = {az.require("value").angle().normalized_positive().rad(),
+    kl.azimuth.value_rad = {az.require("value").angle(c.angle_unit).normalized_positive().rad(),
                             sigma_or(az, "sigma_arcsec", 0.0) * kArcsec};
-    if (auto b = k->get("before")) kl.before = read_determinations(*b, c.instrument);
-    if (auto a = k->get("after")) kl.after = read_determinations(*a, c.instrument);
+    if (auto b = k->get("before")) kl.before = read_determinations(*b, c.instrument, c.angle_unit);
+    if (auto a = k->get("after")) kl.after = read_determinations(*a, c.instrument, c.angle_unit);
     if (kl.before.empty() && kl.after.empty()) k->fail("give determinations before and/or after");
     for (const auto* list : {&kl.before, &kl.after})
       for (const auto& d : *list)
@@ -429,8 +462,9 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   if (auto e = root.get("instrument_constant")) {
     if (c.known_line) e->fail("give known_line or instrument_constant, not both");
     e->allow_only({"value", "sigma_arcsec"});
-    c.instrument_constant_rad = Uncertain{e->require("value").angle().normalized_signed().rad(),
-                                          sigma_or(*e, "sigma_arcsec", 0.0) * kArcsec};
+    c.instrument_constant_rad =
+        Uncertain{e->require("value").angle(c.angle_unit).normalized_signed().rad(),
+                  sigma_or(*e, "sigma_arcsec", 0.0) * kArcsec};
   }
   if (!c.known_line && !c.instrument_constant_rad)
     root.fail("give known_line (calibration on a known line) or instrument_constant");
@@ -438,9 +472,9 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   line.allow_only({"from", "to", "zenith_angle", "determinations"});
   c.line.from = read_point(line.require("from"));
   if (auto t = line.get("to")) c.line.to = read_point(*t);
-  if (auto z = line.get("zenith_angle")) c.line.zenith_angle_rad = read_zenith_angle(*z);
+  if (auto z = line.get("zenith_angle")) c.line.zenith_angle_rad = read_zenith_angle(*z, c.angle_unit);
   const Node dets = line.require("determinations");
-  c.line.determinations = read_determinations(dets, c.instrument);
+  c.line.determinations = read_determinations(dets, c.instrument, c.angle_unit);
   if (c.line.determinations.empty()) dets.fail("no determinations");
   for (std::size_t i = 0; i < c.line.determinations.size(); ++i)
     if (!c.line.determinations[i].target_reading_rad && c.line.determinations[i].target_rounds.empty())

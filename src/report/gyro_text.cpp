@@ -54,15 +54,16 @@ std::string determination_text(const gyro::DeterminationResult& r, int index) {
   return out;
 }
 
-std::string check_text(const gyro::Check& k) {
+std::string check_statement(const gyro::Check& k) {
   const bool count = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers;
-  const int decimals = count ? 0 : 2;
-  const std::string unit = count ? "" : " " + gyro::to_string(k.unit);
-  if (k.minimum)
-    return fmt::format("[{}] {}: {:.{}f}{} (at least {:.{}f})", k.pass ? "PASS" : "FAIL", k.name, k.value, decimals,
-                       unit, k.tolerance, decimals);
-  return fmt::format("[{}] {}: {:.{}f}{} (limit {:.{}f})", k.pass ? "PASS" : "FAIL", k.name, k.value, decimals, unit,
-                     k.tolerance, decimals);
+  const int decimals = count ? 0 : k.unit == gyro::CheckUnit::Arcsec ? 1 : 2;
+  const std::string unit = " " + gyro::to_string(k.unit);
+  return fmt::format("{}: {:.{}f}{} ({} {:.{}f}{})", k.name, k.value, decimals, unit, k.minimum ? "at least" : "limit",
+                     k.tolerance, decimals, unit);
+}
+
+std::string check_text(const gyro::Check& k) {
+  return std::string(k.pass ? "[PASS] " : "[FAIL] ") + check_statement(k);
 }
 
 std::string reduce_text(const std::string& file, const gyro::ReduceResult& r) {

@@ -231,3 +231,156 @@ TEST_F(Cli, ProgressBarOnlyOnATerminalAndNotWhenQuiet) {
   ASSERT_EQ(std::system(("script -qec '" + cmd + " --quiet' " + log.string() + " > /dev/null").c_str()), 0);
   EXPECT_EQ(slurp(log).find("simulating ["), std::string::npos);
 }
+
+// --- Field-crew habits and messages (issue 15, items 7 and 8).
+
+TEST_F(Cli, StopwatchTimesAndAngleUnitsGiveTheSameResult) {
+  // The scenario booked with m:ss.s times, and its tracking run in gon and in ddd.mmss.
+  std::string mss = kScenario;
+  auto replace = [](std::string& s, const std::string& from, const std::string& to) {
+    ASSERT_NE(s.find(from), std::string::npos) << from;
+    s.replace(s.find(from), from.size(), to);
+  };
+  // 269.066 s = 4:29.066, 490.934 s = 8:10.934, 440 s = 7:20.
+  replace(mss, "[50.934, 269.066, 490.934]", "[\"0:50.934\", \"4:29.066\", \"8:10.934\"]");
+  replace(mss, "period_s: 440.0", "period_s: \"7:20.0\"");
+  const CmdResult a = run("gyro reduce " + write("s.yaml", kScenario).string() + " --json");
+  const CmdResult b = run("gyro reduce " + write("mss.yaml", mss).string() + " --json");
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(ja["determinations"][i]["north_reading_deg"], jb["determinations"][i]["north_reading_deg"]);
+  // 359°41'12" = 399.651851852 gon: 0.9 * 399.651851852 = 359.686666667°. 0°44'50" = 0.830246914 gon, …
+  std::string gon = "angle_unit: gon\n" + std::string(kScenario);
+  replace(gon, "clamp_reading: \"0 00 00\"", "clamp_reading: 0");
+  replace(gon, "clamp_reading: \"0 00 00\"", "clamp_reading: 0");
+  replace(gon, "[\"359 41 12\", \"0 44 50\", \"359 42 04\", \"0 43 58\"]",
+          "[399.6518518519, 0.8302469136, 399.6679012346, 0.8141975309]");
+  std::string ddd = "angle_unit: ddd.mmss\n" + std::string(kScenario);
+  replace(ddd, "clamp_reading: \"0 00 00\"", "clamp_reading: 0.0000");
+  replace(ddd, "clamp_reading: \"0 00 00\"", "clamp_reading: 0.0000");
+  replace(ddd, "[\"359 41 12\", \"0 44 50\", \"359 42 04\", \"0 43 58\"]",
+          "[359.4112, 0.4450, 359.4204, 0.4358]");
+  for (const auto& [name, text] : {std::pair{"gon.yaml", gon}, std::pair{"ddd.yaml", ddd}}) {
+    const CmdResult c = run("gyro reduce " + write(name, text).string() + " --json");
+    ASSERT_EQ(c.code, 0) << c.err;
+    const auto jc = nlohmann::json::parse(c.out);
+    EXPECT_NEAR(jc["determinations"][2]["north_reading_deg"].get<double>(),
+                ja["determinations"][2]["north_reading_deg"].get<double>(), 1e-9) << name;
+  }
+  // A DDD.MMSS value with 99 seconds is refused at its line.
+  replace(ddd, "359.4204", "359.4299");
+  const CmdResult bad = run("gyro reduce " + write("bad.yaml", ddd).string());
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("bad.yaml:26: determinations[2].reversals[2]: cannot read angle \"359.4299\" as "
+                         "ddd.mmss"), std::string::npos) << bad.err;
+  // Seconds of a stopwatch time above 59: at the line, naming the element.
+  replace(mss, "\"4:29.066\"", "\"4:69.066\"");
+  const CmdResult t = run("gyro reduce " + write("t.yaml", mss).string());
+  EXPECT_EQ(t.code, 1);
+  EXPECT_NE(t.err.find("t.yaml:13: determinations[0].crossings[1].times_s[1]: cannot read time \"4:69.066\": "
+                       "seconds must be below 60"), std::string::npos) << t.err;
+}
+
+TEST_F(Cli, TabIndentationIsNamed) {
+  std::string tabbed = kScenario;
+  tabbed.replace(tabbed.find("  torsion_ratio"), 2, "\t");
+  const CmdResult r = run("gyro reduce " + write("tab.yaml", tabbed).string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("tab.yaml:3: tabs are not allowed for indentation (line 3)"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, ErrorAtTheLineOfTheWrongValue) {
+  // The 4th reversal reading of a block list, bad as text and as a reversal sequence.
+  std::string block = kScenario;
+  const std::string flow = "[\"359 41 12\", \"0 44 50\", \"359 42 04\", \"0 43 58\"]";
+  block.replace(block.find(flow), flow.size(),
+                "\n      - \"359 41 12\"\n      - \"0 44 50\"\n      - \"359 42 04\"\n      - \"0 73 58\"");
+  const CmdResult r = run("gyro reduce " + write("b.yaml", block).string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("b.yaml:29: determinations[2].reversals[3]: cannot read angle \"0 73 58\""),
+            std::string::npos) << r.err;
+  // A non-tracking reversal reading that does not alternate, 4th of a flow list over two lines:
+  // found while processing, located at its element's line.
+  std::string nt = kScenario;
+  nt.replace(nt.find("reversals_div: [8.88, -9.12]"), 28, "reversals_div: [8.88, -9.12,\n                    8.7,\n                    8.9]");
+  const CmdResult p = run("gyro reduce " + write("nt.yaml", nt).string());
+  EXPECT_EQ(p.code, 1);
+  EXPECT_NE(p.err.find("nt.yaml:17: determinations[0].reversals_div[3]: reversal readings must alternate"),
+            std::string::npos) << p.err;
+}
+
+TEST_F(Cli, UnknownCommandOrOptionSuggestsTheNearest) {
+  // `meridian ARGS` is a usage error (exit 2) whose message contains `expect`.
+  auto usage_error = [&](const std::string& args, const std::string& expect) {
+    const CmdResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << args << "\n" << r.err;
+  };
+  usage_error("gyro campain x.yaml", "meridian gyro: unknown command \"campain\"; did you mean `campaign`?");
+  usage_error("gyr reduce x.yaml", "did you mean `gyro`?");
+  usage_error("gyro campaign --strcit x.yaml",
+              "meridian gyro campaign: unknown option \"--strcit\"; did you mean `--strict`?");
+  // An option's value is not mistaken for a word: --clamp takes "-0 12 00".
+  usage_error("gyro simulate --clamp \"-0 12 00\" --seeed 3", "unknown option \"--seeed\"; did you mean `--seed`?");
+  // Nothing near: the commands are listed.
+  usage_error("gyro frobnicate x", "unknown command \"frobnicate\" (commands: reduce, campaign, template");
+  // Other command-line errors keep CLI11's message.
+  usage_error("gyro reduce", "FILE is required");
+}
+
+TEST_F(Cli, StrictListsTheFailedChecksAndWritesNoFile) {
+  const CmdResult s = run("gyro template -o " + (dir_ / "t.yaml").string());
+  ASSERT_EQ(s.code, 0) << s.err;
+  std::string job = slurp(dir_ / "t.yaml");
+  // Limits the job cannot meet: 1" between the two line runs, 0.05 div of zero-position drift.
+  job.replace(job.find("determination_difference_arcsec: 40"), 35, "determination_difference_arcsec: 1");
+  job.replace(job.find("zero_position_div: 0.5"), 22, "zero_position_div: 0.05");
+  const auto f = write("strict.yaml", job);
+  const auto out = dir_ / "out.txt", html = dir_ / "out.html";
+  const CmdResult r = run("gyro campaign " + f.string() + " --strict -o " + out.string() + " --report " + html.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(html));
+  EXPECT_TRUE(r.out.empty());
+  // One line per failed check (as many as the text report marks FAIL), then the summary.
+  const CmdResult text = run("gyro campaign " + f.string());
+  ASSERT_EQ(text.code, 0);
+  auto count = [](const std::string& hay, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t p = hay.find(what); p != std::string::npos; p = hay.find(what, p + 1)) ++n;
+    return n;
+  };
+  const std::size_t fails = count(text.out, "[FAIL]");
+  ASSERT_GE(fails, 2u);
+  EXPECT_EQ(count(r.err, "meridian: check failed: "), fails) << r.err;
+  EXPECT_NE(r.err.find("check failed: any two runs on the line, gyro azimuths:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(limit 1.0 arcsec)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("checks failed; no output file written"), std::string::npos) << r.err;
+  // Without -o the result still goes to stdout, for the crew to see.
+  const CmdResult shown = run("gyro campaign " + f.string() + " --strict");
+  EXPECT_EQ(shown.code, 1);
+  EXPECT_EQ(shown.out, text.out);
+}
+
+TEST_F(Cli, TemplateIsAFieldBookThatRuns) {
+  const CmdResult c = run("gyro template");
+  ASSERT_EQ(c.code, 0) << c.err;
+  const auto f = write("job.yaml", c.out);
+  const auto out = dir_ / "job.txt";
+  const CmdResult r = run("gyro campaign " + f.string() + " --strict -o " + out.string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(slurp(out).find("GRID AZIMUTH"), std::string::npos);
+  // Not a copy of an example: no example file is the template.
+  for (const auto& e : fs::directory_iterator(MERIDIAN_EXAMPLES_DIR))
+    EXPECT_NE(slurp(e.path()), c.out) << e.path();
+  const CmdResult k = run("gyro template --kind reduce -o " + (dir_ / "r.yaml").string());
+  ASSERT_EQ(k.code, 0) << k.err;
+  const CmdResult rr = run("gyro reduce " + (dir_ / "r.yaml").string() + " --json");
+  ASSERT_EQ(rr.code, 0) << rr.err;
+  EXPECT_EQ(nlohmann::json::parse(rr.out)["determinations"].size(), 2u);
+  const CmdResult bad = run("gyro template --kind campain");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("--kind: unknown kind \"campain\""), std::string::npos) << bad.err;
+}

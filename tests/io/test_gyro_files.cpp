@@ -5,11 +5,17 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/gravity/egm_format.hpp"
+#include "meridian/gravity/synthetic.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/io/gyro_files.hpp"
 #include "meridian/io/gyro_jobs.hpp"
@@ -19,6 +25,7 @@
 #include "meridian/gravity/synthetic.hpp"
 
 using namespace meridian;
+using meridian::AngleUnit;
 namespace fs = std::filesystem;
 
 namespace {
@@ -279,4 +286,279 @@ TEST(GyroFiles, CampaignXiAndZenithAngles) {
   int booked = 0;
   for (const auto& n : job.result.notes) booked += n.find("booked (zenith_angle)") != std::string::npos;
   EXPECT_EQ(booked, 2);
+}
+
+// --- Field-crew habits: angle_unit, stopwatch times, errors at the wrong value's line.
+
+namespace {
+// The issue's example booked in `unit`: clamp and target reading `clamp`, the
+// tracking run's reversals `reversals` (lines: clamp 10, target 11, reversals 21).
+std::string reduce_file_in(const std::string& unit, const std::string& clamp,
+                           const std::string& reversals) {
+  std::string s = "angle_unit: " + unit + "\n" + kIssueExample;
+  const std::string c = "clamp_reading: \"0 00 00\"\n";
+  s.replace(s.find(c), c.size(), "clamp_reading: " + clamp + "\n    target_reading: " + clamp + "\n");
+  const std::string r = "[\"359 41 12\", \"0 44 50\", \"359 42 04\"]";
+  s.replace(s.find(r), r.size(), reversals);
+  return s;
+}
+
+// Line of the first error thrown by `f`, and its text.
+template <class F>
+std::pair<int, std::string> error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return {e.context().line.value_or(-1), e.what()};
+  }
+  return {0, "no error"};
+}
+}  // namespace
+
+TEST(GyroFiles, AngleUnitAppliesToCircleAnglesOnly) {
+  TempDir d;
+  // 359°41'12" = 359.686667° = 399.651852 gon = 359.4112 in ddd.mmss; 0°44'50" likewise.
+  const double r0 = 359.0 + 41.0 / 60 + 12.0 / 3600, r1 = 44.0 / 60 + 50.0 / 3600;
+  const double clamp = 0.5 + 30.0 / 3600;  // 0°30'30"
+  struct Case {
+    const char* unit;
+    const char* clamp;
+    const char* reversals;
+    AngleUnit expect;
+    double tol_deg;
+  } cases[] = {
+      {"dms", "\"0 30 30\"", "[\"359 41 12\", \"0 44 50\", \"359 42 04\"]", AngleUnit::Dms, 1e-12},
+      {"deg", "0.508333333333", "[359.686666666667, \"0.747222222222°\", 359.701111111111]",
+       AngleUnit::Degrees, 1e-11},
+      {"gon", "0.564814814815", "[399.651851851852, \"0.830246913580 gon\", 399.668024691358]",
+       AngleUnit::Gon, 1e-11},
+      {"ddd.mmss", "0.3030", "[359.4112, \"0.4450\", 359.4204]", AngleUnit::DddMmss, 1e-12},
+  };
+  for (const auto& c : cases) {
+    const auto f =
+        io::read_gyro_reduce_file(d.write("u.yaml", reduce_file_in(c.unit, c.clamp, c.reversals)));
+    EXPECT_EQ(f.input.angle_unit, c.expect) << c.unit;
+    const auto& n = f.input.determinations[0];
+    EXPECT_NEAR(n.clamp_reading_rad / units::kDegree, clamp, c.tol_deg) << c.unit;
+    EXPECT_NEAR(n.target_reading_rad->value / units::kDegree, clamp, c.tol_deg) << c.unit;
+    const auto& r = f.input.determinations[1].tracking.reversals_rad;
+    EXPECT_NEAR(r[0] / units::kDegree, r0, c.tol_deg) << c.unit;
+    EXPECT_NEAR(r[1] / units::kDegree, r1, c.tol_deg) << c.unit;
+    // latitude_deg says degrees in its name: 34.2 stays 34.2° in a gon or ddd.mmss book.
+    EXPECT_NEAR(f.input.latitude_rad / units::kDegree, 34.2, 1e-12) << c.unit;
+  }
+}
+
+TEST(GyroFiles, AngleUnitIsNeverGuessedAndErrorsNameTheLine) {
+  TempDir d;
+  // DMS text in a gon book is refused, not reinterpreted.
+  auto [line, what] = error_of([&] {
+    io::read_gyro_reduce_file(
+        d.write("g.yaml", reduce_file_in("gon", "\"0 30 30\"", "[1, 2, 1.5]")));
+  });
+  EXPECT_EQ(line, 10) << what;
+  EXPECT_NE(what.find("determinations[0].clamp_reading"), std::string::npos) << what;
+  EXPECT_NE(what.find("angle_unit is gon"), std::string::npos) << what;
+  // 123.4599 is no ddd.mmss angle (99 seconds); the 4th reversal on its own line.
+  std::tie(line, what) = error_of([&] {
+    io::read_gyro_reduce_file(
+        d.write("m.yaml", reduce_file_in("ddd.mmss", "0.3030",
+                                         "\n      - 359.4112\n      - 0.4450\n"
+                                         "      - 359.4204\n      - 123.4599")));
+  });
+  EXPECT_EQ(line, 25) << what;
+  EXPECT_NE(what.find("determinations[1].reversals[3]: cannot read angle \"123.4599\" as ddd.mmss"),
+            std::string::npos)
+      << what;
+  EXPECT_NE(what.find("seconds 99 must be below 60"), std::string::npos) << what;
+  std::tie(line, what) = error_of([&] {
+    io::read_gyro_reduce_file(d.write("x.yaml", reduce_file_in("grads", "1", "[1, 2, 1.5]")));
+  });
+  EXPECT_EQ(line, 1);
+  EXPECT_NE(
+      what.find("angle_unit: unknown angle unit \"grads\" (expected dms, deg, gon or ddd.mmss)"),
+      std::string::npos)
+      << what;
+}
+
+TEST(GyroFiles, StopwatchTimesAsMinutesAndSeconds) {
+  TempDir d;
+  std::string text = kIssueExample;
+  auto replace = [&](const std::string& from, const std::string& to) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  };
+  // 50.934 s = 0:50.934; 269.066 s = 4:29.066; 490.934 s = 8:10.934; 440 s = 7:20.
+  replace("[50.934, 269.066, 490.934]", "[\"0:50.934\", 4:29.066, \"8'10.934\\\"\"]");
+  replace("period_s: 440.0", "period_s: \"7:20\"");
+  replace("reversals_div: [8.88, -9.12]",
+          "reversals_div: [8.88, -9.12]\n    reversal_times_s: [\"2:40\", \"0:06:20.5\"]\n"
+          "    zero_position_sigma_div: 0.01");
+  const auto f = io::read_gyro_reduce_file(d.write("t.yaml", text));
+  const auto& o = f.input.determinations[0].nontracking;
+  EXPECT_EQ(o.crossings[0].times_s, (std::vector<double>{50.934, 269.066, 490.934}));
+  EXPECT_DOUBLE_EQ(o.period_s->value, 440.0);
+  EXPECT_EQ(o.reversal_times_s, (std::vector<double>{160.0, 380.5}));
+  // Seconds >= 60, a sign or garbage: a ParseError at the line, naming the element.
+  for (const char* bad : {"4:69.066", "-4:29.066", "4:29.0.66", "four"}) {
+    std::string b = text;
+    b.replace(b.find("4:29.066"), 8, bad);
+    try {
+      io::read_gyro_reduce_file(d.write("b.yaml", b));
+      ADD_FAILURE() << bad;
+    } catch (const ParseError& e) {
+      EXPECT_EQ(e.context().line, 14) << e.what();
+      EXPECT_EQ(e.context().field, "determinations[0].crossings[0].times_s[1]") << e.what();
+      EXPECT_NE(std::string(e.what()).find(std::string("cannot read time \"") + bad),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(GyroFiles, ErrorsAtTheLineOfTheWrongElement) {
+  TempDir d;
+  std::string text = kIssueExample;
+  // A block sequence of times: the time out of order is reported at its own line (16).
+  text.replace(text.find("[50.934, 269.066, 490.934]"), 26,
+               "\n          - 50.934\n          - 269.066\n          - 269.0");
+  auto [line, what] = error_of([&] { io::read_gyro_reduce_file(d.write("b.yaml", text)); });
+  EXPECT_EQ(line, 17) << what;
+  EXPECT_NE(what.find("determinations[0].crossings[0].times_s[2]: times must increase"),
+            std::string::npos)
+      << what;
+
+  // Lines of every element are recorded, in block and flow sequences, so a
+  // processing error naming an element is located at it.
+  const char* tracking = R"(instrument: {scale_value_arcsec: 600, torsion_ratio: 0.3}
+station: {latitude_deg: 34.2}
+determinations:
+  - mode: tracking
+    reversals:
+      - "359 41 12"
+      - "0 44 50"
+      - "359 42 04"
+      - "359 40 00"
+    zero_position:
+      before: {reversals_div: [4.2, -3.7,
+                               3.9, -3.5]}
+)";
+  const auto f = io::read_gyro_reduce_file(d.write("t.yaml", tracking));
+  for (const auto& [field, expect] : std::vector<std::pair<std::string, int>>{
+           {"determinations[0].reversals[3]", 9},
+           {"determinations[0].reversals[0]", 6},
+           {"determinations[0].zero_position.before.reversals_div[3]", 12},
+           {"determinations[0].zero_position.before.reversals_div[1]", 11}}) {
+    InputError e("bad", {"", std::nullopt, field});
+    io::locate_error(e, f.file, f.lines);
+    EXPECT_EQ(e.context().line, expect) << field;
+  }
+  // And end to end: a non-tracking reversal that does not alternate, 4th of a block list.
+  std::string nt = kIssueExample;
+  nt.replace(nt.find("reversals_div: [8.88, -9.12]"), 28,
+             "reversals_div:\n      - 8.88\n      - -9.12\n      - 8.7\n      - 8.9");
+  std::tie(line, what) = error_of([&] { io::run_reduce_file(d.write("nt.yaml", nt)); });
+  EXPECT_EQ(line, 20) << what;
+  EXPECT_NE(what.find("determinations[0].reversals_div[3]"), std::string::npos) << what;
+}
+
+TEST(GyroFiles, TabIndentationIsNamed) {
+  TempDir d;
+  auto [line, what] = error_of([&] {
+    io::read_gyro_reduce_file(
+        d.write("tab.yaml", "instrument:\n  scale_value_arcsec: 600\n\ttorsion_ratio: 0.3\n"));
+  });
+  EXPECT_EQ(line, 3);
+  EXPECT_NE(what.find("tab.yaml:3: tabs are not allowed for indentation (line 3)"),
+            std::string::npos)
+      << what;
+  std::tie(line, what) = error_of([&] {
+    io::read_gyro_reduce_file(d.write("tab2.yaml", "instrument:\n\tscale_value_arcsec: 600\n"));
+  });
+  EXPECT_NE(what.find("tab2.yaml:2: tabs are not allowed for indentation (line 2)"),
+            std::string::npos)
+      << what;
+  // A tab elsewhere is no indentation: a comment after a value, a blank line.
+  const auto f =
+      io::read_gyro_reduce_file(d.write("ok.yaml", std::string(kIssueExample) + "\t\n# end\t\n"));
+  EXPECT_EQ(f.input.determinations.size(), 2u);
+  // A syntax error in a JSON file indented with tabs is a syntax error.
+  std::tie(line, what) = error_of([&] {
+    io::read_gyro_reduce_file(
+        d.write("bad.json", "{\n\t\"instrument\": {\"scale_value_arcsec\": 600,,}\n}\n"));
+  });
+  EXPECT_EQ(what.find("tabs"), std::string::npos) << what;
+}
+
+TEST(GyroFiles, WritersKeepTheBooksAngleUnit) {
+  TempDir d;
+  const auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 7);
+  for (AngleUnit unit : {AngleUnit::Dms, AngleUnit::Degrees, AngleUnit::Gon, AngleUnit::DddMmss}) {
+    gyro::CampaignInput a = sim.input;
+    a.angle_unit = unit;
+    const std::string yaml = io::campaign_file_yaml(a);
+    EXPECT_EQ(yaml.find("angle_unit:") != std::string::npos, unit != AngleUnit::Dms);
+    const auto b = io::read_campaign_file(d.write("c.yaml", yaml)).campaign;
+    EXPECT_EQ(b.angle_unit, unit);
+    EXPECT_NEAR(a.known_line->azimuth.value_rad.value, b.known_line->azimuth.value_rad.value,
+                1e-4 * kArcsec);
+    for (std::size_t i = 0; i < a.line.determinations.size(); ++i) {
+      const auto& x = a.line.determinations[i];
+      const auto& y = b.line.determinations[i];
+      EXPECT_NEAR(x.target_reading_rad->value, y.target_reading_rad->value, 1e-4 * kArcsec);
+      EXPECT_NEAR(x.clamp_reading_rad, y.clamp_reading_rad, 1e-4 * kArcsec);
+      for (std::size_t r = 0; r < x.tracking.reversals_rad.size(); ++r)
+        EXPECT_NEAR(x.tracking.reversals_rad[r], y.tracking.reversals_rad[r], 1e-4 * kArcsec);
+    }
+    // A signed instrument constant instead of the known line.
+    a.known_line.reset();
+    a.instrument_constant_rad = gyro::Uncertain{-25.4 * kArcsec, 5 * kArcsec};
+    const auto c = io::read_campaign_file(d.write("e.yaml", io::campaign_file_yaml(a))).campaign;
+    EXPECT_NEAR(c.instrument_constant_rad->value / kArcsec, -25.4, 1e-4);
+    // And a reduce file.
+    gyro::ReduceInput r;
+    r.instrument = a.instrument;
+    r.latitude_rad = 0.6;
+    r.determinations = a.line.determinations;
+    r.angle_unit = unit;
+    const auto rr = io::read_gyro_reduce_file(d.write("r.yaml", io::reduce_file_yaml(r))).input;
+    EXPECT_EQ(rr.angle_unit, unit);
+    EXPECT_NEAR(rr.determinations[0].clamp_reading_rad, r.determinations[0].clamp_reading_rad,
+                1e-4 * kArcsec);
+  }
+}
+
+TEST(GyroFiles, TemplatesReadBack) {
+  TempDir d;
+  const std::string text = io::campaign_template_yaml();
+  const auto c = io::read_campaign_file(d.write("t.yaml", text)).campaign;
+  // The regulations' 3-2-3 programme, both modes, motor-off runs everywhere.
+  ASSERT_TRUE(c.known_line);
+  EXPECT_EQ(c.known_line->before.size(), 3u);
+  EXPECT_EQ(c.line.determinations.size(), 2u);
+  EXPECT_EQ(c.known_line->after.size(), 3u);
+  int tracking = 0, nontracking = 0;
+  for (const auto* list : {&c.known_line->before, &c.line.determinations, &c.known_line->after})
+    for (const auto& x : *list) {
+      (x.mode == gyro::Mode::Tracking ? tracking : nontracking) += 1;
+      EXPECT_TRUE(x.zero_before && x.zero_after) << x.label;
+      EXPECT_TRUE(x.target_reading_rad) << x.label;
+    }
+  EXPECT_EQ(tracking, 5);
+  EXPECT_EQ(nontracking, 3);
+  // Its stopwatch times are booked as m:ss.s: "0:34.8" = 34.8 s, "7:04.0" = 424 s.
+  const auto& transit = c.known_line->before[1].nontracking;
+  EXPECT_DOUBLE_EQ(transit.crossings[0].times_s[0], 34.8);
+  EXPECT_DOUBLE_EQ(transit.crossings[0].times_s[1], 251.6);
+  EXPECT_DOUBLE_EQ(transit.period_s->value, 424.0);
+  EXPECT_EQ(c.angle_unit, AngleUnit::Dms);
+  for (const char* mention :
+       {"angle_unit", "ddd.mmss", "gon", "m:ss.s", "三、二、三", "first_direction"})
+    EXPECT_NE(text.find(mention), std::string::npos) << mention;
+  const auto r = io::read_gyro_reduce_file(d.write("r.yaml", io::reduce_template_yaml())).input;
+  ASSERT_EQ(r.determinations.size(), 2u);
+  EXPECT_EQ(r.determinations[0].mode, gyro::Mode::Tracking);
+  EXPECT_EQ(r.determinations[1].mode, gyro::Mode::NonTracking);
+  EXPECT_EQ(r.determinations[1].nontracking.crossings.size(), 3u);
+  EXPECT_DOUBLE_EQ(r.determinations[1].nontracking.crossings[2].times_s[2], 493.0);  // "8:13.0"
 }

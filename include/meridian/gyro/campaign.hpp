@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "meridian/core/dms.hpp"
 #include "meridian/core/progress.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/azimuth_chain.hpp"
@@ -92,6 +93,7 @@ struct CampaignInput {
   /// A gravity model giving ξ, η at the points that do not state them; loaded
   /// by the caller (see deflection_model.hpp).
   std::optional<GravityModelRef> gravity_model;
+  AngleUnit angle_unit = AngleUnit::Dms;  ///< the file's `angle_unit:`, as ReduceInput's
 };
 
 /// A point resolved in both coordinate systems.

@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "meridian/core/dms.hpp"
 #include "meridian/core/progress.hpp"
 #include "meridian/gyro/determination.hpp"
 #include "meridian/gyro/instrument_spec.hpp"
@@ -21,6 +22,9 @@ struct ReduceInput {
   double latitude_rad = 0.0;                     ///< geodetic latitude φ of the station
   std::vector<DeterminationInput> determinations;
   ReduceOptions options;
+  /// How the file booked its circle angles (its `angle_unit:`), so results
+  /// can be printed in the book's unit; the values above are radians.
+  AngleUnit angle_unit = AngleUnit::Dms;
 };
 
 struct ReduceResult {

@@ -18,6 +18,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "meridian/core/angle.hpp"
+#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 
 namespace meridian::io {
@@ -53,6 +54,9 @@ class Node {
   }
 
   /// Load a YAML or JSON file (JSON is read by the YAML parser as is).
+  /// A syntax error on a line indented with a tab is reported as "tabs are
+  /// not allowed for indentation (line N)" (YAML forbids them; JSON's tabs,
+  /// which are allowed, never cause a syntax error).
   static Node load_file(const std::filesystem::path& path);
 
   const std::string& path() const { return path_; }
@@ -83,7 +87,18 @@ class Node {
   /// Angle: a number is decimal degrees; a string is parsed by parse_angle
   /// (DMS, gon, …).
   Angle angle() const;
-  std::vector<double> numbers() const;  ///< sequence of finite numbers
+  /// Angle in a field book's unit (the file's `angle_unit:`), read from the
+  /// value as written by parse_angle(text, unit); AngleUnit::Dms is angle().
+  /// Throws ParseError with file, line and field.
+  Angle angle(AngleUnit unit) const;
+  /// Sequence of finite numbers; each element records its own line, so an
+  /// error about element i (path "…[i]") is located at that element.
+  std::vector<double> numbers() const;
+  /// Stopwatch time in seconds: a number (read as number()), or text
+  /// "m:ss.s", "h:mm:ss.s", "m′ss.s″" (parse_stopwatch_s). Anything else is
+  /// a ParseError with file, line and field.
+  double time_s() const;
+  std::vector<double> times_s() const;  ///< sequence of time_s()
 
   /// Throws for keys other than `allowed` (catches typos and unknown units)
   /// and for duplicate keys.
@@ -93,6 +108,9 @@ class Node {
 
  private:
   std::string child_path(const std::string& key) const;
+  std::optional<int> mark_line() const;  ///< 1-based line, when the parser knows it
+  /// Give an error about this node's value its file, line and path.
+  void locate(Error& e) const;
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<const std::string> file_;

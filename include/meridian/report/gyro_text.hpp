@@ -25,7 +25,10 @@ std::string reduce_text(const std::string& file, const gyro::ReduceResult& r);
 /// determinations, the azimuth chain, checks, notes and warnings.
 std::string campaign_text(const gyro::CampaignResult& r);
 
-/// One check as a line: "[PASS] name: value unit (limit L)".
+/// One check: "name: value unit (limit L unit)" ("at least" for a minimum).
+std::string check_statement(const gyro::Check& k);
+
+/// One check as a line: "[PASS] " or "[FAIL] " + check_statement.
 std::string check_text(const gyro::Check& k);
 
 /// `meridian gyro transit-factor`.
