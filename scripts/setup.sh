@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libgeographiclib-dev geographiclib-tools
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  chromium fonts-dejavu-core fonts-liberation
+  chromium fonts-dejavu-core fonts-liberation fonts-noto-cjk
 )
 # Node.js and npm only fetch the report JavaScript; any installed node will do.
 command -v npm > /dev/null || packages+=(nodejs npm)

@@ -219,7 +219,7 @@ std::vector<Block> determination_blocks(const gyro::DeterminationInput& in, cons
     if (!fit)
       for (const auto& m : r.all)
         if (m.fit) fit = &*m.fit;
-    b.push_back(oscillation_plot(in, fit, r.primary.beta ? r.primary.beta->beta_div.value : 0.0));
+    b.push_back(oscillation_plot(in, fit, r.primary.beta ? &*r.primary.beta : nullptr));
     if (fit) {
       b.push_back(fit_table(*fit));
       b.push_back(fit_residual_plot(*fit));
@@ -511,13 +511,18 @@ Document gyro_campaign_document(const std::string& file, const gyro::CampaignInp
   doc.subtitle = file;
   doc.footer = report_generator();
   doc.header.push_back({"input file", file});
-  for (auto& kv : instrument_header(in.instrument, r.instrument_station.instrument)) doc.header.push_back(kv);
-  doc.header.push_back({"grid", geodesy::describe(in.grid)});
-  doc.header.push_back({"station", point_text(r.station)});
-  if (r.target) doc.header.push_back({"target", point_text(*r.target)});
-  if (r.known_station) doc.header.push_back({"known station", point_text(*r.known_station)});
+  // The result sheet fills the first page; what it rests on follows it.
+  Section inputs{"inputs", "Instrument, grid and stations", {}, 2};
+  std::vector<KeyValue> kv = instrument_header(in.instrument, r.instrument_station.instrument);
+  kv.push_back({"grid", geodesy::describe(in.grid)});
+  kv.push_back({"station", point_text(r.station)});
+  if (r.target) kv.push_back({"target", point_text(*r.target)});
+  if (r.known_station) kv.push_back({"known station", point_text(*r.known_station)});
+  if (r.known_target) kv.push_back({"known target", point_text(*r.known_target)});
+  inputs.blocks.push_back(KeyValueList{"", kv});
 
   doc.sections.push_back(result_sheet_section(in, r));
+  doc.sections.push_back(inputs);
   doc.sections.push_back(campaign_result_section(r));
   doc.sections.push_back(checks_section(r));
   if (r.instrument_constant && in.known_line) doc.sections.push_back(calibration_section(*in.known_line, r));

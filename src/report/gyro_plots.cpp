@@ -32,22 +32,50 @@ json index_axis(const char* field, const char* title) {
 
 // ---------------------------------------------------------------- plots
 
-// Turning-point times of the fitted oscillation for reversal readings given
-// without times: successive turning points on the reading's side.
-std::vector<double> reversal_times(const gyro::DeterminationInput& in, const gyro::UnifiedFitResult& f) {
+// The oscillation (N1) drawn in the plot: a(t) = β + B·e^{−k(t−t0)}·sin(2π(t − t0)/T).
+struct Oscillation {
+  double beta = 0, amplitude = 0, t0 = 0, period = 0, damping = 0;
+  std::string caption;
+};
+
+std::optional<Oscillation> oscillation_of(const gyro::UnifiedFitResult& f) {
+  return Oscillation{f.beta_div.value, f.amplitude_div.value, f.t0_s.value, f.period_s.value, f.damping_per_s.value,
+                     "Line: the unified least-squares fit of (N1). "};
+}
+
+// A closed-form method's β, B and T_B, with the phase of its first timed
+// passage (sin θ = (a − β)/B on the passage's side of the swing), k = 0.
+std::optional<Oscillation> oscillation_of(const gyro::DeterminationInput& in, const gyro::BetaResult& b) {
+  if (!b.amplitude_div || !b.period_s || !(b.amplitude_div->value > 0.0)) return std::nullopt;
+  for (const auto& c : in.nontracking.crossings) {
+    if (c.times_s.empty()) continue;
+    const double q = std::clamp((c.level_div - b.beta_div.value) / b.amplitude_div->value, -1.0, 1.0);
+    const double theta = c.first_direction > 0 ? std::asin(q) : units::kPi - std::asin(q);
+    const double T = b.period_s->value;
+    return Oscillation{b.beta_div.value, b.amplitude_div->value, c.times_s.front() - T * theta / (2 * units::kPi), T,
+                       0.0,
+                       "Line: (N1) with this method's beta, B and T_B and the phase of the first timed passage "
+                       "(k = 0). "};
+  }
+  return std::nullopt;
+}
+
+// Turning-point times of the model for reversal readings given without
+// times: successive turning points on the reading's side.
+std::vector<double> reversal_times(const gyro::DeterminationInput& in, const Oscillation& f) {
   const auto& o = in.nontracking;
   if (!o.reversal_times_s.empty()) return o.reversal_times_s;
   double t_first = std::numeric_limits<double>::infinity();
   for (const auto& c : o.crossings)
     if (!c.times_s.empty()) t_first = std::min(t_first, c.times_s.front());
-  if (!std::isfinite(t_first)) t_first = f.t0_s.value;
-  const double T = f.period_s.value, t0 = f.t0_s.value;
+  if (!std::isfinite(t_first)) t_first = f.t0;
+  const double T = f.period, t0 = f.t0;
   // Turning point k at t0 + T/4 + k·T/2: east (+) for even k. Start at the
   // first turning point after t_first − T/4 (readings are taken while timing).
   long k = static_cast<long>(std::ceil((t_first - T / 4 - t0 - T / 4) / (T / 2)));
   std::vector<double> out;
   for (double a : o.reversals_div) {
-    const bool east = a > f.beta_div.value;
+    const bool east = a > f.beta;
     while (((k % 2 + 2) % 2 == 0) != east) ++k;
     out.push_back(t0 + T / 4 + static_cast<double>(k) * T / 2);
     ++k;
@@ -57,9 +85,13 @@ std::vector<double> reversal_times(const gyro::DeterminationInput& in, const gyr
 
 }  // namespace
 
-Plot oscillation_plot(const gyro::DeterminationInput& in, const gyro::UnifiedFitResult* fit,
-                      double beta_div) {
+Plot oscillation_plot(const gyro::DeterminationInput& in, const gyro::UnifiedFitResult* unified,
+                      const gyro::BetaResult* method) {
   const auto& o = in.nontracking;
+  const double beta_div = method ? method->beta_div.value : unified ? unified->beta_div.value : 0.0;
+  std::optional<Oscillation> fit;
+  if (unified) fit = oscillation_of(*unified);
+  else if (method) fit = oscillation_of(in, *method);
   json obs = json::array();
   double tmin = std::numeric_limits<double>::infinity(), tmax = -tmin;
   for (std::size_t i = 0; i < o.crossings.size(); ++i) {
@@ -83,11 +115,11 @@ Plot oscillation_plot(const gyro::DeterminationInput& in, const gyro::UnifiedFit
   }
   if (rt.empty() && !o.reversals_div.empty()) caption += "Reversal readings without times are not drawn. ";
   if (fit && o.reversal_times_s.empty() && !o.reversals_div.empty())
-    caption += "Reversal readings were not timed: they are drawn at the fitted turning points. ";
+    caption += "Reversal readings were not timed: they are drawn at the model's turning points. ";
   json layers = json::array();
   if (fit) {
-    const double T = fit->period_s.value, t0 = fit->t0_s.value, B = fit->amplitude_div.value;
-    const double k = fit->damping_per_s.value, b = fit->beta_div.value;
+    const double T = fit->period, t0 = fit->t0, B = fit->amplitude;
+    const double k = fit->damping, b = fit->beta;
     const double lo = tmin - T / 8, hi = tmax + T / 8;
     json curve = json::array();
     for (int i = 0; i <= 400; ++i) {
@@ -97,9 +129,9 @@ Plot oscillation_plot(const gyro::DeterminationInput& in, const gyro::UnifiedFit
     layers.push_back({{"data", {{"values", curve}}},
                       {"mark", {{"type", "line"}, {"color", "#0b5cad"}, {"strokeWidth", 1.5}}},
                       {"encoding", {{"x", axis("t", "time (s)")}, {"y", axis("a", "scale reading (div, east +)")}}}});
-    caption += "Line: the unified least-squares fit of (N1). ";
+    caption += fit->caption;
   } else {
-    caption += "No fitted model for this method (closed form); the dashed line is beta. ";
+    caption += "No model for this method (no amplitude and period); the dashed line is beta. ";
   }
   layers.push_back({{"data", {{"values", json::array({{{"beta", beta_div}}})}}},
                     {"mark", {{"type", "rule"}, {"strokeDash", {4, 4}}, {"color", "#888888"}}},

@@ -11,8 +11,10 @@
 namespace meridian::report::gyro_plots {
 
 /// Non-tracking observations (timed crossings, reversal readings) with the
-/// unified fit's curve when `fit` is given, and β as a dashed rule.
-Plot oscillation_plot(const gyro::DeterminationInput& in, const gyro::UnifiedFitResult* fit, double beta_div);
+/// model curve — the unified fit's when given, else the method's β, B and
+/// T_B — and the method's β (else the fit's) as a dashed rule.
+Plot oscillation_plot(const gyro::DeterminationInput& in, const gyro::UnifiedFitResult* unified,
+                      const gyro::BetaResult* method);
 /// Standardised residuals of the unified fit.
 Plot fit_residual_plot(const gyro::UnifiedFitResult& f);
 /// Every method's N_G relative to the reported one, with ±σ bars.

@@ -44,7 +44,8 @@ figure.plot figcaption { color: var(--muted); font-size: 12px; }
 .vega { min-height: 40px; }
 footer { margin-top: 30px; color: var(--muted); font-size: 11px; border-top: 1px solid var(--line); padding-top: 6px; }
 @page { size: A4; margin: 14mm 12mm 16mm;
-  @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #5b6878; } }
+  @bottom-right { content: "page " counter(page) " of " counter(pages); font-size: 8pt; color: #5b6878;
+                  font-family: "DejaVu Sans", sans-serif; } }
 section.page-break { break-after: page; }
 @media print {
   body { max-width: none; padding: 0; font-size: 10.5pt; }
@@ -244,7 +245,8 @@ std::string render_html(const Document& doc) {
   r.out += "<meta name=\"generator\" content=\"" + html_escape(doc.footer) + "\">\n";
   r.out += "<title>" + html_escape(doc.title) + "</title>\n<style>" + std::string(kStyle) + "</style>\n";
   r.out += "<style>@page { @bottom-left { content: " + css_string(doc.title) +
-           "; font-size: 8pt; color: #5b6878; } }</style>\n";
+           "; font-size: 8pt; color: #5b6878; font-family: \"DejaVu Sans\", \"Noto Sans CJK SC\", sans-serif; } }"
+           "</style>\n";
   r.out += "<script>" + std::string(kErrorCapture) + "</script>\n</head>\n<body>\n";
   r.out += "<header><h1>" + html_escape(doc.title) + "</h1>";
   if (!doc.subtitle.empty()) r.out += "<div class=\"subtitle\">" + html_escape(doc.subtitle) + "</div>";
