@@ -38,7 +38,7 @@ int run_demo(const DemoArgs& a) {
   const fs::path file = dir / "campaign.yaml";
   const io::CampaignJob job = io::run_campaign_file(file);
   const gyro::CampaignResult& r = job.result;
-  const std::string text = report::campaign_text(r);
+  const std::string text = report::campaign_text(r, report::AngleFormat(job.file.campaign.angle_unit));
   std::cout << "meridian demo: gyro orientation campaign " << file.string() << "\n\n" << text;
   std::error_code ec;
   fs::create_directories(a.output_dir, ec);

@@ -37,7 +37,7 @@ int run_reduce(const ReduceArgs& a) {
   progress.finish();
   // Everything is computed before anything is written.
   const std::string out = a.json ? report::reduce_to_json(job.file.file, job.result).dump(2) + "\n"
-                                 : report::reduce_text(job.file.file, job.result);
+                                 : report::reduce_text(job.file.file, job.result, report::AngleFormat(job.file.input.angle_unit));
   const std::string html =
       a.report.empty() ? std::string()
                        : report::render_html(report::gyro_reduce_document(job.file.file, job.file.input, job.result));
@@ -69,7 +69,8 @@ int run_campaign(const CampaignArgs& a) {
   const io::CampaignJob job = io::run_campaign_file(a.file, nullptr, &progress);
   progress.finish();
   const gyro::CampaignResult& r = job.result;
-  const std::string out = a.json ? report::campaign_to_json(r).dump(2) + "\n" : report::campaign_text(r);
+  const std::string out = a.json ? report::campaign_to_json(r).dump(2) + "\n"
+                                 : report::campaign_text(r, report::AngleFormat(job.file.campaign.angle_unit));
   if (a.strict && !r.all_checks_pass()) {
     // A job that fails its checks is not filed: stdout still shows it, no file is written.
     if (a.output.empty() || a.output == "-") emit("", out);

@@ -17,14 +17,14 @@ namespace meridian::report {
 namespace {
 
 using nlohmann::json;
-using namespace fmtx;
+using fmtx::num;
 constexpr double kArcsec = units::kArcsecond;
 constexpr double kDeg = units::kDegree;
 using namespace gyro_plots;
 
 // ---------------------------------------------------------------- tables
 
-Table methods_table(const gyro::DeterminationResult& r) {
+Table methods_table(const gyro::DeterminationResult& r, const AngleFormat& f) {
   const bool all = !r.method;
   const std::vector<gyro::MethodResult>& ms = all ? r.all : std::vector<gyro::MethodResult>{r.primary};
   // Method names, the reported one marked when all were run.
@@ -42,37 +42,38 @@ Table methods_table(const gyro::DeterminationResult& r) {
         for (const auto& x : m.beta->warnings) w += (w.empty() ? "" : "; ") + x;
       t.rows.push_back({name(m),
                         m.beta ? num(m.beta->beta_div.value, 5) : "",
-                        m.beta ? num(m.beta->beta_div.sigma, 5) : "", sec(m.north.delta_n_rad, 3),
-                        dir(m.north.north_rad, 2), sig(m.north.sigma_rad, 2),
-                        m.approximation_error_rad != 0.0 ? sec(m.approximation_error_rad, 3) : "exact", w});
+                        m.beta ? num(m.beta->beta_div.sigma, 5) : "", f.sec(m.north.delta_n_rad, 3),
+                        f.dir(m.north.north_rad, 2), f.sig(m.north.sigma_rad, 2),
+                        m.approximation_error_rad != 0.0 ? f.sec(m.approximation_error_rad, 3) : "exact", w});
     }
   } else {
     t.columns = {"method", "N_G", "sigma N_G", "dof", "sigma0 (arcsec)", "sigma basis"};
     t.numeric = {false, true, true, true, true, false};
     for (const auto& m : ms) {
-      const auto& f = *m.reversal;
+      const auto& fit = *m.reversal;
       t.rows.push_back({name(m),
-                        dir(m.north.north_rad, 2), sig(m.north.sigma_rad, 2), std::to_string(f.dof),
-                        num(f.sigma0 / kArcsec, 2),
-                        std::isfinite(f.centre.sigma) ? (f.sigma_is_aposteriori ? "a posteriori" : "a priori") : "n/a"});
+                        f.dir(m.north.north_rad, 2), f.sig(m.north.sigma_rad, 2), std::to_string(fit.dof),
+                        num(fit.sigma0 / kArcsec, 2),
+                        std::isfinite(fit.centre.sigma) ? (fit.sigma_is_aposteriori ? "a posteriori" : "a priori")
+                                                        : "n/a"});
     }
   }
   return t;
 }
 
-Table fit_table(const gyro::UnifiedFitResult& f) {
+Table fit_table(const gyro::UnifiedFitResult& fit) {
   Table t;
   t.title = "Unified least-squares fit of (N1)";
   t.columns = {"parameter", "estimate", "sigma", "unit"};
   t.numeric = {false, true, true, false};
-  t.rows = {{"beta (equilibrium reading)", num(f.beta_div.value, 5), num(f.beta_div.sigma, 5), "div"},
-            {"B (amplitude at t0)", num(f.amplitude_div.value, 4), num(f.amplitude_div.sigma, 4), "div"},
-            {"t0 (eastward passage of beta)", num(f.t0_s.value, 3), num(f.t0_s.sigma, 3), "s"},
-            {"T_B (period)", num(f.period_s.value, 3), num(f.period_s.sigma, 3), "s"},
-            {"k (damping)", fmt::format("{:.3g}", f.damping_per_s.value), fmt::format("{:.3g}", f.damping_per_s.sigma), "1/s"}};
+  t.rows = {{"beta (equilibrium reading)", num(fit.beta_div.value, 5), num(fit.beta_div.sigma, 5), "div"},
+            {"B (amplitude at t0)", num(fit.amplitude_div.value, 4), num(fit.amplitude_div.sigma, 4), "div"},
+            {"t0 (eastward passage of beta)", num(fit.t0_s.value, 3), num(fit.t0_s.sigma, 3), "s"},
+            {"T_B (period)", num(fit.period_s.value, 3), num(fit.period_s.sigma, 3), "s"},
+            {"k (damping)", fmt::format("{:.3g}", fit.damping_per_s.value), fmt::format("{:.3g}", fit.damping_per_s.sigma), "1/s"}};
   t.note = fmt::format("sigma are a priori (from the stated observation sigma); sigma0 = {}, {} degrees of freedom, "
                        "{} iterations.",
-                       num(f.sigma0, 3), f.dof, f.iterations);
+                       num(fit.sigma0, 3), fit.dof, fit.iterations);
   return t;
 }
 
@@ -131,7 +132,8 @@ std::vector<Block> nontracking_observation_blocks(const gyro::DeterminationInput
 }
 
 // Tracking: the reversal readings and the successive Schuler means.
-Table tracking_observation_table(const gyro::DeterminationInput& in, const gyro::DeterminationResult& r) {
+Table tracking_observation_table(const gyro::DeterminationInput& in, const gyro::DeterminationResult& r,
+                                 const AngleFormat& f) {
   Table t;
   t.title = "Reversal readings as booked";
   t.columns = {"#", "circle reading", "successive Schuler mean (r[i-2] + 2 r[i-1] + r[i])/4"};
@@ -139,12 +141,12 @@ Table tracking_observation_table(const gyro::DeterminationInput& in, const gyro:
   const auto& means = r.primary.reversal ? r.primary.reversal->partial_means : std::vector<double>{};
   const auto& rev = in.tracking.reversals_rad;
   for (std::size_t i = 0; i < rev.size(); ++i)
-    t.rows.push_back({std::to_string(i + 1), dir(rev[i], 0), i >= 2 && i - 2 < means.size() ? dir(means[i - 2], 1) : ""});
+    t.rows.push_back({std::to_string(i + 1), f.dir(rev[i], 0), i >= 2 && i - 2 < means.size() ? f.dir(means[i - 2], 1) : ""});
   if (means.size() >= 2) {
     const auto [lo, hi] = std::minmax_element(means.begin(), means.end(), [&](double a, double b) {
       return wrap_signed_rad(a - means.front()) < wrap_signed_rad(b - means.front());
     });
-    t.note = fmt::format("The successive Schuler means spread by {}.", sig(wrap_signed_rad(*hi - *lo), 1));
+    t.note = fmt::format("The successive Schuler means spread by {}.", f.sig(wrap_signed_rad(*hi - *lo), 1));
   }
   return t;
 }
@@ -167,7 +169,7 @@ Table zero_position_table(const gyro::DeterminationInput& in, const gyro::ZeroPo
 }
 
 // The target rounds: faces, 2C and each round's direction.
-Table target_table(const gyro::DeterminationInput& in, const gyro::TargetDirection& d) {
+Table target_table(const gyro::DeterminationInput& in, const gyro::TargetDirection& d, const AngleFormat& f) {
   Table t;
   t.title = "Target pointings (rounds)";
   t.columns = {"round", "face left", "face right", "2C", "direction (L + R - 180)/2"};
@@ -175,45 +177,45 @@ Table target_table(const gyro::DeterminationInput& in, const gyro::TargetDirecti
   for (std::size_t i = 0; i < in.target_rounds.size(); ++i) {
     const auto& r = in.target_rounds[i];
     t.rows.push_back({r.when == gyro::TargetRound::When::Before ? "before the run" : "after the run",
-                      dir(r.face_left_rad, 0), dir(r.face_right_rad, 0), sec(d.two_c_rad[i], 0), dir(d.round_rad[i], 1)});
+                      f.dir(r.face_left_rad, 0), f.dir(r.face_right_rad, 0), f.sec(d.two_c_rad[i], 0), f.dir(d.round_rad[i], 1)});
   }
-  t.note = fmt::format("Target reading used: {} (sigma {}); rounds spread by {}.", dir(d.reading_rad.value, 1),
-                       sig(d.reading_rad.sigma, 1), sig(d.spread_rad, 1));
+  t.note = fmt::format("Target reading used: {} (sigma {}); rounds spread by {}.", f.dir(d.reading_rad.value, 1),
+                       f.sig(d.reading_rad.sigma, 1), f.sig(d.spread_rad, 1));
   return t;
 }
 
 // All blocks describing one determination.
 std::vector<Block> determination_blocks(const gyro::DeterminationInput& in, const gyro::DeterminationResult& r,
-                                        const gyro::Instrument& inst) {
+                                        const gyro::Instrument& inst, const AngleFormat& f) {
   std::vector<Block> b;
   std::vector<KeyValue> kv{{"mode", gyro::to_string(r.mode)}, {"method requested", gyro::method_request_name(r.method)},
                            {"reported method", gyro::to_string(r.primary.method)},
-                           {"N_G (gyro north as a circle reading)", dir(r.primary.north.north_rad, 2)},
-                           {"sigma N_G", sig(r.primary.north.sigma_rad, 2)}};
+                           {"N_G (gyro north as a circle reading)", f.dir(r.primary.north.north_rad, 2)},
+                           {"sigma N_G", f.sig(r.primary.north.sigma_rad, 2)}};
   if (r.mode == gyro::Mode::NonTracking) {
-    kv.push_back({"clamp reading N'", dir(in.clamp_reading_rad, 1)});
-    kv.push_back({"delta N = N_G - N'", sec(r.primary.north.delta_n_rad, 3)});
+    kv.push_back({"clamp reading N'", f.dir(in.clamp_reading_rad, 1)});
+    kv.push_back({"delta N = N_G - N'", f.sec(r.primary.north.delta_n_rad, 3)});
   }
   if (r.zero_position_used)
     kv.push_back({"zero position alpha_p / correction -lambda tau alpha_p",
                   fmt::format("{} div (sigma {}) / {}", num(r.zero_position_used->value, 3),
-                              num(r.zero_position_used->sigma, 3), sec(r.primary.north.zero_correction_rad, 2))});
+                              num(r.zero_position_used->sigma, 3), f.sec(r.primary.north.zero_correction_rad, 2))});
   else
     kv.push_back({"zero position", "not given: no zero-position correction applied"});
-  if (r.target) kv.push_back({"circle reading to the target (mean of the rounds)", dir(r.target->reading_rad.value, 1)});
+  if (r.target) kv.push_back({"circle reading to the target (mean of the rounds)", f.dir(r.target->reading_rad.value, 1)});
   else if (in.target_reading_rad)
-    kv.push_back({"circle reading to the target", dir(in.target_reading_rad->value, 1)});
+    kv.push_back({"circle reading to the target", f.dir(in.target_reading_rad->value, 1)});
   if (!in.time.empty()) kv.push_back({"time", in.time});
   if (!in.observer.empty()) kv.push_back({"observer", in.observer});
   b.push_back(KeyValueList{"", kv});
   if (r.mode == gyro::Mode::NonTracking) {
     for (auto& x : nontracking_observation_blocks(in, r, inst)) b.push_back(std::move(x));
   } else {
-    b.push_back(tracking_observation_table(in, r));
+    b.push_back(tracking_observation_table(in, r, f));
   }
   if (r.zero_position) b.push_back(zero_position_table(in, *r.zero_position));
-  if (r.target) b.push_back(target_table(in, *r.target));
-  b.push_back(methods_table(r));
+  if (r.target) b.push_back(target_table(in, *r.target, f));
+  b.push_back(methods_table(r, f));
   if (r.mode == gyro::Mode::NonTracking) {
     const gyro::UnifiedFitResult* fit = r.primary.fit ? &*r.primary.fit : nullptr;
     if (!fit)
@@ -225,7 +227,7 @@ std::vector<Block> determination_blocks(const gyro::DeterminationInput& in, cons
       b.push_back(fit_residual_plot(*fit));
     }
   } else if (r.primary.reversal) {
-    b.push_back(tracking_plot(in, *r.primary.reversal));
+    b.push_back(tracking_plot(in, *r.primary.reversal, f));
     if (r.primary.reversal->dof > 0) b.push_back(tracking_residual_plot(*r.primary.reversal));
   }
   if (!r.method && r.all.size() > 1) b.push_back(methods_plot(r));
@@ -252,11 +254,11 @@ std::vector<KeyValue> instrument_header(const gyro::InstrumentSpec& s, const gyr
   return h;
 }
 
-std::string point_text(const gyro::PointResult& p) {
+std::string point_text(const gyro::PointResult& p, const AngleFormat& f) {
   return fmt::format("{}: latitude {}, longitude {}; x {:.3f} m, y {:.3f} m; convergence {}", p.name,
                      format_dms(Angle::radians(p.lat_rad), {3, true, false}),
                      format_dms(Angle::radians(p.lon_rad), {3, true, false}), p.grid.x_north_m, p.grid.y_east_m,
-                     dms(p.grid.convergence_rad, 2));
+                     f.dms(p.grid.convergence_rad, 2));
 }
 
 std::string label_of(const gyro::DeterminationResult& d, std::size_t i) {
@@ -265,7 +267,7 @@ std::string label_of(const gyro::DeterminationResult& d, std::size_t i) {
 
 // ---------------------------------------------------------------- sections
 
-Section reduce_summary_section(const gyro::ReduceResult& r) {
+Section reduce_summary_section(const gyro::ReduceResult& r, const AngleFormat& f) {
   Section summary{"summary", "Summary", {}, 2};
   Table t;
   t.title = "N_G of every determination";
@@ -274,8 +276,8 @@ Section reduce_summary_section(const gyro::ReduceResult& r) {
   for (std::size_t i = 0; i < r.determinations.size(); ++i) {
     const auto& d = r.determinations[i];
     t.rows.push_back({std::to_string(i + 1), d.label, gyro::to_string(d.mode), gyro::to_string(d.primary.method),
-                      dir(d.primary.north.north_rad, 2), sig(d.primary.north.sigma_rad, 2),
-                      sec(d.primary.north.delta_n_rad, 3)});
+                      f.dir(d.primary.north.north_rad, 2), f.sig(d.primary.north.sigma_rad, 2),
+                      f.sec(d.primary.north.delta_n_rad, 3)});
   }
   summary.blocks.push_back(t);
   summary.blocks.push_back(Notes{"Notes", r.instrument.notes, false});
@@ -288,7 +290,7 @@ std::string line_name(const gyro::CampaignResult& r) {
 
 // The one-page result sheet (成果表) that goes to the mine: the result, what
 // it rests on, whether every check passed, and who answers for it.
-Section result_sheet_section(const gyro::CampaignInput& in, const gyro::CampaignResult& r) {
+Section result_sheet_section(const gyro::CampaignInput& in, const gyro::CampaignResult& r, const AngleFormat& f) {
   const auto& c = r.chain;
   Section s{"result-sheet", "Result sheet", {}, 2};
   s.page_break_after = true;
@@ -299,7 +301,7 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
                   : fmt::format("{} OF {} CHECKS FAILED: do not use this azimuth before they are resolved", failed,
                                 r.checks.size());
   s.blocks.push_back(Highlight{"Grid azimuth " + line_name(r),
-                               dir(c.grid_azimuth_rad.value, 1) + "  \u00b1 " + sig(c.grid_azimuth_rad.sigma, 1), detail,
+                               f.dir(c.grid_azimuth_rad.value, 1) + "  \u00b1 " + f.sig(c.grid_azimuth_rad.sigma, 1), detail,
                                failed > 0});
   std::vector<KeyValue> job;
   if (!r.name.empty()) job.push_back({"job", r.name});
@@ -318,17 +320,17 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
   t.title = "Result";
   t.columns = {"quantity", "value", "sigma"};
   t.numeric = {false, true, true};
-  t.rows.push_back({"grid azimuth T " + line_name(r), dir(c.grid_azimuth_rad.value, 1), sig(c.grid_azimuth_rad.sigma, 1)});
-  t.rows.push_back({"geodetic azimuth alpha", dir(c.geodetic_azimuth_rad.value, 1), sig(c.geodetic_azimuth_rad.sigma, 1)});
-  t.rows.push_back({"astronomic azimuth A", dir(c.astronomic_azimuth_rad.value, 1), sig(c.astronomic_azimuth_rad.sigma, 1)});
-  t.rows.push_back({"instrument constant E", sec(r.instrument_constant_used_rad.value, 1),
-                    sig(r.instrument_constant_used_rad.sigma, 1)});
+  t.rows.push_back({"grid azimuth T " + line_name(r), f.dir(c.grid_azimuth_rad.value, 1), f.sig(c.grid_azimuth_rad.sigma, 1)});
+  t.rows.push_back({"geodetic azimuth alpha", f.dir(c.geodetic_azimuth_rad.value, 1), f.sig(c.geodetic_azimuth_rad.sigma, 1)});
+  t.rows.push_back({"astronomic azimuth A", f.dir(c.astronomic_azimuth_rad.value, 1), f.sig(c.astronomic_azimuth_rad.sigma, 1)});
+  t.rows.push_back({"instrument constant E", f.sec(r.instrument_constant_used_rad.value, 1),
+                    f.sig(r.instrument_constant_used_rad.sigma, 1)});
   if (r.constant_one_run_sigma_rad)
-    t.rows.push_back({"instrument constant, one run m", "", sig(*r.constant_one_run_sigma_rad, 1)});
+    t.rows.push_back({"instrument constant, one run m", "", f.sig(*r.constant_one_run_sigma_rad, 1)});
   t.rows.push_back({fmt::format("gyro azimuth A_G, mean of {} runs", r.gyro_azimuths.size()),
-                    dir(c.gyro_azimuth_rad.value, 1), sig(c.gyro_azimuth_rad.sigma, 1)});
-  if (r.line_one_run_sigma_rad) t.rows.push_back({"gyro azimuth, one run m", "", sig(*r.line_one_run_sigma_rad, 1)});
-  t.rows.push_back({"meridian convergence gamma at " + r.station.name, dms(c.convergence_rad, 2), ""});
+                    f.dir(c.gyro_azimuth_rad.value, 1), f.sig(c.gyro_azimuth_rad.sigma, 1)});
+  if (r.line_one_run_sigma_rad) t.rows.push_back({"gyro azimuth, one run m", "", f.sig(*r.line_one_run_sigma_rad, 1)});
+  t.rows.push_back({"meridian convergence gamma at " + r.station.name, f.dms(c.convergence_rad, 2), ""});
   for (const auto* p : {&r.station, r.target ? &*r.target : nullptr})
     if (p)
       t.rows.push_back({"coordinates of " + p->name, fmt::format("x {:.3f} m, y {:.3f} m", p->grid.x_north_m, p->grid.y_east_m),
@@ -348,38 +350,38 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
 }
 
 // The grid azimuth and every step of the chain from the field data to it.
-Section campaign_result_section(const gyro::CampaignResult& r) {
+Section campaign_result_section(const gyro::CampaignResult& r, const AngleFormat& f) {
   const auto& c = r.chain;
   Section result{"result", "Result", {}, 2};
   result.blocks.push_back(Highlight{"Grid azimuth " + line_name(r),
-                                    dir(c.grid_azimuth_rad.value, 1) + "  \u00b1 " + sig(c.grid_azimuth_rad.sigma, 1),
+                                    f.dir(c.grid_azimuth_rad.value, 1) + "  \u00b1 " + f.sig(c.grid_azimuth_rad.sigma, 1),
                                     r.all_checks_pass() ? "all tolerance checks pass" : "SOME TOLERANCE CHECKS FAIL"});
   Table chain;
   chain.title = "From field data to grid azimuth";
   chain.columns = {"quantity", "value", "sigma", "how"};
   chain.numeric = {false, true, true, false};
   chain.rows = {
-      {"gyro azimuth A_G (mean of the line's determinations)", dir(c.gyro_azimuth_rad.value, 2),
-       sig(c.gyro_azimuth_rad.sigma, 2), fmt::format("{} determinations; A_G = r - N_G", r.determinations.size())},
-      {"instrument constant E", sec(r.instrument_constant_used_rad.value, 2), sig(r.instrument_constant_used_rad.sigma, 2),
+      {"gyro azimuth A_G (mean of the line's determinations)", f.dir(c.gyro_azimuth_rad.value, 2),
+       f.sig(c.gyro_azimuth_rad.sigma, 2), fmt::format("{} determinations; A_G = r - N_G", r.determinations.size())},
+      {"instrument constant E", f.sec(r.instrument_constant_used_rad.value, 2), f.sig(r.instrument_constant_used_rad.sigma, 2),
        r.instrument_constant ? "calibrated on the known line" : "given"},
-      {"astronomic azimuth A = A_G + E", dir(c.astronomic_azimuth_rad.value, 2), sig(c.astronomic_azimuth_rad.sigma, 2), ""},
-      {"Laplace correction -eta tan(phi)", c.laplace_applied ? sec(c.laplace_correction_rad, 2) : "not applied", "",
+      {"astronomic azimuth A = A_G + E", f.dir(c.astronomic_azimuth_rad.value, 2), f.sig(c.astronomic_azimuth_rad.sigma, 2), ""},
+      {"Laplace correction -eta tan(phi)", c.laplace_applied ? f.sec(c.laplace_correction_rad, 2) : "not applied", "",
        c.laplace_applied ? "eta at the station" : "eta unknown"},
       {"zenith-distance term -(xi sin alpha - eta cos alpha) cot z",
-       c.zenith_term_applied ? sec(c.zenith_correction_rad, 2) : "not applied", "",
+       c.zenith_term_applied ? f.sec(c.zenith_correction_rad, 2) : "not applied", "",
        c.zenith_term_applied ? "z = " + format_dms(Angle::radians(*c.zenith_distance_rad), {0, true, false})
                              : "sight horizontal, or xi/eta unknown"},
-      {"geodetic azimuth alpha", dir(c.geodetic_azimuth_rad.value, 2), sig(c.geodetic_azimuth_rad.sigma, 2), ""},
-      {"meridian convergence gamma (subtracted)", dms(c.convergence_rad, 2), "exact", "GeographicLib transverse Mercator"},
-      {"arc-to-chord correction delta (added)", c.arc_to_chord_applied ? sec(c.arc_to_chord_rad, 2) : "not applied",
+      {"geodetic azimuth alpha", f.dir(c.geodetic_azimuth_rad.value, 2), f.sig(c.geodetic_azimuth_rad.sigma, 2), ""},
+      {"meridian convergence gamma (subtracted)", f.dms(c.convergence_rad, 2), "exact", "GeographicLib transverse Mercator"},
+      {"arc-to-chord correction delta (added)", c.arc_to_chord_applied ? f.sec(c.arc_to_chord_rad, 2) : "not applied",
        c.arc_to_chord_applied ? "exact" : "", c.arc_to_chord_applied ? "rigorous, from the geodesic" : "no target coordinates"},
-      {"grid azimuth T = alpha - gamma + delta", dir(c.grid_azimuth_rad.value, 2), sig(c.grid_azimuth_rad.sigma, 2), ""}};
+      {"grid azimuth T = alpha - gamma + delta", f.dir(c.grid_azimuth_rad.value, 2), f.sig(c.grid_azimuth_rad.sigma, 2), ""}};
   result.blocks.push_back(chain);
   return result;
 }
 
-Section checks_section(const gyro::CampaignResult& r) {
+Section checks_section(const gyro::CampaignResult& r, const AngleFormat& f) {
   Section checks{"checks", "Tolerance checks", {}, 2};
   CheckList cl;
   for (const auto& k : r.checks) {
@@ -394,21 +396,21 @@ Section checks_section(const gyro::CampaignResult& r) {
   checks.blocks.push_back(cl);
   std::vector<KeyValue> m;
   if (r.constant_one_run_sigma_rad)
-    m.push_back({"instrument constant, one run (m = sqrt([vv]/(n-1)))", sig(*r.constant_one_run_sigma_rad, 1)});
+    m.push_back({"instrument constant, one run (m = sqrt([vv]/(n-1)))", f.sig(*r.constant_one_run_sigma_rad, 1)});
   if (r.line_one_run_sigma_rad)
-    m.push_back({"gyro azimuth on the line, one run", sig(*r.line_one_run_sigma_rad, 1)});
+    m.push_back({"gyro azimuth on the line, one run", f.sig(*r.line_one_run_sigma_rad, 1)});
   if (!m.empty()) checks.blocks.push_back(KeyValueList{"One-run standard deviations", m});
   return checks;
 }
 
 // E from each determination on the known line, before and after.
-Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignResult& r) {
+Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignResult& r, const AngleFormat& f) {
   Section cal{"calibration", "Calibration on the known line", {}, 2};
   cal.blocks.push_back(KeyValueList{
       "",
-      {{"known azimuth given", fmt::format("{} ({})", dir(k.azimuth.value_rad.value, 2), geodesy::to_string(k.azimuth.kind))},
+      {{"known azimuth given", fmt::format("{} ({})", f.dir(k.azimuth.value_rad.value, 2), geodesy::to_string(k.azimuth.kind))},
        {"known astronomic azimuth used",
-        dir(r.known_astronomic_azimuth_rad->value, 2) + "  sigma " + sig(r.known_astronomic_azimuth_rad->sigma, 1)}}});
+        f.dir(r.known_astronomic_azimuth_rad->value, 2) + "  sigma " + f.sig(r.known_astronomic_azimuth_rad->sigma, 1)}}});
   Table t;
   t.columns = {"when", "label", "method", "N_G", "sigma", "A_G", "E", "sigma E"};
   t.numeric = {false, false, false, true, true, true, true, true};
@@ -417,16 +419,16 @@ Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignR
   auto rows = [&](const char* when, const std::vector<gyro::DeterminationResult>& d,
                   const std::vector<gyro::Uncertain>& ag, const std::vector<gyro::Uncertain>& e) {
     for (std::size_t i = 0; i < d.size(); ++i) {
-      t.rows.push_back({when, d[i].label, gyro::to_string(d[i].primary.method), dir(d[i].primary.north.north_rad, 2),
-                        sig(d[i].primary.north.sigma_rad, 1), dir(ag[i].value, 2), sec(e[i].value, 2), sig(e[i].sigma, 1)});
+      t.rows.push_back({when, d[i].label, gyro::to_string(d[i].primary.method), f.dir(d[i].primary.north.north_rad, 2),
+                        f.sig(d[i].primary.north.sigma_rad, 1), f.dir(ag[i].value, 2), f.sec(e[i].value, 2), f.sig(e[i].sigma, 1)});
       labels.push_back(std::string(when) + " " + label_of(d[i], i));
       es.push_back(e[i]);
     }
   };
   rows("before", r.known_before, r.known_gyro_azimuths_before, r.instrument_constant->before);
   rows("after", r.known_after, r.known_gyro_azimuths_after, r.instrument_constant->after);
-  t.note = fmt::format("E = A_known - A_G. Mean E = {} (sigma {}).", sec(r.instrument_constant->mean.value, 2),
-                       sig(r.instrument_constant->mean.sigma, 2));
+  t.note = fmt::format("E = A_known - A_G. Mean E = {} (sigma {}).", f.sec(r.instrument_constant->mean.value, 2),
+                       f.sig(r.instrument_constant->mean.sigma, 2));
   cal.blocks.push_back(t);
   cal.blocks.push_back(spread_plot("Instrument constant per determination", labels, es, r.instrument_constant->mean.value,
                                    r.instrument_constant->mean.sigma, "E minus mean E (arcsec)",
@@ -435,7 +437,7 @@ Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignR
 }
 
 // The determinations on the unknown line and their gyro azimuths.
-Section line_section(const gyro::CampaignInput& in, const gyro::CampaignResult& r) {
+Section line_section(const gyro::CampaignInput& in, const gyro::CampaignResult& r, const AngleFormat& f) {
   Section line{"line", "Determinations on the line " + line_name(r), {}, 2};
   Table t;
   t.columns = {"#", "label", "mode", "method", "N_G", "sigma", "target reading", "A_G", "sigma A_G"};
@@ -445,14 +447,14 @@ Section line_section(const gyro::CampaignInput& in, const gyro::CampaignResult& 
     const auto& d = r.determinations[i];
     const auto& din = in.line.determinations[i];
     t.rows.push_back({std::to_string(i + 1), d.label, gyro::to_string(d.mode), gyro::to_string(d.primary.method),
-                      dir(d.primary.north.north_rad, 2), sig(d.primary.north.sigma_rad, 1),
-                      din.target_reading_rad ? dir(din.target_reading_rad->value, 1) : "",
-                      dir(r.gyro_azimuths[i].value, 2), sig(r.gyro_azimuths[i].sigma, 1)});
+                      f.dir(d.primary.north.north_rad, 2), f.sig(d.primary.north.sigma_rad, 1),
+                      din.target_reading_rad ? f.dir(din.target_reading_rad->value, 1) : "",
+                      f.dir(r.gyro_azimuths[i].value, 2), f.sig(r.gyro_azimuths[i].sigma, 1)});
     labels.push_back(label_of(d, i));
   }
   t.note = fmt::format("Mean A_G = {}; sigma propagated {}, empirical {}; the larger is used.",
-                       dir(r.gyro_azimuth_mean.mean.value, 2), sig(r.gyro_azimuth_mean.sigma_propagated, 2),
-                       sig(r.gyro_azimuth_mean.sigma_empirical, 2));
+                       f.dir(r.gyro_azimuth_mean.mean.value, 2), f.sig(r.gyro_azimuth_mean.sigma_propagated, 2),
+                       f.sig(r.gyro_azimuth_mean.sigma_empirical, 2));
   line.blocks.push_back(t);
   line.blocks.push_back(spread_plot("Gyro azimuth per determination", labels, r.gyro_azimuths,
                                     r.gyro_azimuth_mean.mean.value, r.gyro_azimuth_mean.mean.sigma,
@@ -464,10 +466,11 @@ Section line_section(const gyro::CampaignInput& in, const gyro::CampaignResult& 
 // One level-3 section per determination, in detail.
 void add_detail_sections(std::vector<Section>& out, const std::string& prefix, const std::string& title,
                          const std::vector<gyro::DeterminationInput>& ins,
-                         const std::vector<gyro::DeterminationResult>& res, const gyro::Instrument& inst) {
+                         const std::vector<gyro::DeterminationResult>& res, const gyro::Instrument& inst,
+                         const AngleFormat& f) {
   for (std::size_t i = 0; i < res.size(); ++i)
     out.push_back(Section{fmt::format("{}-{}", prefix, i + 1), fmt::format("{} {}: {}", title, i + 1, label_of(res[i], i)),
-                          determination_blocks(ins[i], res[i], inst), 3});
+                          determination_blocks(ins[i], res[i], inst, f), 3});
 }
 
 Section notes_section(const gyro::CampaignResult& r) {
@@ -481,6 +484,7 @@ Section notes_section(const gyro::CampaignResult& r) {
 }  // namespace
 
 Document gyro_reduce_document(const std::string& file, const gyro::ReduceInput& in, const gyro::ReduceResult& r) {
+  const AngleFormat f(in.angle_unit);
   Document doc;
   doc.title = "Gyro-theodolite determinations";
   doc.subtitle = file;
@@ -494,18 +498,19 @@ Document gyro_reduce_document(const std::string& file, const gyro::ReduceInput& 
   spec_view.sigma_reading_div = inst.sigma_reading_div;
   for (auto& kv : instrument_header(spec_view, inst))
     if (kv.key != "accuracy class") doc.header.push_back(kv);
-  doc.sections.push_back(reduce_summary_section(r));
+  doc.sections.push_back(reduce_summary_section(r, f));
   for (std::size_t i = 0; i < r.determinations.size(); ++i) {
     const auto& d = r.determinations[i];
     doc.sections.push_back(Section{fmt::format("determination-{}", i + 1),
                                    fmt::format("Determination {}{}", i + 1, d.label.empty() ? "" : ": " + d.label),
-                                   determination_blocks(in.determinations[i], d, r.instrument.instrument), 2});
+                                   determination_blocks(in.determinations[i], d, r.instrument.instrument, f), 2});
   }
   return doc;
 }
 
 Document gyro_campaign_document(const std::string& file, const gyro::CampaignInput& in,
                                 const gyro::CampaignResult& r) {
+  const AngleFormat f(in.angle_unit);
   Document doc;
   doc.title = "Gyro orientation: " + (r.name.empty() ? std::string("campaign") : r.name);
   doc.subtitle = file;
@@ -515,25 +520,25 @@ Document gyro_campaign_document(const std::string& file, const gyro::CampaignInp
   Section inputs{"inputs", "Instrument, grid and stations", {}, 2};
   std::vector<KeyValue> kv = instrument_header(in.instrument, r.instrument_station.instrument);
   kv.push_back({"grid", geodesy::describe(in.grid)});
-  kv.push_back({"station", point_text(r.station)});
-  if (r.target) kv.push_back({"target", point_text(*r.target)});
-  if (r.known_station) kv.push_back({"known station", point_text(*r.known_station)});
-  if (r.known_target) kv.push_back({"known target", point_text(*r.known_target)});
+  kv.push_back({"station", point_text(r.station, f)});
+  if (r.target) kv.push_back({"target", point_text(*r.target, f)});
+  if (r.known_station) kv.push_back({"known station", point_text(*r.known_station, f)});
+  if (r.known_target) kv.push_back({"known target", point_text(*r.known_target, f)});
   inputs.blocks.push_back(KeyValueList{"", kv});
 
-  doc.sections.push_back(result_sheet_section(in, r));
+  doc.sections.push_back(result_sheet_section(in, r, f));
   doc.sections.push_back(inputs);
-  doc.sections.push_back(campaign_result_section(r));
-  doc.sections.push_back(checks_section(r));
-  if (r.instrument_constant && in.known_line) doc.sections.push_back(calibration_section(*in.known_line, r));
-  doc.sections.push_back(line_section(in, r));
+  doc.sections.push_back(campaign_result_section(r, f));
+  doc.sections.push_back(checks_section(r, f));
+  if (r.instrument_constant && in.known_line) doc.sections.push_back(calibration_section(*in.known_line, r, f));
+  doc.sections.push_back(line_section(in, r, f));
   if (in.known_line) {
     const gyro::Instrument& ik = r.instrument_known->instrument;
-    add_detail_sections(doc.sections, "known-before", "Known line, before", in.known_line->before, r.known_before, ik);
-    add_detail_sections(doc.sections, "known-after", "Known line, after", in.known_line->after, r.known_after, ik);
+    add_detail_sections(doc.sections, "known-before", "Known line, before", in.known_line->before, r.known_before, ik, f);
+    add_detail_sections(doc.sections, "known-after", "Known line, after", in.known_line->after, r.known_after, ik, f);
   }
   add_detail_sections(doc.sections, "line-determination", "Line", in.line.determinations, r.determinations,
-                      r.instrument_station.instrument);
+                      r.instrument_station.instrument, f);
   doc.sections.push_back(notes_section(r));
   return doc;
 }

@@ -15,7 +15,7 @@ namespace meridian::report::gyro_plots {
 namespace {
 
 using nlohmann::json;
-using namespace fmtx;
+using fmtx::num;
 constexpr double kArcsec = units::kArcsecond;
 constexpr int kPlotWidth = 620;
 
@@ -207,7 +207,7 @@ Plot methods_plot(const gyro::DeterminationResult& r) {
           fmt::format("Bars: +-1 sigma. Reported result: {}.", gyro::to_string(r.primary.method))};
 }
 
-Plot tracking_plot(const gyro::DeterminationInput& in, const gyro::ReversalResult& fit) {
+Plot tracking_plot(const gyro::DeterminationInput& in, const gyro::ReversalResult& fit, const AngleFormat& f) {
   const auto r = gyro::unwrap_circle_readings(in.tracking.reversals_rad);
   const double m = fit.centre.value;
   json v = json::array();
@@ -233,7 +233,7 @@ Plot tracking_plot(const gyro::DeterminationInput& in, const gyro::ReversalResul
   return {"Tracking: reversal readings and model", spec,
           fmt::format("Diamonds: circle readings at the reversals relative to the centre M ({}); line: the "
                       "{} model (fitted = observed + residual). Dashed: M.",
-                      dir(m, 2), gyro::to_string(fit.method))};
+                      f.dir(m, 2), gyro::to_string(fit.method))};
 }
 
 Plot tracking_residual_plot(const gyro::ReversalResult& fit) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "meridian/gyro/determination.hpp"
+#include "meridian/report/format.hpp"
 #include "meridian/report/html.hpp"
 
 namespace meridian::report::gyro_plots {
@@ -20,7 +21,7 @@ Plot fit_residual_plot(const gyro::UnifiedFitResult& f);
 /// Every method's N_G relative to the reported one, with ±σ bars.
 Plot methods_plot(const gyro::DeterminationResult& r);
 /// Tracking reversal readings and the fitted model about M.
-Plot tracking_plot(const gyro::DeterminationInput& in, const gyro::ReversalResult& fit);
+Plot tracking_plot(const gyro::DeterminationInput& in, const gyro::ReversalResult& fit, const AngleFormat& f);
 /// Residuals of a tracking fit.
 Plot tracking_residual_plot(const gyro::ReversalResult& fit);
 /// Motor-off runs and their centres.

@@ -13,31 +13,28 @@ namespace {
 
 constexpr double kArcsec = units::kArcsecond;
 
-using fmtx::dir;
-using fmtx::sec;
-using fmtx::sig;
 
-void method_line(std::string& out, const gyro::MethodResult& m) {
-  out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", gyro::to_string(m.method), dir(m.north.north_rad),
-                     sig(m.north.sigma_rad));
+void method_line(std::string& out, const gyro::MethodResult& m, const AngleFormat& f) {
+  out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", gyro::to_string(m.method), f.dir(m.north.north_rad),
+                     f.sig(m.north.sigma_rad));
 }
 
 }  // namespace
 
-std::string determination_text(const gyro::DeterminationResult& r, int index) {
+std::string determination_text(const gyro::DeterminationResult& r, int index, const AngleFormat& f) {
   std::string out = fmt::format("Determination {}{} ({}, method {})\n", index + 1,
                                 r.label.empty() ? "" : " \"" + r.label + "\"", gyro::to_string(r.mode),
                                 gyro::method_request_name(r.method));
   auto line = [&](const gyro::MethodResult& m) {
     if (r.mode == gyro::Mode::NonTracking && m.beta) {
       out += fmt::format("  {:<18} beta {:+9.4f} div  dN {:>10}  N_G {:>15}  sigma {:>7}", gyro::to_string(m.method),
-                         m.beta->beta_div.value, sec(m.north.delta_n_rad, 3), dir(m.north.north_rad, 2),
-                         sig(m.north.sigma_rad));
+                         m.beta->beta_div.value, f.sec(m.north.delta_n_rad, 3), f.dir(m.north.north_rad, 2),
+                         f.sig(m.north.sigma_rad));
       if (m.approximation_error_rad != 0.0)
         out += fmt::format("  approximation error {:+.3f}\"", m.approximation_error_rad / kArcsec);
       out += "\n";
     } else {
-      method_line(out, m);
+      method_line(out, m, f);
     }
   };
   if (!r.method) {
@@ -49,7 +46,7 @@ std::string determination_text(const gyro::DeterminationResult& r, int index) {
   if (r.zero_position_used)
     out += fmt::format("  zero position {:+.3f} div (sigma {:.3f}), correction {}\n",
                        r.zero_position_used->value, r.zero_position_used->sigma,
-                       sec(r.primary.north.zero_correction_rad));
+                       f.sec(r.primary.north.zero_correction_rad));
   for (const auto& w : r.warnings) out += "  warning: " + w + "\n";
   return out;
 }
@@ -66,13 +63,13 @@ std::string check_text(const gyro::Check& k) {
   return std::string(k.pass ? "[PASS] " : "[FAIL] ") + check_statement(k);
 }
 
-std::string reduce_text(const std::string& file, const gyro::ReduceResult& r) {
+std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, const AngleFormat& f) {
   const gyro::Instrument& inst = r.instrument.instrument;
   std::string out = fmt::format("{}: {} determination(s), lambda = {:.5f}, tau = {:.1f}\"/div\n", file,
                                 r.determinations.size(), inst.torsion_ratio.value, inst.scale_value_rad / kArcsec);
   for (const auto& n : r.instrument.notes) out += "  note: " + n + "\n";
   for (std::size_t i = 0; i < r.determinations.size(); ++i)
-    out += determination_text(r.determinations[i], static_cast<int>(i));
+    out += determination_text(r.determinations[i], static_cast<int>(i), f);
   return out;
 }
 
@@ -88,7 +85,7 @@ std::string transit_factor_text(const gyro::TransitFactorCalibration& c) {
   return out;
 }
 
-std::string campaign_text(const gyro::CampaignResult& r) {
+std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   std::string out;
   out += fmt::format("Gyro orientation campaign: {}\n", r.name.empty() ? "(unnamed)" : r.name);
   out += std::string(72, '=') + "\n";
@@ -110,59 +107,59 @@ std::string campaign_text(const gyro::CampaignResult& r) {
         r.known_station && r.known_target ? " " + r.known_station->name + "-" + r.known_target->name : "";
     if (r.known_azimuth_given && r.known_azimuth_given->kind != gyro::KnownAzimuth::Kind::Astronomic)
       out += fmt::format("  known azimuth{} ({}, given) {}  sigma {}\n", line,
-                         geodesy::to_string(r.known_azimuth_given->kind), dir(r.known_azimuth_given->value_rad.value),
-                         sig(r.known_azimuth_given->value_rad.sigma));
-    out += fmt::format("  known azimuth{} (astronomic) {}  sigma {}\n", line, dir(r.known_astronomic_azimuth_rad->value),
-                       sig(r.known_astronomic_azimuth_rad->sigma));
+                         geodesy::to_string(r.known_azimuth_given->kind), f.dir(r.known_azimuth_given->value_rad.value),
+                         f.sig(r.known_azimuth_given->value_rad.sigma));
+    out += fmt::format("  known azimuth{} (astronomic) {}  sigma {}\n", line, f.dir(r.known_astronomic_azimuth_rad->value),
+                       f.sig(r.known_astronomic_azimuth_rad->sigma));
     auto list = [&](const char* when, const std::vector<gyro::DeterminationResult>& d,
                     const std::vector<gyro::Uncertain>& ag, const std::vector<gyro::Uncertain>& e) {
       for (std::size_t i = 0; i < d.size(); ++i)
         out += fmt::format("  {:<6} {:<20} N_G {:>15}  A_G {:>15}  E {:>9}  sigma {}\n", when,
-                           gyro::to_string(d[i].primary.method), dir(d[i].primary.north.north_rad), dir(ag[i].value),
-                           sec(e[i].value), sig(e[i].sigma));
+                           gyro::to_string(d[i].primary.method), f.dir(d[i].primary.north.north_rad), f.dir(ag[i].value),
+                           f.sec(e[i].value), f.sig(e[i].sigma));
     };
     list("before", r.known_before, r.known_gyro_azimuths_before, r.instrument_constant->before);
     list("after", r.known_after, r.known_gyro_azimuths_after, r.instrument_constant->after);
   }
-  out += fmt::format("  instrument constant E = {}  sigma {}\n\n", sec(r.instrument_constant_used_rad.value),
-                     sig(r.instrument_constant_used_rad.sigma));
+  out += fmt::format("  instrument constant E = {}  sigma {}\n\n", f.sec(r.instrument_constant_used_rad.value),
+                     f.sig(r.instrument_constant_used_rad.sigma));
 
   out += "Determinations on the line\n";
   for (std::size_t i = 0; i < r.determinations.size(); ++i) {
     const auto& d = r.determinations[i];
     out += fmt::format("  {:<2} {:<20} N_G {:>15}  sigma {:>6}  A_G {:>15}  sigma {}\n", i + 1,
-                       d.label.empty() ? gyro::to_string(d.primary.method) : d.label, dir(d.primary.north.north_rad),
-                       sig(d.primary.north.sigma_rad), dir(r.gyro_azimuths[i].value),
-                       sig(r.gyro_azimuths[i].sigma));
+                       d.label.empty() ? gyro::to_string(d.primary.method) : d.label, f.dir(d.primary.north.north_rad),
+                       f.sig(d.primary.north.sigma_rad), f.dir(r.gyro_azimuths[i].value),
+                       f.sig(r.gyro_azimuths[i].sigma));
   }
   out += "\nAzimuth chain (station to target)\n";
   const auto& c = r.chain;
-  out += fmt::format("  gyro azimuth        A_G = {:>15}  sigma {}\n", dir(c.gyro_azimuth_rad.value),
-                     sig(c.gyro_azimuth_rad.sigma));
-  out += fmt::format("  + instrument const. E   = {:>15}\n", sec(r.instrument_constant_used_rad.value));
-  out += fmt::format("  astronomic azimuth  A   = {:>15}  sigma {}\n", dir(c.astronomic_azimuth_rad.value),
-                     sig(c.astronomic_azimuth_rad.sigma));
+  out += fmt::format("  gyro azimuth        A_G = {:>15}  sigma {}\n", f.dir(c.gyro_azimuth_rad.value),
+                     f.sig(c.gyro_azimuth_rad.sigma));
+  out += fmt::format("  + instrument const. E   = {:>15}\n", f.sec(r.instrument_constant_used_rad.value));
+  out += fmt::format("  astronomic azimuth  A   = {:>15}  sigma {}\n", f.dir(c.astronomic_azimuth_rad.value),
+                     f.sig(c.astronomic_azimuth_rad.sigma));
   out += fmt::format("  Laplace -eta tan(phi)   = {:>15}\n",
-                     c.laplace_applied ? sec(c.laplace_correction_rad) : std::string("not applied"));
+                     c.laplace_applied ? f.sec(c.laplace_correction_rad) : std::string("not applied"));
   if (c.zenith_term_applied)
-    out += fmt::format("  -(xi sin a - eta cos a) cot z = {:>9}  (z = {})\n", sec(c.zenith_correction_rad),
+    out += fmt::format("  -(xi sin a - eta cos a) cot z = {:>9}  (z = {})\n", f.sec(c.zenith_correction_rad),
                        format_dms(Angle::radians(*c.zenith_distance_rad), {0, true, false}));
-  out += fmt::format("  geodetic azimuth    alpha = {:>13}  sigma {}\n", dir(c.geodetic_azimuth_rad.value),
-                     sig(c.geodetic_azimuth_rad.sigma));
+  out += fmt::format("  geodetic azimuth    alpha = {:>13}  sigma {}\n", f.dir(c.geodetic_azimuth_rad.value),
+                     f.sig(c.geodetic_azimuth_rad.sigma));
   out += fmt::format("  - convergence gamma     = {:>15}\n",
                      format_dms(Angle::radians(c.convergence_rad), {2, true, true}));
   out += fmt::format("  + arc-to-chord delta    = {:>15}\n",
-                     c.arc_to_chord_applied ? sec(c.arc_to_chord_rad) : std::string("not applied"));
-  out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n\n", dir(c.grid_azimuth_rad.value),
-                     sig(c.grid_azimuth_rad.sigma));
+                     c.arc_to_chord_applied ? f.sec(c.arc_to_chord_rad) : std::string("not applied"));
+  out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n\n", f.dir(c.grid_azimuth_rad.value),
+                     f.sig(c.grid_azimuth_rad.sigma));
   out += fmt::format("Checks (limits: {})\n", r.limits.source);
   if (r.checks.empty()) out += "  (none applicable)\n";
   for (const auto& k : r.checks) out += "  " + check_text(k) + "\n";
   if (r.constant_one_run_sigma_rad || r.line_one_run_sigma_rad) {
     out += "  one-run standard deviations m = sqrt([vv]/(n-1)):";
-    if (r.constant_one_run_sigma_rad) out += " instrument constant " + sig(*r.constant_one_run_sigma_rad);
+    if (r.constant_one_run_sigma_rad) out += " instrument constant " + f.sig(*r.constant_one_run_sigma_rad);
     if (r.constant_one_run_sigma_rad && r.line_one_run_sigma_rad) out += ",";
-    if (r.line_one_run_sigma_rad) out += " gyro azimuth on the line " + sig(*r.line_one_run_sigma_rad);
+    if (r.line_one_run_sigma_rad) out += " gyro azimuth on the line " + f.sig(*r.line_one_run_sigma_rad);
     out += "\n";
   }
   if (!r.notes.empty()) out += "\nNotes\n";

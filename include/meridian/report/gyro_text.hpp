@@ -10,20 +10,22 @@
 #include "meridian/gyro/determination.hpp"
 #include "meridian/gyro/reduce.hpp"
 #include "meridian/gyro/transit_calibration.hpp"
+#include "meridian/report/format.hpp"
 
 namespace meridian::report {
 
 /// One determination (`index` is 0-based, printed 1-based): every method's
 /// β, ΔN, N_G and σ, the recommended one, the zero-position correction, warnings.
-std::string determination_text(const gyro::DeterminationResult& r, int index);
+/// Angles are written by `f` (the book's angle unit; DMS by default).
+std::string determination_text(const gyro::DeterminationResult& r, int index, const AngleFormat& f = AngleFormat());
 
 /// `meridian gyro reduce`: a header line (file, count, λ, τ), the
 /// instrument notes, then every determination.
-std::string reduce_text(const std::string& file, const gyro::ReduceResult& r);
+std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, const AngleFormat& f = AngleFormat());
 
 /// `meridian gyro campaign`: stations, calibration, the line's
 /// determinations, the azimuth chain, checks, notes and warnings.
-std::string campaign_text(const gyro::CampaignResult& r);
+std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f = AngleFormat());
 
 /// One check: "name: value unit (limit L unit)" ("at least" for a minimum).
 std::string check_statement(const gyro::Check& k);
