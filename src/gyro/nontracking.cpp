@@ -79,24 +79,28 @@ Propagated propagate(const std::function<Vec(const Vec&)>& f, const std::vector<
 // ---------------------------------------------------------------------------
 // Shared pieces
 
-double small_angle_threshold_div(const Instrument& inst) {
-  const double per_div = (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad;
-  // Without τ: a nominal (1+λ)·τ = 1.3·600″ per division.
-  if (!(per_div > 0.0) || !std::isfinite(per_div)) return kSmallAngleWarningArcsec / 780.0;
-  return kSmallAngleWarningArcsec * units::kArcsecond / per_div;
-}
-
-void warn_small_angle(BetaResult& r, const Instrument& inst, const char* method) {
+// Small-angle warning: the approximation error matters only as a fraction of
+// the run's own σ. Compared in ΔN, with σ(ΔN) of the method (σ(β) carried by
+// (1+λ)·τ with σ(λ), σ(τ), or the calibrated c with σ(c)); without τ, in β.
+void warn_small_angle(BetaResult& r, const Instrument& inst, const char* method,
+                      double sigma_delta_n_rad) {
   const double err = r.approximation_error_div;
-  if (std::abs(err) <= small_angle_threshold_div(inst)) return;
   const double per_div = (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad;
-  std::string eq;
-  if (per_div > 0.0 && std::isfinite(per_div))
-    eq = fmt::format(" = {:.3f}″ in ΔN", units::rad_to_arcsec(err * per_div));
+  const bool in_delta_n = per_div > 0.0 && std::isfinite(per_div);
+  const double size = in_delta_n ? std::abs(err) * per_div : std::abs(err);
+  const double sigma = in_delta_n ? sigma_delta_n_rad : r.beta_div.sigma;
+  const double floor = in_delta_n ? kSmallAngleWarningFloorArcsec * units::kArcsecond
+                                  : kSmallAngleWarningFloorArcsec / 780.0;  // nominal (1+λ)·τ
+  if (!(size > kSmallAngleWarningFraction * sigma && size > floor)) return;
+  const std::string eq = in_delta_n
+                             ? fmt::format(" = {:.3f}″ in ΔN", units::rad_to_arcsec(err * per_div))
+                             : std::string();
+  const std::string of = in_delta_n ? fmt::format("σ(ΔN) = {:.2f}″", units::rad_to_arcsec(sigma))
+                                    : fmt::format("σ(β) = {:.5f} div", sigma);
   r.warnings.push_back(fmt::format(
-      "{}: the small-angle approximation error is {:.5f} div{} (above the {:g}″ warning "
-      "threshold); prefer the direct solution or the unified least-squares fit",
-      method, err, eq, kSmallAngleWarningArcsec));
+      "{}: the small-angle approximation error is {:.5f} div{}, more than {:g} of the run's {}; "
+      "prefer the direct solution or the unified least-squares fit",
+      method, err, eq, kSmallAngleWarningFraction, of));
 }
 
 void require_period(const NonTrackingObservations& obs, const char* method) {
@@ -304,7 +308,7 @@ BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
     r.assumptions.push_back("ΔN = c·B·Δt with the calibrated transit factor c");
   else
     r.assumptions.push_back("ΔN = c·B·Δt with c = (1+λ)·τ·π/(2T_B)");
-  warn_small_angle(r, inst, "transit");
+  warn_small_angle(r, inst, "transit", p.sigma[1]);
   if (known) {
     // Times against the given T_B: the transits' own period estimate. σ of the
     // difference from the timing σ and σ(T_B); 1 ms floor for rounded times.
@@ -392,7 +396,8 @@ BetaResult time_difference_method(const NonTrackingObservations& obs, const Inst
   r.assumptions.push_back("implied T_B = mean of t3 − t1 of the two levels; implied B and the "
                           "approximation error from the arcsine form with that T_B");
   warn_if_extrapolated(r, lp, "time-difference");
-  warn_small_angle(r, inst, "time-difference");
+  warn_small_angle(r, inst, "time-difference",
+                   north_from_nontracking(0.0, r.beta_div, inst).sigma_rad);
   return r;
 }
 

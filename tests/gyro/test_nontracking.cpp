@@ -196,9 +196,40 @@ TEST(NonTrackingTransit, WarnsWhenTheSmallAngleFormIsInadequate) {
   // error = B·(x − asin... ) closed form: β_small = B·asin(β/B).
   const double err = o.amp * std::asin(o.beta / o.amp) - o.beta;
   EXPECT_NEAR(r.approximation_error_div, err, 1e-10);
-  ASSERT_GT(err * 780.0, meridian::gyro::kSmallAngleWarningArcsec);
+  ASSERT_TRUE(r.transit_delta_n_rad);
+  ASSERT_GT(err * 780.0 * kArcsecond,
+            meridian::gyro::kSmallAngleWarningFraction * r.transit_delta_n_rad->sigma);
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_NE(r.warnings.front().find("small-angle"), std::string::npos);
+}
+
+// The warning depends on the run's own σ: a 0.2″ error is noise for σ ≈ 6″
+// and not for σ ≈ 0.06″; the error itself is reported either way.
+TEST(NonTrackingTransit, SmallAngleWarningOnlyWhenItMattersForTheRunsSigma) {
+  const Truth o{0.5, 9.0, 440.0, 50.0};
+  NonTrackingObservations obs;
+  obs.crossings.push_back(passages(o, 0.0, 40.0, 3));
+  add_reversals(obs, o, 40.0, 2);
+  obs.period_s = Uncertain{o.period, 0.0};
+  const double err = o.amp * std::asin(o.beta / o.amp) - o.beta;  // β_small − β
+  ASSERT_NEAR(err * 780.0, 0.2, 0.01);
+  const auto has_warning = [](const BetaResult& r) {
+    for (const auto& w : r.warnings)
+      if (w.find("small-angle") != std::string::npos) return true;
+    return false;
+  };
+  const BetaResult noisy =
+      meridian::gyro::reduce_nontracking(NonTrackingMethod::Transit, obs, scenario_instrument());
+  EXPECT_NEAR(noisy.approximation_error_div, err, 1e-10);
+  EXPECT_GT(noisy.transit_delta_n_rad->sigma / kArcsecond, 5.0);
+  EXPECT_FALSE(has_warning(noisy));
+  obs.sigma_time_s = 0.001;
+  obs.sigma_reading_div = 0.0005;
+  const BetaResult precise =
+      meridian::gyro::reduce_nontracking(NonTrackingMethod::Transit, obs, scenario_instrument());
+  EXPECT_NEAR(precise.approximation_error_div, err, 1e-10);
+  EXPECT_LT(precise.transit_delta_n_rad->sigma / kArcsecond, 0.1);
+  EXPECT_TRUE(has_warning(precise));
 }
 
 // ΔN = c·B·Δt with a calibrated c; λ and τ then play no part.

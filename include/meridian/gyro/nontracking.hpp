@@ -37,8 +37,13 @@ struct NonTrackingObservations {
 };
 
 /// The transit and time-difference methods warn when their approximation
-/// error, expressed as ΔN = (1+λ)·τ·error, exceeds this (arcsec).
-inline constexpr double kSmallAngleWarningArcsec = 0.1;
+/// error, expressed as ΔN = (1+λ)·τ·error, exceeds this fraction of the σ of
+/// their own ΔN (the σ(N_G) of the run without the zero-position term): an
+/// error of a tenth of σ changes σ_total by 0.5 % and the result by 0.1 σ.
+inline constexpr double kSmallAngleWarningFraction = 0.1;
+/// ... and exceeds this (arcsec): spec §8.1's tolerance for exact methods, so
+/// noise-free data (σ = 0) do not warn about rounding-level errors.
+inline constexpr double kSmallAngleWarningFloorArcsec = 0.01;
 
 /// The simple (closed-form) methods.
 enum class NonTrackingMethod {
