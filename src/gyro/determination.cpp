@@ -7,6 +7,7 @@
 
 #include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
 
 namespace meridian::gyro {
 namespace {
@@ -161,6 +162,11 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
     } else {
       out.primary = run_tracking(requested_method<ReversalMethod>(in), in, inst, zero);
     }
+    if (const std::string w = reading_sigma_warning(*out.primary.reversal, units::kArcsecond, "\"");
+        !w.empty())
+      out.warnings.push_back(in.label.empty()
+                                 ? "tracking run: " + w
+                                 : fmt::format("tracking run \"{}\": {}", in.label, w));
   }
   return out;
 }

@@ -100,3 +100,47 @@ TEST(GyroTransitFactor, NeedsExactlyTwoDeterminations) {
     EXPECT_NE(std::string(e.what()).find("got 3"), std::string::npos);
   }
 }
+
+// fb_badrev_sig.yaml of the gyro-field cases: one reversal booked 2′ wrong, a
+// stated reading σ of 5″. The readings scatter 65.6″ (σ̂0 of the linear fit,
+// two degrees of freedom): the global test rejects 5″, the determination
+// reports the larger a-posteriori σ and warns naming the run. The same run
+// booked right passes and carries the a-priori σ.
+TEST(GyroReduce, TrackingReadingsScatteringMoreThanStatedWarnNamingTheRun) {
+  const auto dms = [](int d, int m, double s) {
+    return (d + m / 60.0 + s / 3600.0) * units::kDegree;
+  };
+  DeterminationInput in;
+  in.label = "D1-D2 1 (tracking)";
+  in.mode = Mode::Tracking;
+  in.method = ReversalMethod::Schuler;
+  in.tracking.sigma_reading_rad = 5.0 * kArcsec;
+  Instrument inst;
+  inst.scale_value_rad = 600.0 * kArcsec;
+  inst.torsion_ratio = {0.169, 0.002};
+  for (double third : {dms(359, 10, 16), dms(359, 8, 16)}) {
+    in.tracking.reversals_rad = {dms(359, 7, 48), dms(0, 37, 1), third, dms(0, 36, 21),
+                                 dms(359, 8, 57)};
+    const DeterminationResult r = reduce_determination(in, inst);
+    const ReversalResult& f = *r.primary.reversal;
+    ASSERT_TRUE(f.reading_sigma_test);
+    const bool bad = third == dms(359, 10, 16);
+    EXPECT_EQ(f.reading_sigma_test->rejected, bad);
+    EXPECT_EQ(f.sigma_is_aposteriori, bad);
+    // Schuler, n = 5: q = (1² + 3² + 4² + 3² + 1²)/12² = 0.25.
+    EXPECT_NEAR(r.primary.north.sigma_rad / kArcsec, (bad ? f.sigma0 / kArcsec : 5.0) * 0.5, 1e-9);
+    // Successive Schuler means (r_i + 2r_(i+1) + r_(i+2))/4 relative to 0°: −418.5″, −391.5″,
+    // −421.25″ booked wrong; −448.5″, −451.5″, −451.25″ booked right.
+    ASSERT_TRUE(f.partial_means_spread);
+    EXPECT_NEAR(*f.partial_means_spread / kArcsec, bad ? 29.75 : 3.0, 1e-6);
+    bool named = false;
+    for (const auto& w : r.warnings)
+      named = named ||
+              (w.find("tracking run \"D1-D2 1 (tracking)\": the reversal readings scatter") == 0 &&
+               w.find("against the stated 5.0\"") != std::string::npos);
+    EXPECT_EQ(named, bad);
+    if (bad) {
+      EXPECT_NEAR(f.sigma0 / kArcsec, 65.58, 0.01);
+    }
+  }
+}
