@@ -79,30 +79,6 @@ Propagated propagate(const std::function<Vec(const Vec&)>& f, const std::vector<
 // ---------------------------------------------------------------------------
 // Shared pieces
 
-// Small-angle warning: the approximation error matters only as a fraction of
-// the run's own σ. Compared in ΔN, with σ(ΔN) of the method (σ(β) carried by
-// (1+λ)·τ with σ(λ), σ(τ), or the calibrated c with σ(c)); without τ, in β.
-void warn_small_angle(BetaResult& r, const Instrument& inst, const char* method,
-                      double sigma_delta_n_rad) {
-  const double err = r.approximation_error_div;
-  const double per_div = (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad;
-  const bool in_delta_n = per_div > 0.0 && std::isfinite(per_div);
-  const double size = in_delta_n ? std::abs(err) * per_div : std::abs(err);
-  const double sigma = in_delta_n ? sigma_delta_n_rad : r.beta_div.sigma;
-  const double floor = in_delta_n ? kSmallAngleWarningFloorArcsec * units::kArcsecond
-                                  : kSmallAngleWarningFloorArcsec / 780.0;  // nominal (1+λ)·τ
-  if (!(size > kSmallAngleWarningFraction * sigma && size > floor)) return;
-  const std::string eq = in_delta_n
-                             ? fmt::format(" = {:.3f}″ in ΔN", units::rad_to_arcsec(err * per_div))
-                             : std::string();
-  const std::string of = in_delta_n ? fmt::format("σ(ΔN) = {:.2f}″", units::rad_to_arcsec(sigma))
-                                    : fmt::format("σ(β) = {:.5f} div", sigma);
-  r.warnings.push_back(fmt::format(
-      "{}: the small-angle approximation error is {:.5f} div{}, more than {:g} of the run's {}; "
-      "prefer the direct solution or the unified least-squares fit",
-      method, err, eq, kSmallAngleWarningFraction, of));
-}
-
 void require_period(const NonTrackingObservations& obs, const char* method) {
   if (!obs.period_s)
     throw_input("period_s", fmt::format("the {} method needs the period T_B", method));
@@ -308,7 +284,6 @@ BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
     r.assumptions.push_back("ΔN = c·B·Δt with the calibrated transit factor c");
   else
     r.assumptions.push_back("ΔN = c·B·Δt with c = (1+λ)·τ·π/(2T_B)");
-  warn_small_angle(r, inst, "transit", p.sigma[1]);
   if (known) {
     // Times against the given T_B: the transits' own period estimate. σ of the
     // difference from the timing σ and σ(T_B); 1 ms floor for rounded times.
@@ -359,7 +334,7 @@ void warn_if_extrapolated(BetaResult& r, const LevelPair& lp, const char* method
                                      method));
 }
 
-BetaResult time_difference_method(const NonTrackingObservations& obs, const Instrument& inst) {
+BetaResult time_difference_method(const NonTrackingObservations& obs) {
   const LevelPair lp = require_two_levels(obs, "time-difference");
   const Crossing& ci = obs.crossings[lp.i];
   const Crossing& cj = obs.crossings[lp.j];
@@ -396,8 +371,6 @@ BetaResult time_difference_method(const NonTrackingObservations& obs, const Inst
   r.assumptions.push_back("implied T_B = mean of t3 − t1 of the two levels; implied B and the "
                           "approximation error from the arcsine form with that T_B");
   warn_if_extrapolated(r, lp, "time-difference");
-  warn_small_angle(r, inst, "time-difference",
-                   north_from_nontracking(0.0, r.beta_div, inst).sigma_rad);
   return r;
 }
 
@@ -671,6 +644,18 @@ NonTrackingMethod nontracking_method_from_string(const std::string& name) {
 
 double time_difference_s(double t1, double t2, double t3) { return -t1 + 2.0 * t2 - t3; }
 
+std::string small_angle_warning(const BetaResult& r, double error_rad, double sigma_rad) {
+  const double size = std::abs(error_rad);
+  if (!(size > kSmallAngleWarningFraction * sigma_rad &&
+        size > kSmallAngleWarningFloorArcsec * units::kArcsecond))
+    return {};
+  return fmt::format(
+      "{}: the small-angle approximation error is {:.5f} div = {:.3f}″ in N_G, more than {:g} of "
+      "the run's σ(N_G) = {:.2f}″; prefer the direct solution or the unified least-squares fit",
+      to_string(r.method), r.approximation_error_div, units::rad_to_arcsec(error_rad),
+      kSmallAngleWarningFraction, units::rad_to_arcsec(sigma_rad));
+}
+
 void validate_nontracking(const NonTrackingObservations& obs) {
   if (!std::isfinite(obs.sigma_time_s) || obs.sigma_time_s < 0.0)
     throw_input("sigma_time_s",
@@ -758,7 +743,7 @@ BetaResult reduce_nontracking(NonTrackingMethod method, const NonTrackingObserva
   validate_instrument(inst);
   switch (method) {
     case NonTrackingMethod::Transit: return transit(obs, inst);
-    case NonTrackingMethod::TimeDifference: return time_difference_method(obs, inst);
+    case NonTrackingMethod::TimeDifference: return time_difference_method(obs);
     case NonTrackingMethod::Direct: return direct_method(obs);
     case NonTrackingMethod::TimedAmplitude1: return timed_amplitude_1(obs);
     case NonTrackingMethod::TimedAmplitude2: return timed_amplitude_2(obs);

@@ -186,7 +186,7 @@ TEST(NonTrackingTransit, WarnsWhenTimesContradictTheGivenPeriod) {
   EXPECT_TRUE(found);
 }
 
-TEST(NonTrackingTransit, WarnsWhenTheSmallAngleFormIsInadequate) {
+TEST(NonTrackingTransit, ReportsTheSmallAngleError) {
   const Truth o{1.5, 9.0, 440.0, 50.0};
   NonTrackingObservations obs;
   obs.crossings.push_back(passages(o, 0.0, 40.0, 3));
@@ -196,40 +196,24 @@ TEST(NonTrackingTransit, WarnsWhenTheSmallAngleFormIsInadequate) {
   // error = B·(x − asin... ) closed form: β_small = B·asin(β/B).
   const double err = o.amp * std::asin(o.beta / o.amp) - o.beta;
   EXPECT_NEAR(r.approximation_error_div, err, 1e-10);
-  ASSERT_TRUE(r.transit_delta_n_rad);
-  ASSERT_GT(err * 780.0 * kArcsecond,
-            meridian::gyro::kSmallAngleWarningFraction * r.transit_delta_n_rad->sigma);
-  ASSERT_FALSE(r.warnings.empty());
-  EXPECT_NE(r.warnings.front().find("small-angle"), std::string::npos);
 }
 
-// The warning depends on the run's own σ: a 0.2″ error is noise for σ ≈ 6″
-// and not for σ ≈ 0.06″; the error itself is reported either way.
-TEST(NonTrackingTransit, SmallAngleWarningOnlyWhenItMattersForTheRunsSigma) {
-  const Truth o{0.5, 9.0, 440.0, 50.0};
-  NonTrackingObservations obs;
-  obs.crossings.push_back(passages(o, 0.0, 40.0, 3));
-  add_reversals(obs, o, 40.0, 2);
-  obs.period_s = Uncertain{o.period, 0.0};
-  const double err = o.amp * std::asin(o.beta / o.amp) - o.beta;  // β_small − β
-  ASSERT_NEAR(err * 780.0, 0.2, 0.01);
-  const auto has_warning = [](const BetaResult& r) {
-    for (const auto& w : r.warnings)
-      if (w.find("small-angle") != std::string::npos) return true;
-    return false;
-  };
-  const BetaResult noisy =
-      meridian::gyro::reduce_nontracking(NonTrackingMethod::Transit, obs, scenario_instrument());
-  EXPECT_NEAR(noisy.approximation_error_div, err, 1e-10);
-  EXPECT_GT(noisy.transit_delta_n_rad->sigma / kArcsecond, 5.0);
-  EXPECT_FALSE(has_warning(noisy));
-  obs.sigma_time_s = 0.001;
-  obs.sigma_reading_div = 0.0005;
-  const BetaResult precise =
-      meridian::gyro::reduce_nontracking(NonTrackingMethod::Transit, obs, scenario_instrument());
-  EXPECT_NEAR(precise.approximation_error_div, err, 1e-10);
-  EXPECT_LT(precise.transit_delta_n_rad->sigma / kArcsecond, 0.1);
-  EXPECT_TRUE(has_warning(precise));
+// The warning rule: |error in N_G| > 0.1·σ(N_G) of the run, and > 0.01″.
+TEST(NonTrackingTransit, SmallAngleWarningRule) {
+  BetaResult r;
+  r.method = NonTrackingMethod::Transit;
+  r.approximation_error_div = 0.00165;
+  using meridian::gyro::small_angle_warning;
+  const double e = 1.157 * kArcsecond;
+  EXPECT_TRUE(small_angle_warning(r, e, 14.0 * kArcsecond).empty());  // 8 % of σ
+  EXPECT_TRUE(small_angle_warning(r, -e, 14.0 * kArcsecond).empty());
+  EXPECT_FALSE(small_angle_warning(r, e, 11.0 * kArcsecond).empty());  // 10.5 % of σ
+  const std::string w = small_angle_warning(r, -e, 11.0 * kArcsecond);
+  EXPECT_EQ(w.rfind("transit: the small-angle approximation error", 0), 0u) << w;
+  EXPECT_NE(w.find("11.00″"), std::string::npos) << w;
+  // σ = 0 (noise-free weights): only errors above 0.01″ warn.
+  EXPECT_TRUE(small_angle_warning(r, 0.009 * kArcsecond, 0.0).empty());
+  EXPECT_FALSE(small_angle_warning(r, 0.011 * kArcsecond, 0.0).empty());
 }
 
 // ΔN = c·B·Δt with a calibrated c; λ and τ then play no part.

@@ -144,3 +144,49 @@ TEST(GyroReduce, TrackingReadingsScatteringMoreThanStatedWarnNamingTheRun) {
     }
   }
 }
+
+// The small-angle warning follows the run's own σ(N_G) (issue 15): the transit
+// error at β = 0.5 div, B = 9 div is B·asin(β/B) − β = 0.00026 div = 0.20″; it
+// is reported always, and warned about only where it exceeds 0.1·σ(N_G) —
+// not with the usual σ_t = 0.1 s (σ ≈ 6″), yes with σ_t = 1 ms (σ ≈ 0.06″),
+// and not again once the zero position's σ enters σ(N_G).
+TEST(GyroReduce, SmallAngleWarningOnlyWhenItMattersForTheRunsSigma) {
+  NonTrackingSimulation sim;
+  sim.beta_div = 0.5;
+  sim.amplitude_div = 9.0;
+  sim.period_s = 440.0;
+  sim.t0_s = 50.0;
+  sim.levels_div = {0.0};
+  sim.reversals = 2;
+  sim.known_period_s = 440.0;
+  Instrument inst;
+  inst.scale_value_rad = 600.0 * kArcsec;
+  inst.torsion_ratio = {0.30, 0.0};
+  DeterminationInput in;
+  in.mode = Mode::NonTracking;
+  in.method = NonTrackingMethod::Transit;
+  const double expected = (9.0 * std::asin(0.5 / 9.0) - 0.5) * 780.0;
+  const auto warned = [](const DeterminationResult& r) {
+    for (const auto& w : r.warnings)
+      if (w.find("small-angle") != std::string::npos) return true;
+    return false;
+  };
+  struct Case {
+    double sigma_t, sigma_a;
+    ZeroPosition zero;
+    bool warns;
+  };
+  for (const Case& c :
+       {Case{0.1, 0.05, std::nullopt, false}, Case{0.001, 0.0005, std::nullopt, true},
+        Case{0.001, 0.0005, Uncertain{0.1, 0.05}, false}}) {
+    sim.reported_sigma_time_s = c.sigma_t;
+    sim.reported_sigma_reading_div = c.sigma_a;
+    in.nontracking = simulate_nontracking(sim, 1);
+    in.zero_position = c.zero;
+    const DeterminationResult r = reduce_determination(in, inst);
+    EXPECT_NEAR(r.primary.approximation_error_rad / kArcsec, expected, 1e-6);
+    EXPECT_NEAR(expected, 0.20, 0.01);
+    EXPECT_EQ(warned(r), c.warns) << "sigma(N_G) = " << r.primary.north.sigma_rad / kArcsec;
+    EXPECT_EQ(c.warns, std::abs(expected) > 0.1 * r.primary.north.sigma_rad / kArcsec);
+  }
+}
