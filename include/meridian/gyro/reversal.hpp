@@ -8,6 +8,7 @@
 /// Model (R1): r_i = M + (−1)^i·A·e^{−iκ}, i = 1…n, κ = decay per half
 /// period. Linearised (R2): r_i = M + (−1)^i·A′ + (−1)^{i+1}·(2i − 1)·c.
 
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -53,7 +54,7 @@ struct ReversalResult {
   int dof = 0;                          ///< redundancy n − u of the fit (0 for closed forms)
   double sigma0 = 0.0;                  ///< a-posteriori σ of one reading (NaN when dof = 0)
   /// The stated a-priori σ of one reading (> 0), NaN when none was stated.
-  double sigma_reading = 0.0;
+  double sigma_reading = std::numeric_limits<double>::quiet_NaN();
   bool sigma_is_aposteriori = false;    ///< centre.sigma from σ̂0 (true) or the a-priori σ (false)
   /// Global test of σ̂0 against the stated reading σ: T = dof·σ̂0²/σ_r² against
   /// χ²_{1−α}(dof), α = kReadingSigmaTestAlpha (adjust::global_test). Present
@@ -72,8 +73,8 @@ struct ReversalResult {
 };
 
 /// The warning for a rejected reading_sigma_test, e.g. "the reversal readings
-/// scatter more than stated: sigma0 = 65.3" against the stated 5.0" (2 degrees
-/// of freedom; global test T = 341.16 > 9.21 at alpha = 1 %); the larger,
+/// scatter more than stated: sigma0 = 65.6" against the stated 5.0" (2 degrees
+/// of freedom; global test T = 344.01 > 9.21 at alpha = 1 %); the larger,
 /// a-posteriori sigma is used". σ are divided by `unit` (units::kArcsecond for
 /// circle readings in radians, 1 for divisions) and followed by `unit_symbol`
 /// ("div" prints three decimals, anything else one). Empty when there was no
