@@ -168,7 +168,8 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
     } else {
       out.primary = run_tracking(requested_method<ReversalMethod>(in), in, inst, zero);
     }
-    if (const std::string w = reading_sigma_warning(*out.primary.reversal, units::kArcsecond, "\"");
+    if (const std::string w =
+            reading_sigma_warning(*out.primary.reversal, units::kArcsecond, "\"", 1);
         !w.empty())
       out.warnings.push_back(in.label.empty()
                                  ? "tracking run: " + w

@@ -229,15 +229,14 @@ ReversalResult estimate_centre(ReversalMethod method, std::span<const double> r,
 }
 
 std::string reading_sigma_warning(const ReversalResult& r, double unit,
-                                  std::string_view unit_symbol) {
+                                  std::string_view unit_symbol, int decimals) {
   if (!r.reading_sigma_test || !r.reading_sigma_test->rejected) return {};
   const adjust::GlobalTestResult& g = *r.reading_sigma_test;
-  const int digits = unit_symbol == "div" ? 3 : 1;
   return fmt::format(
       "the reversal readings scatter more than stated: sigma0 = {:.{}f}{} against the stated "
       "{:.{}f}{} ({} degrees of freedom; global test T = {:.2f} > {:.2f} at alpha = {:g} %); "
       "the larger, a-posteriori sigma is used",
-      r.sigma0 / unit, digits, unit_symbol, r.sigma_reading / unit, digits, unit_symbol, g.dof,
+      r.sigma0 / unit, decimals, unit_symbol, r.sigma_reading / unit, decimals, unit_symbol, g.dof,
       g.vtpv, g.critical_value, 100.0 * g.alpha);
 }
 

@@ -157,7 +157,7 @@ TEST(Reversal, StatedReadingSigmaIsUsedAndTested) {
       EXPECT_EQ(s.sigma_reading, stated);
       const double expected = (g.rejected ? s.sigma0 : stated) * std::sqrt(s.cofactor_centre);
       EXPECT_NEAR(s.centre.sigma, expected, 1e-15) << to_string(method) << " stated " << stated;
-      EXPECT_EQ(reading_sigma_warning(s, 1.0, "div").empty(), !g.rejected);
+      EXPECT_EQ(reading_sigma_warning(s, 1.0, " div", 3).empty(), !g.rejected);
     }
     // 0.05 div is consistent with these readings, 0.005 div is not.
     EXPECT_FALSE(estimate_centre(method, r, 0.05).reading_sigma_test->rejected)

@@ -76,11 +76,11 @@ struct ReversalResult {
 /// scatter more than stated: sigma0 = 65.6" against the stated 5.0" (2 degrees
 /// of freedom; global test T = 344.01 > 9.21 at alpha = 1 %); the larger,
 /// a-posteriori sigma is used". σ are divided by `unit` (units::kArcsecond for
-/// circle readings in radians, 1 for divisions) and followed by `unit_symbol`
-/// ("div" prints three decimals, anything else one). Empty when there was no
-/// test or it passed.
+/// circle readings in radians, 1 for divisions), printed with `decimals`
+/// decimals and followed by `unit_symbol` (e.g. "\"" or " div"). Empty when
+/// there was no test or it passed.
 std::string reading_sigma_warning(const ReversalResult& r, double unit,
-                                  std::string_view unit_symbol);
+                                  std::string_view unit_symbol, int decimals);
 
 /// Check that `readings` can be a reversal sequence: n ≥ min_count, all
 /// finite, successive differences non-zero and alternating in sign.
