@@ -530,8 +530,9 @@ BetaResult timed_amplitude_1(const NonTrackingObservations& obs) {
 
 // Levels whose propagated σ(β) lie within this fraction of the smallest count
 // as equally well conditioned. σ(β) computed from noisy times varies between
-// runs by a few 0.1 % only (σ_t ≪ T_B), so the choice between two levels
-// depends on the noise only where their σ differ by 10 % ± that.
+// runs by 0.6 % (standard deviation at the simulator's defaults), so the
+// choice between two levels depends on the noise only where their σ differ
+// by 10 % ± about 2 %.
 constexpr double kTa2EquallyConditioned = 0.10;
 
 BetaResult timed_amplitude_2(const NonTrackingObservations& obs) {
