@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -30,6 +32,10 @@ MethodResult run_nontracking(NonTrackingMethod m, const DeterminationInput& in,
     r.north = north_from_nontracking(in.clamp_reading_rad, r.beta->beta_div, inst, zero);
   r.approximation_error_rad =
       (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad * r.beta->approximation_error_div;
+  // The small-angle error matters only against this run's own σ(N_G).
+  if (std::string w = small_angle_warning(*r.beta, r.approximation_error_rad, r.north.sigma_rad);
+      !w.empty())
+    r.beta->warnings.push_back(std::move(w));
   return r;
 }
 
@@ -178,6 +184,12 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
     } else {
       out.primary = run_tracking(requested_method<ReversalMethod>(in), in, inst, zero);
     }
+    if (const std::string w =
+            reading_sigma_warning(*out.primary.reversal, units::kArcsecond, "\"", 1);
+        !w.empty())
+      out.warnings.push_back(in.label.empty()
+                                 ? "tracking run: " + w
+                                 : fmt::format("tracking run \"{}\": {}", in.label, w));
   }
   return out;
 }

@@ -79,26 +79,6 @@ Propagated propagate(const std::function<Vec(const Vec&)>& f, const std::vector<
 // ---------------------------------------------------------------------------
 // Shared pieces
 
-double small_angle_threshold_div(const Instrument& inst) {
-  const double per_div = (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad;
-  // Without τ: a nominal (1+λ)·τ = 1.3·600″ per division.
-  if (!(per_div > 0.0) || !std::isfinite(per_div)) return kSmallAngleWarningArcsec / 780.0;
-  return kSmallAngleWarningArcsec * units::kArcsecond / per_div;
-}
-
-void warn_small_angle(BetaResult& r, const Instrument& inst, const char* method) {
-  const double err = r.approximation_error_div;
-  if (std::abs(err) <= small_angle_threshold_div(inst)) return;
-  const double per_div = (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad;
-  std::string eq;
-  if (per_div > 0.0 && std::isfinite(per_div))
-    eq = fmt::format(" = {:.3f}″ in ΔN", units::rad_to_arcsec(err * per_div));
-  r.warnings.push_back(fmt::format(
-      "{}: the small-angle approximation error is {:.5f} div{} (above the {:g}″ warning "
-      "threshold); prefer the direct solution or the unified least-squares fit",
-      method, err, eq, kSmallAngleWarningArcsec));
-}
-
 void require_period(const NonTrackingObservations& obs, const char* method) {
   if (!obs.period_s)
     throw_input("period_s", fmt::format("the {} method needs the period T_B", method));
@@ -304,7 +284,6 @@ BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
     r.assumptions.push_back("ΔN = c·B·Δt with the calibrated transit factor c");
   else
     r.assumptions.push_back("ΔN = c·B·Δt with c = (1+λ)·τ·π/(2T_B)");
-  warn_small_angle(r, inst, "transit");
   if (known) {
     // Times against the given T_B: the transits' own period estimate. σ of the
     // difference from the timing σ and σ(T_B); 1 ms floor for rounded times.
@@ -355,7 +334,7 @@ void warn_if_extrapolated(BetaResult& r, const LevelPair& lp, const char* method
                                      method));
 }
 
-BetaResult time_difference_method(const NonTrackingObservations& obs, const Instrument& inst) {
+BetaResult time_difference_method(const NonTrackingObservations& obs) {
   const LevelPair lp = require_two_levels(obs, "time-difference");
   const Crossing& ci = obs.crossings[lp.i];
   const Crossing& cj = obs.crossings[lp.j];
@@ -392,7 +371,6 @@ BetaResult time_difference_method(const NonTrackingObservations& obs, const Inst
   r.assumptions.push_back("implied T_B = mean of t3 − t1 of the two levels; implied B and the "
                           "approximation error from the arcsine form with that T_B");
   warn_if_extrapolated(r, lp, "time-difference");
-  warn_small_angle(r, inst, "time-difference");
   return r;
 }
 
@@ -430,11 +408,11 @@ BetaResult direct_method(const NonTrackingObservations& obs) {
 // ---------------------------------------------------------------------------
 // Timed amplitude I (§4.4) and II (§4.5)
 
+// TA-I: passages `first`, `first + 1` of crossings[crossing] and reversal `other`.
 struct PairChoice {
   std::size_t crossing = 0;
   std::size_t first = 0;   // passages first, first + 1
-  std::size_t other = 0;   // TA-I: reversal index; TA-II: crossing index of t3
-  std::size_t other_index = 0;  // TA-II: passage index of t3
+  std::size_t other = 0;   // reversal index
   bool timed = false;      // TA-I: the reversal was chosen by its time
 };
 
@@ -452,33 +430,44 @@ std::optional<PairChoice> select_ta1(const NonTrackingObservations& obs) {
         const bool ok = timed ? (obs.reversal_times_s[r] > cr.times_s[j] &&
                                  obs.reversal_times_s[r] < cr.times_s[j + 1])
                               : d * (obs.reversals_div[r] - cr.level_div) > 0.0;
-        if (ok) return PairChoice{c, j, r, 0, timed};
+        if (ok) return PairChoice{c, j, r, timed};
       }
     }
   }
   return std::nullopt;
 }
 
-// TA-II rule: the first two passages of the first level timed at least twice;
-// t3 is the passage of another level nearest in time to t_r = (t1 + t2)/2.
-std::optional<PairChoice> select_ta2(const NonTrackingObservations& obs) {
+// TA-II candidates. The pair t1, t2 = passages 1 and 2 of the first level
+// timed at least twice that has another level timed. For every other level
+// (crossing entry) one passage is a candidate for t3: the first passage after
+// t_r = (t1 + t2)/2, else the last one before. Which passage of a level is
+// nearest to t_r must not be decided by the times: the two passages of a
+// level on either side of the turning point at t_r are its mirror images
+// (equally near for k = 0), so "nearest" would pick the one that the timing
+// noise moved towards t_r — a selection bias of order σ_t (−3.8″ at the
+// simulator's defaults). Before/after t_r is a safe decision: a passage lies
+// seconds, not σ_t, away from the turning point.
+struct Ta2Candidates {
+  std::size_t crossing = 0;                                // level a, passages 0 and 1
+  std::vector<std::pair<std::size_t, std::size_t>> third;  // (crossing, passage) per other level
+};
+
+std::optional<Ta2Candidates> ta2_candidates(const NonTrackingObservations& obs) {
   for (std::size_t c = 0; c < obs.crossings.size(); ++c) {
     const Crossing& cr = obs.crossings[c];
     if (cr.times_s.size() < 2) continue;
     const double tr = (cr.times_s[0] + cr.times_s[1]) / 2.0;
-    std::optional<PairChoice> best;
-    double best_gap = 0.0;
+    Ta2Candidates out;
+    out.crossing = c;
     for (std::size_t x = 0; x < obs.crossings.size(); ++x) {
-      if (obs.crossings[x].level_div == cr.level_div) continue;
-      for (std::size_t k = 0; k < obs.crossings[x].times_s.size(); ++k) {
-        const double gap = std::abs(obs.crossings[x].times_s[k] - tr);
-        if (!best || gap < best_gap) {
-          best = PairChoice{c, 0, x, k, false};
-          best_gap = gap;
-        }
-      }
+      const std::vector<double>& tx = obs.crossings[x].times_s;
+      if (obs.crossings[x].level_div == cr.level_div || tx.empty()) continue;
+      const auto after = std::upper_bound(tx.begin(), tx.end(), tr);
+      const std::size_t k =
+          after != tx.end() ? static_cast<std::size_t>(after - tx.begin()) : tx.size() - 1;
+      out.third.emplace_back(x, k);
     }
-    return best;
+    if (!out.third.empty()) return out;
   }
   return std::nullopt;
 }
@@ -539,44 +528,89 @@ BetaResult timed_amplitude_1(const NonTrackingObservations& obs) {
   return r;
 }
 
+// Levels whose propagated σ(β) lie within this fraction of the smallest count
+// as equally well conditioned. σ(β) computed from noisy times varies between
+// runs by 0.6 % (standard deviation at the simulator's defaults), so the
+// choice between two levels depends on the noise only where their σ differ
+// by 10 % ± about 2 %.
+constexpr double kTa2EquallyConditioned = 0.10;
+
 BetaResult timed_amplitude_2(const NonTrackingObservations& obs) {
   require_period(obs, "timed-amplitude II");
-  const auto ch = select_ta2(obs);
-  if (!ch)
+  const auto cand = ta2_candidates(obs);
+  if (!cand)
     throw_input("crossings", "the timed-amplitude method II needs two passages of one level and "
                              "a passage of another level");
-  const Crossing& cr = obs.crossings[ch->crossing];
+  const std::size_t c = cand->crossing;
+  const Crossing& cr = obs.crossings[c];
   const double a = cr.level_div;
-  const double ax = obs.crossings[ch->other].level_div;
-  const std::vector<Uncertain> in = {{cr.times_s[0], obs.sigma_time_s},
-                                     {cr.times_s[1], obs.sigma_time_s},
-                                     {obs.crossings[ch->other].times_s[ch->other_index],
-                                      obs.sigma_time_s},
-                                     period_input(obs)};
-  const auto f = [&](const Vec& x) -> Vec {
-    const double T = x[3];
-    const double c12 = bracket_cos(x[0], x[1], T, ch->crossing);
-    const double c3 = std::cos(2.0 * kPi * (x[2] - (x[0] + x[1]) / 2.0) / T);
-    if (std::abs(c3 - c12) < 1e-12)
-      throw_numerical("crossings", "timed-amplitude II: the third passage gives the same phase "
-                                   "factor as the pair (C3 = C12); no solution");
-    const double beta = (a * c3 - ax * c12) / (c3 - c12);
-    // a − β = (a_r − β)·C12 and a_x − β = (a_r − β)·C3: B from the larger factor.
-    const double B = std::abs(c12) > std::abs(c3) ? std::abs((a - beta) / c12)
-                                                  : std::abs((ax - beta) / c3);
-    return {beta, B};
+
+  // β and B for the third passage (crossing x, passage k); inputs t1, t2, t3, T_B.
+  struct Solved {
+    std::size_t x, k;
+    Propagated p;
   };
-  const Propagated p = propagate(f, in);
+  const auto solve = [&](std::size_t x, std::size_t k) {
+    const double ax = obs.crossings[x].level_div;
+    const std::vector<Uncertain> in = {{cr.times_s[0], obs.sigma_time_s},
+                                       {cr.times_s[1], obs.sigma_time_s},
+                                       {obs.crossings[x].times_s[k], obs.sigma_time_s},
+                                       period_input(obs)};
+    const auto f = [&](const Vec& v) -> Vec {
+      const double T = v[3];
+      const double c12 = bracket_cos(v[0], v[1], T, c);
+      const double c3 = std::cos(2.0 * kPi * (v[2] - (v[0] + v[1]) / 2.0) / T);
+      if (std::abs(c3 - c12) < 1e-12)
+        throw_numerical("crossings",
+                        "timed-amplitude II: the third passage gives the same phase "
+                        "factor as the pair (C3 = C12); no solution");
+      const double beta = (a * c3 - ax * c12) / (c3 - c12);
+      // a − β = (a_r − β)·C12 and a_x − β = (a_r − β)·C3: B from the larger factor.
+      const double B =
+          std::abs(c12) > std::abs(c3) ? std::abs((a - beta) / c12) : std::abs((ax - beta) / c3);
+      return {beta, B};
+    };
+    return Solved{x, k, propagate(f, in)};
+  };
+
+  // Level choice: the smallest propagated σ(β); levels within
+  // kTa2EquallyConditioned of it are equal, and of those the level farthest
+  // from a (then the first in input order) is used — exact graduations, so
+  // the tie-break does not depend on the noise either.
+  std::vector<Solved> solved;
+  std::optional<NumericalError> failure;
+  for (const auto& [x, k] : cand->third) {
+    try {
+      solved.push_back(solve(x, k));
+    } catch (const NumericalError& e) {
+      if (e.context().field != "crossings") throw;  // t1, t2 themselves are unusable
+      if (!failure) failure = e;                    // this t3 only: try the other levels
+    }
+  }
+  if (solved.empty()) throw *failure;
+  double best_sigma = solved.front().p.sigma[0];
+  for (const Solved& s : solved) best_sigma = std::min(best_sigma, s.p.sigma[0]);
+  const Solved* ch = nullptr;
+  for (const Solved& s : solved) {
+    if (!(s.p.sigma[0] <= (1.0 + kTa2EquallyConditioned) * best_sigma)) continue;
+    if (!ch ||
+        std::abs(obs.crossings[s.x].level_div - a) > std::abs(obs.crossings[ch->x].level_div - a))
+      ch = &s;
+  }
+  const double ax = obs.crossings[ch->x].level_div;
+
   BetaResult r;
   r.method = NonTrackingMethod::TimedAmplitude2;
-  r.beta_div = {p.value[0], p.sigma[0]};
-  r.amplitude_div = Uncertain{p.value[1], p.sigma[1]};
+  r.beta_div = {ch->p.value[0], ch->p.sigma[0]};
+  r.amplitude_div = Uncertain{ch->p.value[1], ch->p.sigma[1]};
   r.period_s = period_input(obs);
   r.assumptions.push_back("k = 0 (damping neglected)");
   r.assumptions.push_back(fmt::format(
       "level {} div (crossings[{}]) passages 1 and 2; third passage crossings[{}].times_s[{}] of "
-      "level {} div (the passage of another level nearest to t_r = (t1 + t2)/2)",
-      num(a), ch->crossing, ch->other, ch->other_index, num(ax)));
+      "level {} div (of the other levels the best conditioned, smallest σ(β) within 10 % and "
+      "then farthest from {} div; of its passages the first after t_r = (t1 + t2)/2, else the "
+      "last before)",
+      num(a), c, ch->x, ch->k, num(ax), num(a)));
   return r;
 }
 
@@ -610,6 +644,18 @@ NonTrackingMethod nontracking_method_from_string(const std::string& name) {
 }
 
 double time_difference_s(double t1, double t2, double t3) { return -t1 + 2.0 * t2 - t3; }
+
+std::string small_angle_warning(const BetaResult& r, double error_rad, double sigma_rad) {
+  const double size = std::abs(error_rad);
+  if (!(size > kSmallAngleWarningFraction * sigma_rad &&
+        size > kSmallAngleWarningFloorArcsec * units::kArcsecond))
+    return {};
+  return fmt::format(
+      "{}: the small-angle approximation error is {:.5f} div = {:.3f}″ in N_G, more than {:g} of "
+      "the run's σ(N_G) = {:.2f}″; prefer the direct solution or the unified least-squares fit",
+      to_string(r.method), r.approximation_error_div, units::rad_to_arcsec(error_rad),
+      kSmallAngleWarningFraction, units::rad_to_arcsec(sigma_rad));
+}
 
 void validate_nontracking(const NonTrackingObservations& obs) {
   if (!std::isfinite(obs.sigma_time_s) || obs.sigma_time_s < 0.0)
@@ -698,7 +744,7 @@ BetaResult reduce_nontracking(NonTrackingMethod method, const NonTrackingObserva
   validate_instrument(inst);
   switch (method) {
     case NonTrackingMethod::Transit: return transit(obs, inst);
-    case NonTrackingMethod::TimeDifference: return time_difference_method(obs, inst);
+    case NonTrackingMethod::TimeDifference: return time_difference_method(obs);
     case NonTrackingMethod::Direct: return direct_method(obs);
     case NonTrackingMethod::TimedAmplitude1: return timed_amplitude_1(obs);
     case NonTrackingMethod::TimedAmplitude2: return timed_amplitude_2(obs);
@@ -715,7 +761,7 @@ std::vector<NonTrackingMethod> applicable_methods(const NonTrackingObservations&
   if (two_levels) m.push_back(NonTrackingMethod::TimeDifference);
   if (two_levels && obs.period_s) m.push_back(NonTrackingMethod::Direct);
   if (obs.period_s && select_ta1(obs)) m.push_back(NonTrackingMethod::TimedAmplitude1);
-  if (obs.period_s && select_ta2(obs)) m.push_back(NonTrackingMethod::TimedAmplitude2);
+  if (obs.period_s && ta2_candidates(obs)) m.push_back(NonTrackingMethod::TimedAmplitude2);
   if (unified_fit_applicable(obs)) m.push_back(NonTrackingMethod::LeastSquares);
   return m;
 }

@@ -1,5 +1,6 @@
 #include "meridian/gyro/reversal.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -33,16 +34,45 @@ adjust::LeastSquaresResult fit_linear(std::span<const double> r) {
   return adjust::solve_linear_diagonal(A, l, Eigen::VectorXd::Ones(n));
 }
 
+// σ of the centre by the policy of ReversalResult. With a stated reading σ
+// the a-priori σ is used: with 2–3 degrees of freedom (5–6 reversals) σ̂0 is
+// a poor estimate of σ (its mean is 0.89 σ for dof = 2) and the a-posteriori
+// σ understates the scatter. The global test guards the stated σ; when it
+// rejects, the readings scatter more than stated and the larger σ̂0 is used.
 void fill_sigma(ReversalResult& res, double sigma_reading, double q) {
   res.cofactor_centre = q;
-  if (res.dof > 0) {
+  const bool stated = std::isfinite(sigma_reading) && sigma_reading > 0.0;
+  res.sigma_reading = stated ? sigma_reading : kNaN;
+  if (stated && res.dof > 0) {
+    const double ratio = res.sigma0 / sigma_reading;
+    res.reading_sigma_test =
+        adjust::global_test(res.dof * ratio * ratio, res.dof, kReadingSigmaTestAlpha);
+    res.sigma_is_aposteriori = res.reading_sigma_test->rejected;
+    res.centre.sigma = (res.sigma_is_aposteriori ? res.sigma0 : sigma_reading) * std::sqrt(q);
+  } else if (res.dof > 0) {
     res.centre.sigma = res.sigma0 * std::sqrt(q);
     res.sigma_is_aposteriori = true;
-  } else if (std::isfinite(sigma_reading)) {
+  } else if (stated) {
     res.centre.sigma = sigma_reading * std::sqrt(q);
   } else {
     res.centre.sigma = kNaN;
     res.notes.push_back("no redundancy and no a-priori reading sigma: sigma of the centre unknown");
+  }
+}
+
+// The σ of one reading that fill_sigma chose (NaN when none).
+double reading_sigma_used(const ReversalResult& res) {
+  if (res.sigma_is_aposteriori) return res.sigma0;
+  return std::isfinite(res.sigma_reading) ? res.sigma_reading : kNaN;
+}
+
+// Successive Schuler means (r_i + 2r_{i+1} + r_{i+2})/4 and their spread.
+void fill_partial_means(ReversalResult& res, std::span<const double> r) {
+  for (std::size_t i = 0; i + 2 < r.size(); ++i)
+    res.partial_means.push_back(0.25 * (r[i] + 2.0 * r[i + 1] + r[i + 2]));
+  if (res.partial_means.size() >= 2) {
+    const auto [lo, hi] = std::minmax_element(res.partial_means.begin(), res.partial_means.end());
+    res.partial_means_spread = *hi - *lo;
   }
 }
 
@@ -98,6 +128,7 @@ ReversalResult estimate_centre(ReversalMethod method, std::span<const double> r,
   res.method = method;
   const int n = static_cast<int>(r.size());
   check_reversal_sequence(r, method == ReversalMethod::TwoPoint ? 2 : 3);
+  if (method != ReversalMethod::TwoPoint) fill_partial_means(res, r);
 
   switch (method) {
     case ReversalMethod::TwoPoint: {
@@ -115,7 +146,6 @@ ReversalResult estimate_centre(ReversalMethod method, std::span<const double> r,
       // n−2 successive means (r_i + 2r_{i+1} + r_{i+2})/4.
       std::vector<double> w(static_cast<std::size_t>(n), 0.0);
       for (int i = 0; i + 2 < n; ++i) {
-        res.partial_means.push_back(0.25 * (r[i] + 2.0 * r[i + 1] + r[i + 2]));
         w[i] += 0.25;
         w[i + 1] += 0.5;
         w[i + 2] += 0.25;
@@ -146,11 +176,10 @@ ReversalResult estimate_centre(ReversalMethod method, std::span<const double> r,
       res.centre.value = lin.x(0);
       res.dof = lin.dof;
       res.sigma0 = lin.sigma0;
-      const double qmm = lin.cofactor(0, 0);
-      res.amplitude = Uncertain{lin.x(1), res.dof > 0 ? lin.sigma_aposteriori(1) : kNaN};
-      res.damping = Uncertain{lin.x(2), res.dof > 0 ? lin.sigma_aposteriori(2) : kNaN};
       res.residuals.assign(lin.residuals.data(), lin.residuals.data() + n);
-      fill_sigma(res, sigma_reading, qmm);
+      fill_sigma(res, sigma_reading, lin.cofactor(0, 0));
+      res.amplitude = Uncertain{lin.x(1), reading_sigma_used(res) * std::sqrt(lin.cofactor(1, 1))};
+      res.damping = Uncertain{lin.x(2), reading_sigma_used(res) * std::sqrt(lin.cofactor(2, 2))};
       if (n > 10) res.notes.push_back("more than 10 reversals add little precision (q_MM ~ 1/n)");
       break;
     }
@@ -188,15 +217,27 @@ ReversalResult estimate_centre(ReversalMethod method, std::span<const double> r,
       res.centre.value = nl.x(0);
       res.dof = nl.dof;
       res.sigma0 = nl.sigma0;
-      res.amplitude = Uncertain{nl.x(1), res.dof > 0 ? nl.sigma_aposteriori(1) : kNaN};
-      res.damping = Uncertain{nl.x(2), res.dof > 0 ? nl.sigma_aposteriori(2) : kNaN};
       res.residuals.assign(nl.residuals.data(), nl.residuals.data() + n);
       fill_sigma(res, sigma_reading, nl.cofactor(0, 0));
+      res.amplitude = Uncertain{nl.x(1), reading_sigma_used(res) * std::sqrt(nl.cofactor(1, 1))};
+      res.damping = Uncertain{nl.x(2), reading_sigma_used(res) * std::sqrt(nl.cofactor(2, 2))};
       res.notes.push_back(fmt::format("non-linear fit converged in {} iterations", nl.iterations));
       break;
     }
   }
   return res;
+}
+
+std::string reading_sigma_warning(const ReversalResult& r, double unit,
+                                  std::string_view unit_symbol, int decimals) {
+  if (!r.reading_sigma_test || !r.reading_sigma_test->rejected) return {};
+  const adjust::GlobalTestResult& g = *r.reading_sigma_test;
+  return fmt::format(
+      "the reversal readings scatter more than stated: sigma0 = {:.{}f}{} against the stated "
+      "{:.{}f}{} ({} degrees of freedom; global test T = {:.2f} > {:.2f} at alpha = {:g} %); "
+      "the larger, a-posteriori sigma is used",
+      r.sigma0 / unit, decimals, unit_symbol, r.sigma_reading / unit, decimals, unit_symbol, g.dof,
+      g.vtpv, g.critical_value, 100.0 * g.alpha);
 }
 
 }  // namespace meridian::gyro

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -81,6 +83,10 @@ ZeroPositionSummary summarise_zero_position(const std::optional<ZeroPositionRun>
   };
   if (before) s.before = run(*before, "before");
   if (after) s.after = run(*after, "after");
+  for (const auto& [est, name] : {std::pair{&s.before, "before"}, std::pair{&s.after, "after"}})
+    if (*est)
+      if (const std::string w = reading_sigma_warning((*est)->fit, 1.0, " div", 3); !w.empty())
+        s.warnings.push_back(fmt::format("zero position {} the run: {}", name, w));
   if (s.before && s.after) {
     const Uncertain b = s.before->fit.centre, a = s.after->fit.centre;
     s.difference_div = a.value - b.value;

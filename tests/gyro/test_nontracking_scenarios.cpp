@@ -103,12 +103,20 @@ TEST(NonTrackingScenario2, EveryMethodReproducesTheSpecValues) {
   ASSERT_TRUE(td.period_s && td.amplitude_div);
   EXPECT_NEAR(td.period_s->value, 440.0, 1e-9);
   EXPECT_NEAR(td.amplitude_div->value, 9.0, 1e-9);
-  EXPECT_FALSE(td.warnings.empty());  // 1.6″ is above the warning threshold
+  // 1.6″ is more than 0.1 of the run's σ (4.3″): a warning.
+  const double td_sigma = meridian::gyro::north_from_nontracking(0.0, td.beta_div, inst).sigma_rad;
+  EXPECT_NEAR(td_sigma / kArcsecond, 4.3, 0.1);
+  EXPECT_FALSE(meridian::gyro::small_angle_warning(
+                   td, td.approximation_error_div * 780.0 * kArcsecond, td_sigma)
+                   .empty());
   const BetaResult tr = meridian::gyro::reduce_nontracking(NonTrackingMethod::Transit, obs, inst);
   EXPECT_NEAR(tr.approximation_error_div * 780.0, -93.603 + 93.600, 5e-4);
   ASSERT_TRUE(tr.transit_delta_n_rad);
   EXPECT_NEAR(tr.transit_delta_n_rad->value / kArcsecond, dn[NonTrackingMethod::Transit], 1e-9);
   EXPECT_TRUE(tr.warnings.empty());
+  EXPECT_TRUE(meridian::gyro::small_angle_warning(
+                  tr, tr.approximation_error_div * 780.0 * kArcsecond, 6.1 * kArcsecond)
+                  .empty());
   // The transit factor c = 2.785″/(div·s): ΔN = c·B·Δt.
   EXPECT_NEAR(tr.transit_delta_n_rad->value / kArcsecond,
               1.3 * 600.0 * kPi / 880.0 * 9.0 * tr.time_difference_s->value, 1e-9);

@@ -127,3 +127,62 @@ TEST(Reversal, MonteCarloSigmaMatchesScatter) {
     EXPECT_NEAR(reported / empirical, 1.0, 0.10) << to_string(method);
   }
 }
+
+// Which σ the centre carries (issue 15): with a stated reading σ the a-priori
+// σ_r·sqrt(q_MM), guarded by the global test T = dof·σ̂0²/σ_r² against
+// χ²_0.99(dof) (for dof = 2 the closed form −2·ln 0.01 = 9.2103); when it
+// rejects, the larger a-posteriori σ̂0·sqrt(q_MM) and a warning.
+TEST(Reversal, StatedReadingSigmaIsUsedAndTested) {
+  auto r = r1(0.1, 8.0, 0.01, 5);
+  const double e[] = {0.02, -0.03, 0.01, 0.04, -0.02};
+  for (int i = 0; i < 5; ++i) r[static_cast<std::size_t>(i)] += e[i];
+  const double chi2_99_2 = -2.0 * std::log(0.01);
+  for (auto method :
+       {ReversalMethod::Schuler, ReversalMethod::LinearLsq, ReversalMethod::NonlinearLsq}) {
+    const auto free = estimate_centre(method, r, std::nan(""));
+    ASSERT_EQ(free.dof, 2) << to_string(method);
+    EXPECT_TRUE(free.sigma_is_aposteriori);
+    EXPECT_FALSE(free.reading_sigma_test);
+    EXPECT_NEAR(free.centre.sigma, free.sigma0 * std::sqrt(free.cofactor_centre), 1e-15);
+    for (double stated : {0.05, 0.005}) {
+      const auto s = estimate_centre(method, r, stated);
+      ASSERT_TRUE(s.reading_sigma_test) << to_string(method);
+      const auto& g = *s.reading_sigma_test;
+      const double t = 2.0 * std::pow(s.sigma0 / stated, 2);
+      EXPECT_NEAR(g.vtpv, t, 1e-9 * t);
+      EXPECT_EQ(g.dof, 2);
+      EXPECT_NEAR(g.critical_value, chi2_99_2, 1e-9);
+      EXPECT_EQ(g.rejected, t > chi2_99_2);
+      EXPECT_EQ(s.sigma_is_aposteriori, g.rejected);
+      EXPECT_EQ(s.sigma_reading, stated);
+      const double expected = (g.rejected ? s.sigma0 : stated) * std::sqrt(s.cofactor_centre);
+      EXPECT_NEAR(s.centre.sigma, expected, 1e-15) << to_string(method) << " stated " << stated;
+      EXPECT_EQ(reading_sigma_warning(s, 1.0, " div", 3).empty(), !g.rejected);
+    }
+    // 0.05 div is consistent with these readings, 0.005 div is not.
+    EXPECT_FALSE(estimate_centre(method, r, 0.05).reading_sigma_test->rejected)
+        << to_string(method);
+    EXPECT_TRUE(estimate_centre(method, r, 0.005).reading_sigma_test->rejected)
+        << to_string(method);
+  }
+}
+
+// The successive Schuler means and their spread, for every three-point method.
+TEST(Reversal, SuccessiveSchulerMeansAndSpread) {
+  const std::vector<double> r{-8.1, 9.3, -7.9, 9.0, -7.7};
+  const double m[] = {(r[0] + 2 * r[1] + r[2]) / 4, (r[1] + 2 * r[2] + r[3]) / 4,
+                      (r[2] + 2 * r[3] + r[4]) / 4};
+  const double spread = std::max({m[0], m[1], m[2]}) - std::min({m[0], m[1], m[2]});
+  for (auto method :
+       {ReversalMethod::Schuler, ReversalMethod::LinearLsq, ReversalMethod::NonlinearLsq}) {
+    const auto s = estimate_centre(method, r, 0.05);
+    ASSERT_EQ(s.partial_means.size(), 3u);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(s.partial_means[static_cast<std::size_t>(i)], m[i], 1e-14);
+    ASSERT_TRUE(s.partial_means_spread);
+    EXPECT_NEAR(*s.partial_means_spread, spread, 1e-14);
+  }
+  const std::vector<double> r3(r.begin(), r.begin() + 3);
+  EXPECT_FALSE(estimate_centre(ReversalMethod::Schuler, r3, 0.05).partial_means_spread);
+  EXPECT_TRUE(estimate_centre(ReversalMethod::TwoPoint, r, 0.05).partial_means.empty());
+}

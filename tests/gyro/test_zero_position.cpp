@@ -54,3 +54,25 @@ TEST(ZeroPosition, BadRunsNameTheField) {
   }
   EXPECT_THROW(summarise_zero_position(std::nullopt, std::nullopt, ReversalMethod::Schuler, 0.05), InputError);
 }
+
+// The reading σ of a motor-off run is the instrument's sigma_reading_div: the
+// a-priori σ is used (5 reversals, Schuler: q = 36/144) unless the global test
+// rejects it; then the larger a-posteriori σ and a warning naming the run.
+TEST(ZeroPosition, StatedReadingSigmaPolicy) {
+  ZeroPositionRun noisy = run(0.2, 6.0, 200.0);
+  noisy.reversals_div[2] += 0.4;  // a misread reversal
+  const auto s =
+      summarise_zero_position(run(0.2, 6.0, 200.0), noisy, ReversalMethod::Schuler, 0.05);
+  ASSERT_TRUE(s.before && s.after);
+  EXPECT_FALSE(s.before->fit.sigma_is_aposteriori);
+  EXPECT_NEAR(s.before->fit.centre.sigma, 0.05 * 0.5,
+              1e-15);  // exact readings: σ̂0 = 0, a priori kept
+  ASSERT_TRUE(s.after->fit.reading_sigma_test);
+  EXPECT_TRUE(s.after->fit.reading_sigma_test->rejected);
+  EXPECT_TRUE(s.after->fit.sigma_is_aposteriori);
+  EXPECT_NEAR(s.after->fit.centre.sigma, s.after->fit.sigma0 * 0.5, 1e-15);
+  bool named = false;
+  for (const auto& w : s.warnings)
+    named = named || w.find("zero position after the run: the reversal readings") == 0;
+  EXPECT_TRUE(named);
+}

@@ -36,9 +36,14 @@ struct NonTrackingObservations {
   double sigma_reading_div = kDefaultSigmaReading_div;         ///< per-determination reading σ (div)
 };
 
-/// The transit and time-difference methods warn when their approximation
-/// error, expressed as ΔN = (1+λ)·τ·error, exceeds this (arcsec).
-inline constexpr double kSmallAngleWarningArcsec = 0.1;
+/// The transit and time-difference results of a run warn when their
+/// approximation error carried to N_G exceeds this fraction of the run's
+/// σ(N_G) (small_angle_warning): an error of 0.1 σ moves the result by a
+/// tenth of its σ and the total error √(σ² + e²) by 0.5 %.
+inline constexpr double kSmallAngleWarningFraction = 0.1;
+/// ... and exceeds this (arcsec): spec §8.1's tolerance for exact methods, so
+/// that data with σ = 0 do not warn about rounding-level errors.
+inline constexpr double kSmallAngleWarningFloorArcsec = 0.01;
 
 /// The simple (closed-form) methods.
 enum class NonTrackingMethod {
@@ -74,7 +79,7 @@ struct BetaResult {
   double approximation_error_div = 0.0;
   std::optional<Uncertain> amplitude_div;   ///< B implied/used (div)
   std::optional<Uncertain> period_s;        ///< T_B implied/used (s)
-  std::vector<std::string> warnings;        ///< e.g. large β for the small-angle form
+  std::vector<std::string> warnings;        ///< e.g. transit times against period_s
   std::vector<std::string> assumptions;     ///< e.g. "k = 0 (damping neglected)"
 };
 
@@ -105,6 +110,15 @@ std::vector<NonTrackingMethod> applicable_methods(const NonTrackingObservations&
 
 /// Time difference of three consecutive crossings: Δt = −t1 + 2t2 − t3 (s).
 double time_difference_s(double t1, double t2, double t3);
+
+/// The small-angle warning of a transit or time-difference result `r` of one
+/// run: `error_rad` is its approximation error carried to N_G (radians,
+/// (1+λ)·τ·r.approximation_error_div), `sigma_rad` the run's σ(N_G)
+/// (radians). Returns the warning naming the method when |error_rad| >
+/// kSmallAngleWarningFraction·sigma_rad and > kSmallAngleWarningFloorArcsec,
+/// else an empty string. reduce_determination adds it to the result's
+/// warnings; reduce_nontracking only reports the error.
+std::string small_angle_warning(const BetaResult& r, double error_rad, double sigma_rad);
 
 /// Empirical transit factor c from two clamp positions (spec §4.1):
 /// c = (N′₂ − N′₁)/(B₁·Δt₁ − B₂·Δt₂), radians per (div·s), with σ

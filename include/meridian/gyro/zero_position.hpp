@@ -37,7 +37,7 @@ struct ZeroPositionSummary {
 };
 
 /// Estimate one run with `method` (Schuler or a least-squares method).
-/// `sigma_reading_div` is the a-priori reading σ. Throws InputError for a
+/// `sigma_reading_div` is the a-priori reading σ (σ policy: ReversalResult). Throws InputError for a
 /// bad sequence or bad times.
 ZeroPositionEstimate estimate_zero_position(const ZeroPositionRun& run, ReversalMethod method,
                                             double sigma_reading_div);
@@ -45,7 +45,9 @@ ZeroPositionEstimate estimate_zero_position(const ZeroPositionRun& run, Reversal
 /// Combine before/after runs (either may be absent, not both). The mean's σ
 /// is the σ of the mean of the runs' centres, widened to half their
 /// difference when that is larger (the drift is then the dominant error).
-/// A difference above `tolerance_div` is a warning.
+/// A difference above `tolerance_div` is a warning, and so is a run whose
+/// readings scatter more than `sigma_reading_div` (the global test of
+/// estimate_centre; that run then carries the larger a-posteriori σ).
 ZeroPositionSummary summarise_zero_position(const std::optional<ZeroPositionRun>& before,
                                             const std::optional<ZeroPositionRun>& after,
                                             ReversalMethod method, double sigma_reading_div,
