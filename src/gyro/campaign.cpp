@@ -106,6 +106,7 @@ class CampaignRun {
     check_programme();
     check_zero_positions();
     check_line_runs();
+    check_tracking_runs();
     check_instrument_constants();
     check_duplicated_runs();
     check_observers();
@@ -410,6 +411,29 @@ class CampaignRun {
     if (!res_.checks.back().pass)
       res_.warnings.push_back(fmt::format("gyro azimuths of the line differ by {:.1f}\" (limit {:.1f}\")",
                                           spread / units::kArcsecond, limits_.run_difference_rad / units::kArcsecond));
+  }
+
+  // Each tracking run's internal check: its readings scatter about the model
+  // as their stated σ says (the global test of ReversalResult).
+  void check_tracking_runs() {
+    auto checks = [&](const std::vector<DeterminationResult>& v, const std::string& what) {
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const auto& rev = v[i].primary.reversal;
+        if (!rev || !rev->reading_sigma_test) continue;
+        const adjust::GlobalTestResult& g = *rev->reading_sigma_test;
+        const double limit = rev->sigma_reading * std::sqrt(g.critical_value / g.dof);
+        res_.checks.push_back(
+            {fmt::format("tracking readings scatter as stated, {}[{}]{}", what, i,
+                         v[i].label.empty() ? "" : " (" + v[i].label + ")"),
+             g.sigma0 * rev->sigma_reading / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
+             !g.rejected, false,
+             fmt::format("global test at {:g} %: sigma of a reading from the residuals against the stated {:.1f}\"",
+                         100.0 * g.alpha, rev->sigma_reading / units::kArcsecond)});
+      }
+    };
+    checks(res_.known_before, "known_line.before");
+    checks(res_.known_after, "known_line.after");
+    checks(res_.determinations, "line.determinations");
   }
 
   // The instrument constants on the known line: any two runs, the before and

@@ -56,7 +56,7 @@ std::string check_statement(const gyro::Check& k) {
   const int decimals = count ? 0 : k.unit == gyro::CheckUnit::Arcsec ? 1 : 2;
   const std::string unit = " " + gyro::to_string(k.unit);
   return fmt::format("{}: {:.{}f}{} ({} {:.{}f}{})", k.name, k.value, decimals, unit, k.minimum ? "at least" : "limit",
-                     k.tolerance, decimals, unit);
+                     k.tolerance, decimals, count ? "" : unit);
 }
 
 std::string check_text(const gyro::Check& k) {

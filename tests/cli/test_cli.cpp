@@ -384,3 +384,30 @@ TEST_F(Cli, TemplateIsAFieldBookThatRuns) {
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.err.find("--kind: unknown kind \"campain\""), std::string::npos) << bad.err;
 }
+
+// The real job and its field mistakes (../shared/cases/gyro-field, optional
+// data beside the repository): the clean book passes --strict, each mistake
+// fails it or is an error naming the run.
+TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
+  const fs::path dir = fs::path(MERIDIAN_SOURCE_DIR) / ".." / "shared" / "cases" / "gyro-field";
+  if (!fs::exists(dir / "fieldbook.yaml")) GTEST_SKIP() << dir << " not present (optional data)";
+  const CmdResult clean = run("gyro campaign --strict " + (dir / "fieldbook.yaml").string());
+  EXPECT_EQ(clean.code, 0) << clean.err << clean.out;
+  EXPECT_EQ(clean.out.find("[FAIL]"), std::string::npos);
+  struct Case {
+    const char* file;
+    int code;
+    const char* says;
+  } cases[] = {
+      {"fb_Espread.yaml", 1, "check failed: any two runs on the known line, instrument constants: 58.3"},
+      {"fb_badrev_sig.yaml", 1, "check failed: tracking readings scatter as stated, line.determinations[0]"},
+      {"03b_no_zero_at_all.yaml", 1, "check failed: zero position observed, line.determinations[0]"},
+      {"04b_mdotss_numbers.yaml", 1, "line.determinations[1].crossings[0].times_s: the passages imply a period"},
+  };
+  for (const Case& c : cases) {
+    const CmdResult r = run("gyro campaign --strict -o out.txt " + (dir / c.file).string());
+    EXPECT_EQ(r.code, c.code) << c.file << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.file << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.txt")) << c.file;
+  }
+}
