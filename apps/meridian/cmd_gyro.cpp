@@ -1,6 +1,7 @@
-// meridian gyro reduce | campaign | simulate | transit-factor
+// meridian gyro reduce | campaign | orientations | simulate | transit-factor | template
 
 #include <iostream>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,9 +53,9 @@ struct CampaignArgs {
 };
 
 // --strict and a failed check: say which on stderr, one line each.
-void print_failed_checks(const gyro::CampaignResult& r) {
+void print_failed_checks(const std::vector<gyro::Check>& checks) {
   std::size_t failed = 0;
-  for (const gyro::Check& c : r.checks) {
+  for (const gyro::Check& c : checks) {
     if (c.pass) continue;
     ++failed;
     std::cerr << "meridian: check failed: " << report::check_statement(c) << "\n";
@@ -74,7 +75,7 @@ int run_campaign(const CampaignArgs& a) {
   if (a.strict && !r.all_checks_pass()) {
     // A job that fails its checks is not filed: stdout still shows it, no file is written.
     if (a.output.empty() || a.output == "-") emit("", out);
-    print_failed_checks(r);
+    print_failed_checks(r.checks);
     return kInputError;
   }
   const std::string html =
@@ -94,6 +95,29 @@ int run_template(const TemplateArgs& a) {
   else if (a.kind == "reduce") emit(a.output, io::reduce_template_yaml());
   else
     throw InputError("unknown kind \"" + a.kind + "\" (expected campaign or reduce)", {"", std::nullopt, "--kind"});
+  return kOk;
+}
+
+struct OrientationsArgs {
+  std::vector<std::string> files;
+  std::string output;
+  bool json = false, strict = false, quiet = false;
+};
+
+int run_orientations(const OrientationsArgs& a) {
+  TerminalProgress progress(a.quiet);
+  std::vector<std::filesystem::path> paths(a.files.begin(), a.files.end());
+  const io::OrientationsJob job = io::run_orientation_files(paths, &progress);
+  progress.finish();
+  const report::AngleFormat f(job.orientations.front().file.campaign.angle_unit);
+  const std::string out = a.json ? report::orientations_to_json(job.result).dump(2) + "\n"
+                                 : report::orientations_text(a.files, job.result, f);
+  if (a.strict && !job.result.all_checks_pass()) {
+    if (a.output.empty() || a.output == "-") emit("", out);
+    print_failed_checks(job.result.checks);
+    return kInputError;
+  }
+  emit(a.output, out);
   return kOk;
 }
 
@@ -198,6 +222,16 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   tmpl->add_option("-o,--output", tp->output, "Write to this file (atomically) instead of stdout");
   tmpl->callback([tp, &exit_code] { exit_code = guarded([&] { return run_template(*tp); }); });
+
+  auto oa = std::make_shared<OrientationsArgs>();
+  CLI::App* ori = gyro->add_subcommand(
+      "orientations", "Two or more independent orientations of one line (campaign files): difference and mean");
+  ori->add_option("FILES", oa->files, "Campaign files, one per independent orientation")->required()->expected(2, -1);
+  ori->add_flag("--json", oa->json, "Print JSON instead of text");
+  ori->add_flag("--strict", oa->strict, "Exit with code 1 when a check fails (and write nothing)");
+  ori->add_option("-o,--output", oa->output, "Write to this file (atomically) instead of stdout");
+  ori->add_flag("-q,--quiet", oa->quiet, "No progress bar");
+  ori->callback([oa, &exit_code] { exit_code = guarded([&] { return run_orientations(*oa); }); });
 
   auto ta = std::make_shared<TransitArgs>();
   CLI::App* tf = gyro->add_subcommand(

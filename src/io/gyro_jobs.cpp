@@ -64,6 +64,26 @@ CampaignJob run_campaign_file(const std::filesystem::path& path, DeflectionModel
   return job;
 }
 
+OrientationsJob run_orientation_files(const std::vector<std::filesystem::path>& paths, Progress* progress) {
+  OrientationsJob job;
+  DeflectionModels models;
+  std::vector<gyro::CampaignResult> results;
+  for (const auto& p : paths) {
+    job.orientations.push_back(run_campaign_file(p, &models, progress));
+    results.push_back(job.orientations.back().result);
+  }
+  try {
+    job.result = gyro::combine_orientations(results);
+  } catch (Error& e) {
+    // "orientations[i]" → the file of orientation i.
+    const std::string& field = e.context().field;
+    for (std::size_t i = 0; i < paths.size(); ++i)
+      if (field == "orientations[" + std::to_string(i) + "]") e.add_context(paths[i].string());
+    throw;
+  }
+  return job;
+}
+
 gyro::TransitFactorCalibration run_transit_factor_file(const std::filesystem::path& path) {
   const GyroReduceFile f = read_gyro_reduce_file(path);
   return located(f.file, f.lines, [&] { return gyro::calibrate_transit_factor(f.input); });

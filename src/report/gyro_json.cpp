@@ -45,6 +45,20 @@ json reversal_json(const gyro::ReversalResult& r, bool radians) {
   return j;
 }
 
+json az(const gyro::Uncertain& u) {
+  return json{{"deg", num(u.value / kDeg)},
+              {"dms", format_direction_dms(Angle::radians(u.value), {2, true, false})},
+              {"sigma_arcsec", num(u.sigma / kArcsec)}};
+}
+
+json checks_json(const std::vector<gyro::Check>& checks) {
+  json a = json::array();
+  for (const auto& k : checks)
+    a.push_back({{"name", k.name}, {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
+                 {"unit", gyro::to_string(k.unit)}, {"pass", k.pass}, {"minimum", k.minimum}, {"source", k.source}});
+  return a;
+}
+
 }  // namespace
 
 json method_to_json(const gyro::MethodResult& r, gyro::Mode mode) {
@@ -137,6 +151,23 @@ json reduce_to_json(const std::string& file, const gyro::ReduceResult& r) {
   return j;
 }
 
+json orientations_to_json(const gyro::OrientationsResult& r) {
+  json j;
+  j["station"] = r.station;
+  j["target"] = r.target;
+  j["grid_azimuths"] = json::array();
+  for (const auto& t : r.grid_azimuths_rad) j["grid_azimuths"].push_back(az(t));
+  j["mean_grid_azimuth"] = az(r.mean.mean);
+  j["mean_grid_azimuth"]["sigma_propagated_arcsec"] = arcsec(r.mean.sigma_propagated);
+  j["mean_grid_azimuth"]["sigma_empirical_arcsec"] = arcsec(r.mean.sigma_empirical);
+  j["largest_difference_arcsec"] = arcsec(r.mean.max_difference);
+  j["checks"] = checks_json(r.checks);
+  j["all_checks_pass"] = r.all_checks_pass();
+  j["limits_source"] = r.limits.source;
+  j["notes"] = strings(r.notes);
+  return j;
+}
+
 json transit_factor_to_json(const gyro::TransitFactorCalibration& c) {
   return {{"transit_factor_arcsec_per_div_s", c.factor_rad_per_div_s.value / kArcsec},
           {"sigma_arcsec_per_div_s", c.factor_rad_per_div_s.sigma / kArcsec},
@@ -148,11 +179,6 @@ json transit_factor_to_json(const gyro::TransitFactorCalibration& c) {
 }
 
 json campaign_to_json(const gyro::CampaignResult& r) {
-  auto az = [](const gyro::Uncertain& u) {
-    return json{{"deg", num(u.value / kDeg)},
-                {"dms", format_direction_dms(Angle::radians(u.value), {2, true, false})},
-                {"sigma_arcsec", num(u.sigma / kArcsec)}};
-  };
   auto point = [](const gyro::PointResult& p) {
     return json{{"name", p.name},
                 {"latitude_deg", num(p.lat_rad / kDeg)},
@@ -205,12 +231,7 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   j["convergence_arcsec"] = arcsec(c.convergence_rad);
   j["arc_to_chord_arcsec"] = c.arc_to_chord_applied ? arcsec(c.arc_to_chord_rad) : json(nullptr);
   j["grid_azimuth"] = az(c.grid_azimuth_rad);
-  json checks = json::array();
-  for (const auto& k : r.checks)
-    checks.push_back({{"name", k.name}, {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
-                      {"unit", gyro::to_string(k.unit)}, {"pass", k.pass}, {"minimum", k.minimum},
-                      {"source", k.source}});
-  j["checks"] = checks;
+  j["checks"] = checks_json(r.checks);
   j["limits_source"] = r.limits.source;
   j["instrument_constant_one_run_sigma_arcsec"] =
       r.constant_one_run_sigma_rad ? arcsec(*r.constant_one_run_sigma_rad) : json(nullptr);

@@ -73,6 +73,19 @@ std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, co
   return out;
 }
 
+std::string orientations_text(const std::vector<std::string>& files, const gyro::OrientationsResult& r,
+                              const AngleFormat& f) {
+  std::string out = fmt::format("Independent orientations of the line {}-{}\n", r.station, r.target);
+  for (std::size_t i = 0; i < r.grid_azimuths_rad.size(); ++i)
+    out += fmt::format("  {}  T = {:>15}  sigma {:>6}  {}\n", i + 1, f.dir(r.grid_azimuths_rad[i].value),
+                       f.sig(r.grid_azimuths_rad[i].sigma), i < files.size() ? files[i] : "");
+  out += fmt::format("  mean T = {:>15}  sigma {}\n\nChecks (limits: {})\n", f.dir(r.mean.mean.value),
+                     f.sig(r.mean.mean.sigma), r.limits.source);
+  for (const auto& k : r.checks) out += "  " + check_text(k) + "\n";
+  for (const auto& n : r.notes) out += "  - " + n + "\n";
+  return out;
+}
+
 std::string transit_factor_text(const gyro::TransitFactorCalibration& c) {
   std::string out = fmt::format("transit factor c = {:.4f} \"/(div s)  sigma {:.4f}\n",
                                 c.factor_rad_per_div_s.value / kArcsec, c.factor_rad_per_div_s.sigma / kArcsec);

@@ -411,3 +411,17 @@ TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
     EXPECT_FALSE(fs::exists(dir_ / "out.txt")) << c.file;
   }
 }
+
+TEST_F(Cli, IndependentOrientationsOfOneLine) {
+  ASSERT_EQ(run("gyro simulate --mode campaign --seed 21 -o a.yaml").code, 0);
+  ASSERT_EQ(run("gyro simulate --mode campaign --seed 22 -o b.yaml").code, 0);
+  const CmdResult r = run("gyro orientations a.yaml b.yaml --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["grid_azimuths"].size(), 2u);
+  EXPECT_TRUE(j["all_checks_pass"].get<bool>());
+  // Each grid azimuth is the one `gyro campaign` gives for that file.
+  const auto a = nlohmann::json::parse(run("gyro campaign a.yaml --json").out);
+  EXPECT_DOUBLE_EQ(j["grid_azimuths"][0]["deg"].get<double>(), a["grid_azimuth"]["deg"].get<double>());
+  EXPECT_NE(run("gyro orientations a.yaml").code, 0);  // one file: a command-line error
+}

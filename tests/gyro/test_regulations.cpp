@@ -12,6 +12,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
+#include "meridian/gyro/orientations.hpp"
 #include "meridian/gyro/plausibility.hpp"
 #include "meridian/gyro/regulations.hpp"
 
@@ -206,4 +207,30 @@ TEST(Plausibility, TimesBookedAsMinutesDotSecondsAreAnErrorNamingTheRun) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.context().field, "reversals_div[1]");
   }
+}
+
+TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
+  const CampaignResult a = process(clean(31).input);
+  const CampaignResult b = process(clean(32).input);
+  const OrientationsResult r = combine_orientations({a, b});
+  const double d = std::fabs(wrap_signed_rad(a.chain.grid_azimuth_rad.value - b.chain.grid_azimuth_rad.value));
+  EXPECT_NEAR(r.mean.max_difference, d, 1e-15);
+  // σ of the mean: the larger of the propagated and |T1 − T2|/2.
+  const double prop = std::hypot(a.chain.grid_azimuth_rad.sigma, b.chain.grid_azimuth_rad.sigma) / 2;
+  EXPECT_NEAR(r.mean.mean.sigma, std::max(prop, d / 2), 1e-12);
+  ASSERT_EQ(r.checks.size(), 2u);
+  EXPECT_NEAR(r.checks[0].tolerance, 40.0, 1e-12);
+  EXPECT_NEAR(r.checks[1].tolerance, 10.0, 1e-12);
+  EXPECT_TRUE(r.all_checks_pass());
+  // A second orientation 60" off fails the difference rule.
+  CampaignResult c = b;
+  c.chain.grid_azimuth_rad.value += 60 * kArcsec;
+  const OrientationsResult bad = combine_orientations({a, c});
+  EXPECT_FALSE(bad.checks[0].pass);
+  EXPECT_FALSE(bad.all_checks_pass());
+  // Another line, or one orientation alone, is an input error.
+  CampaignResult other = b;
+  other.station.name = "E";
+  EXPECT_THROW(combine_orientations({a, other}), InputError);
+  EXPECT_THROW(combine_orientations({a}), InputError);
 }

@@ -11,9 +11,11 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "meridian/core/progress.hpp"
 #include "meridian/gyro/campaign.hpp"
+#include "meridian/gyro/orientations.hpp"
 #include "meridian/gyro/reduce.hpp"
 #include "meridian/gyro/transit_calibration.hpp"
 #include "meridian/io/gyro_files.hpp"
@@ -56,6 +58,16 @@ struct CampaignJob {
 /// given, so several files share one load) and process it.
 CampaignJob run_campaign_file(const std::filesystem::path& path, DeflectionModels* models = nullptr,
                               Progress* progress = nullptr);
+
+/// Independent orientations of one line, one campaign file each.
+struct OrientationsJob {
+  std::vector<CampaignJob> orientations;
+  gyro::OrientationsResult result;
+};
+
+/// Run each campaign file (sharing the gravity models they name) and combine
+/// their grid azimuths (gyro::combine_orientations; its errors name the file).
+OrientationsJob run_orientation_files(const std::vector<std::filesystem::path>& paths, Progress* progress = nullptr);
 
 /// Read a reduce file with two determinations and calibrate the transit factor.
 gyro::TransitFactorCalibration run_transit_factor_file(const std::filesystem::path& path);

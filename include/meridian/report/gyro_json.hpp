@@ -11,6 +11,7 @@
 
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/determination.hpp"
+#include "meridian/gyro/orientations.hpp"
 #include "meridian/gyro/reduce.hpp"
 #include "meridian/gyro/transit_calibration.hpp"
 
@@ -30,6 +31,10 @@ nlohmann::json reduce_to_json(const std::string& file, const gyro::ReduceResult&
 
 /// A whole campaign.
 nlohmann::json campaign_to_json(const gyro::CampaignResult& r);
+
+/// `meridian gyro orientations --json`: grid_azimuths, mean (deg, dms,
+/// sigma_arcsec), checks, notes.
+nlohmann::json orientations_to_json(const gyro::OrientationsResult& r);
 
 /// `meridian gyro transit-factor --json` (factors in ″/(div·s)).
 nlohmann::json transit_factor_to_json(const gyro::TransitFactorCalibration& c);

@@ -8,6 +8,7 @@
 
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/determination.hpp"
+#include "meridian/gyro/orientations.hpp"
 #include "meridian/gyro/reduce.hpp"
 #include "meridian/gyro/transit_calibration.hpp"
 #include "meridian/report/format.hpp"
@@ -32,6 +33,11 @@ std::string check_statement(const gyro::Check& k);
 
 /// One check as a line: "[PASS] " or "[FAIL] " + check_statement.
 std::string check_text(const gyro::Check& k);
+
+/// `meridian gyro orientations`: each orientation's grid azimuth, the mean
+/// with σ, and the checks.
+std::string orientations_text(const std::vector<std::string>& files, const gyro::OrientationsResult& r,
+                              const AngleFormat& f = AngleFormat());
 
 /// `meridian gyro transit-factor`.
 std::string transit_factor_text(const gyro::TransitFactorCalibration& c);

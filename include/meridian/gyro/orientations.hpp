@@ -1,0 +1,39 @@
+#pragma once
+/// \file orientations.hpp
+/// Two (or more) independent orientations of the same underground line —
+/// separate campaigns, each with its own calibration on the known line — and
+/// the rule of the coal-mine surveying regulations for them (spec §7.1): the
+/// grid azimuths differ by no more than the limit (40″ for a 15″-class
+/// instrument) and the σ of their mean is within ±10″ (regulations.hpp).
+///
+///   campaign files → io::run_orientation_files → gyro::combine_orientations → OrientationsResult
+
+#include <string>
+#include <vector>
+
+#include "meridian/gyro/calibration.hpp"
+#include "meridian/gyro/campaign.hpp"
+#include "meridian/gyro/regulations.hpp"
+
+namespace meridian::gyro {
+
+struct OrientationsResult {
+  std::string station, target;             ///< names of the line's end points
+  std::vector<Uncertain> grid_azimuths_rad;  ///< T of each orientation, as given
+  /// Mean T; its σ is the larger of the propagated sqrt(Σσ²)/n and the
+  /// empirical sqrt(Σv²/(n(n−1))) (= |T2 − T1|/2 for two orientations).
+  AzimuthMean mean;
+  RegulationLimits limits;                 ///< the limits the checks used
+  std::vector<Check> checks;               ///< largest difference; σ of the mean
+  std::vector<std::string> notes;
+  bool all_checks_pass() const;
+};
+
+/// Combine the results of independent orientations of one line (at least
+/// two, with the same station and target names). The limits are the first
+/// orientation's (its instrument class and tolerances). Throws InputError
+/// when fewer than two results are given or when they are not of the same
+/// line (field "orientations[i]").
+OrientationsResult combine_orientations(const std::vector<CampaignResult>& orientations);
+
+}  // namespace meridian::gyro
