@@ -12,3 +12,6 @@ M=${1:-../build/meridian}
 "$M" gyro simulate --mode non-tracking --seed 7 --determinations 3 -o nontracking-noisy.yaml
 # Tracking mode, spec §8 scenario 4 (M = 0°12'34", A = 8 div, kappa 0.002), 8" reading noise.
 "$M" gyro simulate --mode tracking --seed 3 --tracking-reversals 7 --sigma-tracking-arcsec 8 -o tracking.yaml
+# Transit-factor calibration: one gyro north seen from clamps 12' east and 12' west of it (spec §4.1).
+"$M" gyro simulate --mode non-tracking --seed 5 --determinations 2 --beta-div -0.9 --clamp "0 12 00,359 48 00" \
+  --levels 0 -o transit-factor.yaml

@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 
 struct DemoArgs {
   std::string examples_dir;
-  std::string output_dir = "meridian-demo";
+  // Outside any source tree by default, so running the tour writes nothing into the repository.
+  std::string output_dir = (std::filesystem::temp_directory_path() / "meridian-demo").string();
 };
 
 // The examples bundled with the source tree, or installed beside the binary.

@@ -141,7 +141,8 @@ struct SimulateArgs {
   gyro::StationSimulation sim;
   double tau_arcsec = 600, latitude_deg = 34.2;
   double spin_momentum_Nms = 0, inertia_kgm2 = 0, torsion_Nm_per_rad = 0;
-  std::string clamp = "0", centre = "0 12 34", noise = "white";
+  std::vector<std::string> clamps{"0"};
+  std::string centre = "0 12 34", noise = "white";
   double sigma_tracking_arcsec = 0;
   bool quiet = false;
 };
@@ -180,7 +181,10 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
   if (a.spin_momentum_Nms > 0 || a.inertia_kgm2 > 0 || a.torsion_Nm_per_rad > 0)
     s.physics = gyro::PhysicalGyro{a.spin_momentum_Nms, a.inertia_kgm2, a.torsion_Nm_per_rad};
   s.noise = noise_kind(a.noise);
-  s.clamp_rad = parse_angle(a.clamp).normalized_positive().rad();
+  if (a.clamps.empty()) throw InputError("give at least one clamp reading", {"", std::nullopt, "--clamp"});
+  s.clamp_rad = parse_angle(a.clamps.front()).normalized_positive().rad();
+  for (std::size_t i = 1; i < a.clamps.size(); ++i)
+    s.other_clamps_rad.push_back(parse_angle(a.clamps[i]).normalized_positive().rad());
   s.centre_rad = parse_angle(a.centre).rad();
   s.sigma_tracking_rad = units::arcsec_to_rad(a.sigma_tracking_arcsec);
   TerminalProgress progress(a.quiet);
@@ -260,7 +264,11 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--levels", sa->sim.levels_div, "Non-tracking: graduations to time (div)")->delimiter(',')->capture_default_str();
   sim->add_option("--crossings", sa->sim.crossings_per_level, "Non-tracking: crossings per level")->capture_default_str();
   sim->add_option("--reversals", sa->sim.reversals, "Non-tracking: reversal readings")->capture_default_str();
-  sim->add_option("--clamp", sa->clamp, "Non-tracking: clamp reading N' (DMS or deg)")->capture_default_str();
+  sim->add_option("--clamp", sa->clamps,
+                  "Non-tracking: clamp reading N' (DMS or deg); a comma-separated list clamps the determinations in "
+                  "turn at the same gyro north (beta is for the first)")
+      ->delimiter(',')
+      ->capture_default_str();
   sim->add_option("--sigma-time-s", sa->sim.sigma_time_s, "Timing noise sigma (s)")->capture_default_str();
   sim->add_option("--sigma-reading-div", sa->sim.sigma_reading_div, "Scale reading noise sigma (div)")->capture_default_str();
   sim->add_flag("!--unknown-period", sa->sim.known_period, "Do not write period_s into the file");
@@ -275,13 +283,17 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   sim->add_flag("-q,--quiet", sa->quiet, "No progress bar");
   sim->callback([sa, sim, &exit_code] {
     std::string cmd = "meridian gyro simulate";
-    for (const CLI::Option* o : sim->get_options())
-      if (o->count() > 0 && o->get_name() != "--help" && o->get_name() != "-o,--output" &&
-          o->get_name() != "-q,--quiet" && !o->get_lnames().empty()) {
-        cmd += " --" + o->get_lnames().front();
-        if (o->get_expected_min() > 0)
-          for (const auto& r : o->results()) cmd += " " + r;
-      }
+    // The options that shape the data, as they can be typed again.
+    for (const CLI::Option* o : sim->get_options()) {
+      if (o->count() == 0 || o->get_lnames().empty()) continue;
+      const std::string name = o->get_lnames().front();
+      if (name == "help" || name == "output" || name == "quiet") continue;
+      cmd += " --" + name;
+      if (o->get_expected_min() == 0) continue;
+      std::string value;
+      for (const auto& r : o->results()) value += (value.empty() ? "" : ",") + r;
+      cmd += value.find(' ') == std::string::npos ? " " + value : " \"" + value + "\"";
+    }
     exit_code = guarded([&] { return run_simulate(*sa, cmd); });
   });
 }

@@ -41,15 +41,18 @@ SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed
   }
   spec.torsion_ratio = Uncertain{lambda, 0.0};
   const Instrument inst = resolve_instrument(spec, s.latitude_rad).instrument;
+  std::vector<double> clamps{s.clamp_rad};
+  clamps.insert(clamps.end(), s.other_clamps_rad.begin(), s.other_clamps_rad.end());
+  const double north_rad = north_from_nontracking(s.clamp_rad, Uncertain{s.beta_div, 0.0}, inst).north_rad;
   for (int i = 0; i < s.determinations; ++i) {
     report_progress(progress, static_cast<std::size_t>(i), static_cast<std::size_t>(s.determinations), "simulating");
     const std::uint64_t det_seed = seed + static_cast<std::uint64_t>(i);
     DeterminationInput d;
     d.mode = s.mode;
     if (s.mode == Mode::NonTracking) {
-      d.clamp_reading_rad = s.clamp_rad;
+      d.clamp_reading_rad = clamps[static_cast<std::size_t>(i) % clamps.size()];
       NonTrackingSimulation n;
-      n.beta_div = s.beta_div;
+      n.beta_div = d.clamp_reading_rad == s.clamp_rad ? s.beta_div : beta_for_north(north_rad, d.clamp_reading_rad, inst);
       n.amplitude_div = s.amplitude_div;
       n.period_s = period;
       n.t0_s = s.t0_s;
@@ -70,6 +73,13 @@ SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed
             "Truth: beta = {} div, N_G = {} (delta N = {:+.3f}\"), B = {} div, T_B = {} s, t0 = {} s, k = {} 1/s",
             s.beta_div, dms3(north.north_rad), north.delta_n_rad / kArcsec, s.amplitude_div, period, s.t0_s,
             s.damping_per_s));
+        if (clamps.size() > 1) {
+          std::string list;
+          for (double c : clamps)
+            list += fmt::format("{}{} (beta {:.5f} div)", list.empty() ? "" : ", ", dms3(c),
+                                c == s.clamp_rad ? s.beta_div : beta_for_north(north_rad, c, inst));
+          out.truth.push_back("Clamps in turn: " + list);
+        }
       }
     } else {
       TrackingSimulation t;

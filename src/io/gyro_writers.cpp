@@ -341,6 +341,16 @@ constexpr const char* kCampaignHead = R"yaml(# Gyro field book: a whole orientat
 )yaml";
 
 constexpr const char* kCampaignTitle = R"yaml(campaign: "Example colliery - main decline P1-P2"   # title of the job, printed on the report
+record:                             # the record sheet (free text, printed on the result sheet)
+  observer: "A. Observer"           # the regulations want the same observer above and below ground;
+                                    # a run may name its own (observer: in the run)
+  booker: "B. Booker"
+  computed_by: "C. Computer"
+  checked_by: "D. Checker"
+  date: "2026-11-28"
+  weather: "surface overcast, wind 2 m/s; underground 1.2 m/s at the station"
+  temperature: "surface 6 C, underground 24 C"
+  # remarks: "..."
 )yaml";
 
 constexpr const char* kCampaignRest = R"yaml(grid:                               # the plane grid of the coordinates below
@@ -442,14 +452,19 @@ line:                               # the line to orient: from the gyro station 
   to:   {name: P2, x_m: 3963200.752, y_m: 428000.330, height_m: -415.1}   # optional: gives the arc-to-chord term
   determinations:                   # 2 runs underground
     - mode: tracking
-      label: "P1-P2 1 (tracking) 11:30"
+      label: "P1-P2 1 (tracking)"
+      time: "11:30"                 # clock time of the run (record sheet)
       method: schuler
       reversals: ["88°32′31″", "91°01′36″", "88°33′08″", "91°00′56″", "88°33′40″"]
       zero_position:
         before: {reversals_div: [-3.5, 3.9, -3.3, 3.7, -3.2]}
         after:  {reversals_div: [4.0, -3.4, 3.8, -3.3, 3.6]}
-      target_reading: "310°18′21.7″"
-      target_sigma_arcsec: 2
+      target_rounds:                # instead of target_reading: the rounds (测回) as booked, face left
+                                    # and face right (angle_unit), before and after the run; their mean
+                                    # (L + R - 180)/2 is the target reading, 2C is shown
+        - {when: before, left: "310°18′17″", right: "130°18′26″"}
+        - {when: after,  left: "310°18′18″", right: "130°18′26″"}
+      target_sigma_arcsec: 2        # sigma of one round's direction (arcsec)
     - mode: non-tracking            # five transits and four reversal readings
       label: "P1-P2 2 (transit) 12:20"
       method: transit
@@ -464,10 +479,18 @@ line:                               # the line to orient: from the gyro station 
       target_reading: "310°18′29.5″"
       target_sigma_arcsec: 2
 
-tolerances:                         # optional; the defaults follow accuracy_class_arcsec
-  determination_difference_arcsec: 40         # any two runs on one line (15" class 40", 25" class 70")
-  instrument_constant_difference_arcsec: 40   # mean E after minus mean E before
-  zero_position_div: 0.5                      # tape zero, after minus before run (div)
+tolerances:                         # optional: the limits of the coal-mine surveying regulations follow
+                                    # accuracy_class_arcsec (docs/gyro-theodolite.md, "Checks"); set one
+                                    # here only to hold the job to another limit
+  determination_difference_arcsec: 40         # any two runs on the line (15" class 40", 25" class 70")
+  instrument_constant_difference_arcsec: 40   # any two instrument constants, and their before/after means
+  # instrument_constant_means_arcsec: 40      # the before/after means alone
+  zero_position_div: 0.5                      # tape zero, after minus before a run (div)
+  # zero_position_limit_div: 0.5              # |tape zero| of every motor-off run (div)
+  # orientation_difference_arcsec: 40         # two independent orientations (`gyro orientations`)
+  # orientation_mean_sigma_arcsec: 10         # sigma of their mean
+  # known_azimuth_coordinates_arcsec: 15      # given known azimuth against its coordinates
+  # instrument_constant_max_arcsec: 600       # |E| plausible
 
 # options:                          # optional
 #   zero_position_method: schuler   # how the tape zero is taken from its reversals:

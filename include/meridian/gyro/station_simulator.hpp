@@ -37,7 +37,12 @@ struct StationSimulation {
   double beta_div = -0.12, amplitude_div = 9.0, period_s = 440.0, t0_s = 50.0, damping_per_s = 0.0;
   std::vector<double> levels_div{-2.0, 0.0, 2.0};
   int crossings_per_level = 3, reversals = 2;
-  double clamp_rad = 0.0;                       ///< N′
+  double clamp_rad = 0.0;                       ///< N′ (β is the equilibrium reading for it)
+  /// Further clamp readings, used in turn by determinations 2, 3, … (then
+  /// again from N′): the same gyro north N_G = N′ + (1+λ)·τ·β seen from
+  /// other clamps, as for calibrating the transit factor (east and west of
+  /// north). Empty: every determination is clamped at N′.
+  std::vector<double> other_clamps_rad;
   bool known_period = true;                     ///< write period_s into the file
   // Tracking truth (R1).
   double centre_rad = (12.0 * 60.0 + 34.0) * units::kArcsecond;  ///< M
