@@ -542,8 +542,10 @@ TEST(GyroFiles, TemplatesReadBack) {
     for (const auto& x : *list) {
       (x.mode == gyro::Mode::Tracking ? tracking : nontracking) += 1;
       EXPECT_TRUE(x.zero_before && x.zero_after) << x.label;
-      EXPECT_TRUE(x.target_reading_rad) << x.label;
+      EXPECT_TRUE(x.target_reading_rad || !x.target_rounds.empty()) << x.label;
     }
+  EXPECT_EQ(c.line.determinations[0].target_rounds.size(), 2u);  // rounds face left/right, before and after
+  EXPECT_FALSE(c.record.observer.empty());
   EXPECT_EQ(tracking, 5);
   EXPECT_EQ(nontracking, 3);
   // Its stopwatch times are booked as m:ss.s: "0:34.8" = 34.8 s, "7:04.0" = 424 s.
