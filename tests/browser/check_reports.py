@@ -5,7 +5,7 @@ model, in headless Chromium and fails on a JavaScript error, a plot that did
 not render, a missing section, a page that would need the network, or a PDF
 that does not print.
 
-Usage: check_reports.py --meridian build/meridian --out DIR [--screenshots]
+Usage: check_reports.py --meridian build/meridian --out DIR --examples examples [--screenshots]
 """
 import argparse
 import glob
@@ -24,7 +24,9 @@ CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run
 
 # Sections each kind of report must have (HTML ids).
 REQUIRED = {
-    "campaign.html": ["result", "checks", "calibration", "line", "line-determination-1", "notes"],
+    "campaign.html": ["result-sheet", "inputs", "result", "checks", "calibration", "line", "line-determination-1",
+                      "notes"],
+    "campaign-cjk.html": ["result-sheet", "result", "checks"],
     "spec-scenario-2.html": ["summary", "determination-1"],
     "tracking.html": ["summary", "determination-1"],
     "gravity-points.html": ["summary", "maps", "definitions"],
@@ -100,10 +102,29 @@ def write_gravity_report(meridian, out):
     return None
 
 
+def write_cjk_campaign_report(meridian, examples, out):
+    """The example campaign with Chinese station and observer names, as a mine
+    books them; returns an error message or None."""
+    text = open(os.path.join(examples, "campaign.yaml"), encoding="utf-8").read()
+    text = text.replace("C (shaft bottom)", "井底车场 C").replace("D (main drift)", "主巷 D")
+    text = 'record: {observer: "王工", booker: "李工", computed_by: "张工", checked_by: "陈工"}\n' + text
+    book = os.path.join(out, "campaign-cjk.yaml")
+    with open(book, "w", encoding="utf-8") as f:
+        f.write(text)
+    run = subprocess.run([meridian, "gyro", "campaign", book, "-q", "--report", os.path.join(out, "campaign-cjk.html")],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        return "meridian gyro campaign (CJK names): " + run.stderr
+    if "井底车场 C" not in run.stdout:
+        return "the text report lost the CJK station name"
+    return None
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--meridian", required=True)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--examples", required=True)
     ap.add_argument("--screenshots", action="store_true")
     args = ap.parse_args()
     chromium = find_chromium()
@@ -116,10 +137,11 @@ def main():
         print("FAIL: meridian demo:", demo.stderr)
         return 1
     passed = failed = 0
-    problem = write_gravity_report(args.meridian, args.out)
-    if problem:
-        failed += 1
-        print("FAIL", problem)
+    for problem in (write_gravity_report(args.meridian, args.out),
+                    write_cjk_campaign_report(args.meridian, args.examples, args.out)):
+        if problem:
+            failed += 1
+            print("FAIL", problem)
     pages = sorted(glob.glob(os.path.join(args.out, "*.html")))
     for page in pages:
         errs = check_page(chromium, page)
@@ -148,6 +170,17 @@ def main():
     else:
         passed += 1
         print(f"ok   {pdf} ({pages_in_pdf} A4 pages)")
+    # Chinese names print with a CJK font (fonts-noto-cjk), not as empty boxes.
+    pdf = os.path.join(args.out, "campaign-cjk.pdf")
+    p = subprocess.run([args.meridian, "report", "pdf", os.path.join(args.out, "campaign-cjk.html"), "-o", pdf],
+                       capture_output=True, text=True)
+    data = open(pdf, "rb").read() if os.path.exists(pdf) else b""
+    if p.returncode != 0 or b"NotoSansCJK" not in data:
+        failed += 1
+        print(f"FAIL {pdf}: no Noto CJK font embedded for the Chinese names (exit {p.returncode}) {p.stderr}")
+    else:
+        passed += 1
+        print(f"ok   {pdf} (Chinese names set in Noto Sans CJK)")
     if args.screenshots:
         for page in pages:
             subprocess.run([args.meridian, "report", "screenshot", page], check=False)

@@ -84,3 +84,40 @@ TEST(Html, CampaignDocumentHasEverySection) {
   EXPECT_NE(html.find("Grid azimuth"), std::string::npos);
   EXPECT_NE(html.find("PASS"), std::string::npos);
 }
+
+TEST(Html, ResultSheetComesFirstAndTurnsRedOnAFailedCheck) {
+  auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 4);
+  sim.input.record.observer = "王工";
+  sim.input.record.checked_by = "陈工";
+  const auto good = gyro::process(sim.input);
+  const Document d = gyro_campaign_document("c.yaml", sim.input, good);
+  ASSERT_FALSE(d.sections.empty());
+  const Section& sheet = d.sections.front();
+  EXPECT_EQ(sheet.id, "result-sheet");
+  EXPECT_TRUE(sheet.page_break_after);
+  const auto* box = std::get_if<Highlight>(&sheet.blocks.front());
+  ASSERT_NE(box, nullptr);
+  EXPECT_FALSE(box->alarm);
+  bool signatures = false;
+  for (const auto& b : sheet.blocks)
+    if (const auto* s = std::get_if<Signatures>(&b)) {
+      signatures = true;
+      ASSERT_EQ(s->people.size(), 4u);
+      EXPECT_EQ(s->people[0].value, "王工");
+      EXPECT_EQ(s->people[3].value, "陈工");
+    }
+  EXPECT_TRUE(signatures);
+  // One run on the line 2' off: the line's check fails and the box says so.
+  sim.input.line.determinations[0].target_reading_rad->value += 120 * units::kArcsecond;
+  const auto bad = gyro::process(sim.input);
+  ASSERT_FALSE(bad.all_checks_pass());
+  const Document d2 = gyro_campaign_document("c.yaml", sim.input, bad);
+  const auto* red = std::get_if<Highlight>(&d2.sections.front().blocks.front());
+  ASSERT_NE(red, nullptr);
+  EXPECT_TRUE(red->alarm);
+  EXPECT_NE(red->detail.find("CHECKS FAILED"), std::string::npos) << red->detail;
+  const std::string html = render_html(d2);
+  EXPECT_NE(html.find("class=\"highlight alarm\""), std::string::npos);
+  EXPECT_NE(html.find("class=\"page-break\""), std::string::npos);
+  EXPECT_NE(html.find("counter(pages)"), std::string::npos);
+}
