@@ -374,21 +374,8 @@ gyro::Tolerances read_tolerances(const Node& t) {
                 "zero_position_div", "zero_position_limit_div", "known_azimuth_coordinates_arcsec",
                 "instrument_constant_max_arcsec"});
   gyro::Tolerances r;
-  auto arcsec = [&](const char* key, std::optional<double>& out) {
-    if (auto v = t.get(key)) out = v->positive_number() * kArcsec;
-  };
-  auto div = [&](const char* key, std::optional<double>& out) {
-    if (auto v = t.get(key)) out = v->positive_number();
-  };
-  arcsec("determination_difference_arcsec", r.determination_difference_rad);
-  arcsec("instrument_constant_difference_arcsec", r.instrument_constant_difference_rad);
-  arcsec("instrument_constant_means_arcsec", r.instrument_constant_means_rad);
-  arcsec("orientation_difference_arcsec", r.orientation_difference_rad);
-  arcsec("orientation_mean_sigma_arcsec", r.orientation_mean_sigma_rad);
-  div("zero_position_div", r.zero_position_div);
-  div("zero_position_limit_div", r.zero_position_limit_div);
-  arcsec("known_azimuth_coordinates_arcsec", r.known_azimuth_coordinates_rad);
-  arcsec("instrument_constant_max_arcsec", r.instrument_constant_max_rad);
+  for (const auto& f : detail::tolerance_fields(r))
+    if (auto v = t.get(f.key)) *f.member = v->positive_number() * f.unit;
   return r;
 }
 

@@ -245,23 +245,9 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
   if (c.line.zenith_angle_rad) o += "  zenith_angle: " + circle(*c.line.zenith_angle_rad, c.angle_unit) + "\n";
   o += "  determinations:\n";
   for (const auto& d : c.line.determinations) determination_yaml(o, d, "    ", c.angle_unit);
-  const gyro::Tolerances& t = c.tolerances;
   std::string tol;
-  auto arcsec = [&](const char* key, const std::optional<double>& v) {
-    if (v) tol += std::string("  ") + key + ": " + num(*v / kArcsec) + "\n";
-  };
-  auto div = [&](const char* key, const std::optional<double>& v) {
-    if (v) tol += std::string("  ") + key + ": " + num(*v) + "\n";
-  };
-  arcsec("determination_difference_arcsec", t.determination_difference_rad);
-  arcsec("instrument_constant_difference_arcsec", t.instrument_constant_difference_rad);
-  arcsec("instrument_constant_means_arcsec", t.instrument_constant_means_rad);
-  arcsec("orientation_difference_arcsec", t.orientation_difference_rad);
-  arcsec("orientation_mean_sigma_arcsec", t.orientation_mean_sigma_rad);
-  div("zero_position_div", t.zero_position_div);
-  div("zero_position_limit_div", t.zero_position_limit_div);
-  arcsec("known_azimuth_coordinates_arcsec", t.known_azimuth_coordinates_rad);
-  arcsec("instrument_constant_max_arcsec", t.instrument_constant_max_rad);
+  for (const auto& f : detail::tolerance_fields(c.tolerances))
+    if (*f.member) tol += std::string("  ") + f.key + ": " + num(**f.member / f.unit) + "\n";
   if (!tol.empty()) o += "tolerances:\n" + tol;
   if (c.gravity_model)
     o += "gravity_model: {model: " + q(c.gravity_model->source) +

@@ -564,3 +564,24 @@ TEST(GyroFiles, TemplatesReadBack) {
   EXPECT_EQ(r.determinations[1].nontracking.crossings.size(), 3u);
   EXPECT_DOUBLE_EQ(r.determinations[1].nontracking.crossings[2].times_s[2], 493.0);  // "8:13.0"
 }
+
+TEST(GyroFiles, TolerancesAndRecordSheetRoundTrip) {
+  TempDir d;
+  auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 5);
+  sim.input.tolerances.determination_difference_rad = 25 * kArcsec;
+  sim.input.tolerances.zero_position_limit_div = 0.4;
+  sim.input.tolerances.orientation_mean_sigma_rad = 8 * kArcsec;
+  sim.input.record.observer = "王工";
+  sim.input.record.date = "2026-11-28";
+  sim.input.instrument.serial = "0713";
+  const std::string yaml = io::campaign_file_yaml(sim.input);
+  const auto back = io::read_campaign_file(d.write("t.yaml", yaml)).campaign;
+  EXPECT_NEAR(*back.tolerances.determination_difference_rad / kArcsec, 25, 1e-12);
+  EXPECT_NEAR(*back.tolerances.zero_position_limit_div, 0.4, 1e-15);
+  EXPECT_NEAR(*back.tolerances.orientation_mean_sigma_rad / kArcsec, 8, 1e-12);
+  EXPECT_FALSE(back.tolerances.instrument_constant_max_rad);
+  EXPECT_EQ(back.record.observer, "王工");
+  EXPECT_EQ(back.record.date, "2026-11-28");
+  EXPECT_EQ(back.instrument.serial, "0713");
+  EXPECT_EQ(io::campaign_file_yaml(back), yaml);
+}
