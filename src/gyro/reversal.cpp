@@ -100,17 +100,19 @@ ReversalMethod reversal_method_from_string(const std::string& name) {
 void check_reversal_sequence(std::span<const double> r, int min_count) {
   if (static_cast<int>(r.size()) < min_count)
     throw InputError(fmt::format("{} reversal readings given, at least {} needed", r.size(), min_count));
+  // The field is the offending element ("[3]"; callers prefix the list's name).
+  const auto at = [](std::size_t i) { return ErrorContext{"", std::nullopt, fmt::format("[{}]", i)}; };
   for (std::size_t i = 0; i < r.size(); ++i)
-    if (!std::isfinite(r[i]))
-      throw InputError(fmt::format("reading {} is not a finite number", i + 1));
+    if (!std::isfinite(r[i])) throw InputError(fmt::format("reading {} is not a finite number", i + 1), at(i));
   for (std::size_t i = 1; i < r.size(); ++i) {
     const double d = r[i] - r[i - 1];
     if (d == 0.0)
-      throw InputError(fmt::format("readings {} and {} are equal: not a reversal sequence", i, i + 1));
+      throw InputError(fmt::format("readings {} and {} are equal: not a reversal sequence", i, i + 1), at(i));
     if (i >= 2 && (d > 0) == (r[i - 1] - r[i - 2] > 0))
       throw InputError(fmt::format(
-          "reading {} does not alternate about the centre: readings {}, {}, {} move the same way",
-          i + 1, i - 1, i, i + 1));
+                           "reading {} does not alternate about the centre: readings {}, {}, {} move the same way",
+                           i + 1, i - 1, i, i + 1),
+                       at(i));
   }
 }
 

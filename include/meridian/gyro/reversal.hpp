@@ -84,7 +84,7 @@ std::string reading_sigma_warning(const ReversalResult& r, double unit,
 
 /// Check that `readings` can be a reversal sequence: n ≥ min_count, all
 /// finite, successive differences non-zero and alternating in sign.
-/// Throws InputError naming the offending reading ("reading 4 (…) does not
+/// Throws InputError naming the offending reading (field "[3]", message "reading 4 does not
 /// alternate…").
 void check_reversal_sequence(std::span<const double> readings, int min_count);
 
