@@ -186,3 +186,14 @@ TEST(Reversal, SuccessiveSchulerMeansAndSpread) {
   EXPECT_FALSE(estimate_centre(ReversalMethod::Schuler, r3, 0.05).partial_means_spread);
   EXPECT_TRUE(estimate_centre(ReversalMethod::TwoPoint, r, 0.05).partial_means.empty());
 }
+
+TEST(Reversal, SequenceErrorsNameTheElement) {
+  const std::vector<double> r{1.0, -1.0, -1.2, 1.0};  // the third reading moves on the same way
+  try {
+    meridian::gyro::check_reversal_sequence(r, 3);
+    ADD_FAILURE() << "no error";
+  } catch (const meridian::InputError& e) {
+    EXPECT_EQ(e.context().field, "[2]");
+    EXPECT_NE(std::string(e.what()).find("reading 3 does not alternate"), std::string::npos) << e.what();
+  }
+}
