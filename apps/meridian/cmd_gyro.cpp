@@ -182,9 +182,20 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
     s.physics = gyro::PhysicalGyro{a.spin_momentum_Nms, a.inertia_kgm2, a.torsion_Nm_per_rad};
   s.noise = noise_kind(a.noise);
   if (a.clamps.empty()) throw InputError("give at least one clamp reading", {"", std::nullopt, "--clamp"});
-  s.clamp_rad = parse_angle(a.clamps.front()).normalized_positive().rad();
-  for (std::size_t i = 1; i < a.clamps.size(); ++i)
-    s.other_clamps_rad.push_back(parse_angle(a.clamps[i]).normalized_positive().rad());
+  if (a.clamps.size() > 1 && s.mode != gyro::Mode::NonTracking)
+    throw InputError("several clamp readings are for non-tracking runs", {"", std::nullopt, "--clamp"});
+  if (a.clamps.size() > static_cast<std::size_t>(s.determinations))
+    throw InputError(fmt::format("{} clamp readings for {} determination(s): give --determinations {} or more",
+                                 a.clamps.size(), s.determinations, a.clamps.size()),
+                     {"", std::nullopt, "--clamp"});
+  try {
+    s.clamp_rad = parse_angle(a.clamps.front()).normalized_positive().rad();
+    for (std::size_t i = 1; i < a.clamps.size(); ++i)
+      s.other_clamps_rad.push_back(parse_angle(a.clamps[i]).normalized_positive().rad());
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, "--clamp");
+    throw;
+  }
   s.centre_rad = parse_angle(a.centre).rad();
   s.sigma_tracking_rad = units::arcsec_to_rad(a.sigma_tracking_arcsec);
   TerminalProgress progress(a.quiet);

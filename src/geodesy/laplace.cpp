@@ -34,9 +34,9 @@ void check_zenith_distance(double zenith_distance_rad) {
   const double z = zenith_distance_rad;
   if (!std::isfinite(z) || z < kMinZenithDistance_rad || z > units::kPi - kMinZenithDistance_rad)
     throw InputError(fmt::format(
-        "zenith distance {} rad ({} deg) of the sight must be within [{}, {}] deg: a sight "
+        "zenith distance {:.4f} deg of the sight must be within [{:g}, {:g}] deg: a sight "
         "near the zenith or the nadir has no usable azimuth (cot z unbounded)",
-        z, units::rad_to_deg(z), units::rad_to_deg(kMinZenithDistance_rad),
+        units::rad_to_deg(z), units::rad_to_deg(kMinZenithDistance_rad),
         180.0 - units::rad_to_deg(kMinZenithDistance_rad)));
 }
 

@@ -19,6 +19,7 @@ std::string to_string(CheckUnit u) {
     case CheckUnit::Div: return "div";
     case CheckUnit::Runs: return "runs";
     case CheckUnit::Observers: return "observers";
+    case CheckUnit::Checks: return "checks";
     case CheckUnit::Arcsec: break;
   }
   return "arcsec";
@@ -98,6 +99,10 @@ class CampaignRun {
   CampaignResult run() {
     res_.name = in_.name;
     res_.limits = limits_;
+    res_.record = in_.record;
+    res_.instrument_name = in_.instrument.name;
+    res_.instrument_serial = in_.instrument.serial;
+    warn_looser_limits();
     res_.notes.push_back("grid: " + geodesy::describe(in_.grid));
     resolve_station();
     if (in_.known_line) calibrate_on_known_line();
@@ -273,9 +278,11 @@ class CampaignRun {
       return geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red).astronomic_rad;
     const PointDeflection d = deflection_at(k.from, from);
     red.eta_rad = d.eta_rad;
-    if (!red.eta_rad)
+    if (!red.eta_rad) {
+      e_holds_deflection_ = true;
       res_.notes.push_back("known line: eta unknown at the known station; the deflection is "
                            "absorbed into E (E relates gyro to geodetic azimuths)");
+    }
     const bool full = d.xi_rad && d.eta_rad;
     const Sight sight =
         sight_of("known line", "known_line", k.zenith_angle_rad, k.from, from, k.to, known_target, full);
@@ -335,15 +342,46 @@ class CampaignRun {
 
   // The checks of the regulations (regulations.hpp), in the order of its table.
   void add_check(std::string name, double value, double limit, CheckUnit unit, const std::optional<double>& override_,
-                 const char* override_key, bool minimum = false) {
+                 const char* override_key, bool minimum = false, bool signed_value = false) {
     const bool pass = minimum ? value >= limit : std::fabs(value) <= limit;
-    res_.checks.push_back({std::move(name), value, limit, unit, pass, minimum,
+    res_.checks.push_back({std::move(name), value, limit, unit, pass, minimum, signed_value,
                            override_ ? fmt::format("tolerances.{} in the file", override_key) : limits_.source});
   }
   void add_angle_check(std::string name, double value_rad, double limit_rad, const std::optional<double>& override_,
-                       const char* override_key) {
+                       const char* override_key, bool signed_value = false) {
     add_check(std::move(name), value_rad / units::kArcsecond, limit_rad / units::kArcsecond, CheckUnit::Arcsec,
-              override_, override_key);
+              override_, override_key, false, signed_value);
+  }
+
+  // A limit set in the file that is looser than the regulations' for the
+  // class is allowed (a project may decide so) but said aloud.
+  void warn_looser_limits() {
+    const RegulationLimits reg = regulation_limits(in_.instrument.accuracy_class_arcsec);
+    const Tolerances& t = in_.tolerances;
+    const struct {
+      const std::optional<double>& set;
+      double regulation;
+      const char* key;
+      double unit;
+      const char* unit_name;
+    } rows[] = {
+        {t.determination_difference_rad, reg.run_difference_rad, "determination_difference_arcsec", units::kArcsecond, "\""},
+        {t.instrument_constant_difference_rad, reg.constant_difference_rad, "instrument_constant_difference_arcsec",
+         units::kArcsecond, "\""},
+        {t.instrument_constant_means_rad, reg.constant_means_rad, "instrument_constant_means_arcsec", units::kArcsecond,
+         "\""},
+        {t.orientation_difference_rad, reg.orientation_difference_rad, "orientation_difference_arcsec",
+         units::kArcsecond, "\""},
+        {t.orientation_mean_sigma_rad, reg.orientation_mean_sigma_rad, "orientation_mean_sigma_arcsec",
+         units::kArcsecond, "\""},
+        {t.zero_position_div, reg.zero_position_drift_div, "zero_position_div", 1.0, " div"},
+        {t.zero_position_limit_div, reg.zero_position_div, "zero_position_limit_div", 1.0, " div"},
+    };
+    for (const auto& r : rows)
+      if (r.set && *r.set > r.regulation * (1.0 + 1e-12))
+        res_.warnings.push_back(fmt::format("tolerances.{} = {:g}{} in the file is looser than the {:g}{} of {}", r.key,
+                                            *r.set / r.unit, r.unit_name, r.regulation / r.unit, r.unit_name,
+                                            reg.source));
   }
 
   // The programme of one orientation: runs before, on the line and after.
@@ -373,23 +411,29 @@ class CampaignRun {
               res_.instrument_station.instrument.torsion_ratio.value * res_.instrument_station.instrument.scale_value_rad *
                   limits_.zero_position_div / units::kArcsecond,
               limits_.zero_position_div));
-          res_.checks.push_back({"zero position observed, " + run, 0.0, 1.0, CheckUnit::Runs, false, true,
+          res_.checks.push_back({"zero position observed, " + run, 0.0, 1.0, CheckUnit::Runs, false, true, false,
                                  "coal-mine surveying regulations: zero position before and after every run"});
           continue;
         }
         const auto& z = v[i].zero_position;
         if (z) {
           double largest = 0.0;
-          for (const auto* e : {&z->before, &z->after})
-            if (*e && std::fabs((*e)->fit.centre.value) > std::fabs(largest)) largest = (*e)->fit.centre.value;
-          add_check("zero position |alpha_p|, " + run, largest, limits_.zero_position_div, CheckUnit::Div,
-                    t.zero_position_limit_div, "zero_position_limit_div");
+          const char* which = "";
+          for (const auto& [e, when] : {std::pair{&z->before, "before"}, std::pair{&z->after, "after"}})
+            if (*e && std::fabs((*e)->fit.centre.value) >= std::fabs(largest)) {
+              largest = (*e)->fit.centre.value;
+              which = when;
+            }
+          add_check(fmt::format("zero position alpha_p (motor-off run {} the gyro run, the larger), {}", which, run),
+                    largest, limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div,
+                    "zero_position_limit_div", false, true);
           if (z->difference_div)
             add_check("zero position after - before, " + run, *z->difference_div, limits_.zero_position_drift_div,
-                      CheckUnit::Div, t.zero_position_div, "zero_position_div");
+                      CheckUnit::Div, t.zero_position_div, "zero_position_div", false, true);
         } else {
-          add_check("zero position |alpha_p| (given), " + run, v[i].zero_position_used->value,
-                    limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div, "zero_position_limit_div");
+          add_check("zero position alpha_p (given), " + run, v[i].zero_position_used->value,
+                    limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div, "zero_position_limit_div",
+                    false, true);
         }
       }
     };
@@ -426,7 +470,7 @@ class CampaignRun {
             {fmt::format("tracking readings scatter as stated, {}[{}]{}", what, i,
                          v[i].label.empty() ? "" : " (" + v[i].label + ")"),
              g.sigma0 * rev->sigma_reading / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
-             !g.rejected, false,
+             !g.rejected, false, false,
              fmt::format("global test at {:g} %: sigma of a reading from the residuals against the stated {:.1f}\"",
                          100.0 * g.alpha, rev->sigma_reading / units::kArcsecond)});
       }
@@ -448,8 +492,19 @@ class CampaignRun {
       if (all.size() >= 2) {
         const AzimuthMean m = mean_direction(all);
         res_.constant_one_run_sigma_rad = m.one_run_sigma;
-        add_angle_check("any two runs on the known line, instrument constants", m.max_difference,
-                        limits_.constant_difference_rad, t.instrument_constant_difference_rad,
+        // Name the two runs that differ most.
+        std::size_t lo = 0, hi = 0;
+        for (std::size_t i = 1; i < all.size(); ++i) {
+          if (wrap_signed_rad(all[i].value - all[lo].value) < 0) lo = i;
+          if (wrap_signed_rad(all[i].value - all[hi].value) > 0) hi = i;
+        }
+        const auto run = [&](std::size_t i) {
+          return i < e.before.size() ? fmt::format("known_line.before[{}]", i)
+                                     : fmt::format("known_line.after[{}]", i - e.before.size());
+        };
+        add_angle_check(fmt::format("any two runs on the known line, instrument constants (largest: {} and {})",
+                                    run(lo), run(hi)),
+                        m.max_difference, limits_.constant_difference_rad, t.instrument_constant_difference_rad,
                         "instrument_constant_difference_arcsec");
       }
       if (e.difference_rad)
@@ -457,12 +512,15 @@ class CampaignRun {
                         t.instrument_constant_means_rad ? t.instrument_constant_means_rad
                                                         : t.instrument_constant_difference_rad,
                         t.instrument_constant_means_rad ? "instrument_constant_means_arcsec"
-                                                        : "instrument_constant_difference_arcsec");
+                                                        : "instrument_constant_difference_arcsec",
+                        true);
       check_known_azimuth();
     }
     const double e = res_.instrument_constant_used_rad.value;
-    add_angle_check("instrument constant |E| plausible", e, limits_.instrument_constant_max_rad,
-                    t.instrument_constant_max_rad, "instrument_constant_max_arcsec");
+    add_angle_check("instrument constant E plausible", e, limits_.instrument_constant_max_rad,
+                    t.instrument_constant_max_rad, "instrument_constant_max_arcsec", true);
+    if (!t.instrument_constant_max_rad)
+      res_.checks.back().source = "Meridian plausibility limit: |E| of a gyro-theodolite is well under 10'";
     if (!res_.checks.back().pass)
       res_.warnings.push_back(fmt::format(
           "the instrument constant E = {:+.1f}\" is implausibly large: check the known azimuth, its kind "
@@ -493,7 +551,7 @@ class CampaignRun {
     res_.checks.push_back({fmt::format("known line: the given {} azimuth against its coordinates",
                                        geodesy::to_string(k.azimuth.kind)),
                            diff / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
-                           std::fabs(diff) <= limit, false,
+                           std::fabs(diff) <= limit, false, true,
                            override_ ? "tolerances.known_azimuth_coordinates_arcsec in the file"
                                      : "Meridian plausibility limit: max(3 sigma of the given azimuth, the class)"});
     if (!res_.checks.back().pass)
@@ -526,8 +584,10 @@ class CampaignRun {
     std::vector<std::string> all = surface;
     for (const auto& o : underground)
       if (std::find(all.begin(), all.end(), o) == all.end()) all.push_back(o);
-    res_.checks.push_back({"the same observer on the known line and on the line", static_cast<double>(all.size()),
-                           1.0, CheckUnit::Observers, all.size() == 1, false,
+    std::string names;
+    for (const auto& o : all) names += (names.empty() ? "" : ", ") + o;
+    res_.checks.push_back({"the same observer on the known line and on the line (" + names + ")",
+                           static_cast<double>(all.size()), 1.0, CheckUnit::Observers, all.size() == 1, false, false,
                            "coal-mine surveying regulations: the same observer above and below ground"});
     if (all.size() > 1) {
       std::string list;
@@ -555,8 +615,11 @@ class CampaignRun {
     for (std::size_t i = 0; i < runs.size(); ++i)
       for (std::size_t j = i + 1; j < runs.size(); ++j)
         if (same_observations(*runs[i].in, *runs[j].in)) pairs.push_back(runs[i].name + " and " + runs[j].name);
-    res_.checks.push_back({"no run booked twice", static_cast<double>(pairs.size()), 0.0, CheckUnit::Runs,
-                           pairs.empty(), false, "Meridian: identical observations in two runs"});
+    std::string which;
+    for (const auto& p : pairs) which += (which.empty() ? " (" : "; ") + p;
+    if (!which.empty()) which += ")";
+    res_.checks.push_back({"no run booked twice" + which, static_cast<double>(pairs.size()), 0.0, CheckUnit::Runs,
+                           pairs.empty(), false, false, "Meridian: identical observations in two runs"});
     for (const auto& p : pairs)
       res_.warnings.push_back(p + " have identical observations: one run was booked twice");
   }
@@ -579,7 +642,16 @@ class CampaignRun {
     chain.gyro_azimuth_rad = res_.gyro_azimuth_mean.mean;
     chain.instrument_constant_rad = res_.instrument_constant_used_rad;
     chain.latitude_rad = res_.station.lat_rad;
-    const PointDeflection d = deflection_at(in_.line.from, res_.station);
+    // An E that holds the known station's deflection relates gyro to geodetic
+    // azimuths: applying the deflection at the station as well would count
+    // it twice.
+    const PointDeflection d = e_holds_deflection_ ? PointDeflection{} : deflection_at(in_.line.from, res_.station);
+    if (e_holds_deflection_ && (in_.line.from.eta_rad || in_.line.from.xi_rad || deflection_))
+      res_.notes.push_back(fmt::format(
+          "{}: the deflection of the vertical is not applied: E was calibrated without eta at {} and already "
+          "holds the deflection there (give eta at {} as well to apply both)",
+          point_label(res_.station, "the station"), point_label(*res_.known_station, "the known station"),
+          point_label(*res_.known_station, "the known station")));
     chain.eta_rad = d.eta_rad;
     const bool full = d.xi_rad && d.eta_rad;
     const Sight sight =
@@ -605,6 +677,7 @@ class CampaignRun {
   const geodesy::TransverseMercatorGrid grid_;
   std::size_t done_ = 0, total_ = 0;
   RegulationLimits limits_;
+  bool e_holds_deflection_ = false;  // E calibrated on a geodetic/grid azimuth without η
   ReduceOptions options_;
   CampaignResult res_;
 };

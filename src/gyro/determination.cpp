@@ -88,6 +88,21 @@ TargetDirection reduce_target(const DeterminationInput& in) {
   return t;
 }
 
+// Rounds that disagree, or a 2C that jumps between rounds, point at a face
+// reading booked wrong (the mean still moves by half of it). Meridian's
+// plausibility limits: rounds within max(10", 3·σ·√2), 2C within 20".
+std::optional<std::string> target_rounds_warning(const TargetDirection& t, double sigma_round_rad) {
+  if (t.round_rad.size() < 2) return std::nullopt;
+  const double spread_limit = std::max(10.0 * units::kArcsecond, 3.0 * std::sqrt(2.0) * sigma_round_rad);
+  const auto [lo, hi] = std::minmax_element(t.two_c_rad.begin(), t.two_c_rad.end());
+  const double two_c_variation = *hi - *lo;
+  if (t.spread_rad <= spread_limit && two_c_variation <= 20.0 * units::kArcsecond) return std::nullopt;
+  return fmt::format("the target rounds disagree: directions spread by {:.1f}\" (limit {:.1f}\"), 2C varies by "
+                     "{:.1f}\" (limit 20\"): a face reading booked wrong?",
+                     units::rad_to_arcsec(t.spread_rad), units::rad_to_arcsec(spread_limit),
+                     units::rad_to_arcsec(two_c_variation));
+}
+
 }  // namespace
 
 std::string to_string(Mode m) { return m == Mode::Tracking ? "tracking" : "non-tracking"; }
@@ -127,7 +142,10 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
     for (const auto& w : out.zero_position->warnings) out.warnings.push_back(w);
   }
   out.zero_position_used = zero;
-  if (!in.target_rounds.empty()) out.target = reduce_target(in);
+  if (!in.target_rounds.empty()) {
+    out.target = reduce_target(in);
+    if (auto w = target_rounds_warning(*out.target, in.target_round_sigma_rad)) out.warnings.push_back(*w);
+  }
 
   if (in.mode == Mode::NonTracking) {
     check_plausible(in.nontracking);

@@ -19,7 +19,15 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
     throw InputError(fmt::format("two or more independent orientations are needed, got {}", in.size()),
                      {"", std::nullopt, "orientations"});
   OrientationsResult r;
-  const RegulationLimits& limits = in.front().limits;
+  // The tightest limits of the orientations (their classes or files may differ).
+  RegulationLimits limits = in.front().limits;
+  for (const CampaignResult& c : in) {
+    if (c.limits.orientation_difference_rad < limits.orientation_difference_rad) {
+      limits.orientation_difference_rad = c.limits.orientation_difference_rad;
+      limits.source = c.limits.source;
+    }
+    limits.orientation_mean_sigma_rad = std::min(limits.orientation_mean_sigma_rad, c.limits.orientation_mean_sigma_rad);
+  }
   r.limits = limits;
   r.station = in.front().station.name;
   r.target = in.front().target ? in.front().target->name : std::string();
@@ -30,16 +38,35 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
       throw InputError(fmt::format("orientation {} is of the line {}-{}, not {}-{}", i + 1, c.station.name, target,
                                    r.station, r.target),
                        {"", std::nullopt, fmt::format("orientations[{}]", i)});
+    // The same runs twice are one orientation, not two independent ones.
+    for (std::size_t j = 0; j < i; ++j) {
+      const auto& a = in[j].gyro_azimuths;
+      const auto& b = c.gyro_azimuths;
+      const bool same = a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+                          return x.value == y.value && x.sigma == y.sigma;
+                        });
+      if (same)
+        throw InputError(fmt::format("orientations {} and {} have the same runs on the line: they are not independent",
+                                     j + 1, i + 1),
+                         {"", std::nullopt, fmt::format("orientations[{}]", i)});
+    }
     r.grid_azimuths_rad.push_back(c.chain.grid_azimuth_rad);
   }
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    int failed = 0;
+    for (const auto& k : in[i].checks) failed += k.pass ? 0 : 1;
+    r.checks.push_back({fmt::format("orientation {}: failed checks of its own", i + 1), static_cast<double>(failed),
+                        0.0, CheckUnit::Checks, failed == 0, false, false,
+                        "every orientation must pass its own checks"});
+  }
   r.mean = mean_direction(r.grid_azimuths_rad);
-  const std::string source = limits.source;
   r.checks.push_back({"independent orientations, largest difference of the grid azimuths",
                       r.mean.max_difference / units::kArcsecond, limits.orientation_difference_rad / units::kArcsecond,
-                      CheckUnit::Arcsec, r.mean.max_difference <= limits.orientation_difference_rad, false, source});
+                      CheckUnit::Arcsec, r.mean.max_difference <= limits.orientation_difference_rad, false, false,
+                      limits.source});
   r.checks.push_back({"independent orientations, sigma of the mean", r.mean.mean.sigma / units::kArcsecond,
                       limits.orientation_mean_sigma_rad / units::kArcsecond, CheckUnit::Arcsec,
-                      r.mean.mean.sigma <= limits.orientation_mean_sigma_rad, false, source});
+                      r.mean.mean.sigma <= limits.orientation_mean_sigma_rad, false, false, limits.source});
   r.notes.push_back(fmt::format("sigma of the mean: the larger of propagated {:.1f}\" and empirical {:.1f}\"",
                                 r.mean.sigma_propagated / units::kArcsecond,
                                 r.mean.sigma_empirical / units::kArcsecond));

@@ -114,6 +114,25 @@ void check_reversal_sequence(std::span<const double> r, int min_count) {
                            i + 1, i - 1, i, i + 1),
                        at(i));
   }
+  // Successive readings lie on either side of the centre (the mean of the
+  // midpoints): a reading with its sign lost can still zig-zag, but it then
+  // falls on its neighbour's side, far from the centre compared with the swing.
+  if (r.size() < 3) return;
+  double centre = 0.0, swing = 0.0;
+  for (std::size_t i = 1; i < r.size(); ++i) {
+    centre += (r[i] + r[i - 1]) / 2.0;
+    swing += std::fabs(r[i] - r[i - 1]) / 2.0;
+  }
+  centre /= static_cast<double>(r.size() - 1);
+  swing /= static_cast<double>(r.size() - 1);
+  for (std::size_t i = 1; i < r.size(); ++i) {
+    const double a = r[i - 1] - centre, b = r[i] - centre;
+    if (a * b > 0.0 && std::min(std::fabs(a), std::fabs(b)) > 0.25 * swing)
+      throw InputError(fmt::format("reading {} lies on the same side of the centre as reading {}: a sign or a digit "
+                                   "booked wrong?",
+                                   i + 1, i),
+                       at(i));
+  }
 }
 
 std::vector<double> unwrap_circle_readings(std::span<const double> r) {

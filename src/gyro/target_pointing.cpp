@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/angle.hpp"
+#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
@@ -21,10 +22,11 @@ TargetDirection reduce_target_rounds(const std::vector<TargetRound>& rounds, dou
     const double right_as_left = rounds[i].face_right_rad - units::kPi;
     const double two_c = wrap_signed_rad(left - right_as_left);
     if (std::fabs(two_c) > units::kDegree)
-      throw InputError(fmt::format("face left {:.4f} deg and face right {:.4f} deg are not 180 deg apart "
-                                   "(2C = {:.0f}\"): a face or a reading booked wrong",
-                                   units::rad_to_deg(left), units::rad_to_deg(rounds[i].face_right_rad),
-                                   units::rad_to_arcsec(two_c)),
+      throw InputError(fmt::format("face left {} and face right {} are not 180 deg apart (they differ by {} from it): "
+                                   "a face or a reading booked wrong",
+                                   format_direction_dms(Angle::radians(left)),
+                                   format_direction_dms(Angle::radians(rounds[i].face_right_rad)),
+                                   format_dms(Angle::radians(two_c))),
                        {"", std::nullopt, fmt::format("target_rounds[{}]", i)});
     t.two_c_rad.push_back(two_c);
     t.round_rad.push_back(wrap_positive_rad(left - two_c / 2.0));

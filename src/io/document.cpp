@@ -54,6 +54,8 @@ Node::Node(YAML::Node node, std::string path, std::shared_ptr<const std::string>
 
 Node Node::load_file(const std::filesystem::path& path) {
   auto file = std::make_shared<const std::string>(path.string());
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IoError("is a directory, not a file", {*file, std::nullopt, {}});
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open the file", {*file, std::nullopt, {}});
   std::stringstream ss;

@@ -306,8 +306,11 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
   std::vector<KeyValue> job;
   if (!r.name.empty()) job.push_back({"job", r.name});
   if (!in.record.date.empty()) job.push_back({"date", in.record.date});
+  const std::string& serial = in.instrument.serial;
   job.push_back({"instrument", (in.instrument.name.empty() ? std::string("gyro-theodolite") : in.instrument.name) +
-                                   (in.instrument.serial.empty() ? "" : ", No. " + in.instrument.serial) +
+                                   (serial.empty() || in.instrument.name.find(serial) != std::string::npos
+                                        ? ""
+                                        : ", No. " + serial) +
                                    fmt::format(", {}\" class", in.instrument.accuracy_class_arcsec)});
   if (in.known_line)
     job.push_back({"programme (runs before / on the line / after)",
@@ -315,6 +318,7 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
                                in.known_line->after.size())});
   if (!in.record.weather.empty()) job.push_back({"weather", in.record.weather});
   if (!in.record.temperature.empty()) job.push_back({"temperature", in.record.temperature});
+  if (!in.record.remarks.empty()) job.push_back({"remarks", in.record.remarks});
   s.blocks.push_back(KeyValueList{"Job", job});
   Table t;
   t.title = "Result";
@@ -386,13 +390,15 @@ Section checks_section(const gyro::CampaignResult& r, const AngleFormat& f) {
   CheckList cl;
   for (const auto& k : r.checks) {
     const bool div = k.unit == gyro::CheckUnit::Div;
-    const bool runs = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers;
+    const bool runs = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers ||
+                      k.unit == gyro::CheckUnit::Checks;
     const int dec = div ? 2 : runs ? 0 : 1;
     const std::string unit = div ? " div" : runs ? "" : "\"";
     cl.checks.push_back({k.name, fmt::format("{:.{}f}{}", k.value, dec, unit),
-                         fmt::format("{}{:.{}f}{}", k.minimum ? "at least " : "", k.tolerance, dec, unit), k.pass});
+                         fmt::format("{}{}{:.{}f}{}", k.minimum ? "at least " : "", k.signed_value ? "\u00b1" : "",
+                                     k.tolerance, dec, unit),
+                         k.pass, k.source});
   }
-  checks.blocks.push_back(Paragraph{"Limits: " + r.limits.source + "."});
   checks.blocks.push_back(cl);
   std::vector<KeyValue> m;
   if (r.constant_one_run_sigma_rad)
@@ -421,7 +427,7 @@ Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignR
     for (std::size_t i = 0; i < d.size(); ++i) {
       t.rows.push_back({when, d[i].label, gyro::to_string(d[i].primary.method), f.dir(d[i].primary.north.north_rad, 2),
                         f.sig(d[i].primary.north.sigma_rad, 1), f.dir(ag[i].value, 2), f.sec(e[i].value, 2), f.sig(e[i].sigma, 1)});
-      labels.push_back(std::string(when) + " " + label_of(d[i], i));
+      labels.push_back(d[i].label.empty() ? std::string(when) + " " + label_of(d[i], i) : d[i].label);
       es.push_back(e[i]);
     }
   };

@@ -54,8 +54,9 @@ json az(const gyro::Uncertain& u) {
 json checks_json(const std::vector<gyro::Check>& checks) {
   json a = json::array();
   for (const auto& k : checks)
-    a.push_back({{"name", k.name}, {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
-                 {"unit", gyro::to_string(k.unit)}, {"pass", k.pass}, {"minimum", k.minimum}, {"source", k.source}});
+    a.push_back({{"name", k.name},           {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
+                 {"unit", gyro::to_string(k.unit)}, {"pass", k.pass},          {"minimum", k.minimum},
+                 {"signed_value", k.signed_value}, {"source", k.source}});
   return a;
 }
 
@@ -190,6 +191,11 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   };
   json j;
   j["campaign"] = r.name;
+  j["record"] = {{"observer", r.record.observer},       {"booker", r.record.booker},
+                 {"computed_by", r.record.computed_by}, {"checked_by", r.record.checked_by},
+                 {"date", r.record.date},               {"weather", r.record.weather},
+                 {"temperature", r.record.temperature}, {"remarks", r.record.remarks}};
+  j["instrument"] = {{"name", r.instrument_name}, {"serial", r.instrument_serial}};
   j["station"] = point(r.station);
   if (r.target) j["target"] = point(*r.target);
   if (r.known_station) j["known_station"] = point(*r.known_station);

@@ -52,11 +52,12 @@ std::string determination_text(const gyro::DeterminationResult& r, int index, co
 }
 
 std::string check_statement(const gyro::Check& k) {
-  const bool count = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers;
+  const bool count = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers ||
+                     k.unit == gyro::CheckUnit::Checks;
   const int decimals = count ? 0 : k.unit == gyro::CheckUnit::Arcsec ? 1 : 2;
   const std::string unit = " " + gyro::to_string(k.unit);
-  return fmt::format("{}: {:.{}f}{} ({} {:.{}f}{})", k.name, k.value, decimals, unit, k.minimum ? "at least" : "limit",
-                     k.tolerance, decimals, count ? "" : unit);
+  return fmt::format("{}: {:.{}f}{} ({} {}{:.{}f}{})", k.name, k.value, decimals, unit, k.minimum ? "at least" : "limit",
+                     k.signed_value ? "+-" : "", k.tolerance, decimals, count ? "" : unit);
 }
 
 std::string check_text(const gyro::Check& k) {
@@ -102,11 +103,21 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   std::string out;
   out += fmt::format("Gyro orientation campaign: {}\n", r.name.empty() ? "(unnamed)" : r.name);
   out += std::string(72, '=') + "\n";
+  const auto& rec = r.record;
+  const std::pair<const char*, const std::string*> record[] = {
+      {"Date", &rec.date},         {"Observer", &rec.observer}, {"Booker", &rec.booker},
+      {"Computed by", &rec.computed_by}, {"Checked by", &rec.checked_by}, {"Weather", &rec.weather},
+      {"Temperature", &rec.temperature}, {"Remarks", &rec.remarks}};
+  if (!r.instrument_name.empty() || !r.instrument_serial.empty())
+    out += fmt::format("{:<14} {}{}\n", "Instrument", r.instrument_name,
+                       r.instrument_serial.empty() ? "" : " (No. " + r.instrument_serial + ")");
+  for (const auto& [key, value] : record)
+    if (!value->empty()) out += fmt::format("{:<14} {}\n", key, *value);
   auto point = [&](const char* what, const gyro::PointResult& p) {
     out += fmt::format("{:<14} {:<10} lat {}  lon {}  x {:.3f} m  y {:.3f} m  gamma {}\n", what, p.name,
                        format_dms(Angle::radians(p.lat_rad), {3, true, false}),
                        format_dms(Angle::radians(p.lon_rad), {3, true, false}), p.grid.x_north_m,
-                       p.grid.y_east_m, format_dms(Angle::radians(p.grid.convergence_rad), {2, true, true}));
+                       p.grid.y_east_m, f.dms(p.grid.convergence_rad, 2));
   };
   point("Station", r.station);
   if (r.target) point("Target", *r.target);
@@ -160,14 +171,15 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   out += fmt::format("  geodetic azimuth    alpha = {:>13}  sigma {}\n", f.dir(c.geodetic_azimuth_rad.value),
                      f.sig(c.geodetic_azimuth_rad.sigma));
   out += fmt::format("  - convergence gamma     = {:>15}\n",
-                     format_dms(Angle::radians(c.convergence_rad), {2, true, true}));
+                     f.dms(c.convergence_rad, 2));
   out += fmt::format("  + arc-to-chord delta    = {:>15}\n",
                      c.arc_to_chord_applied ? f.sec(c.arc_to_chord_rad) : std::string("not applied"));
   out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n\n", f.dir(c.grid_azimuth_rad.value),
                      f.sig(c.grid_azimuth_rad.sigma));
-  out += fmt::format("Checks (limits: {})\n", r.limits.source);
+  out += fmt::format("Checks (limits: {}, unless marked)\n", r.limits.source);
   if (r.checks.empty()) out += "  (none applicable)\n";
-  for (const auto& k : r.checks) out += "  " + check_text(k) + "\n";
+  for (const auto& k : r.checks)
+    out += "  " + check_text(k) + (k.source == r.limits.source ? "" : "  [" + k.source + "]") + "\n";
   if (r.constant_one_run_sigma_rad || r.line_one_run_sigma_rad) {
     out += "  one-run standard deviations m = sqrt([vv]/(n-1)):";
     if (r.constant_one_run_sigma_rad) out += " instrument constant " + f.sig(*r.constant_one_run_sigma_rad);

@@ -1,5 +1,7 @@
 #include "meridian/report/html.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
@@ -38,6 +40,7 @@ table.signatures td { height: 34px; vertical-align: bottom; }
 table.signatures td:first-child { width: 22%; color: var(--muted); vertical-align: top; }
 table.signatures td.blank { width: 30%; }
 .notes li { margin: 2px 0; }
+td.source { color: var(--muted); font-size: 11px; }
 .warnings { border-left: 4px solid var(--fail); padding-left: 10px; }
 figure.plot { margin: 10px 0 16px; }
 figure.plot figcaption { color: var(--muted); font-size: 12px; }
@@ -165,11 +168,16 @@ struct Renderer {
   void block(const CheckList& c) {
     out += "<table class=\"checks\">";
     if (!c.title.empty()) out += "<caption>" + html_escape(c.title) + "</caption>";
-    out += "<thead><tr><th>check</th><th>value</th><th>tolerance</th><th>result</th></tr></thead><tbody>";
-    for (const auto& k : c.checks)
-      out += fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"{}\">{}</td></tr>",
+    const bool sources = std::any_of(c.checks.begin(), c.checks.end(), [](const CheckRow& k) { return !k.source.empty(); });
+    out += std::string("<thead><tr><th>check</th><th>value</th><th>limit</th><th>result</th>") +
+           (sources ? "<th>source of the limit</th>" : "") + "</tr></thead><tbody>";
+    for (const auto& k : c.checks) {
+      out += fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"{}\">{}</td>",
                          html_escape(k.name), html_escape(k.value), html_escape(k.tolerance),
                          k.pass ? "pass" : "fail", k.pass ? "PASS" : "FAIL");
+      if (sources) out += "<td class=\"source\">" + html_escape(k.source) + "</td>";
+      out += "</tr>";
+    }
     if (c.checks.empty()) out += "<tr><td colspan=\"4\">no check applies</td></tr>";
     out += "</tbody></table>\n";
   }

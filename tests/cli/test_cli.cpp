@@ -399,7 +399,7 @@ TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
     int code;
     const char* says;
   } cases[] = {
-      {"fb_Espread.yaml", 1, "check failed: any two runs on the known line, instrument constants: 58.3"},
+      {"fb_Espread.yaml", 1, "check failed: any two runs on the known line, instrument constants (largest: "},
       {"fb_badrev_sig.yaml", 1, "check failed: tracking readings scatter as stated, line.determinations[0]"},
       {"03b_no_zero_at_all.yaml", 1, "check failed: zero position observed, line.determinations[0]"},
       {"04b_mdotss_numbers.yaml", 1, "line.determinations[1].crossings[0].times_s: the passages imply a period"},
@@ -424,4 +424,18 @@ TEST_F(Cli, IndependentOrientationsOfOneLine) {
   const auto a = nlohmann::json::parse(run("gyro campaign a.yaml --json").out);
   EXPECT_DOUBLE_EQ(j["grid_azimuths"][0]["deg"].get<double>(), a["grid_azimuth"]["deg"].get<double>());
   EXPECT_NE(run("gyro orientations a.yaml").code, 0);  // one file: a command-line error
+}
+
+TEST_F(Cli, DirectoryAndClampMistakesAreNamed) {
+  fs::create_directories(dir_ / "a_dir");
+  const CmdResult d = run("gyro campaign a_dir");
+  EXPECT_EQ(d.code, 4) << d.err;
+  EXPECT_NE(d.err.find("is a directory"), std::string::npos) << d.err;
+  // More clamps than determinations would drop some silently.
+  const CmdResult c = run("gyro simulate --clamp \"0 12 00,359 48 00\"");
+  EXPECT_EQ(c.code, 1);
+  EXPECT_NE(c.err.find("--clamp: 2 clamp readings for 1 determination(s)"), std::string::npos) << c.err;
+  const CmdResult bad = run("gyro simulate --clamp \"0 72 00\"");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("--clamp"), std::string::npos) << bad.err;
 }

@@ -197,3 +197,16 @@ TEST(Reversal, SequenceErrorsNameTheElement) {
     EXPECT_NE(std::string(e.what()).find("reading 3 does not alternate"), std::string::npos) << e.what();
   }
 }
+
+TEST(Reversal, AReadingWithItsSignLostIsFound) {
+  // 4.2, -3.7, … with the second sign lost still zig-zags (4.2, 3.7, 3.9, …)
+  // but lies on its neighbour's side of the centre.
+  const std::vector<double> r{4.2, 3.7, 3.9, -3.5, 3.7};
+  try {
+    meridian::gyro::check_reversal_sequence(r, 3);
+    ADD_FAILURE() << "no error";
+  } catch (const meridian::InputError& e) {
+    EXPECT_EQ(e.context().field, "[1]");
+  }
+  EXPECT_NO_THROW(meridian::gyro::check_reversal_sequence(std::vector<double>{4.2, -3.7, 3.9, -3.5, 3.7}, 3));
+}

@@ -104,8 +104,8 @@ struct PointResult {
 };
 
 /// Unit of a check's value and tolerance.
-enum class CheckUnit { Arcsec, Div, Runs, Observers };
-std::string to_string(CheckUnit u);  ///< "arcsec", "div", "runs", "observers"
+enum class CheckUnit { Arcsec, Div, Runs, Observers, Checks };
+std::string to_string(CheckUnit u);  ///< "arcsec", "div", "runs", "observers", "checks"
 
 /// A pass/fail check for the report: `value` against the limit `tolerance`
 /// (at most, or at least for a minimum such as a number of runs).
@@ -116,7 +116,8 @@ struct Check {
   CheckUnit unit = CheckUnit::Arcsec;
   bool pass = true;
   bool minimum = false;     ///< true: the value must be at least the limit
-  std::string source;       ///< where the limit comes from (regulations, class, the file)
+  bool signed_value = false;  ///< the value has a sign; the check is |value| ≤ tolerance
+  std::string source;       ///< where the limit comes from (regulations, class, the file, Meridian)
 };
 
 
@@ -139,6 +140,8 @@ struct CampaignResult {
   AzimuthMean gyro_azimuth_mean;
   AzimuthChainResult chain;
   RegulationLimits limits;                   ///< the limits the checks used
+  RecordSheet record;                        ///< as booked (for the reports)
+  std::string instrument_name, instrument_serial;
   std::vector<Check> checks;
   /// One-run standard deviations (一次测定中误差, AzimuthMean::one_run_sigma)
   /// of the instrument constants on the known line and of the gyro azimuths

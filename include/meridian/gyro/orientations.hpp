@@ -30,10 +30,12 @@ struct OrientationsResult {
 };
 
 /// Combine the results of independent orientations of one line (at least
-/// two, with the same station and target names). The limits are the first
-/// orientation's (its instrument class and tolerances). Throws InputError
-/// when fewer than two results are given or when they are not of the same
-/// line (field "orientations[i]").
+/// two, with the same station and target names). Each orientation must pass
+/// its own checks (a check per orientation); the limits are the tightest of
+/// the orientations' (their classes and tolerances). Throws InputError when
+/// fewer than two results are given, when they are not of the same line, or
+/// when two have the same runs on the line (not independent; field
+/// "orientations[i]").
 OrientationsResult combine_orientations(const std::vector<CampaignResult>& orientations);
 
 }  // namespace meridian::gyro

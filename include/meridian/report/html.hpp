@@ -48,6 +48,7 @@ struct CheckRow {
   std::string value;
   std::string tolerance;
   bool pass = true;
+  std::string source;   ///< where the limit comes from; a column shown when any row has one
 };
 
 struct CheckList {
