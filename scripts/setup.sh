@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(
-  build-essential cmake pkg-config python3
+  build-essential cmake pkg-config python3 python3-numpy python3-pywt
   libeigen3-dev libgeographiclib-dev geographiclib-tools
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -1,0 +1,79 @@
+#pragma once
+/// \file denoise.hpp
+/// Wavelet denoising of one series (maglev-gyro spec §3 step 5): a p-level
+/// DWT (wavelet.hpp), the detail coefficients thresholded, the series
+/// reconstructed from the approximation at level p (kept unchanged) and the
+/// thresholded details.
+///
+/// Noise level (Donoho & Johnstone 1994, Ideal spatial adaptation by wavelet
+/// shrinkage, Biometrika 81(3)): σ = median(|d_1|)/0.6745 from the finest
+/// detail coefficients d_1 (the median of an even count is the mean of the
+/// two middle values, as numpy.median).
+/// Rules:
+///  * universal: λ = σ·sqrt(2·ln n), n the length of the series, the same λ
+///    on every detail level;
+///  * sure: per level j with n_j coefficients, λ_j minimises Stein's unbiased
+///    risk estimate SURE(t) = n_j − 2·#{|d_i/σ| ≤ t} + Σ min((d_i/σ)², t²)
+///    over t ∈ {0, |d_i/σ|} (Donoho & Johnstone 1995, Adapting to unknown
+///    smoothness via wavelet shrinkage, JASA 90(432)), limited to the
+///    universal threshold of the level σ·sqrt(2·ln n_j); λ_j = σ·t.
+/// Thresholding (pywt.threshold): soft d → sign(d)·max(|d| − λ, 0); hard
+/// d → d when |d| ≥ λ, else 0.
+/// With the universal rule the result equals pywt.wavedec → pywt.threshold
+/// on every detail array → pywt.waverec, trimmed to n (tests compare 1e-10).
+///
+/// Units: those of the samples. Errors: InputError from wavedec (empty,
+/// non-finite, level not possible for n and the wavelet). σ = 0 (more than
+/// half of d_1 exactly zero) gives λ = 0: the series is returned as
+/// reconstructed, unchanged to rounding.
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "meridian/maglev/wavelet.hpp"
+
+namespace meridian::maglev {
+
+enum class ThresholdKind { Soft, Hard };
+enum class ThresholdRule { Universal, Sure };
+
+std::string to_string(ThresholdKind kind);  ///< "soft", "hard"
+std::string to_string(ThresholdRule rule);  ///< "universal", "sure"
+/// Inverses of to_string; throw InputError naming the accepted values.
+ThresholdKind threshold_kind_from_string(std::string_view text);
+ThresholdRule threshold_rule_from_string(std::string_view text);
+
+/// Defaults of the spec: db4, soft, universal, symmetric extension.
+struct DenoiseOptions {
+  int wavelet_order = 4;  ///< dbN, 2 ≤ N ≤ 10
+  int level = 4;          ///< p ≥ 1, ≤ max_level(n)
+  ExtensionMode mode = ExtensionMode::Symmetric;
+  ThresholdKind kind = ThresholdKind::Soft;
+  ThresholdRule rule = ThresholdRule::Universal;
+};
+
+struct DenoiseResult {
+  std::vector<double> values;            ///< the denoised series, same length as the input
+  double noise_sigma = 0.0;              ///< σ = median(|d_1|)/0.6745 (units of the samples)
+  std::vector<double> thresholds;        ///< λ per detail level, [0] = level 1 (finest) … [p−1]
+  std::vector<std::size_t> zeroed;       ///< coefficients set to 0 per level, same order
+  std::vector<std::size_t> coefficients; ///< coefficients per level, same order
+};
+
+/// The threshold functions (pywt.threshold): λ ≥ 0.
+double soft_threshold(double d, double lambda) noexcept;
+double hard_threshold(double d, double lambda) noexcept;
+
+/// The median of |v| (numpy.median); throws InputError for an empty v.
+double median_abs(std::span<const double> v);
+
+/// SURE threshold t ≥ 0 (in units of σ) for the normalised coefficients x = d/σ,
+/// limited to sqrt(2·ln x.size()). Throws InputError for an empty x.
+double sure_threshold(std::span<const double> x);
+
+/// Denoise `x` (see the file comment). Throws as the file comment says.
+DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options);
+
+}  // namespace meridian::maglev

@@ -1,0 +1,256 @@
+#include "meridian/maglev/wavelet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "meridian/core/error.hpp"
+
+namespace meridian::maglev {
+namespace {
+
+#include "daubechies_filters.inc"
+
+std::span<const double> scaling_filter(int order) {
+  switch (order) {
+    case 2: return kDb2;
+    case 3: return kDb3;
+    case 4: return kDb4;
+    case 5: return kDb5;
+    case 6: return kDb6;
+    case 7: return kDb7;
+    case 8: return kDb8;
+    case 9: return kDb9;
+    case 10: return kDb10;
+    default: break;
+  }
+  throw InputError(fmt::format("Daubechies wavelet db{} is not available (db2 … db10)", order),
+                   ErrorContext{{}, std::nullopt, "wavelet"});
+}
+
+void require_finite(std::span<const double> x, const char* what) {
+  if (x.empty()) throw InputError(fmt::format("{} is empty", what));
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x[i]))
+      throw InputError(fmt::format("{} sample {} is not a finite number", what, i));
+}
+
+// Half-sample symmetric extension: index m of the infinite extension → index in [0, n).
+std::size_t symmetric_index(std::ptrdiff_t m, std::size_t n) {
+  const auto period = static_cast<std::ptrdiff_t>(2 * n);
+  std::ptrdiff_t p = m % period;
+  if (p < 0) p += period;
+  return p < static_cast<std::ptrdiff_t>(n) ? static_cast<std::size_t>(p)
+                                             : static_cast<std::size_t>(period - 1 - p);
+}
+
+// out[o] = Σ_j f[j]·e[first + 2o + j] for both filters at once (the inner loop of every
+// forward level: contiguous, branch-free).
+void correlate_down(const std::vector<double>& e, std::size_t first, std::span<const double> lo,
+                    std::span<const double> hi, std::vector<double>& a, std::vector<double>& d) {
+  const std::size_t F = lo.size();
+  const std::size_t m = a.size();
+  const double* pl = lo.data();
+  const double* ph = hi.data();
+  for (std::size_t o = 0; o < m; ++o) {
+    const double* x = e.data() + first + 2 * o;
+    double sa = 0.0, sd = 0.0;
+    for (std::size_t j = 0; j < F; ++j) {
+      sa += pl[j] * x[j];
+      sd += ph[j] * x[j];
+    }
+    a[o] = sa;
+    d[o] = sd;
+  }
+}
+
+}  // namespace
+
+std::string to_string(ExtensionMode mode) {
+  return mode == ExtensionMode::Symmetric ? "symmetric" : "periodization";
+}
+
+ExtensionMode extension_mode_from_string(std::string_view text) {
+  if (text == "symmetric") return ExtensionMode::Symmetric;
+  if (text == "periodization") return ExtensionMode::Periodization;
+  throw InputError(fmt::format("unknown extension mode \"{}\" (symmetric or periodization)", text),
+                   ErrorContext{{}, std::nullopt, "mode"});
+}
+
+Wavelet::Wavelet(int order) : order_(order) {
+  const auto h = scaling_filter(order);
+  const std::size_t F = h.size();
+  rec_lo_.assign(h.begin(), h.end());
+  dec_lo_.resize(F);
+  dec_hi_.resize(F);
+  rec_hi_.resize(F);
+  for (std::size_t k = 0; k < F; ++k) {
+    dec_lo_[k] = h[F - 1 - k];
+    dec_hi_[k] = (k % 2 == 0) ? -h[k] : h[k];
+  }
+  for (std::size_t k = 0; k < F; ++k) rec_hi_[k] = dec_hi_[F - 1 - k];
+}
+
+Wavelet Wavelet::from_name(std::string_view name) {
+  std::string lower(name);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (lower.size() >= 3 && lower.size() <= 4 && lower.starts_with("db")) {
+    int order = 0;
+    bool digits = true;
+    for (std::size_t i = 2; i < lower.size(); ++i) {
+      if (lower[i] < '0' || lower[i] > '9') digits = false;
+      order = order * 10 + (lower[i] - '0');
+    }
+    if (digits && order >= 2 && order <= 10 && lower[2] != '0') return Wavelet(order);
+  }
+  throw InputError(fmt::format("unknown wavelet \"{}\" (db2 … db10)", name), ErrorContext{{}, std::nullopt, "wavelet"});
+}
+
+std::string Wavelet::name() const { return fmt::format("db{}", order_); }
+
+std::size_t dwt_coefficient_length(std::size_t n, std::size_t filter_length, ExtensionMode mode) {
+  if (mode == ExtensionMode::Periodization) return (n + 1) / 2;
+  return (n + filter_length - 1) / 2;
+}
+
+int max_level(std::size_t n, const Wavelet& wavelet) {
+  const std::size_t f = wavelet.filter_length() - 1;
+  if (n < f) return 0;
+  int level = 0;
+  // ⌊log2(n/f)⌋ in integers: the largest p with f·2^p ≤ n.
+  while ((f << (level + 1)) <= n) ++level;
+  return level;
+}
+
+DwtLevel dwt(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode) {
+  require_finite(x, "series");
+  const std::size_t n = x.size();
+  const std::size_t F = wavelet.filter_length();
+  const std::size_t m = dwt_coefficient_length(n, F, mode);
+  DwtLevel out;
+  out.approximation.resize(m);
+  out.detail.resize(m);
+  std::vector<double> e;
+  // cA[o] = Σ_j dec_lo[j]·x_e[i_o − j] = Σ_j' rec_lo[j']·x_e[i_o − F + 1 + j'].
+  if (mode == ExtensionMode::Symmetric) {
+    // e[t] = x_e[t − (F−1)], t = 0 … n + 2F − 3; i_o = 2o + 1.
+    e.resize(n + 2 * F - 2);
+    const auto shift = static_cast<std::ptrdiff_t>(F) - 1;
+    for (std::size_t t = 0; t < F - 1; ++t)
+      e[t] = x[symmetric_index(static_cast<std::ptrdiff_t>(t) - shift, n)];
+    std::copy(x.begin(), x.end(), e.begin() + static_cast<std::ptrdiff_t>(F - 1));
+    for (std::size_t t = n + F - 1; t < e.size(); ++t)
+      e[t] = x[symmetric_index(static_cast<std::ptrdiff_t>(t) - shift, n)];
+    correlate_down(e, 1, wavelet.rec_lo(), wavelet.rec_hi(), out.approximation, out.detail);
+  } else {
+    // Periodic with period n' = n (+1 when odd: the last sample repeated); i_o = F/2 + 2o,
+    // e[t] = x_p[(t − F + 1) mod n'].
+    const std::size_t np = n + (n % 2);
+    const std::size_t len = np + F + F / 2;
+    e.resize(len);
+    const auto shift = static_cast<std::ptrdiff_t>(F) - 1;
+    const auto period = static_cast<std::ptrdiff_t>(np);
+    for (std::size_t t = 0; t < len; ++t) {
+      std::ptrdiff_t p = (static_cast<std::ptrdiff_t>(t) - shift) % period;
+      if (p < 0) p += period;
+      e[t] = static_cast<std::size_t>(p) < n ? x[static_cast<std::size_t>(p)] : x[n - 1];
+    }
+    correlate_down(e, F / 2, wavelet.rec_lo(), wavelet.rec_hi(), out.approximation, out.detail);
+  }
+  return out;
+}
+
+std::vector<double> idwt(std::span<const double> a, std::span<const double> d, const Wavelet& wavelet,
+                         ExtensionMode mode) {
+  if (a.size() != d.size())
+    throw InputError(fmt::format("approximation ({}) and detail ({}) coefficients differ in length",
+                                 a.size(), d.size()));
+  const std::size_t m = a.size();
+  const std::size_t F = wavelet.filter_length();
+  const double* rl = wavelet.rec_lo().data();
+  const double* rh = wavelet.rec_hi().data();
+  if (mode == ExtensionMode::Symmetric) {
+    const std::size_t F2 = F / 2;
+    if (m < F2)
+      throw InputError(fmt::format("{} coefficients are too few to reconstruct with {} ({} needed)", m,
+                                   wavelet.name(), F2));
+    // y[2q] = Σ_{j<F/2} rec_lo[2j]·a[q+F/2−1−j] + rec_hi[2j]·d[…]; y[2q+1] with the odd taps.
+    std::vector<double> y(2 * (m - F2 + 1));
+    for (std::size_t q = 0; q + F2 <= m; ++q) {
+      double se = 0.0, so = 0.0;
+      const std::size_t top = q + F2 - 1;
+      for (std::size_t j = 0; j < F2; ++j) {
+        const double av = a[top - j];
+        const double dv = d[top - j];
+        se += rl[2 * j] * av + rh[2 * j] * dv;
+        so += rl[2 * j + 1] * av + rh[2 * j + 1] * dv;
+      }
+      y[2 * q] = se;
+      y[2 * q + 1] = so;
+    }
+    return y;
+  }
+  if (m == 0) throw InputError("no coefficients to reconstruct");
+  // Periodization: the adjoint of the periodic forward transform, z[i_o + j'] +=
+  // rec_lo[j']·a[o] + rec_hi[j']·d[o] with i_o = F/2 + 2o, then folded with period 2m.
+  const std::size_t np = 2 * m;
+  std::vector<double> z(np + F + F / 2, 0.0);
+  for (std::size_t o = 0; o < m; ++o) {
+    double* p = z.data() + F / 2 + 2 * o;
+    const double av = a[o], dv = d[o];
+    for (std::size_t j = 0; j < F; ++j) p[j] += rl[j] * av + rh[j] * dv;
+  }
+  std::vector<double> y(np, 0.0);
+  const auto shift = static_cast<std::ptrdiff_t>(F) - 1;
+  const auto period = static_cast<std::ptrdiff_t>(np);
+  for (std::size_t t = 0; t < z.size(); ++t) {
+    std::ptrdiff_t p = (static_cast<std::ptrdiff_t>(t) - shift) % period;
+    if (p < 0) p += period;
+    y[static_cast<std::size_t>(p)] += z[t];
+  }
+  return y;
+}
+
+WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode,
+                            int level) {
+  require_finite(x, "series");
+  const int top = max_level(x.size(), wavelet);
+  if (level < 1 || level > top)
+    throw InputError(
+        fmt::format("level {} is not possible for {} samples with {}: levels 1 … {} (a level p needs "
+                    "at least {}·2^p samples)",
+                    level, x.size(), wavelet.name(), top, wavelet.filter_length() - 1),
+        ErrorContext{{}, std::nullopt, "level"});
+  WaveletCoefficients out;
+  out.coefficients.resize(static_cast<std::size_t>(level) + 1);
+  std::vector<double> a(x.begin(), x.end());
+  for (int l = 1; l <= level; ++l) {
+    DwtLevel step = dwt(a, wavelet, mode);
+    out.coefficients[static_cast<std::size_t>(level - l + 1)] = std::move(step.detail);
+    a = std::move(step.approximation);
+  }
+  out.coefficients[0] = std::move(a);
+  return out;
+}
+
+std::vector<double> waverec(const WaveletCoefficients& c, const Wavelet& wavelet, ExtensionMode mode) {
+  if (c.coefficients.size() < 2)
+    throw InputError("a reconstruction needs the approximation and at least one detail level");
+  std::vector<double> a = c.coefficients[0];
+  for (std::size_t k = 1; k < c.coefficients.size(); ++k) {
+    const auto& d = c.coefficients[k];
+    if (a.size() == d.size() + 1) {
+      a.pop_back();
+    } else if (a.size() != d.size()) {
+      throw InputError(fmt::format("coefficient level {} has {} values where {} are expected", k,
+                                   d.size(), a.size()));
+    }
+    a = idwt(a, d, wavelet, mode);
+  }
+  return a;
+}
+
+}  // namespace meridian::maglev
