@@ -1,0 +1,128 @@
+#pragma once
+/// \file reduce.hpp
+/// The `maglev reduce` workflow: one two-position determination of a
+/// magnetically suspended gyro from its rotor-current series (maglev-gyro
+/// spec §1, §3) to α_1, gyro north N_G and the bias b̂, with σ, the segments
+/// kept and rejected per position, and the plain, median and Huber results
+/// beside the processed one.
+///
+///   ReduceInput (io::read_maglev_reduce) → process() → ReduceResult
+///   → report::maglev_reduce_text / maglev_reduce_to_json
+///
+/// Processing of each position (options.process):
+///  1. stationarity.hpp: segments, mean and autocovariance tests, stable
+///     segments kept;
+///  2. wavelet denoising (denoise.hpp) of every run of consecutive kept
+///     segments on its own (a run too short for the level gets the deepest
+///     level it allows; a run too short for level 1 is used as it is);
+///  3. the mean of the cleaned kept samples. Its σ is that of the kept raw
+///     samples (series_statistics.hpp, effective sample size): denoising
+///     removes high-frequency noise but not the low-frequency part that
+///     limits a mean, so it does not make the mean more precise.
+/// Without processing, every sample is kept and used raw.
+/// Then model.hpp: α_1 = asin((Ī_1 − Ī_2)/(2A)), N_G = r_1 − α_1, b̂.
+///
+/// Symmetry check (spec §3 step 4), when a prior bias b₀ (σ) is given — from
+/// a calibration (its constant deviation I*) or the instrument: the two
+/// positions must lie symmetrically about it, z = (Ī_1 + Ī_2 − 2·b₀)/
+/// sqrt(σ²(Ī_1) + σ²(Ī_2) + 4σ²(b₀)), two-sided normal test at α; a failure is
+/// a warning (one position still disturbed, or the bias has changed).
+///
+/// Azimuth chain: with a target reading, the gyro azimuth A_G = r_T − N_G and
+/// gyro::azimuth_chain (instrument constant E, Laplace, convergence).
+///
+/// Errors (field paths for io::locate_error): InputError for an empty or
+/// constant series ("position1.current_A"), too few samples, non-monotonic
+/// time ("position2.time_s"), non-finite samples, times and currents of
+/// different lengths, bad options; NumericalError for no stable segment or
+/// |(Ī_1 − Ī_2)/(2A)| > 1 ("alpha1").
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meridian/core/progress.hpp"
+#include "meridian/core/uncertain.hpp"
+#include "meridian/gyro/azimuth_chain.hpp"
+#include "meridian/maglev/denoise.hpp"
+#include "meridian/maglev/model.hpp"
+#include "meridian/maglev/series_statistics.hpp"
+#include "meridian/maglev/stationarity.hpp"
+
+namespace meridian::maglev {
+
+/// One position's rotor-current series.
+struct PositionSeries {
+  std::vector<double> time_s;     ///< strictly increasing
+  std::vector<double> current_A;  ///< same length, finite
+};
+
+struct ReduceOptions {
+  bool process = true;  ///< stationarity tests and denoising; false: plain means of all samples
+  StationarityOptions stationarity;
+  bool denoise = true;  ///< wavelet denoising of the kept runs (when process)
+  DenoiseOptions denoising{.wavelet_order = 4, .level = 6};
+  double huber_k = 1.345;  ///< tuning of the Huber mean (units of the MAD scale)
+  /// Prior bias b₀ for the symmetry check (e.g. I* of a calibration), A.
+  std::optional<Uncertain> prior_bias_A;
+};
+
+/// What turns N_G into a target azimuth (optional).
+struct ChainSetup {
+  Uncertain target_reading_rad;       ///< r_T, circle reading of the target
+  Uncertain instrument_constant_rad;  ///< E
+  std::optional<Uncertain> eta_rad;   ///< η at the station
+  double convergence_rad = 0.0;       ///< γ
+};
+
+struct ReduceInput {
+  Uncertain scale_A_s_per_rad;    ///< K
+  double latitude_rad = 0.0;      ///< φ
+  Uncertain circle_reading1_rad;  ///< r_1 (spin-axis circle reading at position 1)
+  PositionSeries position1, position2;
+  std::optional<ChainSetup> chain;
+  ReduceOptions options;
+};
+
+/// One position: its statistics before and after processing.
+struct PositionResult {
+  std::size_t samples = 0;
+  MeanEstimate raw;                         ///< all samples, unprocessed
+  std::optional<StationarityResult> stationarity;  ///< when processed
+  std::size_t kept_samples = 0;
+  MeanEstimate kept;                        ///< the kept raw samples
+  Uncertain cleaned_mean_A;                 ///< mean of the cleaned kept samples, σ of `kept`
+  double median_A = 0.0;                    ///< of the kept raw samples
+  Uncertain huber_A;                        ///< of the kept raw samples
+  double variance_raw_A2 = 0.0;             ///< of all raw samples
+  double variance_cleaned_A2 = 0.0;         ///< of the cleaned kept samples
+  std::vector<double> cleaned_A;            ///< same length as the series; raw where not kept
+  std::vector<char> kept_mask;              ///< 1 where the sample was kept
+  std::vector<int> denoise_levels;          ///< level used per kept run (0: run not denoised)
+  double noise_sigma_A = 0.0;               ///< wavelet noise σ (of the longest run)
+};
+
+struct ReduceResult {
+  Uncertain amplitude_A;            ///< A = K·ω_e·cos φ
+  PositionResult position1, position2;
+  TwoPositionSolution processed;    ///< from the cleaned kept means (= plain without processing)
+  TwoPositionSolution plain;        ///< from the means of all raw samples
+  std::optional<TwoPositionSolution> median;  ///< from the medians (σ of the kept means ×√(π/2))
+  std::optional<TwoPositionSolution> huber;
+  struct Symmetry {
+    double z = 0.0, p = 0.0;
+    bool passed = true;
+  };
+  std::optional<Symmetry> symmetry;
+  std::optional<gyro::AzimuthChainResult> chain;
+  std::vector<std::string> notes, warnings;
+};
+
+/// Process one determination (see the file comment).
+ReduceResult process(const ReduceInput& in, Progress* progress = nullptr);
+
+/// Validate one series (lengths, finiteness, strictly increasing time, not
+/// constant); `field` prefixes the error field ("position1"). Throws InputError.
+void validate_series(const PositionSeries& s, const std::string& field);
+
+}  // namespace meridian::maglev

@@ -1,0 +1,185 @@
+#include "meridian/maglev/reduce.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "meridian/adjust/statistics.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+
+namespace meridian::maglev {
+namespace {
+ErrorContext at(const std::string& f) { return ErrorContext{{}, std::nullopt, f}; }
+
+PositionResult process_position(const PositionSeries& s, const ReduceOptions& o,
+                                 std::vector<std::string>& notes, const std::string& name) {
+  PositionResult r;
+  const auto& x = s.current_A;
+  r.samples = x.size();
+  r.raw = mean_with_autocorrelation(x);
+  r.variance_raw_A2 = r.raw.variance;
+  r.kept_mask.assign(x.size(), 1);
+  r.cleaned_A = x;
+  if (o.process) {
+    try {
+      r.stationarity = test_stationarity(x, o.stationarity);
+    } catch (Error& e) {
+      e.add_context("", std::nullopt, name);
+      throw;
+    }
+    for (const auto& seg : r.stationarity->segments)
+      if (!seg.kept) std::fill(r.kept_mask.begin() + static_cast<std::ptrdiff_t>(seg.begin),
+                               r.kept_mask.begin() + static_cast<std::ptrdiff_t>(seg.end), 0);
+  }
+  std::vector<double> kept_raw, kept_clean;
+  kept_raw.reserve(x.size());
+  kept_clean.reserve(x.size());
+  // Runs of consecutive kept samples, each denoised on its own.
+  std::size_t longest = 0;
+  for (std::size_t i = 0; i < x.size();) {
+    if (!r.kept_mask[i]) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < x.size() && r.kept_mask[j]) ++j;
+    const std::span<const double> run(x.data() + i, j - i);
+    kept_raw.insert(kept_raw.end(), run.begin(), run.end());
+    if (o.process && o.denoise) {
+      const Wavelet w(o.denoising.wavelet_order);
+      const int level = std::min(o.denoising.level, max_level(run.size(), w));
+      r.denoise_levels.push_back(level);
+      if (level >= 1) {
+        DenoiseOptions d = o.denoising;
+        d.level = level;
+        const auto den = denoise(run, d);
+        std::copy(den.values.begin(), den.values.end(), r.cleaned_A.begin() + static_cast<std::ptrdiff_t>(i));
+        if (run.size() > longest) {
+          longest = run.size();
+          r.noise_sigma_A = den.noise_sigma;
+        }
+        if (level < o.denoising.level)
+          notes.push_back(fmt::format("{}: samples {}…{} denoised with level {} (too short for {})", name, i,
+                                      j - 1, level, o.denoising.level));
+      }
+    }
+    kept_clean.insert(kept_clean.end(), r.cleaned_A.begin() + static_cast<std::ptrdiff_t>(i),
+                      r.cleaned_A.begin() + static_cast<std::ptrdiff_t>(j));
+    i = j;
+  }
+  r.kept_samples = kept_raw.size();
+  // σ of the kept mean: the pooled reference autocovariance of the kept segments when they were
+  // tested (runs are not contiguous), else the whole series.
+  r.kept = mean_with_autocorrelation(kept_raw);
+  if (r.stationarity) {
+    const auto lr = long_run_variance(r.stationarity->reference_autocovariance);
+    const double n = static_cast<double>(r.kept_samples);
+    r.kept.sigma = std::sqrt(std::max(lr.long_run, lr.gamma0 / n) / n);
+    r.kept.n_eff = std::clamp(n * lr.gamma0 / std::max(lr.long_run, lr.gamma0 / n), 1.0, n);
+    r.kept.lags = lr.lags;
+  }
+  if (r.kept.lag_limit_reached)
+    notes.push_back(fmt::format("{}: the series is correlated beyond {} lags; σ of its mean may be optimistic",
+                                name, kMaxLongRunLag));
+  double sum = 0.0;
+  for (double v : kept_clean) sum += v;
+  const double mc = sum / static_cast<double>(kept_clean.size());
+  double var = 0.0;
+  for (double v : kept_clean) var += (v - mc) * (v - mc);
+  r.variance_cleaned_A2 = var / static_cast<double>(kept_clean.size());
+  r.cleaned_mean_A = {mc, r.kept.sigma};
+  r.median_A = median(kept_raw);
+  r.huber_A = huber_mean(kept_raw, r.kept.n_eff, o.huber_k);
+  return r;
+}
+}  // namespace
+
+void validate_series(const PositionSeries& s, const std::string& field) {
+  if (s.current_A.empty()) throw InputError("the series is empty", at(field + ".current_A"));
+  if (s.time_s.size() != s.current_A.size())
+    throw InputError(fmt::format("{} times for {} currents", s.time_s.size(), s.current_A.size()),
+                     at(field + ".time_s"));
+  for (std::size_t i = 0; i < s.current_A.size(); ++i) {
+    if (!std::isfinite(s.current_A[i]))
+      throw InputError(fmt::format("sample {} is not a finite number", i),
+                       at(fmt::format("{}.current_A[{}]", field, i)));
+    if (!std::isfinite(s.time_s[i]))
+      throw InputError(fmt::format("time {} is not a finite number", i), at(fmt::format("{}.time_s[{}]", field, i)));
+    if (i > 0 && !(s.time_s[i] > s.time_s[i - 1]))
+      throw InputError(fmt::format("time does not increase ({} s after {} s)", s.time_s[i], s.time_s[i - 1]),
+                       at(fmt::format("{}.time_s[{}]", field, i)));
+  }
+  const auto [lo, hi] = std::minmax_element(s.current_A.begin(), s.current_A.end());
+  if (*lo == *hi)
+    throw InputError(fmt::format("the series is constant ({} A): no rotor current was recorded", *lo),
+                     at(field + ".current_A"));
+}
+
+ReduceResult process(const ReduceInput& in, Progress* progress) {
+  validate_series(in.position1, "position1");
+  validate_series(in.position2, "position2");
+  ReduceResult r;
+  r.amplitude_A = directive_amplitude(in.scale_A_s_per_rad, in.latitude_rad);
+  report_progress(progress, 0, 2, "positions");
+  r.position1 = process_position(in.position1, in.options, r.notes, "position1");
+  report_progress(progress, 1, 2, "positions");
+  r.position2 = process_position(in.position2, in.options, r.notes, "position2");
+  report_progress(progress, 2, 2, "positions");
+  const auto solve = [&](Uncertain m1, Uncertain m2) {
+    return two_position(m1, m2, in.scale_A_s_per_rad, in.latitude_rad, in.circle_reading1_rad);
+  };
+  r.plain = solve({r.position1.raw.mean, r.position1.raw.sigma}, {r.position2.raw.mean, r.position2.raw.sigma});
+  r.processed = solve(r.position1.cleaned_mean_A, r.position2.cleaned_mean_A);
+  // Median and Huber: secondary, for comparison; a failure there does not stop the determination.
+  const double eff = std::sqrt(units::kPi / 2.0);
+  try {
+    r.median = solve({r.position1.median_A, eff * r.position1.kept.sigma},
+                     {r.position2.median_A, eff * r.position2.kept.sigma});
+  } catch (const NumericalError& e) {
+    r.warnings.push_back(fmt::format("median solution: {}", e.message()));
+  }
+  try {
+    r.huber = solve(r.position1.huber_A, r.position2.huber_A);
+  } catch (const NumericalError& e) {
+    r.warnings.push_back(fmt::format("Huber solution: {}", e.message()));
+  }
+  if (!in.options.process) r.notes.push_back("not processed: plain means of all samples");
+  if (in.options.prior_bias_A) {
+    const auto& b = *in.options.prior_bias_A;
+    const double s = std::sqrt(r.position1.cleaned_mean_A.sigma * r.position1.cleaned_mean_A.sigma +
+                               r.position2.cleaned_mean_A.sigma * r.position2.cleaned_mean_A.sigma +
+                               4.0 * b.sigma * b.sigma);
+    ReduceResult::Symmetry sym;
+    const double d = r.position1.cleaned_mean_A.value + r.position2.cleaned_mean_A.value - 2.0 * b.value;
+    sym.z = s > 0.0 ? d / s : (d == 0.0 ? 0.0 : HUGE_VAL);
+    sym.p = std::isfinite(sym.z) ? adjust::normal_two_sided_probability(sym.z) : 0.0;
+    sym.passed = sym.p >= in.options.stationarity.alpha;
+    r.symmetry = sym;
+    if (!sym.passed)
+      r.warnings.push_back(fmt::format(
+          "symmetry check failed: the positions are not symmetric about the prior bias {:.6g} A (z = {:.2f}); "
+          "one position may still be disturbed or the bias has changed",
+          b.value, sym.z));
+  }
+  if (in.chain) {
+    const auto& c = *in.chain;
+    gyro::AzimuthChainInput ci;
+    const double ag = std::remainder(c.target_reading_rad.value - r.processed.north_rad.value, 2.0 * units::kPi);
+    ci.gyro_azimuth_rad = {ag, std::hypot(c.target_reading_rad.sigma, r.processed.north_rad.sigma)};
+    ci.instrument_constant_rad = c.instrument_constant_rad;
+    ci.latitude_rad = in.latitude_rad;
+    ci.eta_rad = c.eta_rad;
+    ci.convergence_rad = c.convergence_rad;
+    try {
+      r.chain = gyro::azimuth_chain(ci);
+    } catch (Error& e) {
+      e.add_context("", std::nullopt, "chain");
+      throw;
+    }
+  }
+  return r;
+}
+
+}  // namespace meridian::maglev
