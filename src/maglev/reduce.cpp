@@ -91,7 +91,11 @@ PositionResult process_position(const PositionSeries& s, const ReduceOptions& o,
   r.variance_cleaned_A2 = var / static_cast<double>(kept_clean.size());
   r.cleaned_mean_A = {mc, r.kept.sigma};
   r.median_A = median(kept_raw);
-  r.huber_A = huber_mean(kept_raw, r.kept.n_eff, o.huber_k);
+  try {
+    r.huber_A = huber_mean(kept_raw, r.kept.n_eff, o.huber_k);
+  } catch (const NumericalError& e) {
+    r.huber_failed = e.message();
+  }
   return r;
 }
 }  // namespace
@@ -141,6 +145,8 @@ ReduceResult process(const ReduceInput& in, Progress* progress) {
     r.warnings.push_back(fmt::format("median solution: {}", e.message()));
   }
   try {
+    if (!r.position1.huber_failed.empty() || !r.position2.huber_failed.empty())
+      throw NumericalError(r.position1.huber_failed + r.position2.huber_failed);
     r.huber = solve(r.position1.huber_A, r.position2.huber_A);
   } catch (const NumericalError& e) {
     r.warnings.push_back(fmt::format("Huber solution: {}", e.message()));

@@ -106,25 +106,28 @@ Uncertain huber_mean(std::span<const double> x, double n_eff, double k) {
   const double s = 1.4826 * median(dev);
   if (s <= 0.0) return {med, 0.0};
   const double c = k * s;
-  double mu = med;
+  // Iterate on deviations from the median (no cancellation against a large offset).
+  double mu = 0.0;
   bool converged = false;
   for (int it = 0; it < 100; ++it) {
     double num = 0.0, den = 0.0;
     for (double v : x) {
-      const double r = v - mu;
+      const double y = v - med;
+      const double r = y - mu;
       const double w = std::abs(r) <= c ? 1.0 : c / std::abs(r);
-      num += w * v;
+      num += w * y;
       den += w;
     }
     const double next = num / den;
     const double step = std::abs(next - mu);
     mu = next;
-    if (step <= 1e-12 * s) {
+    if (step <= 1e-10 * s) {
       converged = true;
       break;
     }
   }
   if (!converged) throw NumericalError("the Huber mean did not converge in 100 iterations");
+  mu += med;
   double psi2 = 0.0, dpsi = 0.0;
   for (double v : x) {
     const double u = (v - mu) / s;

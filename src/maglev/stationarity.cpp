@@ -53,6 +53,7 @@ StationarityResult test_stationarity(std::span<const double> x, const Stationari
     begin = end;
   }
   const std::size_t S = r.segments.size();
+  r.segment_alpha = o.family_wise ? o.alpha / static_cast<double>(S) : o.alpha;
   std::vector<std::vector<double>> acov(S);
   for (std::size_t i = 0; i < S; ++i) {
     auto& s = r.segments[i];
@@ -108,8 +109,8 @@ StationarityResult test_stationarity(std::span<const double> x, const Stationari
       }
       s.q_autocovariance = finite ? q : HUGE_VAL;
       s.p_autocovariance = finite ? adjust::chi_squared_upper_probability(q, chi_dof) : 0.0;
-      s.mean_passed = s.p_mean >= o.alpha;
-      s.autocovariance_passed = s.p_autocovariance >= o.alpha;
+      s.mean_passed = s.p_mean >= r.segment_alpha;
+      s.autocovariance_passed = s.p_autocovariance >= r.segment_alpha;
       s.kept = s.mean_passed && s.autocovariance_passed;
     }
     previous = kept;

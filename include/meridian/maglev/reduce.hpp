@@ -94,6 +94,7 @@ struct PositionResult {
   Uncertain cleaned_mean_A;                 ///< mean of the cleaned kept samples, σ of `kept`
   double median_A = 0.0;                    ///< of the kept raw samples
   Uncertain huber_A;                        ///< of the kept raw samples
+  std::string huber_failed;                 ///< why the Huber mean failed (empty: it did not)
   double variance_raw_A2 = 0.0;             ///< of all raw samples
   double variance_cleaned_A2 = 0.0;         ///< of the cleaned kept samples
   std::vector<double> cleaned_A;            ///< same length as the series; raw where not kept

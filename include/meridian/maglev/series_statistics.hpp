@@ -63,7 +63,7 @@ double median(std::span<const double> x);
 
 /// Huber's M-estimate of location (Huber 1964; tuning k in units of the
 /// scale s = 1.4826·MAD, default 1.345: 95 % efficiency under normality),
-/// by iteratively reweighted means (to 1e-12·s, at most 100 iterations).
+/// by iteratively reweighted means (to 1e-10·s, at most 100 iterations).
 /// σ: the asymptotic variance s²·mean(ψ²)/mean(ψ')² / n, multiplied by
 /// n/n_eff of the series for autocorrelation. With s = 0 (more than half the
 /// samples equal) the median is returned with σ 0. Throws InputError for

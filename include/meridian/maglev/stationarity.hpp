@@ -23,6 +23,11 @@
 ///    the variance. The lags are treated as independent, an approximation:
 ///    for strongly correlated noise the test rejects somewhat more often than α.
 ///
+/// Significance: by default α is the family-wise level of a position
+/// (Bonferroni, α/S per segment and test): the spec's per-segment α would
+/// reject α·S clean segments by chance, the most deviating ones, and the
+/// kept mean would be biased by the selection (seen in simulations: 2σ).
+///
 /// The reference is the position's own stable state, found iteratively: it
 /// starts from the median of the segment means and the lag-wise median of the
 /// segment autocovariances (robust against a minority of disturbed segments,
@@ -43,7 +48,11 @@ namespace meridian::maglev {
 struct StationarityOptions {
   /// L, samples per segment; 0: automatic, max(64, n/20) (about 20 segments).
   std::size_t segment_length = 0;
-  double alpha = 0.05;       ///< significance level of each test
+  double alpha = 0.05;       ///< significance level (per position when family_wise, else per segment)
+  /// Bonferroni: each segment is tested at α/S (S segments), so a clean series of any length
+  /// loses a segment by chance with probability ≤ α per test. Without it, about α·S clean
+  /// segments are rejected, and always the most extreme ones, which biases the kept mean.
+  bool family_wise = true;
   int autocovariance_lags = 10;  ///< M
 };
 
@@ -63,6 +72,7 @@ struct SegmentTest {
 struct StationarityResult {
   std::vector<SegmentTest> segments;
   std::size_t segment_length = 0;  ///< L used
+  double segment_alpha = 0.0;      ///< level of each segment's tests (α/S when family-wise)
   double reference_mean = 0.0;     ///< μ of the kept segments
   double long_run_variance = 0.0;  ///< σ²_LR of the reference
   std::vector<double> reference_autocovariance;  ///< γ_0 … γ_J of the reference
