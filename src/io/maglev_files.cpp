@@ -1,0 +1,243 @@
+#include "meridian/io/maglev_files.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "meridian/core/dms.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/io/document.hpp"
+#include "meridian/io/record_reader.hpp"
+
+namespace meridian::io {
+namespace {
+
+struct Columns {
+  std::size_t time = 0, current = 1;
+  std::optional<std::size_t> position;
+};
+
+Columns series_columns(RecordReader& rr) {
+  Columns c;
+  if (!rr.header().empty()) {
+    const auto t = rr.find_column("time");
+    const auto i = rr.find_column("current");
+    if (t && i) {
+      c.time = *t;
+      c.current = *i;
+    }
+    c.position = rr.find_column("position");
+  }
+  return c;
+}
+
+void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* one,
+               MaglevSeriesFile* two) {
+  RecordChunk chunk;
+  const std::size_t need = std::max({c.time, c.current, c.position.value_or(0)}) + 1;
+  while (rr.next(chunk, 65536)) {
+    for (std::size_t k = 0; k < chunk.size(); ++k) {
+      const Record r = chunk[k];
+      if (r.size() < need)
+        throw InputError(fmt::format("expected {} columns (time, current{}), got {}", need,
+                                     c.position ? ", position" : "", r.size()),
+                         r.context());
+      int pos = want == 0 ? 1 : want;
+      if (c.position) {
+        const double p = r.number(*c.position, {"position", "position"});
+        if (p != 1.0 && p != 2.0)
+          throw InputError(fmt::format("position {} is neither 1 nor 2", p), r.context(*c.position, {"position"}));
+        pos = static_cast<int>(p);
+      }
+      MaglevSeriesFile* f = nullptr;
+      if (two) {
+        f = pos == 1 ? one : two;
+      } else {
+        if (want != 0 && pos != want)
+          throw InputError(fmt::format("a sample of position {} in a file of position {}", pos, want),
+                           r.context(*c.position, {"position"}));
+        f = one;
+      }
+      const double t = r.number(c.time, {"time", "time"});
+      const double i = r.number(c.current, {"current", "current"});
+      if (!f->series.time_s.empty() && !(t > f->series.time_s.back()))
+        throw InputError(fmt::format("time does not increase ({} s after {} s)", t, f->series.time_s.back()),
+                         r.context(c.time, {"time"}));
+      f->series.time_s.push_back(t);
+      f->series.current_A.push_back(i);
+      f->lines.push_back(r.line());
+    }
+  }
+}
+
+std::unique_ptr<std::istream> open(const std::string& path) {
+  if (path == "-") return nullptr;
+  auto f = std::make_unique<std::ifstream>(path);
+  if (!*f) throw IoError("cannot open input file", {path, {}, ""});
+  return f;
+}
+
+std::string comment_lines(const std::string& text) {
+  std::string out;
+  std::size_t b = 0;
+  while (b < text.size()) {
+    std::size_t e = text.find('\n', b);
+    if (e == std::string::npos) e = text.size();
+    out += "# " + text.substr(b, e - b) + "\n";
+    b = e + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+MaglevSeriesFile read_maglev_series(std::istream& in, const std::string& source, int position) {
+  RecordReader rr(in, source);
+  const Columns c = series_columns(rr);
+  MaglevSeriesFile f;
+  f.file = source;
+  read_into(rr, c, position, &f, nullptr);
+  if (f.series.current_A.empty()) throw InputError("the file has no samples", {source, {}, "current"});
+  return f;
+}
+
+MaglevSeriesFile read_maglev_series_file(const std::string& path, int position) {
+  auto f = open(path);
+  return read_maglev_series(f ? *f : std::cin, path == "-" ? "<stdin>" : path, position);
+}
+
+std::pair<MaglevSeriesFile, MaglevSeriesFile> read_maglev_two_positions(const std::string& path) {
+  auto fs = open(path);
+  const std::string source = path == "-" ? "<stdin>" : path;
+  RecordReader rr(fs ? *fs : std::cin, source);
+  const Columns c = series_columns(rr);
+  if (!c.position)
+    throw InputError("one file for both positions needs a `position` column (or give one file per position)",
+                     {source, {}, "position"});
+  std::pair<MaglevSeriesFile, MaglevSeriesFile> p;
+  p.first.file = p.second.file = source;
+  read_into(rr, c, 0, &p.first, &p.second);
+  if (p.first.series.current_A.empty()) throw InputError("position 1 has no samples", {source, {}, "position"});
+  if (p.second.series.current_A.empty()) throw InputError("position 2 has no samples", {source, {}, "position"});
+  return p;
+}
+
+maglev::CalibrationInput read_maglev_calibration_table(const std::string& path) {
+  auto fs = open(path);
+  const std::string source = path == "-" ? "<stdin>" : path;
+  RecordReader rr(fs ? *fs : std::cin, source);
+  std::size_t col[5] = {0, 1, 2, 3, 4};
+  const char* names[5] = {"azimuth", "mean1", "sigma1", "mean2", "sigma2"};
+  if (!rr.header().empty()) {
+    bool all = true;
+    for (int k = 0; k < 5; ++k) all = all && rr.find_column(names[k]).has_value();
+    if (all)
+      for (int k = 0; k < 5; ++k) col[k] = *rr.find_column(names[k]);
+  }
+  maglev::CalibrationInput in;
+  RecordChunk chunk;
+  while (rr.next(chunk, 4096)) {
+    for (std::size_t k = 0; k < chunk.size(); ++k) {
+      const Record r = chunk[k];
+      if (r.size() < 5)
+        throw InputError(fmt::format("expected 5 columns (azimuth, mean1, sigma1, mean2, sigma2), got {}", r.size()),
+                         r.context());
+      maglev::CalibrationSetup s;
+      s.azimuth_rad = r.angle(col[0], {"azimuth"}).rad();
+      s.mean1_A = {r.number(col[1], {"mean1"}), r.number(col[2], {"sigma1"})};
+      s.mean2_A = {r.number(col[3], {"mean2"}), r.number(col[4], {"sigma2"})};
+      if (!(s.mean1_A.sigma > 0.0))
+        throw InputError("sigma1 must be > 0", r.context(col[2], {"sigma1"}));
+      if (!(s.mean2_A.sigma > 0.0))
+        throw InputError("sigma2 must be > 0", r.context(col[4], {"sigma2"}));
+      in.setups.push_back(s);
+    }
+  }
+  if (in.setups.empty()) throw InputError("the table has no set-ups", {source, {}, "azimuth"});
+  return in;
+}
+
+std::string maglev_series_csv(const maglev::PositionSeries& s, const std::string& header_comment) {
+  std::string out = comment_lines(header_comment);
+  out += "time [s],current [A]\n";
+  for (std::size_t i = 0; i < s.current_A.size(); ++i)
+    out += fmt::format("{:.17g},{:.17g}\n", s.time_s[i], s.current_A[i]);
+  return out;
+}
+
+std::string maglev_two_position_csv(const maglev::PositionSeries& p1, const maglev::PositionSeries& p2,
+                                    const std::string& header_comment) {
+  std::string out = comment_lines(header_comment);
+  out += "time [s],current [A],position\n";
+  for (std::size_t i = 0; i < p1.current_A.size(); ++i) out += fmt::format("{:.17g},{:.17g},1\n", p1.time_s[i], p1.current_A[i]);
+  for (std::size_t i = 0; i < p2.current_A.size(); ++i) out += fmt::format("{:.17g},{:.17g},2\n", p2.time_s[i], p2.current_A[i]);
+  return out;
+}
+
+std::string maglev_calibration_csv(const maglev::CalibrationInput& in, const std::string& header_comment) {
+  std::string out = comment_lines(header_comment);
+  out += "azimuth [deg],mean1 [A],sigma1 [A],mean2 [A],sigma2 [A]\n";
+  for (const auto& s : in.setups)
+    out += fmt::format("{:.10f},{:.12g},{:.4g},{:.12g},{:.4g}\n", units::rad_to_deg(s.azimuth_rad), s.mean1_A.value,
+                       s.mean1_A.sigma, s.mean2_A.value, s.mean2_A.sigma);
+  return out;
+}
+
+MaglevConstants read_maglev_constants(const std::string& path) {
+  const Node root = Node::load_file(path);
+  MaglevConstants c;
+  const bool calibration = root.has("kind") && root.require("kind").string() == "maglev-calibration";
+  if (!calibration)
+    root.allow_only({"scale_A_s_per_rad", "scale_sigma_A_s_per_rad", "latitude", "circle_reading1",
+                     "constant_deviation_A", "constant_deviation_sigma_A"});
+  try {
+    if (auto k = root.get("scale_A_s_per_rad")) {
+      Uncertain u{k->positive_number(), 0.0};
+      if (auto s = root.get("scale_sigma_A_s_per_rad")) u.sigma = s->non_negative_number();
+      c.scale_A_s_per_rad = u;
+    }
+    if (auto l = root.get("latitude")) c.latitude_rad = l->angle().rad();
+    if (auto r = root.get("circle_reading1")) c.circle_reading1_rad = r->angle().rad();
+    if (auto b = root.get("constant_deviation_A")) {
+      Uncertain u{b->number(), 0.0};
+      if (auto s = root.get("constant_deviation_sigma_A")) u.sigma = s->non_negative_number();
+      c.constant_deviation_A = u;
+    }
+  } catch (Error& e) {
+    if (e.context().file.empty()) e.add_context(path);
+    throw;
+  }
+  return c;
+}
+
+maglev::ReduceResult run_maglev_reduce(const maglev::ReduceInput& input, const MaglevSeriesFile& f1,
+                                       const MaglevSeriesFile& f2, Progress* progress) {
+  try {
+    return maglev::process(input, progress);
+  } catch (Error& e) {
+    // positionK[.field[i]]: the file of that position, and the sample's line when indexed.
+    static const std::regex re(R"(^position([12])(?:\.(time_s|current_A)(?:\[(\d+)\])?)?)");
+    std::smatch m;
+    const std::string field = e.context().field;
+    if (e.context().file.empty() && std::regex_search(field, m, re)) {
+      const MaglevSeriesFile& f = m[1] == "1" ? f1 : f2;
+      std::optional<int> line;
+      if (m[3].matched) {
+        const auto i = static_cast<std::size_t>(std::stoul(m[3].str()));
+        if (i < f.lines.size()) line = f.lines[i];
+      }
+      std::string name = m[2].matched ? (m[2] == "time_s" ? "time" : "current") : field;
+      ErrorContext c{f.file, line, name};
+      if (dynamic_cast<NumericalError*>(&e)) throw NumericalError(e.message(), c);
+      throw InputError(e.message(), c);
+    }
+    throw;
+  }
+}
+
+}  // namespace meridian::io

@@ -1,0 +1,123 @@
+#include "meridian/report/maglev_json.hpp"
+
+#include "meridian/core/units.hpp"
+
+namespace meridian::report {
+namespace {
+using nlohmann::json;
+double as(double rad) { return units::rad_to_arcsec(rad); }
+
+json solution(const maglev::TwoPositionSolution& s) {
+  return {{"alpha1_arcsec", as(s.alpha1_rad.value)},
+          {"alpha1_sigma_arcsec", as(s.alpha1_rad.sigma)},
+          {"north_deg", units::rad_to_deg(s.north_rad.value)},
+          {"north_sigma_arcsec", as(s.north_rad.sigma)},
+          {"bias_A", s.bias_A.value},
+          {"bias_sigma_A", s.bias_A.sigma}};
+}
+
+json position(const maglev::PositionResult& p, const maglev::PositionSeries& series) {
+  json j = {{"samples", p.samples},
+            {"kept_samples", p.kept_samples},
+            {"mean_all_A", p.raw.mean},
+            {"mean_all_sigma_A", p.raw.sigma},
+            {"n_eff_all", p.raw.n_eff},
+            {"mean_cleaned_A", p.cleaned_mean_A.value},
+            {"mean_cleaned_sigma_A", p.cleaned_mean_A.sigma},
+            {"n_eff_kept", p.kept.n_eff},
+            {"median_A", p.median_A},
+            {"huber_A", p.huber_A.value},
+            {"huber_sigma_A", p.huber_A.sigma},
+            {"variance_raw_A2", p.variance_raw_A2},
+            {"variance_cleaned_A2", p.variance_cleaned_A2},
+            {"wavelet_noise_sigma_A", p.noise_sigma_A},
+            {"denoise_levels", p.denoise_levels}};
+  if (p.stationarity) {
+    const auto& st = *p.stationarity;
+    json segs = json::array();
+    for (const auto& s : st.segments)
+      segs.push_back({{"begin", s.begin},
+                      {"end", s.end},
+                      {"begin_s", series.time_s[s.begin]},
+                      {"end_s", series.time_s[s.end - 1]},
+                      {"mean_A", s.mean},
+                      {"z_mean", s.z_mean},
+                      {"p_mean", s.p_mean},
+                      {"q_autocovariance", s.q_autocovariance},
+                      {"p_autocovariance", s.p_autocovariance},
+                      {"kept", s.kept}});
+    j["segment_length"] = st.segment_length;
+    j["segment_alpha"] = st.segment_alpha;
+    j["reference_mean_A"] = st.reference_mean;
+    j["rejected_segments"] = st.rejected();
+    j["segments"] = segs;
+  }
+  return j;
+}
+}  // namespace
+
+json maglev_reduce_to_json(const maglev::ReduceResult& r, const maglev::ReduceInput& in) {
+  json j = {{"amplitude_A", r.amplitude_A.value},
+            {"scale_A_s_per_rad", in.scale_A_s_per_rad.value},
+            {"latitude_deg", units::rad_to_deg(in.latitude_rad)},
+            {"processed", in.options.process},
+            {"position1", position(r.position1, in.position1)},
+            {"position2", position(r.position2, in.position2)},
+            {"result", solution(r.processed)},
+            {"plain", solution(r.plain)},
+            {"notes", r.notes},
+            {"warnings", r.warnings}};
+  if (r.median) j["median"] = solution(*r.median);
+  if (r.huber) j["huber"] = solution(*r.huber);
+  if (r.symmetry) j["symmetry"] = {{"z", r.symmetry->z}, {"p", r.symmetry->p}, {"passed", r.symmetry->passed}};
+  if (r.chain) {
+    const auto& c = *r.chain;
+    j["azimuth"] = {{"gyro_deg", units::rad_to_deg(c.gyro_azimuth_rad.value)},
+                    {"gyro_sigma_arcsec", as(c.gyro_azimuth_rad.sigma)},
+                    {"astronomic_deg", units::rad_to_deg(c.astronomic_azimuth_rad.value)},
+                    {"astronomic_sigma_arcsec", as(c.astronomic_azimuth_rad.sigma)},
+                    {"geodetic_deg", units::rad_to_deg(c.geodetic_azimuth_rad.value)},
+                    {"geodetic_sigma_arcsec", as(c.geodetic_azimuth_rad.sigma)},
+                    {"grid_deg", units::rad_to_deg(c.grid_azimuth_rad.value)},
+                    {"grid_sigma_arcsec", as(c.grid_azimuth_rad.sigma)},
+                    {"notes", c.notes}};
+  }
+  if (in.options.process && in.options.denoise) {
+    const auto& d = in.options.denoising;
+    j["denoising"] = {{"wavelet", maglev::Wavelet(d.wavelet_order).name()},
+                      {"level", d.level},
+                      {"mode", maglev::to_string(d.mode)},
+                      {"threshold", maglev::to_string(d.kind)},
+                      {"rule", maglev::to_string(d.rule)}};
+  }
+  return j;
+}
+
+json maglev_calibration_to_json(const maglev::CalibrationResult& r) {
+  auto line = [](const maglev::LineFit& f) {
+    return json{{"slope_A", f.slope_A_per_rad.value},
+                {"slope_sigma_A", f.slope_A_per_rad.sigma},
+                {"intercept_A", f.intercept_A.value},
+                {"intercept_sigma_A", f.intercept_A.sigma},
+                {"sigma0", f.global_test.sigma0},
+                {"residuals_A", f.residuals_A}};
+  };
+  return {{"kind", "maglev-calibration"},
+          {"position1", line(r.position1)},
+          {"position2", line(r.position2)},
+          {"mean_line", line(r.mean_line)},
+          {"trend_deviation_A", r.trend_deviation_A_per_rad.value},
+          {"trend_deviation_sigma_A", r.trend_deviation_A_per_rad.sigma},
+          {"trend_significant", r.trend_significant},
+          {"best_azimuth_arcsec", as(r.best_azimuth_rad.value)},
+          {"best_azimuth_sigma_arcsec", as(r.best_azimuth_rad.sigma)},
+          {"constant_deviation_A", r.constant_deviation_A.value},
+          {"constant_deviation_sigma_A", r.constant_deviation_A.sigma},
+          {"scale_A_s_per_rad", r.scale_A_s_per_rad.value},
+          {"scale_sigma_A_s_per_rad", r.scale_A_s_per_rad.sigma},
+          {"mean_line_constant", r.mean_line_constant},
+          {"notes", r.notes},
+          {"warnings", r.warnings}};
+}
+
+}  // namespace meridian::report
