@@ -1,0 +1,141 @@
+// Runs `meridian maglev ...` as a user would: simulate, reduce, denoise,
+// calibrate, and the errors for bad input (exit codes, file:line:field).
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.hpp"
+
+namespace {
+
+using meridian_test::CmdResult;
+class MaglevCli : public meridian_test::CliTest {
+ protected:
+  // Clean, realistic noise; 20 000 samples per position.
+  const std::string sim_ = "maglev simulate --alpha1 1.1459 --white 1e-5 --ar1-phi 0.8 --ar1-sigma 2e-6 ";
+};
+
+std::size_t count_lines(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+}  // namespace
+
+TEST_F(MaglevCli, CleanDeterminationToATenthOfAnArcsecond) {
+  ASSERT_EQ(run(sim_ + "--samples 20000 --seed 3 --out d").code, 0);
+  const CmdResult r = run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["result"]["alpha1_arcsec"].get<double>(), 1.1459 * 3600, 0.1);
+  EXPECT_NEAR(j["result"]["north_deg"].get<double>(), 360 - 1.1459, 0.1 / 3600);
+  EXPECT_LT(j["result"]["alpha1_sigma_arcsec"].get<double>(), 0.05);
+  EXPECT_EQ(j["position1"]["samples"], 20000);
+}
+
+TEST_F(MaglevCli, InterferenceIsRejectedAndListed) {
+  ASSERT_EQ(run(sim_ + "--samples 20000 --burst 1:63:103:2e-3:6e-4:0.5:8 --seed 11 --one-file --out d").code, 0);
+  const CmdResult r = run("maglev reduce d.csv --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_GT(std::abs(j["plain"]["alpha1_arcsec"].get<double>() - 1.1459 * 3600), 10.0);
+  EXPECT_NEAR(j["result"]["alpha1_arcsec"].get<double>(), 1.1459 * 3600, 0.1);
+  const auto rejected = j["position1"]["rejected_segments"];
+  ASSERT_GE(rejected.size(), 4u);
+  for (const auto& i : rejected) {
+    if (!j["position1"]["segments"][i.get<std::size_t>()]["kept"].get<bool>()) continue;
+    ADD_FAILURE() << "a rejected segment is marked kept";
+  }
+  // The text names the rejected segments too.
+  const CmdResult t = run("maglev reduce d.csv --scale 8000 --latitude 35 -q");
+  EXPECT_NE(t.out.find("rejected segment"), std::string::npos);
+}
+
+TEST_F(MaglevCli, DenoiseWritesTheSeriesAndRefusesTooDeepALevel) {
+  ASSERT_EQ(run(sim_ + "--samples 1000 --seed 5 --out d").code, 0);
+  CmdResult r = run("maglev denoise d-1.csv --wavelet db6 --level 4 --threshold hard -o out.csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string out = slurp(dir_ / "out.csv");
+  EXPECT_NE(out.find("time [s],current [A]"), std::string::npos);
+  EXPECT_NE(out.find("db6 levels 4"), std::string::npos);
+  // 1000 samples and the header line (+ 2 comment lines).
+  EXPECT_EQ(count_lines(out), 1000u + 3u);
+  r = run("maglev denoise d-1.csv --wavelet db6 --level 7");  // max level for 1000 samples with db6: 6
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("level"), std::string::npos) << r.err;
+  r = run("maglev denoise d-1.csv --wavelet db12");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("db2"), std::string::npos) << r.err;
+}
+
+TEST_F(MaglevCli, CalibrationRecoversTheLinesAndFeedsReduce) {
+  ASSERT_EQ(run("maglev simulate --calibration-azimuths=-3,-2,-1,0,1,2,3 --slope-ratio1 1.01 --slope-ratio2 0.99 "
+                "--best-azimuth 0.11459 --constant-deviation 1.75e-5 --samples 20000 --white 1e-5 --seed 4 --out c")
+                .code,
+            0);
+  CmdResult r = run("maglev calibrate c-calibration.csv --latitude 35 --json -o cal.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir_ / "cal.json"));
+  EXPECT_NEAR(j["best_azimuth_arcsec"].get<double>(), 0.11459 * 3600, 3 * j["best_azimuth_sigma_arcsec"].get<double>());
+  EXPECT_NEAR(j["constant_deviation_A"].get<double>(), 1.75e-5, 3 * j["constant_deviation_sigma_A"].get<double>());
+  EXPECT_NEAR(j["scale_A_s_per_rad"].get<double>(), 8000, 3 * j["scale_sigma_A_s_per_rad"].get<double>());
+  EXPECT_TRUE(j["trend_significant"].get<bool>());
+  // The stored calibration gives reduce its K and the prior bias of the symmetry check.
+  ASSERT_EQ(run(sim_ + "--samples 20000 --seed 3 --bias 1.75e-5 --out d").code, 0);
+  r = run("maglev reduce d-1.csv d-2.csv --calibration cal.json --latitude 35 --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto k = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(k["scale_A_s_per_rad"].get<double>(), j["scale_A_s_per_rad"].get<double>(), 1e-9);
+  ASSERT_TRUE(k.contains("symmetry"));
+}
+
+TEST_F(MaglevCli, BadInputNamesFileLineAndField) {
+  ASSERT_EQ(run(sim_ + "--samples 3000 --seed 1 --out d").code, 0);
+  write("empty.csv", "time,current\n");
+  CmdResult r = run("maglev reduce empty.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("empty.csv"), std::string::npos) << r.err;
+  // Non-monotonic time: line 3 of the file.
+  write("back.csv", "time,current\n0,0.01\n1,0.01\n0.5,0.02\n");
+  r = run("maglev reduce back.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("back.csv:4: time"), std::string::npos) << r.err;
+  // NaN sample.
+  write("nan.csv", "time,current\n0,0.01\n1,nan\n");
+  r = run("maglev reduce nan.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("nan.csv:3: current"), std::string::npos) << r.err;
+  // Constant series.
+  std::string constant = "time,current\n";
+  for (int i = 0; i < 3000; ++i) constant += std::to_string(i) + ",0.01\n";
+  write("const.csv", constant);
+  r = run("maglev reduce const.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("const.csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("constant"), std::string::npos) << r.err;
+  // A position missing from a one-file input.
+  write("one.csv", "time,current,position\n0,0.01,1\n1,0.02,1\n");
+  r = run("maglev reduce one.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("position 2 has no samples"), std::string::npos) << r.err;
+  // Too short for two segments.
+  write("short.csv", "time,current\n0,0.01\n1,0.02\n2,0.01\n");
+  r = run("maglev reduce short.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("short.csv"), std::string::npos) << r.err;
+  // |(I1 − I2)/(2Kω cos φ)| > 1: a numerical error, exit 3, no NaN.
+  r = run("maglev reduce d-1.csv d-2.csv --scale 10 --latitude 35 --json -q");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("> 1"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos);
+  // Missing constants.
+  r = run("maglev reduce d-1.csv d-2.csv --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--scale"), std::string::npos) << r.err;
+}
