@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cli_support.hpp"
 #include "commands.hpp"
@@ -338,7 +339,8 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
       if (o->get_expected_min() == 0) continue;
       std::string value;
       for (const auto& r : o->results()) value += (value.empty() ? "" : ",") + r;
-      cmd += " " + value;
+      if (o->get_lnames().front() == "burst") value = fmt::format("{}", fmt::join(o->results(), " --burst="));
+      cmd += "=" + value;
     }
     exit_code = guarded([&] { return run_simulate(*sa, cmd); });
   });
