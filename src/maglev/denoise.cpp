@@ -1,6 +1,8 @@
 #include "meridian/maglev/denoise.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -37,13 +39,46 @@ double hard_threshold(double d, double lambda) noexcept { return std::abs(d) < l
 
 double median_abs(std::span<const double> v) {
   if (v.empty()) throw InputError("the median of no values");
-  std::vector<double> a(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) a[i] = std::abs(v[i]);
-  const std::size_t h = a.size() / 2;
-  std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(h), a.end());
-  const double upper = a[h];
-  if (a.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(h));
+  // Selection without copying the whole array: the bit patterns of non-negative doubles order
+  // as unsigned integers, so a histogram of their top 16 bits finds the bucket(s) holding the
+  // middle rank(s); only those values are copied and partially sorted.
+  const std::size_t n = v.size();
+  const std::size_t k_hi = n / 2;
+  const std::size_t k_lo = n % 2 == 0 ? n / 2 - 1 : n / 2;
+  auto key = [](double x) { return static_cast<std::uint32_t>(std::bit_cast<std::uint64_t>(std::abs(x)) >> 48); };
+  std::vector<std::uint32_t> hist(1u << 16, 0);
+  for (double x : v) ++hist[key(x)];
+  auto locate = [&](std::size_t k, std::size_t& before) {
+    std::size_t cum = 0;
+    for (std::uint32_t b = 0;; ++b) {
+      if (cum + hist[b] > k) {
+        before = cum;
+        return b;
+      }
+      cum += hist[b];
+    }
+  };
+  std::size_t before_lo = 0, before_hi = 0;
+  const std::uint32_t b_lo = locate(k_lo, before_lo);
+  const std::uint32_t b_hi = locate(k_hi, before_hi);
+  std::vector<double> lo, hi;
+  lo.reserve(hist[b_lo]);
+  if (b_hi != b_lo) hi.reserve(hist[b_hi]);
+  for (double x : v) {
+    const std::uint32_t k = key(x);
+    if (k == b_lo) {
+      lo.push_back(std::abs(x));
+    } else if (k == b_hi) {
+      hi.push_back(std::abs(x));
+    }
+  }
+  auto select = [](std::vector<double>& a, std::size_t r) {
+    std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(r), a.end());
+    return a[r];
+  };
+  const double upper = b_hi == b_lo ? select(lo, k_hi - before_lo) : select(hi, k_hi - before_hi);
+  if (n % 2 == 1) return upper;
+  const double lower = select(lo, k_lo - before_lo);
   return 0.5 * (lower + upper);
 }
 
@@ -93,9 +128,17 @@ DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options) 
       }
     }
     std::size_t zeroed = 0;
-    for (double& v : d) {
-      v = options.kind == ThresholdKind::Soft ? soft_threshold(v, lambda) : hard_threshold(v, lambda);
-      if (v == 0.0) ++zeroed;
+    if (options.kind == ThresholdKind::Soft) {
+      for (double& v : d) {
+        const double m = std::abs(v) - lambda;
+        v = m <= 0.0 ? 0.0 : std::copysign(m, v);
+        zeroed += v == 0.0;
+      }
+    } else {
+      for (double& v : d) {
+        v = std::abs(v) < lambda ? 0.0 : v;
+        zeroed += v == 0.0;
+      }
     }
     r.thresholds.push_back(lambda);
     r.zeroed.push_back(zeroed);

@@ -47,24 +47,66 @@ std::size_t symmetric_index(std::ptrdiff_t m, std::size_t n) {
 }
 
 // out[o] = Σ_j f[j]·e[first + 2o + j] for both filters at once (the inner loop of every
-// forward level: contiguous, branch-free).
-void correlate_down(const std::vector<double>& e, std::size_t first, std::span<const double> lo,
-                    std::span<const double> hi, std::vector<double>& a, std::vector<double>& d) {
-  const std::size_t F = lo.size();
-  const std::size_t m = a.size();
-  const double* pl = lo.data();
-  const double* ph = hi.data();
+// forward level: contiguous, branch-free; F fixed at compile time so it unrolls).
+template <std::size_t F>
+void correlate_down_fixed(const double* e, const double* pl, const double* ph, double* a, double* d,
+                          std::size_t m) {
+  double lo[F], hi[F];
+  for (std::size_t j = 0; j < F; ++j) {
+    lo[j] = pl[j];
+    hi[j] = ph[j];
+  }
   for (std::size_t o = 0; o < m; ++o) {
-    const double* x = e.data() + first + 2 * o;
+    const double* x = e + 2 * o;
     double sa = 0.0, sd = 0.0;
     for (std::size_t j = 0; j < F; ++j) {
-      sa += pl[j] * x[j];
-      sd += ph[j] * x[j];
+      sa += lo[j] * x[j];
+      sd += hi[j] * x[j];
     }
     a[o] = sa;
     d[o] = sd;
   }
 }
+
+// y[2q] = Σ_{j<F/2} rec_lo[2j]·a[q+F/2−1−j] + rec_hi[2j]·d[…]; y[2q+1] with the odd taps.
+template <std::size_t F>
+void upsample_valid_fixed(const double* a, const double* d, const double* rl, const double* rh, double* y,
+                          std::size_t count) {
+  constexpr std::size_t F2 = F / 2;
+  // Taps reversed so that the inner loop runs forwards over a and d.
+  double le[F2], lo[F2], he[F2], ho[F2];
+  for (std::size_t j = 0; j < F2; ++j) {
+    le[F2 - 1 - j] = rl[2 * j];
+    lo[F2 - 1 - j] = rl[2 * j + 1];
+    he[F2 - 1 - j] = rh[2 * j];
+    ho[F2 - 1 - j] = rh[2 * j + 1];
+  }
+  for (std::size_t q = 0; q < count; ++q) {
+    double se = 0.0, so = 0.0;
+    for (std::size_t j = 0; j < F2; ++j) {
+      const double av = a[q + j];
+      const double dv = d[q + j];
+      se += le[j] * av + he[j] * dv;
+      so += lo[j] * av + ho[j] * dv;
+    }
+    y[2 * q] = se;
+    y[2 * q + 1] = so;
+  }
+}
+
+#define MERIDIAN_MAGLEV_DISPATCH(F, CALL) \
+  switch (F) {                            \
+    case 4: CALL(4); break;               \
+    case 6: CALL(6); break;               \
+    case 8: CALL(8); break;               \
+    case 10: CALL(10); break;             \
+    case 12: CALL(12); break;             \
+    case 14: CALL(14); break;             \
+    case 16: CALL(16); break;             \
+    case 18: CALL(18); break;             \
+    case 20: CALL(20); break;             \
+    default: throw NumericalError("unsupported filter length"); \
+  }
 
 }  // namespace
 
@@ -125,42 +167,60 @@ int max_level(std::size_t n, const Wavelet& wavelet) {
   return level;
 }
 
-DwtLevel dwt(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode) {
-  require_finite(x, "series");
+static DwtLevel dwt_unchecked(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode) {
   const std::size_t n = x.size();
   const std::size_t F = wavelet.filter_length();
   const std::size_t m = dwt_coefficient_length(n, F, mode);
   DwtLevel out;
   out.approximation.resize(m);
   out.detail.resize(m);
-  std::vector<double> e;
-  // cA[o] = Σ_j dec_lo[j]·x_e[i_o − j] = Σ_j' rec_lo[j']·x_e[i_o − F + 1 + j'].
-  if (mode == ExtensionMode::Symmetric) {
-    // e[t] = x_e[t − (F−1)], t = 0 … n + 2F − 3; i_o = 2o + 1.
-    e.resize(n + 2 * F - 2);
-    const auto shift = static_cast<std::ptrdiff_t>(F) - 1;
-    for (std::size_t t = 0; t < F - 1; ++t)
-      e[t] = x[symmetric_index(static_cast<std::ptrdiff_t>(t) - shift, n)];
-    std::copy(x.begin(), x.end(), e.begin() + static_cast<std::ptrdiff_t>(F - 1));
-    for (std::size_t t = n + F - 1; t < e.size(); ++t)
-      e[t] = x[symmetric_index(static_cast<std::ptrdiff_t>(t) - shift, n)];
-    correlate_down(e, 1, wavelet.rec_lo(), wavelet.rec_hi(), out.approximation, out.detail);
-  } else {
-    // Periodic with period n' = n (+1 when odd: the last sample repeated); i_o = F/2 + 2o,
-    // e[t] = x_p[(t − F + 1) mod n'].
-    const std::size_t np = n + (n % 2);
-    const std::size_t len = np + F + F / 2;
-    e.resize(len);
-    const auto shift = static_cast<std::ptrdiff_t>(F) - 1;
-    const auto period = static_cast<std::ptrdiff_t>(np);
-    for (std::size_t t = 0; t < len; ++t) {
-      std::ptrdiff_t p = (static_cast<std::ptrdiff_t>(t) - shift) % period;
-      if (p < 0) p += period;
-      e[t] = static_cast<std::size_t>(p) < n ? x[static_cast<std::size_t>(p)] : x[n - 1];
+  // cA[o] = Σ_j dec_lo[j]·x_e[i_o − j] = Σ_j' rec_lo[j']·x_e[i_o − F + 1 + j'], with
+  // i_o = 2o + 1 (symmetric) or F/2 + 2o (periodization). Outputs whose taps all fall inside
+  // x are computed straight from x; the few at the ends through the extension.
+  const bool sym = mode == ExtensionMode::Symmetric;
+  const std::size_t np = n + (n % 2);  // periodization: period, last sample repeated when odd
+  const auto period = static_cast<std::ptrdiff_t>(np);
+  auto extended = [&](std::ptrdiff_t t) {
+    if (sym) return x[symmetric_index(t, n)];
+    std::ptrdiff_t p = t % period;
+    if (p < 0) p += period;
+    return static_cast<std::size_t>(p) < n ? x[static_cast<std::size_t>(p)] : x[n - 1];
+  };
+  const std::size_t first = sym ? 1 : F / 2;  // i_0
+  const double* rl = wavelet.rec_lo().data();
+  const double* rh = wavelet.rec_hi().data();
+  // Interior: i_o − F + 1 ≥ 0 and i_o ≤ n − 1.
+  std::size_t o_lo = 0;
+  while (o_lo < m && first + 2 * o_lo < F - 1) ++o_lo;
+  std::size_t o_hi = o_lo;  // one past the last interior output
+  if (first + 2 * o_lo <= n - 1) o_hi = std::min(m, (n - 1 - first) / 2 + 1);
+  if (o_hi < o_lo) o_hi = o_lo;
+  for (std::size_t o = 0; o < m; ++o) {
+    if (o == o_lo && o_hi > o_lo) {
+#define MERIDIAN_CALL(N)                                                                                    \
+  correlate_down_fixed<N>(x.data() + (first + 2 * o_lo - (F - 1)), rl, rh, out.approximation.data() + o_lo, \
+                          out.detail.data() + o_lo, o_hi - o_lo)
+      MERIDIAN_MAGLEV_DISPATCH(F, MERIDIAN_CALL)
+#undef MERIDIAN_CALL
+      o = o_hi - 1;
+      continue;
     }
-    correlate_down(e, F / 2, wavelet.rec_lo(), wavelet.rec_hi(), out.approximation, out.detail);
+    const auto base = static_cast<std::ptrdiff_t>(first + 2 * o) - static_cast<std::ptrdiff_t>(F - 1);
+    double sa = 0.0, sd = 0.0;
+    for (std::size_t j = 0; j < F; ++j) {
+      const double v = extended(base + static_cast<std::ptrdiff_t>(j));
+      sa += rl[j] * v;
+      sd += rh[j] * v;
+    }
+    out.approximation[o] = sa;
+    out.detail[o] = sd;
   }
   return out;
+}
+
+DwtLevel dwt(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode) {
+  require_finite(x, "series");
+  return dwt_unchecked(x, wavelet, mode);
 }
 
 std::vector<double> idwt(std::span<const double> a, std::span<const double> d, const Wavelet& wavelet,
@@ -177,20 +237,10 @@ std::vector<double> idwt(std::span<const double> a, std::span<const double> d, c
     if (m < F2)
       throw InputError(fmt::format("{} coefficients are too few to reconstruct with {} ({} needed)", m,
                                    wavelet.name(), F2));
-    // y[2q] = Σ_{j<F/2} rec_lo[2j]·a[q+F/2−1−j] + rec_hi[2j]·d[…]; y[2q+1] with the odd taps.
     std::vector<double> y(2 * (m - F2 + 1));
-    for (std::size_t q = 0; q + F2 <= m; ++q) {
-      double se = 0.0, so = 0.0;
-      const std::size_t top = q + F2 - 1;
-      for (std::size_t j = 0; j < F2; ++j) {
-        const double av = a[top - j];
-        const double dv = d[top - j];
-        se += rl[2 * j] * av + rh[2 * j] * dv;
-        so += rl[2 * j + 1] * av + rh[2 * j + 1] * dv;
-      }
-      y[2 * q] = se;
-      y[2 * q + 1] = so;
-    }
+#define MERIDIAN_CALL(N) upsample_valid_fixed<N>(a.data(), d.data(), rl, rh, y.data(), m - F2 + 1)
+    MERIDIAN_MAGLEV_DISPATCH(F, MERIDIAN_CALL)
+#undef MERIDIAN_CALL
     return y;
   }
   if (m == 0) throw InputError("no coefficients to reconstruct");
@@ -226,11 +276,13 @@ WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, E
         ErrorContext{{}, std::nullopt, "level"});
   WaveletCoefficients out;
   out.coefficients.resize(static_cast<std::size_t>(level) + 1);
-  std::vector<double> a(x.begin(), x.end());
+  std::vector<double> a;
+  std::span<const double> current = x;
   for (int l = 1; l <= level; ++l) {
-    DwtLevel step = dwt(a, wavelet, mode);
+    DwtLevel step = dwt_unchecked(current, wavelet, mode);
     out.coefficients[static_cast<std::size_t>(level - l + 1)] = std::move(step.detail);
     a = std::move(step.approximation);
+    current = a;
   }
   out.coefficients[0] = std::move(a);
   return out;

@@ -2,6 +2,7 @@
 // moments, perfect reconstruction, energy conservation (Parseval) of the orthogonal
 // periodized transform; thresholds; errors. (PyWavelets itself: test_wavelet_reference.)
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -161,4 +162,22 @@ TEST(Denoise, ConstantSeriesIsUnchanged) {
   const auto r = denoise(x, o);
   EXPECT_EQ(r.noise_sigma, 0.0);
   for (double v : r.values) EXPECT_NEAR(v, 0.25, 1e-14);
+}
+
+TEST(Denoise, MedianAbsAgreesWithSorting) {
+  std::mt19937_64 g(21);
+  std::normal_distribution<double> n01;
+  for (std::size_t n : {1u, 2u, 3u, 10u, 1001u, 100000u, 100001u}) {
+    std::vector<double> v(n);
+    for (auto& x : v) x = n01(g) * 1e-5;
+    if (n > 10) {
+      for (std::size_t i = 0; i < n / 10; ++i) v[i] = 0.0;        // ties and zeros
+      for (std::size_t i = n / 10; i < n / 5; ++i) v[i] = -3e-6;  // repeated values of both signs
+    }
+    std::vector<double> a(n);
+    for (std::size_t i = 0; i < n; ++i) a[i] = std::abs(v[i]);
+    std::sort(a.begin(), a.end());
+    const double expected = n % 2 ? a[n / 2] : 0.5 * (a[n / 2 - 1] + a[n / 2]);
+    EXPECT_EQ(median_abs(v), expected) << n;
+  }
 }
