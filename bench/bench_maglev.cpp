@@ -42,12 +42,14 @@ void Denoise1M(benchmark::State& state) {
     auto r = mg::denoise(x, o);
     benchmark::DoNotOptimize(r.values.data());
   }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(x.size()));
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(x.size()));
 }
 BENCHMARK(Denoise1M)->Unit(benchmark::kMillisecond);
 
 void ReadCsv1M(benchmark::State& state) {
-  const auto path = std::filesystem::temp_directory_path() / ("meridian_bench_maglev_" + std::to_string(::getpid()) + ".csv");
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("meridian_bench_maglev_" + std::to_string(::getpid()) + ".csv");
   {
     mg::NoiseSpec s;
     s.samples = 1000000;

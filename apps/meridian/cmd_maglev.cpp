@@ -19,6 +19,8 @@
 #include "meridian/maglev/denoise.hpp"
 #include "meridian/maglev/reduce.hpp"
 #include "meridian/maglev/simulator.hpp"
+#include "meridian/report/html.hpp"
+#include "meridian/report/maglev_html.hpp"
 #include "meridian/report/maglev_json.hpp"
 #include "meridian/report/maglev_text.hpp"
 
@@ -53,7 +55,8 @@ struct DenoiseArgs {
 void add_denoise_options(CLI::App* c, DenoiseArgs& d) {
   c->add_option("--wavelet", d.wavelet, "Daubechies wavelet db2 … db10")->capture_default_str();
   c->add_option("--level", d.level, "Decomposition levels p")->capture_default_str();
-  c->add_option("--mode", d.mode, "Signal extension: symmetric | periodization")->capture_default_str();
+  c->add_option("--mode", d.mode, "Signal extension: symmetric | periodization")
+      ->capture_default_str();
   c->add_option("--threshold", d.threshold, "soft | hard")->capture_default_str();
   c->add_option("--rule", d.rule, "universal (sigma*sqrt(2 ln n)) | sure")->capture_default_str();
 }
@@ -62,11 +65,13 @@ struct ReduceArgs {
   std::vector<std::string> files;
   std::string config, calibration, latitude, reading1, target, instrument_constant = "0";
   std::optional<double> scale, prior_bias;
-  double scale_sigma = 0, reading1_sigma_arcsec = 0, target_sigma_arcsec = 0, constant_sigma_arcsec = 0;
+  double scale_sigma = 0, reading1_sigma_arcsec = 0, target_sigma_arcsec = 0,
+         constant_sigma_arcsec = 0;
   double prior_bias_sigma = 0, convergence_deg = 0;
   std::optional<double> eta_arcsec;
   double eta_sigma_arcsec = 0;
   bool no_process = false, no_denoise = false, json = false, quiet = false;
+  std::string report;
   std::size_t segment = 0;
   double alpha = 0.05;
   int lags = 10;
@@ -75,6 +80,7 @@ struct ReduceArgs {
 };
 
 int run_reduce(const ReduceArgs& a) {
+  require_html_reports_for(a.report);
   maglev::ReduceInput in;
   io::MaglevConstants k;
   if (!a.config.empty()) k = io::read_maglev_constants(a.config);
@@ -87,11 +93,14 @@ int run_reduce(const ReduceArgs& a) {
   if (!a.latitude.empty()) k.latitude_rad = angle_option(a.latitude, "--latitude");
   if (!a.reading1.empty()) k.circle_reading1_rad = angle_option(a.reading1, "--reading1");
   if (!k.scale_A_s_per_rad)
-    throw InputError("the scale K is needed: --scale, --config or --calibration", option("--scale"));
-  if (!k.latitude_rad) throw InputError("the latitude is needed: --latitude or --config", option("--latitude"));
+    throw InputError("the scale K is needed: --scale, --config or --calibration",
+                     option("--scale"));
+  if (!k.latitude_rad)
+    throw InputError("the latitude is needed: --latitude or --config", option("--latitude"));
   in.scale_A_s_per_rad = *k.scale_A_s_per_rad;
   in.latitude_rad = *k.latitude_rad;
-  in.circle_reading1_rad = {k.circle_reading1_rad.value_or(0.0), units::arcsec_to_rad(a.reading1_sigma_arcsec)};
+  in.circle_reading1_rad = {k.circle_reading1_rad.value_or(0.0),
+                            units::arcsec_to_rad(a.reading1_sigma_arcsec)};
   if (a.prior_bias) k.constant_deviation_A = Uncertain{*a.prior_bias, a.prior_bias_sigma};
   in.options.prior_bias_A = k.constant_deviation_A;
   in.options.process = !a.no_process;
@@ -102,10 +111,13 @@ int run_reduce(const ReduceArgs& a) {
   in.options.denoising = a.d.options();
   if (!a.target.empty()) {
     maglev::ChainSetup c;
-    c.target_reading_rad = {angle_option(a.target, "--target"), units::arcsec_to_rad(a.target_sigma_arcsec)};
+    c.target_reading_rad = {angle_option(a.target, "--target"),
+                            units::arcsec_to_rad(a.target_sigma_arcsec)};
     c.instrument_constant_rad = {angle_option(a.instrument_constant, "--instrument-constant"),
                                  units::arcsec_to_rad(a.constant_sigma_arcsec)};
-    if (a.eta_arcsec) c.eta_rad = Uncertain{units::arcsec_to_rad(*a.eta_arcsec), units::arcsec_to_rad(a.eta_sigma_arcsec)};
+    if (a.eta_arcsec)
+      c.eta_rad =
+          Uncertain{units::arcsec_to_rad(*a.eta_arcsec), units::arcsec_to_rad(a.eta_sigma_arcsec)};
     c.convergence_rad = units::deg_to_rad(a.convergence_deg);
     in.chain = c;
   }
@@ -118,14 +130,23 @@ int run_reduce(const ReduceArgs& a) {
     f1 = io::read_maglev_series_file(a.files[0], 1);
     f2 = io::read_maglev_series_file(a.files[1], 2);
   } else {
-    throw InputError("give one file with a position column, or two files (position 1, position 2)", option("FILES"));
+    throw InputError("give one file with a position column, or two files (position 1, position 2)",
+                     option("FILES"));
   }
   in.position1 = f1.series;
   in.position2 = f2.series;
   TerminalProgress progress(a.quiet);
   const auto r = io::run_maglev_reduce(in, f1, f2, &progress);
   progress.finish();
-  emit(a.output, a.json ? report::maglev_reduce_to_json(r, in).dump(2) + "\n" : report::maglev_reduce_text(r));
+  std::string input = a.files[0];
+  if (a.files.size() == 2) input += ", " + a.files[1];
+  // Everything is computed before anything is written.
+  const std::string html = a.report.empty()
+                               ? std::string()
+                               : report::render_html(report::maglev_reduce_document(r, in, input));
+  emit(a.output, a.json ? report::maglev_reduce_to_json(r, in).dump(2) + "\n"
+                        : report::maglev_reduce_text(r));
+  if (!a.report.empty()) emit(a.report, html);
   return kOk;
 }
 
@@ -149,10 +170,11 @@ int run_denoise(const DenoiseCmdArgs& a) {
   std::string thresholds;
   for (double l : r.thresholds) thresholds += fmt::format(" {:.6g}", l);
   const std::string header = fmt::format(
-      "meridian maglev denoise: {} levels {}, mode {}, {} {} threshold\nnoise sigma {:.6g} A; thresholds (level 1 "
+      "meridian maglev denoise: {} levels {}, mode {}, {} {} threshold\nnoise sigma {:.6g} A; "
+      "thresholds (level 1 "
       "first):{}",
-      maglev::Wavelet(opts.wavelet_order).name(), opts.level, maglev::to_string(opts.mode), maglev::to_string(opts.rule),
-      maglev::to_string(opts.kind), r.noise_sigma, thresholds);
+      maglev::Wavelet(opts.wavelet_order).name(), opts.level, maglev::to_string(opts.mode),
+      maglev::to_string(opts.rule), maglev::to_string(opts.kind), r.noise_sigma, thresholds);
   emit(a.output, io::maglev_series_csv(out, header));
   return kOk;
 }
@@ -180,15 +202,18 @@ maglev::Burst parse_burst(const std::string& text, int& position) {
     char* end = nullptr;
     const double x = std::strtod(part.c_str(), &end);
     if (part.empty() || *end != '\0' || !std::isfinite(x))
-      throw InputError(fmt::format("\"{}\" is not a number in burst \"{}\"", part, text), option("--burst"));
+      throw InputError(fmt::format("\"{}\" is not a number in burst \"{}\"", part, text),
+                       option("--burst"));
     v.push_back(x);
     b = e + 1;
   }
   if (v.size() != 7 || (v[0] != 1 && v[0] != 2))
-    throw InputError(fmt::format("burst \"{}\": expected position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz "
-                                 "with position 1 or 2",
-                                 text),
-                     option("--burst"));
+    throw InputError(
+        fmt::format(
+            "burst \"{}\": expected position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz "
+            "with position 1 or 2",
+            text),
+        option("--burst"));
   position = static_cast<int>(v[0]);
   return {v[1], v[2], v[3], v[4], v[5], v[6]};
 }
@@ -197,7 +222,8 @@ int run_simulate(const SimulateArgs& a, const std::string& command) {
   const double lat = angle_option(a.latitude, "--latitude");
   if (!a.calibration_azimuths.empty()) {
     maglev::CalibrationTruth t;
-    for (const auto& s : a.calibration_azimuths) t.azimuths_rad.push_back(angle_option(s, "--calibration-azimuths"));
+    for (const auto& s : a.calibration_azimuths)
+      t.azimuths_rad.push_back(angle_option(s, "--calibration-azimuths"));
     const double A = a.scale * units::kEarthRotationRate_rad_s * std::cos(lat);
     t.slope1_A = A * a.slope_ratio1;
     t.slope2_A = -A * a.slope_ratio2;
@@ -223,9 +249,10 @@ int run_simulate(const SimulateArgs& a, const std::string& command) {
   s2.start_s = a.noise.start_s + static_cast<double>(a.noise.samples) / a.noise.rate_hz + 30.0;
   const auto in = maglev::simulate_determination(t, s1, s2, a.seed);
   const std::string header = fmt::format(
-      "made by: {}\ntruth: alpha1 {:.6f} deg, K {} A*s/rad, b {} A, latitude {:.6f} deg, r1 {:.6f} deg", command,
-      units::rad_to_deg(t.alpha1_rad), t.scale_A_s_per_rad, t.bias_A, units::rad_to_deg(lat),
-      units::rad_to_deg(t.circle_reading1_rad));
+      "made by: {}\ntruth: alpha1 {:.6f} deg, K {} A*s/rad, b {} A, latitude {:.6f} deg, r1 {:.6f} "
+      "deg",
+      command, units::rad_to_deg(t.alpha1_rad), t.scale_A_s_per_rad, t.bias_A,
+      units::rad_to_deg(lat), units::rad_to_deg(t.circle_reading1_rad));
   if (a.one_file) {
     emit(a.out + ".csv", io::maglev_two_position_csv(in.position1, in.position2, header));
   } else {
@@ -238,13 +265,14 @@ int run_simulate(const SimulateArgs& a, const std::string& command) {
 }
 
 struct CalibrateArgs {
-  std::string file, latitude, output;
+  std::string file, latitude, output, report;
   std::optional<double> nominal_scale;
   double alpha = 0.05;
   bool json = false;
 };
 
 int run_calibrate(const CalibrateArgs& a) {
+  require_html_reports_for(a.report);
   auto in = io::read_maglev_calibration_table(a.file);
   in.latitude_rad = angle_option(a.latitude, "--latitude");
   in.alpha = a.alpha;
@@ -256,78 +284,116 @@ int run_calibrate(const CalibrateArgs& a) {
     e.add_context(a.file);
     throw;
   }
-  emit(a.output, a.json ? report::maglev_calibration_to_json(r).dump(2) + "\n" : report::maglev_calibration_text(r));
+  const std::string html =
+      a.report.empty() ? std::string()
+                       : report::render_html(report::maglev_calibration_document(r, in, a.file));
+  emit(a.output, a.json ? report::maglev_calibration_to_json(r).dump(2) + "\n"
+                        : report::maglev_calibration_text(r));
+  if (!a.report.empty()) emit(a.report, html);
   return kOk;
 }
 
 }  // namespace
 
 void add_maglev_commands(CLI::App& app, int& exit_code) {
-  CLI::App* mg = app.add_subcommand("maglev", "Magnetically suspended gyro: two-position north seeking");
+  CLI::App* mg =
+      app.add_subcommand("maglev", "Magnetically suspended gyro: two-position north seeking");
   mg->require_subcommand(1);
 
   auto ra = std::make_shared<ReduceArgs>();
-  CLI::App* red = mg->add_subcommand("reduce", "Two-position determination from rotor-current series (CSV)");
-  red->add_option("FILES", ra->files, "One CSV with a position column, or two CSVs (position 1, position 2)")
+  CLI::App* red =
+      mg->add_subcommand("reduce", "Two-position determination from rotor-current series (CSV)");
+  red->add_option("FILES", ra->files,
+                  "One CSV with a position column, or two CSVs (position 1, position 2)")
       ->required()
       ->expected(1, 2);
-  red->add_option("--config", ra->config, "YAML/JSON with scale_A_s_per_rad, latitude, circle_reading1, ...");
-  red->add_option("--calibration", ra->calibration, "Stored calibration (maglev calibrate --json): K and the prior bias I*");
+  red->add_option("--config", ra->config,
+                  "YAML/JSON with scale_A_s_per_rad, latitude, circle_reading1, ...");
+  red->add_option("--calibration", ra->calibration,
+                  "Stored calibration (maglev calibrate --json): K and the prior bias I*");
   red->add_option("--scale", ra->scale, "K, A*s/rad (current per unit horizontal earth rate)");
   red->add_option("--scale-sigma", ra->scale_sigma, "sigma of K, A*s/rad")->capture_default_str();
   red->add_option("--latitude", ra->latitude, "Station latitude (DMS or deg)");
-  red->add_option("--reading1", ra->reading1, "Circle reading r1 of the spin axis at position 1 (DMS or deg)");
-  red->add_option("--reading1-sigma-arcsec", ra->reading1_sigma_arcsec, "sigma of r1")->capture_default_str();
+  red->add_option("--reading1", ra->reading1,
+                  "Circle reading r1 of the spin axis at position 1 (DMS or deg)");
+  red->add_option("--reading1-sigma-arcsec", ra->reading1_sigma_arcsec, "sigma of r1")
+      ->capture_default_str();
   red->add_option("--prior-bias", ra->prior_bias, "Prior bias b0 (A) for the symmetry check");
-  red->add_option("--prior-bias-sigma", ra->prior_bias_sigma, "sigma of b0 (A)")->capture_default_str();
+  red->add_option("--prior-bias-sigma", ra->prior_bias_sigma, "sigma of b0 (A)")
+      ->capture_default_str();
   red->add_option("--target", ra->target, "Circle reading of the target: gives the azimuth chain");
-  red->add_option("--target-sigma-arcsec", ra->target_sigma_arcsec, "sigma of the target reading")->capture_default_str();
-  red->add_option("--instrument-constant", ra->instrument_constant, "E (DMS or deg)")->capture_default_str();
-  red->add_option("--instrument-constant-sigma-arcsec", ra->constant_sigma_arcsec, "sigma of E")->capture_default_str();
+  red->add_option("--target-sigma-arcsec", ra->target_sigma_arcsec, "sigma of the target reading")
+      ->capture_default_str();
+  red->add_option("--instrument-constant", ra->instrument_constant, "E (DMS or deg)")
+      ->capture_default_str();
+  red->add_option("--instrument-constant-sigma-arcsec", ra->constant_sigma_arcsec, "sigma of E")
+      ->capture_default_str();
   red->add_option("--eta-arcsec", ra->eta_arcsec, "Prime-vertical deflection eta (Laplace)");
-  red->add_option("--eta-sigma-arcsec", ra->eta_sigma_arcsec, "sigma of eta")->capture_default_str();
-  red->add_option("--convergence-deg", ra->convergence_deg, "Meridian convergence gamma (deg)")->capture_default_str();
-  red->add_flag("--no-process", ra->no_process, "Plain means of all samples (no tests, no denoising)");
+  red->add_option("--eta-sigma-arcsec", ra->eta_sigma_arcsec, "sigma of eta")
+      ->capture_default_str();
+  red->add_option("--convergence-deg", ra->convergence_deg, "Meridian convergence gamma (deg)")
+      ->capture_default_str();
+  red->add_flag("--no-process", ra->no_process,
+                "Plain means of all samples (no tests, no denoising)");
   red->add_flag("--no-denoise", ra->no_denoise, "Stationarity tests without wavelet denoising");
-  red->add_option("--segment", ra->segment, "Segment length in samples (0: about 20 segments)")->capture_default_str();
-  red->add_option("--alpha", ra->alpha, "Significance level per position (family-wise)")->capture_default_str();
-  red->add_option("--lags", ra->lags, "Autocovariance lags M of the segment test")->capture_default_str();
+  red->add_option("--segment", ra->segment, "Segment length in samples (0: about 20 segments)")
+      ->capture_default_str();
+  red->add_option("--alpha", ra->alpha, "Significance level per position (family-wise)")
+      ->capture_default_str();
+  red->add_option("--lags", ra->lags, "Autocovariance lags M of the segment test")
+      ->capture_default_str();
   add_denoise_options(red, ra->d);
   red->add_flag("--json", ra->json, "Print JSON instead of text");
   red->add_option("-o,--output", ra->output, "Write to this file (atomically) instead of stdout");
+  red->add_option("--report", ra->report,
+                  "Also write a self-contained HTML report (series, segments) to this file");
   red->add_flag("-q,--quiet", ra->quiet, "No progress bar");
   red->callback([ra, &exit_code] { exit_code = guarded([&] { return run_reduce(*ra); }); });
 
   auto da = std::make_shared<DenoiseCmdArgs>();
-  CLI::App* den = mg->add_subcommand("denoise", "Wavelet-denoise a series (time, value CSV); writes time,value CSV");
+  CLI::App* den = mg->add_subcommand(
+      "denoise", "Wavelet-denoise a series (time, value CSV); writes time,value CSV");
   den->add_option("CSV", da->file, "Input CSV (time, value); - for stdin")->required();
   add_denoise_options(den, da->d);
   den->add_option("-o,--output", da->output, "Write to this file (atomically) instead of stdout");
   den->callback([da, &exit_code] { exit_code = guarded([&] { return run_denoise(*da); }); });
 
   auto sa = std::make_shared<SimulateArgs>();
-  CLI::App* sim = mg->add_subcommand("simulate", "Simulate a determination (CSV per position) or a calibration table");
-  sim->add_option("--alpha1", sa->alpha1, "True alpha1, spin axis east of north at position 1 (DMS or deg)")->capture_default_str();
+  CLI::App* sim = mg->add_subcommand(
+      "simulate", "Simulate a determination (CSV per position) or a calibration table");
+  sim->add_option("--alpha1", sa->alpha1,
+                  "True alpha1, spin axis east of north at position 1 (DMS or deg)")
+      ->capture_default_str();
   sim->add_option("--scale", sa->scale, "K, A*s/rad")->capture_default_str();
   sim->add_option("--bias", sa->bias, "b, A")->capture_default_str();
   sim->add_option("--latitude", sa->latitude, "Latitude (DMS or deg)")->capture_default_str();
   sim->add_option("--reading1", sa->reading1, "r1 (DMS or deg)")->capture_default_str();
   sim->add_option("--samples", sa->noise.samples, "Samples per position")->capture_default_str();
   sim->add_option("--rate-hz", sa->noise.rate_hz, "Sample rate")->capture_default_str();
-  sim->add_option("--white", sa->noise.white_sigma_A, "White noise sigma (A)")->capture_default_str();
+  sim->add_option("--white", sa->noise.white_sigma_A, "White noise sigma (A)")
+      ->capture_default_str();
   sim->add_option("--ar1-phi", sa->noise.ar1_phi, "AR(1) coefficient")->capture_default_str();
-  sim->add_option("--ar1-sigma", sa->noise.ar1_sigma_A, "AR(1) innovation sigma (A)")->capture_default_str();
+  sim->add_option("--ar1-sigma", sa->noise.ar1_sigma_A, "AR(1) innovation sigma (A)")
+      ->capture_default_str();
   sim->add_option("--drift", sa->noise.drift_A_per_s, "Drift (A/s)")->capture_default_str();
-  sim->add_option("--burst", sa->bursts, "Interference: position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz (repeatable)");
+  sim->add_option(
+      "--burst", sa->bursts,
+      "Interference: position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz (repeatable)");
   sim->add_option("--seed", sa->seed, "Random seed")->capture_default_str();
-  sim->add_flag("--one-file", sa->one_file, "Write OUT.csv with a position column instead of OUT-1.csv, OUT-2.csv");
-  sim->add_option("--calibration-azimuths", sa->calibration_azimuths,
-                  "Simulate a calibration table (OUT-calibration.csv) at these set-up azimuths (DMS or deg)")
+  sim->add_flag("--one-file", sa->one_file,
+                "Write OUT.csv with a position column instead of OUT-1.csv, OUT-2.csv");
+  sim->add_option(
+         "--calibration-azimuths", sa->calibration_azimuths,
+         "Simulate a calibration table (OUT-calibration.csv) at these set-up azimuths (DMS or deg)")
       ->delimiter(',');
-  sim->add_option("--slope-ratio1", sa->slope_ratio1, "Calibration: k1 = ratio*K*w*cos(phi)")->capture_default_str();
-  sim->add_option("--slope-ratio2", sa->slope_ratio2, "Calibration: k2 = -ratio*K*w*cos(phi)")->capture_default_str();
-  sim->add_option("--best-azimuth", sa->best_azimuth, "Calibration: alpha* where the lines meet")->capture_default_str();
-  sim->add_option("--constant-deviation", sa->constant_deviation, "Calibration: I* (A)")->capture_default_str();
+  sim->add_option("--slope-ratio1", sa->slope_ratio1, "Calibration: k1 = ratio*K*w*cos(phi)")
+      ->capture_default_str();
+  sim->add_option("--slope-ratio2", sa->slope_ratio2, "Calibration: k2 = -ratio*K*w*cos(phi)")
+      ->capture_default_str();
+  sim->add_option("--best-azimuth", sa->best_azimuth, "Calibration: alpha* where the lines meet")
+      ->capture_default_str();
+  sim->add_option("--constant-deviation", sa->constant_deviation, "Calibration: I* (A)")
+      ->capture_default_str();
   sim->add_option("--out", sa->out, "Output prefix")->capture_default_str();
   sim->callback([sa, sim, &exit_code] {
     std::string cmd = "meridian maglev simulate";
@@ -339,20 +405,26 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
       if (o->get_expected_min() == 0) continue;
       std::string value;
       for (const auto& r : o->results()) value += (value.empty() ? "" : ",") + r;
-      if (o->get_lnames().front() == "burst") value = fmt::format("{}", fmt::join(o->results(), " --burst="));
+      if (o->get_lnames().front() == "burst")
+        value = fmt::format("{}", fmt::join(o->results(), " --burst="));
       cmd += "=" + value;
     }
     exit_code = guarded([&] { return run_simulate(*sa, cmd); });
   });
 
   auto ca = std::make_shared<CalibrateArgs>();
-  CLI::App* cal = mg->add_subcommand("calibrate", "Multi-angle calibration: lines, trend deviation, alpha*, I*, K");
+  CLI::App* cal = mg->add_subcommand(
+      "calibrate", "Multi-angle calibration: lines, trend deviation, alpha*, I*, K");
   cal->add_option("TABLE", ca->file, "CSV: azimuth, mean1, sigma1, mean2, sigma2")->required();
   cal->add_option("--latitude", ca->latitude, "Latitude (DMS or deg)")->required();
-  cal->add_option("--nominal-scale", ca->nominal_scale, "Nominal K to compare the slopes with (A*s/rad)");
+  cal->add_option("--nominal-scale", ca->nominal_scale,
+                  "Nominal K to compare the slopes with (A*s/rad)");
   cal->add_option("--alpha", ca->alpha, "Significance level")->capture_default_str();
-  cal->add_flag("--json", ca->json, "Print JSON (also the stored calibration for reduce --calibration)");
+  cal->add_flag("--json", ca->json,
+                "Print JSON (also the stored calibration for reduce --calibration)");
   cal->add_option("-o,--output", ca->output, "Write to this file (atomically) instead of stdout");
+  cal->add_option("--report", ca->report,
+                  "Also write a self-contained HTML report (lines, residuals) to this file");
   cal->callback([ca, &exit_code] { exit_code = guarded([&] { return run_calibrate(*ca); }); });
 }
 

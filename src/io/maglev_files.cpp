@@ -51,7 +51,8 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
       if (c.position) {
         const double p = r.number(*c.position, {"position", "position"});
         if (p != 1.0 && p != 2.0)
-          throw InputError(fmt::format("position {} is neither 1 nor 2", p), r.context(*c.position, {"position"}));
+          throw InputError(fmt::format("position {} is neither 1 nor 2", p),
+                           r.context(*c.position, {"position"}));
         pos = static_cast<int>(p);
       }
       MaglevSeriesFile* f = nullptr;
@@ -59,15 +60,17 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
         f = pos == 1 ? one : two;
       } else {
         if (want != 0 && pos != want)
-          throw InputError(fmt::format("a sample of position {} in a file of position {}", pos, want),
-                           r.context(*c.position, {"position"}));
+          throw InputError(
+              fmt::format("a sample of position {} in a file of position {}", pos, want),
+              r.context(*c.position, {"position"}));
         f = one;
       }
       const double t = r.number(c.time, {"time", "time"});
       const double i = r.number(c.current, {"current", "current"});
       if (!f->series.time_s.empty() && !(t > f->series.time_s.back()))
-        throw InputError(fmt::format("time does not increase ({} s after {} s)", t, f->series.time_s.back()),
-                         r.context(c.time, {"time"}));
+        throw InputError(
+            fmt::format("time does not increase ({} s after {} s)", t, f->series.time_s.back()),
+            r.context(c.time, {"time"}));
       f->series.time_s.push_back(t);
       f->series.current_A.push_back(i);
       f->lines.push_back(r.line());
@@ -102,7 +105,8 @@ MaglevSeriesFile read_maglev_series(std::istream& in, const std::string& source,
   MaglevSeriesFile f;
   f.file = source;
   read_into(rr, c, position, &f, nullptr);
-  if (f.series.current_A.empty()) throw InputError("the file has no samples", {source, {}, "current"});
+  if (f.series.current_A.empty())
+    throw InputError("the file has no samples", {source, {}, "current"});
   return f;
 }
 
@@ -117,13 +121,16 @@ std::pair<MaglevSeriesFile, MaglevSeriesFile> read_maglev_two_positions(const st
   RecordReader rr(fs ? *fs : std::cin, source);
   const Columns c = series_columns(rr);
   if (!c.position)
-    throw InputError("one file for both positions needs a `position` column (or give one file per position)",
-                     {source, {}, "position"});
+    throw InputError(
+        "one file for both positions needs a `position` column (or give one file per position)",
+        {source, {}, "position"});
   std::pair<MaglevSeriesFile, MaglevSeriesFile> p;
   p.first.file = p.second.file = source;
   read_into(rr, c, 0, &p.first, &p.second);
-  if (p.first.series.current_A.empty()) throw InputError("position 1 has no samples", {source, {}, "position"});
-  if (p.second.series.current_A.empty()) throw InputError("position 2 has no samples", {source, {}, "position"});
+  if (p.first.series.current_A.empty())
+    throw InputError("position 1 has no samples", {source, {}, "position"});
+  if (p.second.series.current_A.empty())
+    throw InputError("position 2 has no samples", {source, {}, "position"});
   return p;
 }
 
@@ -145,8 +152,10 @@ maglev::CalibrationInput read_maglev_calibration_table(const std::string& path) 
     for (std::size_t k = 0; k < chunk.size(); ++k) {
       const Record r = chunk[k];
       if (r.size() < 5)
-        throw InputError(fmt::format("expected 5 columns (azimuth, mean1, sigma1, mean2, sigma2), got {}", r.size()),
-                         r.context());
+        throw InputError(
+            fmt::format("expected 5 columns (azimuth, mean1, sigma1, mean2, sigma2), got {}",
+                        r.size()),
+            r.context());
       maglev::CalibrationSetup s;
       s.azimuth_rad = r.angle(col[0], {"azimuth"}).rad();
       s.mean1_A = {r.number(col[1], {"mean1"}), r.number(col[2], {"sigma1"})};
@@ -170,28 +179,33 @@ std::string maglev_series_csv(const maglev::PositionSeries& s, const std::string
   return out;
 }
 
-std::string maglev_two_position_csv(const maglev::PositionSeries& p1, const maglev::PositionSeries& p2,
+std::string maglev_two_position_csv(const maglev::PositionSeries& p1,
+                                    const maglev::PositionSeries& p2,
                                     const std::string& header_comment) {
   std::string out = comment_lines(header_comment);
   out += "time [s],current [A],position\n";
-  for (std::size_t i = 0; i < p1.current_A.size(); ++i) out += fmt::format("{:.17g},{:.17g},1\n", p1.time_s[i], p1.current_A[i]);
-  for (std::size_t i = 0; i < p2.current_A.size(); ++i) out += fmt::format("{:.17g},{:.17g},2\n", p2.time_s[i], p2.current_A[i]);
+  for (std::size_t i = 0; i < p1.current_A.size(); ++i)
+    out += fmt::format("{:.17g},{:.17g},1\n", p1.time_s[i], p1.current_A[i]);
+  for (std::size_t i = 0; i < p2.current_A.size(); ++i)
+    out += fmt::format("{:.17g},{:.17g},2\n", p2.time_s[i], p2.current_A[i]);
   return out;
 }
 
-std::string maglev_calibration_csv(const maglev::CalibrationInput& in, const std::string& header_comment) {
+std::string maglev_calibration_csv(const maglev::CalibrationInput& in,
+                                   const std::string& header_comment) {
   std::string out = comment_lines(header_comment);
   out += "azimuth [deg],mean1 [A],sigma1 [A],mean2 [A],sigma2 [A]\n";
   for (const auto& s : in.setups)
-    out += fmt::format("{:.10f},{:.12g},{:.4g},{:.12g},{:.4g}\n", units::rad_to_deg(s.azimuth_rad), s.mean1_A.value,
-                       s.mean1_A.sigma, s.mean2_A.value, s.mean2_A.sigma);
+    out += fmt::format("{:.10f},{:.12g},{:.4g},{:.12g},{:.4g}\n", units::rad_to_deg(s.azimuth_rad),
+                       s.mean1_A.value, s.mean1_A.sigma, s.mean2_A.value, s.mean2_A.sigma);
   return out;
 }
 
 MaglevConstants read_maglev_constants(const std::string& path) {
   const Node root = Node::load_file(path);
   MaglevConstants c;
-  const bool calibration = root.has("kind") && root.require("kind").string() == "maglev-calibration";
+  const bool calibration =
+      root.has("kind") && root.require("kind").string() == "maglev-calibration";
   if (!calibration)
     root.allow_only({"scale_A_s_per_rad", "scale_sigma_A_s_per_rad", "latitude", "circle_reading1",
                      "constant_deviation_A", "constant_deviation_sigma_A"});

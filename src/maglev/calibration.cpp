@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include "meridian/adjust/least_squares.hpp"
 #include "meridian/core/error.hpp"
@@ -36,7 +36,8 @@ LineFit fit_line(const std::vector<double>& az, const std::vector<Uncertain>& y,
 
 CalibrationResult calibrate(const CalibrationInput& in) {
   if (in.setups.size() < 3)
-    throw InputError(fmt::format("{} set-ups are too few (at least 3 azimuths)", in.setups.size()), at("setups"));
+    throw InputError(fmt::format("{} set-ups are too few (at least 3 azimuths)", in.setups.size()),
+                     at("setups"));
   if (!std::isfinite(in.latitude_rad) || std::abs(in.latitude_rad) >= units::kPi / 2)
     throw InputError("the latitude must be within ±90° (exclusive)", at("latitude"));
   std::vector<double> az;
@@ -45,12 +46,15 @@ CalibrationResult calibrate(const CalibrationInput& in) {
     const auto& s = in.setups[i];
     for (const Uncertain* u : {&s.mean1_A, &s.mean2_A})
       if (!std::isfinite(u->value) || !(u->sigma > 0.0) || !std::isfinite(u->sigma))
-        throw InputError("a mean needs a finite value and a σ > 0", at(fmt::format("setups[{}]", i)));
-    if (!std::isfinite(s.azimuth_rad)) throw InputError("azimuth is not finite", at(fmt::format("setups[{}].azimuth", i)));
+        throw InputError("a mean needs a finite value and a σ > 0",
+                         at(fmt::format("setups[{}]", i)));
+    if (!std::isfinite(s.azimuth_rad))
+      throw InputError("azimuth is not finite", at(fmt::format("setups[{}].azimuth", i)));
     az.push_back(s.azimuth_rad);
     y1.push_back(s.mean1_A);
     y2.push_back(s.mean2_A);
-    ym.push_back({0.5 * (s.mean1_A.value + s.mean2_A.value), 0.5 * std::hypot(s.mean1_A.sigma, s.mean2_A.sigma)});
+    ym.push_back({0.5 * (s.mean1_A.value + s.mean2_A.value),
+                  0.5 * std::hypot(s.mean1_A.sigma, s.mean2_A.sigma)});
   }
   bool distinct = false;
   for (double a : az) distinct = distinct || a != az[0];
@@ -87,7 +91,8 @@ CalibrationResult calibrate(const CalibrationInput& in) {
   // u = sin α* = (c2 − c1)/(k1 − k2), I* = k1·u + c1.
   const double u = (c2 - c1) / dk;
   if (!(std::abs(u) < 1.0))
-    throw NumericalError(fmt::format("the lines intersect at sin α* = {:.6g}, outside (−1, 1)", u), at("setups"));
+    throw NumericalError(fmt::format("the lines intersect at sin α* = {:.6g}, outside (−1, 1)", u),
+                         at("setups"));
   const double as = std::asin(u);
   const double is = k1 * u + c1;
   {
@@ -107,24 +112,28 @@ CalibrationResult calibrate(const CalibrationInput& in) {
   r.mean_slope_z = r.mean_line.slope_A_per_rad.value / r.mean_line.slope_A_per_rad.sigma;
   r.mean_line_constant = adjust::normal_two_sided_probability(r.mean_slope_z) >= in.alpha;
   if (r.trend_significant)
-    r.warnings.push_back(fmt::format(
-        "trend deviation: the slopes differ in magnitude (k1 + k2 = {:.6g} A/rad, z = {:.2f}): the result "
-        "depends on the set-up azimuth; set up near α* = {:.1f}″",
-        r.trend_deviation_A_per_rad.value, r.trend_z, as / units::kArcsecond));
+    r.warnings.push_back(
+        fmt::format("trend deviation: the slopes differ in magnitude (k1 + k2 = {:.6g} A/rad, z = "
+                    "{:.2f}): the result "
+                    "depends on the set-up azimuth; set up near α* = {:.1f}″",
+                    r.trend_deviation_A_per_rad.value, r.trend_z, as / units::kArcsecond));
   if (!r.mean_line_constant)
-    r.warnings.push_back(fmt::format("calibration defect: the mean line (I1 + I2)/2 has a slope of {:.6g} A/rad "
-                                     "(z = {:.2f}): the constant deviation is not constant",
-                                     r.mean_line.slope_A_per_rad.value, r.mean_slope_z));
+    r.warnings.push_back(
+        fmt::format("calibration defect: the mean line (I1 + I2)/2 has a slope of {:.6g} A/rad "
+                    "(z = {:.2f}): the constant deviation is not constant",
+                    r.mean_line.slope_A_per_rad.value, r.mean_slope_z));
   if (in.nominal_scale_A_s_per_rad) {
     const double a = *in.nominal_scale_A_s_per_rad * f / 2.0;
     const double z1 = (k1 - a) / r.position1.slope_A_per_rad.sigma;
     const double z2 = (k2 + a) / r.position2.slope_A_per_rad.sigma;
-    r.notes.push_back(fmt::format("slopes against ±K·ω·cos φ = ±{:.6g} A/rad: z1 = {:.2f}, z2 = {:.2f}", a, z1, z2));
+    r.notes.push_back(fmt::format(
+        "slopes against ±K·ω·cos φ = ±{:.6g} A/rad: z1 = {:.2f}, z2 = {:.2f}", a, z1, z2));
   }
   for (const LineFit* lf : {&r.position1, &r.position2, &r.mean_line})
     if (lf->global_test.dof > 0 && lf->global_test.rejected)
-      r.warnings.push_back(fmt::format("a line's residuals exceed the means' σ (σ̂0 = {:.2f}): the σ may be optimistic",
-                                       lf->global_test.sigma0));
+      r.warnings.push_back(fmt::format(
+          "a line's residuals exceed the means' σ (σ̂0 = {:.2f}): the σ may be optimistic",
+          lf->global_test.sigma0));
   return r;
 }
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 
 #include <fmt/format.h>
 
@@ -19,7 +19,8 @@ std::string to_string(ThresholdRule rule) {
 ThresholdKind threshold_kind_from_string(std::string_view text) {
   if (text == "soft") return ThresholdKind::Soft;
   if (text == "hard") return ThresholdKind::Hard;
-  throw InputError(fmt::format("unknown threshold \"{}\" (soft or hard)", text), ErrorContext{{}, std::nullopt, "threshold"});
+  throw InputError(fmt::format("unknown threshold \"{}\" (soft or hard)", text),
+                   ErrorContext{{}, std::nullopt, "threshold"});
 }
 
 ThresholdRule threshold_rule_from_string(std::string_view text) {
@@ -45,7 +46,9 @@ double median_abs(std::span<const double> v) {
   const std::size_t n = v.size();
   const std::size_t k_hi = n / 2;
   const std::size_t k_lo = n % 2 == 0 ? n / 2 - 1 : n / 2;
-  auto key = [](double x) { return static_cast<std::uint32_t>(std::bit_cast<std::uint64_t>(std::abs(x)) >> 48); };
+  auto key = [](double x) {
+    return static_cast<std::uint32_t>(std::bit_cast<std::uint64_t>(std::abs(x)) >> 48);
+  };
   std::vector<std::uint32_t> hist(1u << 16, 0);
   for (double x : v) ++hist[key(x)];
   auto locate = [&](std::size_t k, std::size_t& before) {
@@ -90,7 +93,8 @@ double sure_threshold(std::span<const double> x) {
   std::sort(s.begin(), s.end());
   const double nd = static_cast<double>(n);
   const double limit = std::sqrt(2.0 * std::log(std::max(nd, 2.0)));
-  // SURE(t_k) with t_k² = s[k]: n − 2(k+1) + Σ_{i≤k} s_i + (n−k−1)·s_k; t = 0 gives n·1 − 2·0 … = n.
+  // SURE(t_k) with t_k² = s[k]: n − 2(k+1) + Σ_{i≤k} s_i + (n−k−1)·s_k; t = 0 gives n·1 − 2·0 … =
+  // n.
   double best_t = 0.0;
   double best_risk = nd;  // t = 0: nothing shrunk, risk n
   double cumulative = 0.0;
@@ -98,8 +102,8 @@ double sure_threshold(std::span<const double> x) {
     cumulative += s[k];
     const double t = std::sqrt(s[k]);
     if (t > limit) break;
-    const double risk = nd - 2.0 * static_cast<double>(k + 1) + cumulative +
-                        static_cast<double>(n - k - 1) * s[k];
+    const double risk =
+        nd - 2.0 * static_cast<double>(k + 1) + cumulative + static_cast<double>(n - k - 1) * s[k];
     if (risk < best_risk) {
       best_risk = risk;
       best_t = t;

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include "meridian/adjust/least_squares.hpp"
 #include "meridian/core/angle.hpp"
@@ -45,10 +45,11 @@ TwoPositionSolution two_position(Uncertain m1, Uncertain m2, Uncertain K, double
   s.ratio = (m1.value - m2.value) / (2.0 * A.value);
   if (!(std::abs(s.ratio) <= 1.0))
     throw NumericalError(
-        fmt::format("|(I1 − I2)/(2·K·ω·cos φ)| = {:.6g} > 1: the position means ({:.9g} A, {:.9g} A) "
-                    "do not fit the scale K = {:.9g} A·s/rad at this latitude (check K, the latitude, "
-                    "or whether the positions are 180° apart)",
-                    std::abs(s.ratio), m1.value, m2.value, K.value),
+        fmt::format(
+            "|(I1 − I2)/(2·K·ω·cos φ)| = {:.6g} > 1: the position means ({:.9g} A, {:.9g} A) "
+            "do not fit the scale K = {:.9g} A·s/rad at this latitude (check K, the latitude, "
+            "or whether the positions are 180° apart)",
+            std::abs(s.ratio), m1.value, m2.value, K.value),
         field("alpha1"));
   const double a = std::asin(s.ratio);
   const double ca = std::cos(a);
@@ -69,18 +70,21 @@ CoarseSolution coarse_seek(const std::vector<CoarsePosition>& positions, Uncerta
   require(r1, "circle_reading");
   for (const auto& p : positions) {
     require(p.mean_A, "mean");
-    if (!std::isfinite(p.offset_rad)) throw InputError("a position offset is not finite", field("offset"));
+    if (!std::isfinite(p.offset_rad))
+      throw InputError("a position offset is not finite", field("offset"));
   }
   const Uncertain A = directive_amplitude(K, latitude_rad);
   CoarseSolution out;
-  if (positions.empty()) throw InputError("coarse seeking needs at least one position", field("positions"));
+  if (positions.empty())
+    throw InputError("coarse seeking needs at least one position", field("positions"));
   if (positions.size() == 1) {
     if (!bias) throw InputError("one coarse position needs an assumed bias b", field("bias"));
     require(*bias, "bias");
     const auto& p = positions[0];
     const double ratio = (p.mean_A.value - bias->value) / A.value;
     if (!(std::abs(ratio) < 1.0))
-      throw NumericalError(fmt::format("|(I − b)/(K·ω·cos φ)| = {:.6g} ≥ 1", std::abs(ratio)), field("alpha1"));
+      throw NumericalError(fmt::format("|(I − b)/(K·ω·cos φ)| = {:.6g} ≥ 1", std::abs(ratio)),
+                           field("alpha1"));
     const double phi = std::asin(ratio);  // α_1 + θ
     const double a = std::remainder(phi - p.offset_rad, 2.0 * units::kPi);
     const double sig = std::hypot(p.mean_A.sigma, bias->sigma) / (A.value * std::cos(phi));
@@ -88,12 +92,16 @@ CoarseSolution coarse_seek(const std::vector<CoarsePosition>& positions, Uncerta
     out.alpha1_rad = {a, std::hypot(sig, sig_k)};
     out.bias_A = *bias;
   } else if (positions.size() == 2) {
-    const double d = std::remainder(positions[1].offset_rad - positions[0].offset_rad, 2.0 * units::kPi);
+    const double d =
+        std::remainder(positions[1].offset_rad - positions[0].offset_rad, 2.0 * units::kPi);
     if (std::abs(std::abs(d) - units::kPi) > 1e-9)
-      throw InputError("two coarse positions must be 180° apart (or give three or more)", field("positions"));
-    const auto s = two_position(positions[0].mean_A, positions[1].mean_A, K, latitude_rad, {0.0, 0.0});
-    out.alpha1_rad = {std::remainder(s.alpha1_rad.value - positions[0].offset_rad, 2.0 * units::kPi),
-                      s.alpha1_rad.sigma};
+      throw InputError("two coarse positions must be 180° apart (or give three or more)",
+                       field("positions"));
+    const auto s =
+        two_position(positions[0].mean_A, positions[1].mean_A, K, latitude_rad, {0.0, 0.0});
+    out.alpha1_rad = {
+        std::remainder(s.alpha1_rad.value - positions[0].offset_rad, 2.0 * units::kPi),
+        s.alpha1_rad.sigma};
     out.bias_A = s.bias_A;
   } else {
     const auto n = static_cast<Eigen::Index>(positions.size());
@@ -101,7 +109,8 @@ CoarseSolution coarse_seek(const std::vector<CoarsePosition>& positions, Uncerta
     Eigen::VectorXd l(n), sig(n);
     for (Eigen::Index i = 0; i < n; ++i) {
       const auto& p = positions[static_cast<std::size_t>(i)];
-      if (!(p.mean_A.sigma > 0.0)) throw InputError("coarse position means need a σ > 0", field("mean"));
+      if (!(p.mean_A.sigma > 0.0))
+        throw InputError("coarse position means need a σ > 0", field("mean"));
       Am(i, 0) = std::cos(p.offset_rad);  // s = A sin α
       Am(i, 1) = std::sin(p.offset_rad);  // c = A cos α
       Am(i, 2) = 1.0;
@@ -116,10 +125,12 @@ CoarseSolution coarse_seek(const std::vector<CoarsePosition>& positions, Uncerta
     const double var = g.dot(r.cofactor.topLeftCorner(2, 2) * g);
     const Eigen::Vector2d h(s / std::sqrt(a2), c / std::sqrt(a2));
     out.alpha1_rad = {std::atan2(s, c), std::sqrt(var)};
-    out.amplitude_A = Uncertain{std::sqrt(a2), std::sqrt(h.dot(r.cofactor.topLeftCorner(2, 2) * h))};
+    out.amplitude_A =
+        Uncertain{std::sqrt(a2), std::sqrt(h.dot(r.cofactor.topLeftCorner(2, 2) * h))};
     out.bias_A = {r.x(2), std::sqrt(r.cofactor(2, 2))};
   }
-  out.north_rad = {wrap(r1.value - out.alpha1_rad.value), std::hypot(r1.sigma, out.alpha1_rad.sigma)};
+  out.north_rad = {wrap(r1.value - out.alpha1_rad.value),
+                   std::hypot(r1.sigma, out.alpha1_rad.sigma)};
   return out;
 }
 

@@ -14,7 +14,7 @@ namespace {
 ErrorContext at(const std::string& f) { return ErrorContext{{}, std::nullopt, f}; }
 
 PositionResult process_position(const PositionSeries& s, const ReduceOptions& o,
-                                 std::vector<std::string>& notes, const std::string& name) {
+                                std::vector<std::string>& notes, const std::string& name) {
   PositionResult r;
   const auto& x = s.current_A;
   r.samples = x.size();
@@ -30,8 +30,9 @@ PositionResult process_position(const PositionSeries& s, const ReduceOptions& o,
       throw;
     }
     for (const auto& seg : r.stationarity->segments)
-      if (!seg.kept) std::fill(r.kept_mask.begin() + static_cast<std::ptrdiff_t>(seg.begin),
-                               r.kept_mask.begin() + static_cast<std::ptrdiff_t>(seg.end), 0);
+      if (!seg.kept)
+        std::fill(r.kept_mask.begin() + static_cast<std::ptrdiff_t>(seg.begin),
+                  r.kept_mask.begin() + static_cast<std::ptrdiff_t>(seg.end), 0);
   }
   std::vector<double> kept_raw, kept_clean;
   kept_raw.reserve(x.size());
@@ -55,14 +56,15 @@ PositionResult process_position(const PositionSeries& s, const ReduceOptions& o,
         DenoiseOptions d = o.denoising;
         d.level = level;
         const auto den = denoise(run, d);
-        std::copy(den.values.begin(), den.values.end(), r.cleaned_A.begin() + static_cast<std::ptrdiff_t>(i));
+        std::copy(den.values.begin(), den.values.end(),
+                  r.cleaned_A.begin() + static_cast<std::ptrdiff_t>(i));
         if (run.size() > longest) {
           longest = run.size();
           r.noise_sigma_A = den.noise_sigma;
         }
         if (level < o.denoising.level)
-          notes.push_back(fmt::format("{}: samples {}…{} denoised with level {} (too short for {})", name, i,
-                                      j - 1, level, o.denoising.level));
+          notes.push_back(fmt::format("{}: samples {}…{} denoised with level {} (too short for {})",
+                                      name, i, j - 1, level, o.denoising.level));
       }
     }
     kept_clean.insert(kept_clean.end(), r.cleaned_A.begin() + static_cast<std::ptrdiff_t>(i),
@@ -81,8 +83,9 @@ PositionResult process_position(const PositionSeries& s, const ReduceOptions& o,
     r.kept.lags = lr.lags;
   }
   if (r.kept.lag_limit_reached)
-    notes.push_back(fmt::format("{}: the series is correlated beyond {} lags; σ of its mean may be optimistic",
-                                name, kMaxLongRunLag));
+    notes.push_back(
+        fmt::format("{}: the series is correlated beyond {} lags; σ of its mean may be optimistic",
+                    name, kMaxLongRunLag));
   double sum = 0.0;
   for (double v : kept_clean) sum += v;
   const double mc = sum / static_cast<double>(kept_clean.size());
@@ -110,15 +113,18 @@ void validate_series(const PositionSeries& s, const std::string& field) {
       throw InputError(fmt::format("sample {} is not a finite number", i),
                        at(fmt::format("{}.current_A[{}]", field, i)));
     if (!std::isfinite(s.time_s[i]))
-      throw InputError(fmt::format("time {} is not a finite number", i), at(fmt::format("{}.time_s[{}]", field, i)));
-    if (i > 0 && !(s.time_s[i] > s.time_s[i - 1]))
-      throw InputError(fmt::format("time does not increase ({} s after {} s)", s.time_s[i], s.time_s[i - 1]),
+      throw InputError(fmt::format("time {} is not a finite number", i),
                        at(fmt::format("{}.time_s[{}]", field, i)));
+    if (i > 0 && !(s.time_s[i] > s.time_s[i - 1]))
+      throw InputError(
+          fmt::format("time does not increase ({} s after {} s)", s.time_s[i], s.time_s[i - 1]),
+          at(fmt::format("{}.time_s[{}]", field, i)));
   }
   const auto [lo, hi] = std::minmax_element(s.current_A.begin(), s.current_A.end());
   if (*lo == *hi)
-    throw InputError(fmt::format("the series is constant ({} A): no rotor current was recorded", *lo),
-                     at(field + ".current_A"));
+    throw InputError(
+        fmt::format("the series is constant ({} A): no rotor current was recorded", *lo),
+        at(field + ".current_A"));
 }
 
 ReduceResult process(const ReduceInput& in, Progress* progress) {
@@ -134,7 +140,8 @@ ReduceResult process(const ReduceInput& in, Progress* progress) {
   const auto solve = [&](Uncertain m1, Uncertain m2) {
     return two_position(m1, m2, in.scale_A_s_per_rad, in.latitude_rad, in.circle_reading1_rad);
   };
-  r.plain = solve({r.position1.raw.mean, r.position1.raw.sigma}, {r.position2.raw.mean, r.position2.raw.sigma});
+  r.plain = solve({r.position1.raw.mean, r.position1.raw.sigma},
+                  {r.position2.raw.mean, r.position2.raw.sigma});
   r.processed = solve(r.position1.cleaned_mean_A, r.position2.cleaned_mean_A);
   // Median and Huber: secondary, for comparison; a failure there does not stop the determination.
   const double eff = std::sqrt(units::kPi / 2.0);
@@ -158,21 +165,24 @@ ReduceResult process(const ReduceInput& in, Progress* progress) {
                                r.position2.cleaned_mean_A.sigma * r.position2.cleaned_mean_A.sigma +
                                4.0 * b.sigma * b.sigma);
     ReduceResult::Symmetry sym;
-    const double d = r.position1.cleaned_mean_A.value + r.position2.cleaned_mean_A.value - 2.0 * b.value;
+    const double d =
+        r.position1.cleaned_mean_A.value + r.position2.cleaned_mean_A.value - 2.0 * b.value;
     sym.z = s > 0.0 ? d / s : (d == 0.0 ? 0.0 : HUGE_VAL);
     sym.p = std::isfinite(sym.z) ? adjust::normal_two_sided_probability(sym.z) : 0.0;
     sym.passed = sym.p >= in.options.stationarity.alpha;
     r.symmetry = sym;
     if (!sym.passed)
-      r.warnings.push_back(fmt::format(
-          "symmetry check failed: the positions are not symmetric about the prior bias {:.6g} A (z = {:.2f}); "
-          "one position may still be disturbed or the bias has changed",
-          b.value, sym.z));
+      r.warnings.push_back(
+          fmt::format("symmetry check failed: the positions are not symmetric about the prior bias "
+                      "{:.6g} A (z = {:.2f}); "
+                      "one position may still be disturbed or the bias has changed",
+                      b.value, sym.z));
   }
   if (in.chain) {
     const auto& c = *in.chain;
     gyro::AzimuthChainInput ci;
-    const double ag = std::remainder(c.target_reading_rad.value - r.processed.north_rad.value, 2.0 * units::kPi);
+    const double ag =
+        std::remainder(c.target_reading_rad.value - r.processed.north_rad.value, 2.0 * units::kPi);
     ci.gyro_azimuth_rad = {ag, std::hypot(c.target_reading_rad.sigma, r.processed.north_rad.sigma)};
     ci.instrument_constant_rad = c.instrument_constant_rad;
     ci.latitude_rad = in.latitude_rad;

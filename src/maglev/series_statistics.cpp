@@ -58,7 +58,8 @@ MeanEstimate mean_with_autocorrelation(std::span<const double> x) {
   for (double v : x) s += v;
   e.mean = s / static_cast<double>(e.n);
   // Lags on demand: pair sums until the first non-positive one.
-  const std::size_t cap = std::min<std::size_t>(e.n - 1, static_cast<std::size_t>(kMaxLongRunLag) + 1);
+  const std::size_t cap =
+      std::min<std::size_t>(e.n - 1, static_cast<std::size_t>(kMaxLongRunLag) + 1);
   const double g0 = lag_product(x, e.mean, 0);
   e.variance = g0;
   double sum = 0.0;

@@ -11,19 +11,25 @@
 namespace meridian::maglev {
 
 PositionSeries simulate_series(double mean_A, const NoiseSpec& spec, std::uint64_t seed) {
-  if (spec.samples < 2 || !(spec.rate_hz > 0.0)) throw InputError("the simulator needs ≥ 2 samples and a rate > 0");
-  if (!(spec.white_sigma_A >= 0.0) || !(spec.ar1_sigma_A >= 0.0)) throw InputError("noise σ must be ≥ 0");
-  if (!(std::abs(spec.ar1_phi) < 1.0)) throw InputError("the AR(1) coefficient must be within (−1, 1)");
+  if (spec.samples < 2 || !(spec.rate_hz > 0.0))
+    throw InputError("the simulator needs ≥ 2 samples and a rate > 0");
+  if (!(spec.white_sigma_A >= 0.0) || !(spec.ar1_sigma_A >= 0.0))
+    throw InputError("noise σ must be ≥ 0");
+  if (!(std::abs(spec.ar1_phi) < 1.0))
+    throw InputError("the AR(1) coefficient must be within (−1, 1)");
   for (const auto& b : spec.bursts)
     if (!(b.end_s > b.begin_s) || b.frequency_begin_hz < 0.0 || b.frequency_end_hz < 0.0)
-      throw InputError(fmt::format("burst [{} s, {} s) is empty or has a negative frequency", b.begin_s, b.end_s));
+      throw InputError(fmt::format("burst [{} s, {} s) is empty or has a negative frequency",
+                                   b.begin_s, b.end_s));
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n01(0.0, 1.0);
   PositionSeries s;
   s.time_s.resize(spec.samples);
   s.current_A.resize(spec.samples);
   const double dt = 1.0 / spec.rate_hz;
-  double u = spec.ar1_sigma_A > 0.0 ? n01(rng) * spec.ar1_sigma_A / std::sqrt(1.0 - spec.ar1_phi * spec.ar1_phi) : 0.0;
+  double u = spec.ar1_sigma_A > 0.0
+                 ? n01(rng) * spec.ar1_sigma_A / std::sqrt(1.0 - spec.ar1_phi * spec.ar1_phi)
+                 : 0.0;
   for (std::size_t i = 0; i < spec.samples; ++i) {
     const double t = spec.start_s + static_cast<double>(i) * dt;
     s.time_s[i] = t;
@@ -35,8 +41,9 @@ PositionSeries simulate_series(double mean_A, const NoiseSpec& spec, std::uint64
       const double len = b.end_s - b.begin_s;
       const double tau = t - b.begin_s;
       // Linear chirp: phase = 2π(f0·τ + (f1 − f0)·τ²/(2·len)).
-      const double phase =
-          2.0 * units::kPi * (b.frequency_begin_hz * tau + (b.frequency_end_hz - b.frequency_begin_hz) * tau * tau / (2.0 * len));
+      const double phase = 2.0 * units::kPi *
+                           (b.frequency_begin_hz * tau +
+                            (b.frequency_end_hz - b.frequency_begin_hz) * tau * tau / (2.0 * len));
       const double edge = 0.1 * len;
       double env = 1.0;
       if (tau < edge) env = 0.5 * (1.0 - std::cos(units::kPi * tau / edge));
@@ -48,20 +55,22 @@ PositionSeries simulate_series(double mean_A, const NoiseSpec& spec, std::uint64
   return s;
 }
 
-ReduceInput simulate_determination(const TwoPositionTruth& truth, const NoiseSpec& spec1, const NoiseSpec& spec2,
-                                   std::uint64_t seed) {
+ReduceInput simulate_determination(const TwoPositionTruth& truth, const NoiseSpec& spec1,
+                                   const NoiseSpec& spec2, std::uint64_t seed) {
   ReduceInput in;
   in.scale_A_s_per_rad = {truth.scale_A_s_per_rad, 0.0};
   in.latitude_rad = truth.latitude_rad;
   in.circle_reading1_rad = {truth.circle_reading1_rad, 0.0};
-  const double A = truth.scale_A_s_per_rad * units::kEarthRotationRate_rad_s * std::cos(truth.latitude_rad);
+  const double A =
+      truth.scale_A_s_per_rad * units::kEarthRotationRate_rad_s * std::cos(truth.latitude_rad);
   const double s = std::sin(truth.alpha1_rad);
   in.position1 = simulate_series(A * s + truth.bias_A, spec1, seed);
   in.position2 = simulate_series(-A * s + truth.bias_A, spec2, seed + 1);
   return in;
 }
 
-CalibrationInput simulate_calibration(const CalibrationTruth& truth, const NoiseSpec& spec, std::uint64_t seed) {
+CalibrationInput simulate_calibration(const CalibrationTruth& truth, const NoiseSpec& spec,
+                                      std::uint64_t seed) {
   CalibrationInput in;
   in.latitude_rad = truth.latitude_rad;
   const double u = std::sin(truth.best_azimuth_rad);
@@ -79,4 +88,3 @@ CalibrationInput simulate_calibration(const CalibrationTruth& truth, const Noise
 }
 
 }  // namespace meridian::maglev
-

@@ -25,7 +25,8 @@ StationarityResult test_stationarity(std::span<const double> x, const Stationari
   if (!(o.alpha > 0.0 && o.alpha < 1.0))
     throw InputError(fmt::format("significance level {} is not in (0, 1)", o.alpha),
                      ErrorContext{{}, std::nullopt, "alpha"});
-  const std::size_t L = o.segment_length == 0 ? std::max<std::size_t>(64, n / 20) : o.segment_length;
+  const std::size_t L =
+      o.segment_length == 0 ? std::max<std::size_t>(64, n / 20) : o.segment_length;
   if (L < 32)
     throw InputError(fmt::format("segment length {} is too short (at least 32 samples)", L),
                      ErrorContext{{}, std::nullopt, "segment_length"});
@@ -34,9 +35,10 @@ StationarityResult test_stationarity(std::span<const double> x, const Stationari
                      ErrorContext{{}, std::nullopt, "segment_length"});
   const int M = o.autocovariance_lags;
   if (M < 1 || static_cast<std::size_t>(M) >= L / 4)
-    throw InputError(fmt::format("{} autocovariance lags are not possible with segments of {} (1 … {})", M,
-                                 L, L / 4 - 1),
-                     ErrorContext{{}, std::nullopt, "autocovariance_lags"});
+    throw InputError(
+        fmt::format("{} autocovariance lags are not possible with segments of {} (1 … {})", M, L,
+                    L / 4 - 1),
+        ErrorContext{{}, std::nullopt, "autocovariance_lags"});
   // Lags of the reference autocovariance: enough for the long-run variance, at most L/4.
   const int J = static_cast<int>(std::min<std::size_t>(L / 4, 200));
 
@@ -126,12 +128,13 @@ StationarityResult test_stationarity(std::span<const double> x, const Stationari
       const std::size_t m = s.end - s.begin;
       n_kept += m;
       sum += s.mean * static_cast<double>(m);
-      for (std::size_t k = 0; k < gamma.size(); ++k) gamma[k] += acov[i][k] * static_cast<double>(m);
+      for (std::size_t k = 0; k < gamma.size(); ++k)
+        gamma[k] += acov[i][k] * static_cast<double>(m);
     }
     if (n_kept == 0)
       throw NumericalError(fmt::format(
-          "no stable segment: all {} segments of {} samples fail the stationarity tests at α = {}", S, L,
-          o.alpha));
+          "no stable segment: all {} segments of {} samples fail the stationarity tests at α = {}",
+          S, L, o.alpha));
     mu = sum / static_cast<double>(n_kept);
     for (double& gk : gamma) gk /= static_cast<double>(n_kept);
     r.reference_mean = mu;

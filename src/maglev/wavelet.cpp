@@ -15,16 +15,26 @@ namespace {
 
 std::span<const double> scaling_filter(int order) {
   switch (order) {
-    case 2: return kDb2;
-    case 3: return kDb3;
-    case 4: return kDb4;
-    case 5: return kDb5;
-    case 6: return kDb6;
-    case 7: return kDb7;
-    case 8: return kDb8;
-    case 9: return kDb9;
-    case 10: return kDb10;
-    default: break;
+    case 2:
+      return kDb2;
+    case 3:
+      return kDb3;
+    case 4:
+      return kDb4;
+    case 5:
+      return kDb5;
+    case 6:
+      return kDb6;
+    case 7:
+      return kDb7;
+    case 8:
+      return kDb8;
+    case 9:
+      return kDb9;
+    case 10:
+      return kDb10;
+    default:
+      break;
   }
   throw InputError(fmt::format("Daubechies wavelet db{} is not available (db2 … db10)", order),
                    ErrorContext{{}, std::nullopt, "wavelet"});
@@ -43,7 +53,7 @@ std::size_t symmetric_index(std::ptrdiff_t m, std::size_t n) {
   std::ptrdiff_t p = m % period;
   if (p < 0) p += period;
   return p < static_cast<std::ptrdiff_t>(n) ? static_cast<std::size_t>(p)
-                                             : static_cast<std::size_t>(period - 1 - p);
+                                            : static_cast<std::size_t>(period - 1 - p);
 }
 
 // out[o] = Σ_j f[j]·e[first + 2o + j] for both filters at once (the inner loop of every
@@ -70,8 +80,8 @@ void correlate_down_fixed(const double* e, const double* pl, const double* ph, d
 
 // y[2q] = Σ_{j<F/2} rec_lo[2j]·a[q+F/2−1−j] + rec_hi[2j]·d[…]; y[2q+1] with the odd taps.
 template <std::size_t F>
-void upsample_valid_fixed(const double* a, const double* d, const double* rl, const double* rh, double* y,
-                          std::size_t count) {
+void upsample_valid_fixed(const double* a, const double* d, const double* rl, const double* rh,
+                          double* y, std::size_t count) {
   constexpr std::size_t F2 = F / 2;
   // Taps reversed so that the inner loop runs forwards over a and d.
   double le[F2], lo[F2], he[F2], ho[F2];
@@ -94,18 +104,37 @@ void upsample_valid_fixed(const double* a, const double* d, const double* rl, co
   }
 }
 
-#define MERIDIAN_MAGLEV_DISPATCH(F, CALL) \
-  switch (F) {                            \
-    case 4: CALL(4); break;               \
-    case 6: CALL(6); break;               \
-    case 8: CALL(8); break;               \
-    case 10: CALL(10); break;             \
-    case 12: CALL(12); break;             \
-    case 14: CALL(14); break;             \
-    case 16: CALL(16); break;             \
-    case 18: CALL(18); break;             \
-    case 20: CALL(20); break;             \
-    default: throw NumericalError("unsupported filter length"); \
+#define MERIDIAN_MAGLEV_DISPATCH(F, CALL)                \
+  switch (F) {                                           \
+    case 4:                                              \
+      CALL(4);                                           \
+      break;                                             \
+    case 6:                                              \
+      CALL(6);                                           \
+      break;                                             \
+    case 8:                                              \
+      CALL(8);                                           \
+      break;                                             \
+    case 10:                                             \
+      CALL(10);                                          \
+      break;                                             \
+    case 12:                                             \
+      CALL(12);                                          \
+      break;                                             \
+    case 14:                                             \
+      CALL(14);                                          \
+      break;                                             \
+    case 16:                                             \
+      CALL(16);                                          \
+      break;                                             \
+    case 18:                                             \
+      CALL(18);                                          \
+      break;                                             \
+    case 20:                                             \
+      CALL(20);                                          \
+      break;                                             \
+    default:                                             \
+      throw NumericalError("unsupported filter length"); \
   }
 
 }  // namespace
@@ -148,7 +177,8 @@ Wavelet Wavelet::from_name(std::string_view name) {
     }
     if (digits && order >= 2 && order <= 10 && lower[2] != '0') return Wavelet(order);
   }
-  throw InputError(fmt::format("unknown wavelet \"{}\" (db2 … db10)", name), ErrorContext{{}, std::nullopt, "wavelet"});
+  throw InputError(fmt::format("unknown wavelet \"{}\" (db2 … db10)", name),
+                   ErrorContext{{}, std::nullopt, "wavelet"});
 }
 
 std::string Wavelet::name() const { return fmt::format("db{}", order_); }
@@ -167,7 +197,8 @@ int max_level(std::size_t n, const Wavelet& wavelet) {
   return level;
 }
 
-static DwtLevel dwt_unchecked(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode) {
+static DwtLevel dwt_unchecked(std::span<const double> x, const Wavelet& wavelet,
+                              ExtensionMode mode) {
   const std::size_t n = x.size();
   const std::size_t F = wavelet.filter_length();
   const std::size_t m = dwt_coefficient_length(n, F, mode);
@@ -197,15 +228,16 @@ static DwtLevel dwt_unchecked(std::span<const double> x, const Wavelet& wavelet,
   if (o_hi < o_lo) o_hi = o_lo;
   for (std::size_t o = 0; o < m; ++o) {
     if (o == o_lo && o_hi > o_lo) {
-#define MERIDIAN_CALL(N)                                                                                    \
-  correlate_down_fixed<N>(x.data() + (first + 2 * o_lo - (F - 1)), rl, rh, out.approximation.data() + o_lo, \
-                          out.detail.data() + o_lo, o_hi - o_lo)
+#define MERIDIAN_CALL(N)                                                   \
+  correlate_down_fixed<N>(x.data() + (first + 2 * o_lo - (F - 1)), rl, rh, \
+                          out.approximation.data() + o_lo, out.detail.data() + o_lo, o_hi - o_lo)
       MERIDIAN_MAGLEV_DISPATCH(F, MERIDIAN_CALL)
 #undef MERIDIAN_CALL
       o = o_hi - 1;
       continue;
     }
-    const auto base = static_cast<std::ptrdiff_t>(first + 2 * o) - static_cast<std::ptrdiff_t>(F - 1);
+    const auto base =
+        static_cast<std::ptrdiff_t>(first + 2 * o) - static_cast<std::ptrdiff_t>(F - 1);
     double sa = 0.0, sd = 0.0;
     for (std::size_t j = 0; j < F; ++j) {
       const double v = extended(base + static_cast<std::ptrdiff_t>(j));
@@ -223,8 +255,8 @@ DwtLevel dwt(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mo
   return dwt_unchecked(x, wavelet, mode);
 }
 
-std::vector<double> idwt(std::span<const double> a, std::span<const double> d, const Wavelet& wavelet,
-                         ExtensionMode mode) {
+std::vector<double> idwt(std::span<const double> a, std::span<const double> d,
+                         const Wavelet& wavelet, ExtensionMode mode) {
   if (a.size() != d.size())
     throw InputError(fmt::format("approximation ({}) and detail ({}) coefficients differ in length",
                                  a.size(), d.size()));
@@ -235,8 +267,8 @@ std::vector<double> idwt(std::span<const double> a, std::span<const double> d, c
   if (mode == ExtensionMode::Symmetric) {
     const std::size_t F2 = F / 2;
     if (m < F2)
-      throw InputError(fmt::format("{} coefficients are too few to reconstruct with {} ({} needed)", m,
-                                   wavelet.name(), F2));
+      throw InputError(fmt::format("{} coefficients are too few to reconstruct with {} ({} needed)",
+                                   m, wavelet.name(), F2));
     std::vector<double> y(2 * (m - F2 + 1));
 #define MERIDIAN_CALL(N) upsample_valid_fixed<N>(a.data(), d.data(), rl, rh, y.data(), m - F2 + 1)
     MERIDIAN_MAGLEV_DISPATCH(F, MERIDIAN_CALL)
@@ -270,9 +302,10 @@ WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, E
   const int top = max_level(x.size(), wavelet);
   if (level < 1 || level > top)
     throw InputError(
-        fmt::format("level {} is not possible for {} samples with {}: levels 1 … {} (a level p needs "
-                    "at least {}·2^p samples)",
-                    level, x.size(), wavelet.name(), top, wavelet.filter_length() - 1),
+        fmt::format(
+            "level {} is not possible for {} samples with {}: levels 1 … {} (a level p needs "
+            "at least {}·2^p samples)",
+            level, x.size(), wavelet.name(), top, wavelet.filter_length() - 1),
         ErrorContext{{}, std::nullopt, "level"});
   WaveletCoefficients out;
   out.coefficients.resize(static_cast<std::size_t>(level) + 1);
@@ -288,7 +321,8 @@ WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, E
   return out;
 }
 
-std::vector<double> waverec(const WaveletCoefficients& c, const Wavelet& wavelet, ExtensionMode mode) {
+std::vector<double> waverec(const WaveletCoefficients& c, const Wavelet& wavelet,
+                            ExtensionMode mode) {
   if (c.coefficients.size() < 2)
     throw InputError("a reconstruction needs the approximation and at least one detail level");
   std::vector<double> a = c.coefficients[0];

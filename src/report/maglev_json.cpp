@@ -69,7 +69,8 @@ json maglev_reduce_to_json(const maglev::ReduceResult& r, const maglev::ReduceIn
             {"warnings", r.warnings}};
   if (r.median) j["median"] = solution(*r.median);
   if (r.huber) j["huber"] = solution(*r.huber);
-  if (r.symmetry) j["symmetry"] = {{"z", r.symmetry->z}, {"p", r.symmetry->p}, {"passed", r.symmetry->passed}};
+  if (r.symmetry)
+    j["symmetry"] = {{"z", r.symmetry->z}, {"p", r.symmetry->p}, {"passed", r.symmetry->passed}};
   if (r.chain) {
     const auto& c = *r.chain;
     j["azimuth"] = {{"gyro_deg", units::rad_to_deg(c.gyro_azimuth_rad.value)},
@@ -95,12 +96,9 @@ json maglev_reduce_to_json(const maglev::ReduceResult& r, const maglev::ReduceIn
 
 json maglev_calibration_to_json(const maglev::CalibrationResult& r) {
   auto line = [](const maglev::LineFit& f) {
-    return json{{"slope_A", f.slope_A_per_rad.value},
-                {"slope_sigma_A", f.slope_A_per_rad.sigma},
-                {"intercept_A", f.intercept_A.value},
-                {"intercept_sigma_A", f.intercept_A.sigma},
-                {"sigma0", f.global_test.sigma0},
-                {"residuals_A", f.residuals_A}};
+    return json{{"slope_A", f.slope_A_per_rad.value}, {"slope_sigma_A", f.slope_A_per_rad.sigma},
+                {"intercept_A", f.intercept_A.value}, {"intercept_sigma_A", f.intercept_A.sigma},
+                {"sigma0", f.global_test.sigma0},     {"residuals_A", f.residuals_A}};
   };
   return {{"kind", "maglev-calibration"},
           {"position1", line(r.position1)},

@@ -17,7 +17,8 @@ using meridian_test::CmdResult;
 class MaglevCli : public meridian_test::CliTest {
  protected:
   // Clean, realistic noise; 20 000 samples per position.
-  const std::string sim_ = "maglev simulate --alpha1 1.1459 --white 1e-5 --ar1-phi 0.8 --ar1-sigma 2e-6 ";
+  const std::string sim_ =
+      "maglev simulate --alpha1 1.1459 --white 1e-5 --ar1-phi 0.8 --ar1-sigma 2e-6 ";
 };
 
 std::size_t count_lines(const std::string& s) {
@@ -40,7 +41,10 @@ TEST_F(MaglevCli, CleanDeterminationToATenthOfAnArcsecond) {
 }
 
 TEST_F(MaglevCli, InterferenceIsRejectedAndListed) {
-  ASSERT_EQ(run(sim_ + "--samples 20000 --burst 1:63:103:2e-3:6e-4:0.5:8 --seed 11 --one-file --out d").code, 0);
+  ASSERT_EQ(
+      run(sim_ + "--samples 20000 --burst 1:63:103:2e-3:6e-4:0.5:8 --seed 11 --one-file --out d")
+          .code,
+      0);
   const CmdResult r = run("maglev reduce d.csv --scale 8000 --latitude 35 --json -q");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -66,7 +70,8 @@ TEST_F(MaglevCli, DenoiseWritesTheSeriesAndRefusesTooDeepALevel) {
   EXPECT_NE(out.find("db6 levels 4"), std::string::npos);
   // 1000 samples and the header line (+ 2 comment lines).
   EXPECT_EQ(count_lines(out), 1000u + 3u);
-  r = run("maglev denoise d-1.csv --wavelet db6 --level 7");  // max level for 1000 samples with db6: 6
+  r = run(
+      "maglev denoise d-1.csv --wavelet db6 --level 7");  // max level for 1000 samples with db6: 6
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("level"), std::string::npos) << r.err;
   r = run("maglev denoise d-1.csv --wavelet db12");
@@ -75,16 +80,21 @@ TEST_F(MaglevCli, DenoiseWritesTheSeriesAndRefusesTooDeepALevel) {
 }
 
 TEST_F(MaglevCli, CalibrationRecoversTheLinesAndFeedsReduce) {
-  ASSERT_EQ(run("maglev simulate --calibration-azimuths=-3,-2,-1,0,1,2,3 --slope-ratio1 1.01 --slope-ratio2 0.99 "
-                "--best-azimuth 0.11459 --constant-deviation 1.75e-5 --samples 20000 --white 1e-5 --seed 4 --out c")
+  ASSERT_EQ(run("maglev simulate --calibration-azimuths=-3,-2,-1,0,1,2,3 --slope-ratio1 1.01 "
+                "--slope-ratio2 0.99 "
+                "--best-azimuth 0.11459 --constant-deviation 1.75e-5 --samples 20000 --white 1e-5 "
+                "--seed 4 --out c")
                 .code,
             0);
   CmdResult r = run("maglev calibrate c-calibration.csv --latitude 35 --json -o cal.json");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(slurp(dir_ / "cal.json"));
-  EXPECT_NEAR(j["best_azimuth_arcsec"].get<double>(), 0.11459 * 3600, 3 * j["best_azimuth_sigma_arcsec"].get<double>());
-  EXPECT_NEAR(j["constant_deviation_A"].get<double>(), 1.75e-5, 3 * j["constant_deviation_sigma_A"].get<double>());
-  EXPECT_NEAR(j["scale_A_s_per_rad"].get<double>(), 8000, 3 * j["scale_sigma_A_s_per_rad"].get<double>());
+  EXPECT_NEAR(j["best_azimuth_arcsec"].get<double>(), 0.11459 * 3600,
+              3 * j["best_azimuth_sigma_arcsec"].get<double>());
+  EXPECT_NEAR(j["constant_deviation_A"].get<double>(), 1.75e-5,
+              3 * j["constant_deviation_sigma_A"].get<double>());
+  EXPECT_NEAR(j["scale_A_s_per_rad"].get<double>(), 8000,
+              3 * j["scale_sigma_A_s_per_rad"].get<double>());
   EXPECT_TRUE(j["trend_significant"].get<bool>());
   // The stored calibration gives reduce its K and the prior bias of the symmetry check.
   ASSERT_EQ(run(sim_ + "--samples 20000 --seed 3 --bias 1.75e-5 --out d").code, 0);

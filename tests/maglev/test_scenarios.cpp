@@ -47,8 +47,8 @@ NoiseSpec clean(std::size_t n = 20000) {
 TEST(Model, TwoPositionClosedForm) {
   const double phi = 0.6, K = 8000.0, a = 0.01;
   const double A = K * units::kEarthRotationRate_rad_s * std::cos(phi);
-  const auto s = two_position({A * std::sin(a) + 1e-3, 1e-7}, {-A * std::sin(a) + 1e-3, 1e-7}, {K, 0.0}, phi,
-                              {0.5, 0.0});
+  const auto s = two_position({A * std::sin(a) + 1e-3, 1e-7}, {-A * std::sin(a) + 1e-3, 1e-7},
+                              {K, 0.0}, phi, {0.5, 0.0});
   EXPECT_NEAR(s.alpha1_rad.value, a, 1e-15);
   EXPECT_NEAR(s.north_rad.value, 0.5 - a, 1e-15);  // N_G = r1 − α1
   EXPECT_NEAR(s.bias_A.value, 1e-3, 1e-15);
@@ -68,10 +68,12 @@ TEST(Model, TwoPositionClosedForm) {
 TEST(Model, CoarseSeekingOneAndFourPositions) {
   const double phi = 0.5, K = 9000.0, a = 0.7;  // 40° off north
   const double A = K * units::kEarthRotationRate_rad_s * std::cos(phi), b = 3e-4;
-  const auto one = coarse_seek({{0.0, {A * std::sin(a) + b, 1e-6}}}, {K, 0}, phi, {2.0, 0.0}, Uncertain{b, 0.0});
+  const auto one =
+      coarse_seek({{0.0, {A * std::sin(a) + b, 1e-6}}}, {K, 0}, phi, {2.0, 0.0}, Uncertain{b, 0.0});
   EXPECT_NEAR(one.alpha1_rad.value, a, 1e-12);
   EXPECT_NEAR(one.north_rad.value, 2.0 - a, 1e-12);
-  EXPECT_THROW(coarse_seek({{0.0, {A * std::sin(a) + b, 1e-6}}}, {K, 0}, phi, {2.0, 0.0}), InputError);
+  EXPECT_THROW(coarse_seek({{0.0, {A * std::sin(a) + b, 1e-6}}}, {K, 0}, phi, {2.0, 0.0}),
+               InputError);
   // Four positions 90° apart: α over the full circle (here 160°) and A estimated.
   const double a4 = 160.0 * units::kDegree;
   std::vector<CoarsePosition> p;
@@ -115,21 +117,24 @@ TEST(SeriesStatistics, HuberResistsOutliers) {
 TEST(Scenario, CleanDataRecoversAlphaToATenthOfAnArcsecond) {
   const auto t = truth();
   for (std::uint64_t seed : {101u, 102u, 103u}) {
-  SCOPED_TRACE(seed);
-  const auto in = simulate_determination(t, clean(), clean(), seed);
-  const auto r = process(in);
-  EXPECT_LT(std::abs(r.processed.alpha1_rad.value - t.alpha1_rad) / kArcsec, 0.1);
-  EXPECT_LT(std::abs(r.plain.alpha1_rad.value - t.alpha1_rad) / kArcsec, 0.1);
-  EXPECT_NEAR(r.processed.bias_A.value, t.bias_A, 4 * r.processed.bias_A.sigma);
-  EXPECT_NEAR(r.processed.north_rad.value, t.circle_reading1_rad - t.alpha1_rad, 0.1 * kArcsec);
-  // K consistent: the difference of the means over 2 sin α1 gives A back.
-  const double D = r.position1.cleaned_mean_A.value - r.position2.cleaned_mean_A.value;
-  const double sD = std::hypot(r.position1.cleaned_mean_A.sigma, r.position2.cleaned_mean_A.sigma);
-  EXPECT_NEAR(D / (2 * std::sin(t.alpha1_rad)) / r.amplitude_A.value, 1.0, 3 * sD / D);
-  EXPECT_LT(r.processed.alpha1_rad.sigma / kArcsec, 0.05);
-  // Clean data: at most a few segments rejected by chance (α = 5 % per test).
-  EXPECT_LE(r.position1.stationarity->rejected().size() + r.position2.stationarity->rejected().size(), 6u);
-  EXPECT_LT(r.position1.variance_cleaned_A2, r.position1.variance_raw_A2);
+    SCOPED_TRACE(seed);
+    const auto in = simulate_determination(t, clean(), clean(), seed);
+    const auto r = process(in);
+    EXPECT_LT(std::abs(r.processed.alpha1_rad.value - t.alpha1_rad) / kArcsec, 0.1);
+    EXPECT_LT(std::abs(r.plain.alpha1_rad.value - t.alpha1_rad) / kArcsec, 0.1);
+    EXPECT_NEAR(r.processed.bias_A.value, t.bias_A, 4 * r.processed.bias_A.sigma);
+    EXPECT_NEAR(r.processed.north_rad.value, t.circle_reading1_rad - t.alpha1_rad, 0.1 * kArcsec);
+    // K consistent: the difference of the means over 2 sin α1 gives A back.
+    const double D = r.position1.cleaned_mean_A.value - r.position2.cleaned_mean_A.value;
+    const double sD =
+        std::hypot(r.position1.cleaned_mean_A.sigma, r.position2.cleaned_mean_A.sigma);
+    EXPECT_NEAR(D / (2 * std::sin(t.alpha1_rad)) / r.amplitude_A.value, 1.0, 3 * sD / D);
+    EXPECT_LT(r.processed.alpha1_rad.sigma / kArcsec, 0.05);
+    // Clean data: at most a few segments rejected by chance (α = 5 % per test).
+    EXPECT_LE(
+        r.position1.stationarity->rejected().size() + r.position2.stationarity->rejected().size(),
+        6u);
+    EXPECT_LT(r.position1.variance_cleaned_A2, r.position1.variance_raw_A2);
   }
 }
 
@@ -148,7 +153,8 @@ TEST(Scenario, InterferenceOnOnePositionIsRejected) {
     const double plain_err = std::abs(r.plain.alpha1_rad.value - t.alpha1_rad) / kArcsec;
     const double proc_err = std::abs(r.processed.alpha1_rad.value - t.alpha1_rad);
     EXPECT_GT(plain_err, 10.0) << "the plain mean should be off by tens of arcseconds";
-    EXPECT_LT(proc_err, 3.0 * sigma_clean) << proc_err / kArcsec << "″ vs σ " << sigma_clean / kArcsec;
+    EXPECT_LT(proc_err, 3.0 * sigma_clean)
+        << proc_err / kArcsec << "″ vs σ " << sigma_clean / kArcsec;
     // Every segment overlapping the burst is rejected and listed.
     const auto& st = *r.position1.stationarity;
     const auto rejected = st.rejected();
@@ -187,7 +193,8 @@ TEST(Scenario, SigmaOfAlphaAgreesWithMonteCarlo) {
   double mean_sigma = 0;
   const int runs = 150;
   for (int k = 0; k < runs; ++k) {
-    const auto r = process(simulate_determination(t, clean(4000), clean(4000), 1000 + 2 * static_cast<unsigned>(k)));
+    const auto r = process(
+        simulate_determination(t, clean(4000), clean(4000), 1000 + 2 * static_cast<unsigned>(k)));
     err.push_back(r.processed.alpha1_rad.value - t.alpha1_rad);
     mean_sigma += r.processed.alpha1_rad.sigma / runs;
   }
@@ -195,7 +202,8 @@ TEST(Scenario, SigmaOfAlphaAgreesWithMonteCarlo) {
   for (double e : err) s2 += e * e;
   const double empirical = std::sqrt(s2 / runs);
   // 150 runs: the empirical σ is known to ±6 %; the reported one may be up to 20 % off.
-  EXPECT_NEAR(mean_sigma / empirical, 1.0, 0.2) << mean_sigma / kArcsec << " vs " << empirical / kArcsec;
+  EXPECT_NEAR(mean_sigma / empirical, 1.0, 0.2)
+      << mean_sigma / kArcsec << " vs " << empirical / kArcsec;
 }
 
 TEST(Scenario, MultiAngleCalibrationRecoversLines) {
@@ -209,10 +217,13 @@ TEST(Scenario, MultiAngleCalibrationRecoversLines) {
   auto spec = clean(20000);
   const auto in = simulate_calibration(ct, spec, 77);
   const auto r = calibrate(in);
-  EXPECT_NEAR(r.position1.slope_A_per_rad.value, ct.slope1_A, 3 * r.position1.slope_A_per_rad.sigma);
-  EXPECT_NEAR(r.position2.slope_A_per_rad.value, ct.slope2_A, 3 * r.position2.slope_A_per_rad.sigma);
+  EXPECT_NEAR(r.position1.slope_A_per_rad.value, ct.slope1_A,
+              3 * r.position1.slope_A_per_rad.sigma);
+  EXPECT_NEAR(r.position2.slope_A_per_rad.value, ct.slope2_A,
+              3 * r.position2.slope_A_per_rad.sigma);
   EXPECT_NEAR(r.best_azimuth_rad.value, ct.best_azimuth_rad, 3 * r.best_azimuth_rad.sigma);
-  EXPECT_NEAR(r.constant_deviation_A.value, ct.constant_deviation_A, 3 * r.constant_deviation_A.sigma);
+  EXPECT_NEAR(r.constant_deviation_A.value, ct.constant_deviation_A,
+              3 * r.constant_deviation_A.sigma);
   EXPECT_NEAR(r.scale_A_s_per_rad.value, 8000.0, 3 * r.scale_A_s_per_rad.sigma);
   EXPECT_TRUE(r.trend_significant);
   EXPECT_NEAR(r.trend_deviation_A_per_rad.value, 0.02 * A, 3 * r.trend_deviation_A_per_rad.sigma);
@@ -224,7 +235,8 @@ TEST(Scenario, MultiAngleCalibrationRecoversLines) {
   const auto r0 = calibrate(simulate_calibration(ct, spec, 78));
   EXPECT_FALSE(r0.trend_significant);
   EXPECT_TRUE(r0.mean_line_constant);
-  EXPECT_NEAR(r0.constant_deviation_A.value, ct.constant_deviation_A, 3 * r0.constant_deviation_A.sigma);
+  EXPECT_NEAR(r0.constant_deviation_A.value, ct.constant_deviation_A,
+              3 * r0.constant_deviation_A.sigma);
 }
 
 TEST(Reduce, BadInputIsAnErrorNotNaN) {

@@ -76,7 +76,8 @@ TEST(Wavelet, PeriodizationConservesEnergy) {
     const Wavelet w(n);
     const auto c = wavedec(x, w, ExtensionMode::Periodization, max_level(x.size(), w));
     double ec = 0;
-    for (const auto& a : c.coefficients) ec += std::inner_product(a.begin(), a.end(), a.begin(), 0.0);
+    for (const auto& a : c.coefficients)
+      ec += std::inner_product(a.begin(), a.end(), a.begin(), 0.0);
     EXPECT_NEAR(ec / ex, 1.0, 1e-13);
   }
 }

@@ -114,7 +114,8 @@ TEST(WaveletReference, WaverecMatchesPywt) {
     const Wavelet w = Wavelet::from_name(c.wavelet);
     const auto mode = extension_mode_from_string(c.mode);
     WaveletCoefficients in;
-    for (int k = 0; k <= c.level; ++k) in.coefficients.push_back(c.arrays.at(fmt::format("c{}", k)));
+    for (int k = 0; k <= c.level; ++k)
+      in.coefficients.push_back(c.arrays.at(fmt::format("c{}", k)));
     const auto rec = waverec(in, w, mode);
     const auto& ref = c.arrays.at("rec");
     ASSERT_EQ(rec.size(), ref.size());
@@ -125,7 +126,8 @@ TEST(WaveletReference, WaverecMatchesPywt) {
 TEST(WaveletReference, UniversalDenoisingMatchesPywt) {
   ASSERT_FALSE(cases().empty());
   for (const auto& c : cases()) {
-    SCOPED_TRACE(fmt::format("{} {} {} level {} {}", c.name, c.wavelet, c.mode, c.level, c.threshold));
+    SCOPED_TRACE(
+        fmt::format("{} {} {} level {} {}", c.name, c.wavelet, c.mode, c.level, c.threshold));
     DenoiseOptions o;
     o.wavelet_order = Wavelet::from_name(c.wavelet).order();
     o.level = c.level;

@@ -52,12 +52,15 @@ maglev::CalibrationInput read_maglev_calibration_table(const std::string& path);
 
 /// `time,current` CSV with a header, 17 significant digits (the simulator's output and
 /// `maglev denoise`'s). `header_comment` lines are written first with "# " before each.
-std::string maglev_series_csv(const maglev::PositionSeries& s, const std::string& header_comment = {});
+std::string maglev_series_csv(const maglev::PositionSeries& s,
+                              const std::string& header_comment = {});
 /// Same with a `position` column, position 1 then position 2.
-std::string maglev_two_position_csv(const maglev::PositionSeries& p1, const maglev::PositionSeries& p2,
+std::string maglev_two_position_csv(const maglev::PositionSeries& p1,
+                                    const maglev::PositionSeries& p2,
                                     const std::string& header_comment = {});
 /// A calibration table (azimuth in decimal degrees).
-std::string maglev_calibration_csv(const maglev::CalibrationInput& in, const std::string& header_comment = {});
+std::string maglev_calibration_csv(const maglev::CalibrationInput& in,
+                                   const std::string& header_comment = {});
 
 /// Instrument constants from a YAML or JSON file (io::Node): `scale_A_s_per_rad`
 /// (K, > 0), `scale_sigma_A_s_per_rad`, `latitude` (DMS or degrees),

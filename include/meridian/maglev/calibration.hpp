@@ -43,14 +43,14 @@ struct CalibrationSetup {
 struct CalibrationInput {
   std::vector<CalibrationSetup> setups;
   double latitude_rad = 0.0;
-  double alpha = 0.05;  ///< significance level of the tests
+  double alpha = 0.05;                              ///< significance level of the tests
   std::optional<double> nominal_scale_A_s_per_rad;  ///< K to compare the slopes with
 };
 
 struct LineFit {
   Uncertain slope_A_per_rad;
   Uncertain intercept_A;
-  double covariance = 0.0;  ///< cov(slope, intercept), A²/rad
+  double covariance = 0.0;          ///< cov(slope, intercept), A²/rad
   std::vector<double> residuals_A;  ///< v = fit − observed, per set-up
   adjust::GlobalTestResult global_test;
 };
@@ -60,11 +60,11 @@ struct CalibrationResult {
   Uncertain trend_deviation_A_per_rad;  ///< k_1 + k_2
   double trend_z = 0.0;
   bool trend_significant = false;
-  Uncertain best_azimuth_rad;           ///< α*
-  Uncertain constant_deviation_A;       ///< I*
-  Uncertain scale_A_s_per_rad;          ///< K̂ from the slopes
+  Uncertain best_azimuth_rad;      ///< α*
+  Uncertain constant_deviation_A;  ///< I*
+  Uncertain scale_A_s_per_rad;     ///< K̂ from the slopes
   double mean_slope_z = 0.0;
-  bool mean_line_constant = true;       ///< k_m not significant
+  bool mean_line_constant = true;  ///< k_m not significant
   std::vector<std::string> notes, warnings;
 };
 

@@ -55,11 +55,11 @@ struct DenoiseOptions {
 };
 
 struct DenoiseResult {
-  std::vector<double> values;            ///< the denoised series, same length as the input
-  double noise_sigma = 0.0;              ///< σ = median(|d_1|)/0.6745 (units of the samples)
-  std::vector<double> thresholds;        ///< λ per detail level, [0] = level 1 (finest) … [p−1]
-  std::vector<std::size_t> zeroed;       ///< coefficients set to 0 per level, same order
-  std::vector<std::size_t> coefficients; ///< coefficients per level, same order
+  std::vector<double> values;       ///< the denoised series, same length as the input
+  double noise_sigma = 0.0;         ///< σ = median(|d_1|)/0.6745 (units of the samples)
+  std::vector<double> thresholds;   ///< λ per detail level, [0] = level 1 (finest) … [p−1]
+  std::vector<std::size_t> zeroed;  ///< coefficients set to 0 per level, same order
+  std::vector<std::size_t> coefficients;  ///< coefficients per level, same order
 };
 
 /// The threshold functions (pywt.threshold): λ ≥ 0.

@@ -70,8 +70,9 @@ struct CoarseSolution {
 /// Coarse north seeking (see the file comment). `assumed_bias_A` is needed
 /// for a single position and ignored with three or more; two positions must
 /// be π apart (two_position is used). Throws as in the file comment.
-CoarseSolution coarse_seek(const std::vector<CoarsePosition>& positions, Uncertain scale_A_s_per_rad,
-                           double latitude_rad, Uncertain circle_reading1_rad,
+CoarseSolution coarse_seek(const std::vector<CoarsePosition>& positions,
+                           Uncertain scale_A_s_per_rad, double latitude_rad,
+                           Uncertain circle_reading1_rad,
                            std::optional<Uncertain> assumed_bias_A = std::nullopt);
 
 }  // namespace meridian::maglev

@@ -87,27 +87,27 @@ struct ReduceInput {
 /// One position: its statistics before and after processing.
 struct PositionResult {
   std::size_t samples = 0;
-  MeanEstimate raw;                         ///< all samples, unprocessed
+  MeanEstimate raw;                                ///< all samples, unprocessed
   std::optional<StationarityResult> stationarity;  ///< when processed
   std::size_t kept_samples = 0;
-  MeanEstimate kept;                        ///< the kept raw samples
-  Uncertain cleaned_mean_A;                 ///< mean of the cleaned kept samples, σ of `kept`
-  double median_A = 0.0;                    ///< of the kept raw samples
-  Uncertain huber_A;                        ///< of the kept raw samples
-  std::string huber_failed;                 ///< why the Huber mean failed (empty: it did not)
-  double variance_raw_A2 = 0.0;             ///< of all raw samples
-  double variance_cleaned_A2 = 0.0;         ///< of the cleaned kept samples
-  std::vector<double> cleaned_A;            ///< same length as the series; raw where not kept
-  std::vector<char> kept_mask;              ///< 1 where the sample was kept
-  std::vector<int> denoise_levels;          ///< level used per kept run (0: run not denoised)
-  double noise_sigma_A = 0.0;               ///< wavelet noise σ (of the longest run)
+  MeanEstimate kept;                 ///< the kept raw samples
+  Uncertain cleaned_mean_A;          ///< mean of the cleaned kept samples, σ of `kept`
+  double median_A = 0.0;             ///< of the kept raw samples
+  Uncertain huber_A;                 ///< of the kept raw samples
+  std::string huber_failed;          ///< why the Huber mean failed (empty: it did not)
+  double variance_raw_A2 = 0.0;      ///< of all raw samples
+  double variance_cleaned_A2 = 0.0;  ///< of the cleaned kept samples
+  std::vector<double> cleaned_A;     ///< same length as the series; raw where not kept
+  std::vector<char> kept_mask;       ///< 1 where the sample was kept
+  std::vector<int> denoise_levels;   ///< level used per kept run (0: run not denoised)
+  double noise_sigma_A = 0.0;        ///< wavelet noise σ (of the longest run)
 };
 
 struct ReduceResult {
-  Uncertain amplitude_A;            ///< A = K·ω_e·cos φ
+  Uncertain amplitude_A;  ///< A = K·ω_e·cos φ
   PositionResult position1, position2;
-  TwoPositionSolution processed;    ///< from the cleaned kept means (= plain without processing)
-  TwoPositionSolution plain;        ///< from the means of all raw samples
+  TwoPositionSolution processed;  ///< from the cleaned kept means (= plain without processing)
+  TwoPositionSolution plain;      ///< from the means of all raw samples
   std::optional<TwoPositionSolution> median;  ///< from the medians (σ of the kept means ×√(π/2))
   std::optional<TwoPositionSolution> huber;
   struct Symmetry {

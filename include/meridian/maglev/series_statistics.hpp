@@ -45,11 +45,11 @@ LongRunVariance long_run_variance(std::span<const double> acov);
 /// The mean of a series with σ from the effective sample size.
 struct MeanEstimate {
   double mean = 0.0;
-  double sigma = 0.0;          ///< σ of the mean
-  double n_eff = 0.0;          ///< effective sample size, 1 ≤ n_eff ≤ n
-  std::size_t n = 0;           ///< samples
-  double variance = 0.0;       ///< sample variance γ_0 (1/n)
-  int lags = 0;                ///< lags summed in σ²_LR
+  double sigma = 0.0;     ///< σ of the mean
+  double n_eff = 0.0;     ///< effective sample size, 1 ≤ n_eff ≤ n
+  std::size_t n = 0;      ///< samples
+  double variance = 0.0;  ///< sample variance γ_0 (1/n)
+  int lags = 0;           ///< lags summed in σ²_LR
   bool lag_limit_reached = false;
 };
 

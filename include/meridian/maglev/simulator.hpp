@@ -38,8 +38,8 @@ struct NoiseSpec {
   double rate_hz = 100.0;
   double start_s = 0.0;
   double white_sigma_A = 1e-5;
-  double ar1_phi = 0.0;           ///< AR(1) coefficient, |φ| < 1
-  double ar1_sigma_A = 0.0;       ///< σ of the AR(1) innovation
+  double ar1_phi = 0.0;      ///< AR(1) coefficient, |φ| < 1
+  double ar1_sigma_A = 0.0;  ///< σ of the AR(1) innovation
   double drift_A_per_s = 0.0;
   std::vector<Burst> bursts;
 };
@@ -65,16 +65,17 @@ ReduceInput simulate_determination(const TwoPositionTruth& truth, const NoiseSpe
 /// azimuth α_j the position means follow the lines Ī_k = k_k·sin α_j + c_k
 /// with c_k = I* − k_k·sin α*, so the lines meet at (α*, I*).
 struct CalibrationTruth {
-  std::vector<double> azimuths_rad;  ///< α_j
-  double slope1_A = 0.48;            ///< k_1 (A per unit sin α)
-  double slope2_A = -0.48;           ///< k_2
-  double best_azimuth_rad = 0.0;     ///< α*
-  double constant_deviation_A = 0.0; ///< I*
+  std::vector<double> azimuths_rad;   ///< α_j
+  double slope1_A = 0.48;             ///< k_1 (A per unit sin α)
+  double slope2_A = -0.48;            ///< k_2
+  double best_azimuth_rad = 0.0;      ///< α*
+  double constant_deviation_A = 0.0;  ///< I*
   double latitude_rad = 0.6;
 };
 
 /// Series of spec at every set-up (seeds seed, seed + 1, …), reduced to means
 /// with σ by mean_with_autocorrelation. Throws as simulate_series.
-CalibrationInput simulate_calibration(const CalibrationTruth& truth, const NoiseSpec& spec, std::uint64_t seed);
+CalibrationInput simulate_calibration(const CalibrationTruth& truth, const NoiseSpec& spec,
+                                      std::uint64_t seed);
 
 }  // namespace meridian::maglev

@@ -48,7 +48,7 @@ namespace meridian::maglev {
 struct StationarityOptions {
   /// L, samples per segment; 0: automatic, max(64, n/20) (about 20 segments).
   std::size_t segment_length = 0;
-  double alpha = 0.05;       ///< significance level (per position when family_wise, else per segment)
+  double alpha = 0.05;  ///< significance level (per position when family_wise, else per segment)
   /// Bonferroni: each segment is tested at α/S (S segments), so a clean series of any length
   /// loses a segment by chance with probability ≤ α per test. Without it, about α·S clean
   /// segments are rejected, and always the most extreme ones, which biases the kept mean.
@@ -57,16 +57,16 @@ struct StationarityOptions {
 };
 
 struct SegmentTest {
-  std::size_t begin = 0;   ///< first sample (0-based)
-  std::size_t end = 0;     ///< one past the last sample
-  double mean = 0.0;       ///< x̄_s (units of the series)
-  double z_mean = 0.0;     ///< mean-stationarity statistic
-  double p_mean = 0.0;     ///< its two-sided p-value
+  std::size_t begin = 0;          ///< first sample (0-based)
+  std::size_t end = 0;            ///< one past the last sample
+  double mean = 0.0;              ///< x̄_s (units of the series)
+  double z_mean = 0.0;            ///< mean-stationarity statistic
+  double p_mean = 0.0;            ///< its two-sided p-value
   double q_autocovariance = 0.0;  ///< Q_s
   double p_autocovariance = 0.0;  ///< P(χ²(M+1) > Q_s)
   bool mean_passed = false;
   bool autocovariance_passed = false;
-  bool kept = false;       ///< both passed: a stable segment
+  bool kept = false;  ///< both passed: a stable segment
 };
 
 struct StationarityResult {

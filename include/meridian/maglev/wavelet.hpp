@@ -15,7 +15,8 @@
 /// One level, input x of length n ≥ 1 (x_e: x extended by the mode):
 ///   cA[o] = Σ_{j<F} dec_lo[j]·x_e[i_o − j],  cD likewise with dec_hi,
 ///   symmetric:     i_o = 2o + 1, o = 0 … ⌊(n+F−1)/2⌋ − 1; x_e is the
-///                  half-sample symmetric extension (… x1 x0 | x0 x1 … x_{n−1} | x_{n−1} x_{n−2} …);
+///                  half-sample symmetric extension (… x1 x0 | x0 x1 … x_{n−1} | x_{n−1} x_{n−2}
+///                  …);
 ///   periodization: i_o = F/2 + 2o, o = 0 … ⌈n/2⌉ − 1; x_e is x (with x_{n−1}
 ///                  repeated once when n is odd) extended periodically.
 /// Inverse: symmetric keeps the samples F−2 … 2m−1 of the full convolution
@@ -107,6 +108,7 @@ WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, E
 /// n rounded up to even at each level, as pywt does); callers trim to n.
 /// Throws InputError for fewer than two coefficient arrays or lengths that
 /// do not fit together.
-std::vector<double> waverec(const WaveletCoefficients& c, const Wavelet& wavelet, ExtensionMode mode);
+std::vector<double> waverec(const WaveletCoefficients& c, const Wavelet& wavelet,
+                            ExtensionMode mode);
 
 }  // namespace meridian::maglev

@@ -1,0 +1,218 @@
+#include "meridian/report/maglev_html.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "meridian/core/angle.hpp"
+#include "meridian/core/dms.hpp"
+#include "meridian/core/units.hpp"
+
+namespace meridian::report {
+namespace {
+using nlohmann::json;
+double as(double rad) { return units::rad_to_arcsec(rad); }
+
+constexpr std::size_t kMaxPoints = 2000;
+
+std::string solution_text(const maglev::TwoPositionSolution& s) {
+  return fmt::format("α1 {} ± {:.3f}\", N_G {} ± {:.3f}\", b {:.9g} A",
+                     format_dms(Angle::radians(s.alpha1_rad.value), {3, true, true}),
+                     as(s.alpha1_rad.sigma),
+                     format_direction_dms(Angle::radians(s.north_rad.value), {3, true, false}),
+                     as(s.north_rad.sigma), s.bias_A.value);
+}
+
+Plot series_plot(const char* name, const maglev::PositionResult& p,
+                 const maglev::PositionSeries& s) {
+  const std::size_t n = s.current_A.size();
+  const std::size_t step = std::max<std::size_t>(1, (n + kMaxPoints - 1) / kMaxPoints);
+  json values = json::array();
+  for (std::size_t i = 0; i < n; i += step) {
+    values.push_back({{"t", s.time_s[i]}, {"I", s.current_A[i]}, {"series", "raw"}});
+    if (p.kept_mask[i])
+      values.push_back({{"t", s.time_s[i]}, {"I", p.cleaned_A[i]}, {"series", "cleaned (kept)"}});
+  }
+  json rejected = json::array();
+  if (p.stationarity)
+    for (const auto& seg : p.stationarity->segments)
+      if (!seg.kept)
+        rejected.push_back({{"t0", s.time_s[seg.begin]}, {"t1", s.time_s[seg.end - 1]}});
+  json layers = json::array();
+  layers.push_back(
+      {{"data", {{"values", rejected}}},
+       {"mark", {{"type", "rect"}, {"color", "#f4c7c3"}, {"opacity", 0.6}}},
+       {"encoding",
+        {{"x", {{"field", "t0"}, {"type", "quantitative"}}}, {"x2", {{"field", "t1"}}}}}});
+  layers.push_back({{"data", {{"values", values}}},
+                    {"mark", {{"type", "line"}, {"strokeWidth", 1}}},
+                    {"encoding",
+                     {{"x", {{"field", "t"}, {"type", "quantitative"}, {"title", "time (s)"}}},
+                      {"y",
+                       {{"field", "I"},
+                        {"type", "quantitative"},
+                        {"title", "current (A)"},
+                        {"scale", {{"zero", false}}}}},
+                      {"color", {{"field", "series"}, {"type", "nominal"}, {"title", ""}}}}}});
+  json spec = {{"width", 700}, {"height", 260}, {"layer", layers}};
+  return {fmt::format("{}: raw and cleaned series", name), spec,
+          fmt::format("Every {}. sample drawn. Shaded: rejected segments (not used).", step)};
+}
+
+Table segment_table(const maglev::StationarityResult& st) {
+  Table t;
+  t.title = "Segments";
+  t.columns = {"segment", "samples", "mean (A)", "z (mean)", "Q (autocov.)", "kept"};
+  t.numeric = {true, false, true, true, true, false};
+  for (std::size_t i = 0; i < st.segments.size(); ++i) {
+    const auto& s = st.segments[i];
+    t.rows.push_back({std::to_string(i), fmt::format("{}…{}", s.begin, s.end - 1),
+                      fmt::format("{:.9g}", s.mean), fmt::format("{:.2f}", s.z_mean),
+                      fmt::format("{:.1f}", s.q_autocovariance), s.kept ? "yes" : "REJECTED"});
+  }
+  t.note = fmt::format("Each test at α = {:.4g} per segment (family-wise α over the position).",
+                       st.segment_alpha);
+  return t;
+}
+}  // namespace
+
+Document maglev_reduce_document(const maglev::ReduceResult& r, const maglev::ReduceInput& in,
+                                const std::string& input) {
+  Document doc;
+  doc.title = "Maglev gyro two-position determination";
+  doc.subtitle = input;
+  doc.footer = report_generator();
+  doc.header = {{"input", input},
+                {"scale K", fmt::format("{:.6f} ± {:.4f} A·s/rad", in.scale_A_s_per_rad.value,
+                                        in.scale_A_s_per_rad.sigma)},
+                {"latitude", format_dms(Angle::radians(in.latitude_rad))},
+                {"directive amplitude A", fmt::format("{:.9g} A", r.amplitude_A.value)},
+                {"processing", in.options.process ? "stationarity tests, wavelet denoising"
+                                                  : "none (plain means)"}};
+  Section res{"result", "Result", {}, 2};
+  res.blocks.push_back(Highlight{
+      "α1 (processed)",
+      fmt::format("{} ± {:.3f}\"",
+                  format_dms(Angle::radians(r.processed.alpha1_rad.value), {3, true, true}),
+                  as(r.processed.alpha1_rad.sigma)),
+      "spin axis east of north at position 1", false});
+  res.blocks.push_back(Highlight{
+      "gyro north N_G",
+      fmt::format(
+          "{} ± {:.3f}\"",
+          format_direction_dms(Angle::radians(r.processed.north_rad.value), {3, true, false}),
+          as(r.processed.north_rad.sigma)),
+      "N_G = r1 − α1", false});
+  KeyValueList kv{"Estimators side by side", {}};
+  kv.items.push_back({"processed (cleaned kept means)", solution_text(r.processed)});
+  kv.items.push_back({"plain means of all samples", solution_text(r.plain)});
+  if (r.median) kv.items.push_back({"medians of kept samples", solution_text(*r.median)});
+  if (r.huber) kv.items.push_back({"Huber means of kept samples", solution_text(*r.huber)});
+  kv.items.push_back(
+      {"processed − plain",
+       fmt::format("{:+.3f}\"", as(r.processed.alpha1_rad.value - r.plain.alpha1_rad.value))});
+  res.blocks.push_back(kv);
+  if (!r.notes.empty()) res.blocks.push_back(Notes{"Notes", r.notes, false});
+  if (!r.warnings.empty()) res.blocks.push_back(Notes{"Warnings", r.warnings, true});
+  doc.sections.push_back(res);
+  const maglev::PositionResult* ps[2] = {&r.position1, &r.position2};
+  const maglev::PositionSeries* ss[2] = {&in.position1, &in.position2};
+  for (int k = 0; k < 2; ++k) {
+    const auto& p = *ps[k];
+    const std::string name = fmt::format("Position {}", k + 1);
+    Section sec{fmt::format("position{}", k + 1), name, {}, 2};
+    sec.blocks.push_back(KeyValueList{
+        "Statistics",
+        {{"samples (kept)", fmt::format("{} ({})", p.samples, p.kept_samples)},
+         {"mean of all samples", fmt::format("{:.10g} ± {:.3g} A", p.raw.mean, p.raw.sigma)},
+         {"mean cleaned, kept",
+          fmt::format("{:.10g} ± {:.3g} A (n_eff {:.0f})", p.cleaned_mean_A.value,
+                      p.cleaned_mean_A.sigma, p.kept.n_eff)},
+         {"variance raw / cleaned kept",
+          fmt::format("{:.3e} / {:.3e} A²", p.variance_raw_A2, p.variance_cleaned_A2)}}});
+    sec.blocks.push_back(series_plot(name.c_str(), p, *ss[k]));
+    if (p.stationarity) sec.blocks.push_back(segment_table(*p.stationarity));
+    doc.sections.push_back(sec);
+  }
+  return doc;
+}
+
+Document maglev_calibration_document(const maglev::CalibrationResult& r,
+                                     const maglev::CalibrationInput& in, const std::string& input) {
+  Document doc;
+  doc.title = "Maglev gyro multi-angle calibration";
+  doc.subtitle = input;
+  doc.footer = report_generator();
+  doc.header = {{"input", input},
+                {"set-ups", std::to_string(in.setups.size())},
+                {"latitude", format_dms(Angle::radians(in.latitude_rad))}};
+  Section res{"calibration", "Result", {}, 2};
+  res.blocks.push_back(KeyValueList{
+      "Lines I = k·sin α + c",
+      {{"position 1",
+        fmt::format("k = {:.9g} ± {:.3g} A, c = {:.9g} ± {:.3g} A",
+                    r.position1.slope_A_per_rad.value, r.position1.slope_A_per_rad.sigma,
+                    r.position1.intercept_A.value, r.position1.intercept_A.sigma)},
+       {"position 2",
+        fmt::format("k = {:.9g} ± {:.3g} A, c = {:.9g} ± {:.3g} A",
+                    r.position2.slope_A_per_rad.value, r.position2.slope_A_per_rad.sigma,
+                    r.position2.intercept_A.value, r.position2.intercept_A.sigma)},
+       {"trend deviation k1 + k2",
+        fmt::format("{:.6g} ± {:.3g} A ({})", r.trend_deviation_A_per_rad.value,
+                    r.trend_deviation_A_per_rad.sigma,
+                    r.trend_significant ? "significant" : "not significant")},
+       {"best set-up azimuth α*",
+        fmt::format("{} ± {:.3f}\"",
+                    format_dms(Angle::radians(r.best_azimuth_rad.value), {3, true, true}),
+                    as(r.best_azimuth_rad.sigma))},
+       {"constant deviation I*", fmt::format("{:.6e} ± {:.3g} A", r.constant_deviation_A.value,
+                                             r.constant_deviation_A.sigma)},
+       {"K from the slopes", fmt::format("{:.6f} ± {:.4f} A·s/rad", r.scale_A_s_per_rad.value,
+                                         r.scale_A_s_per_rad.sigma)}}});
+  if (!r.warnings.empty()) res.blocks.push_back(Notes{"Warnings", r.warnings, true});
+  json values = json::array();
+  for (std::size_t i = 0; i < in.setups.size(); ++i) {
+    const auto& s = in.setups[i];
+    const double a = units::rad_to_deg(s.azimuth_rad);
+    values.push_back(
+        {{"a", a}, {"I", s.mean1_A.value}, {"p", "position 1"}, {"v", r.position1.residuals_A[i]}});
+    values.push_back(
+        {{"a", a}, {"I", s.mean2_A.value}, {"p", "position 2"}, {"v", r.position2.residuals_A[i]}});
+  }
+  json enc = {{"x", {{"field", "a"}, {"type", "quantitative"}, {"title", "set-up azimuth (deg)"}}},
+              {"color", {{"field", "p"}, {"type", "nominal"}, {"title", ""}}}};
+  json means = {
+      {"width", 600},
+      {"height", 260},
+      {"data", {{"values", values}}},
+      {"layer",
+       json::array(
+           {{{"mark", "point"},
+             {"encoding",
+              {{"x", enc["x"]},
+               {"color", enc["color"]},
+               {"y", {{"field", "I"}, {"type", "quantitative"}, {"title", "mean current (A)"}}}}}},
+            {{"mark", "line"},
+             {"encoding",
+              {{"x", enc["x"]},
+               {"color", enc["color"]},
+               {"y", {{"field", "I"}, {"type", "quantitative"}}}}}}})}};
+  res.blocks.push_back(Plot{"Position means against the set-up azimuth", means,
+                            "Points: the means; lines join them."});
+  json resid = {
+      {"width", 600},
+      {"height", 200},
+      {"data", {{"values", values}}},
+      {"mark", "point"},
+      {"encoding",
+       {{"x", enc["x"]},
+        {"color", enc["color"]},
+        {"y",
+         {{"field", "v"}, {"type", "quantitative"}, {"title", "residual fit − observed (A)"}}}}}};
+  res.blocks.push_back(Plot{"Residuals of the line fits", resid, ""});
+  doc.sections.push_back(res);
+  return doc;
+}
+
+}  // namespace meridian::report
