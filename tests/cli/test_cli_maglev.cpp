@@ -2,6 +2,7 @@
 // calibrate, and the errors for bad input (exit codes, file:line:field).
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -148,4 +149,23 @@ TEST_F(MaglevCli, BadInputNamesFileLineAndField) {
   r = run("maglev reduce d-1.csv d-2.csv --latitude 35 -q");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("--scale"), std::string::npos) << r.err;
+}
+
+TEST_F(MaglevCli, HtmlReportsShowTheSeriesAndSegments) {
+  ASSERT_EQ(run(sim_ + "--samples 4000 --rate-hz 20 --burst 1:63:103:2e-3:6e-4:0.5:8 --seed 2 --out d").code, 0);
+  const CmdResult r = run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 -q -o out.txt --report r.html");
+  if (r.code != 0 && r.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = slurp(dir_ / "r.html");
+  EXPECT_NE(html.find("id=\"position1\""), std::string::npos);
+  EXPECT_NE(html.find("REJECTED"), std::string::npos);
+  EXPECT_NE(html.find("raw and cleaned series"), std::string::npos);
+  // The report does not change the text result.
+  ASSERT_EQ(run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 -q -o plain.txt").code, 0);
+  EXPECT_EQ(slurp(dir_ / "out.txt"), slurp(dir_ / "plain.txt"));
+  // Bad input: no report is written.
+  write("bad.csv", "time,current\n0,0.01\n0,0.02\n");
+  const CmdResult bad = run("maglev reduce bad.csv d-2.csv --scale 8000 --latitude 35 -q --report bad.html");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.html"));
 }
