@@ -26,12 +26,16 @@ json position(const maglev::PositionResult& p, const maglev::PositionSeries& ser
             {"mean_cleaned_sigma_A", p.cleaned_mean_A.sigma},
             {"n_eff_kept", p.kept.n_eff},
             {"median_A", p.median_A},
-            {"huber_A", p.huber_A.value},
-            {"huber_sigma_A", p.huber_A.sigma},
             {"variance_raw_A2", p.variance_raw_A2},
             {"variance_cleaned_A2", p.variance_cleaned_A2},
             {"wavelet_noise_sigma_A", p.noise_sigma_A},
             {"denoise_levels", p.denoise_levels}};
+  if (p.huber_failed.empty()) {
+    j["huber_A"] = p.huber_A.value;
+    j["huber_sigma_A"] = p.huber_A.sigma;
+  } else {
+    j["huber_failed"] = p.huber_failed;
+  }
   if (p.stationarity) {
     const auto& st = *p.stationarity;
     json segs = json::array();

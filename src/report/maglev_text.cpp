@@ -26,7 +26,8 @@ std::string position_block(const char* name, const maglev::PositionResult& p) {
                      p.raw.sigma, p.raw.n_eff);
   out += fmt::format("  mean cleaned, kept   {:.10g} A ± {:.3g} A (n_eff {:.0f})\n",
                      p.cleaned_mean_A.value, p.cleaned_mean_A.sigma, p.kept.n_eff);
-  out += fmt::format("  median / Huber, kept {:.10g} A / {:.10g} A\n", p.median_A, p.huber_A.value);
+  out += fmt::format("  median / Huber, kept {:.10g} A / {}\n", p.median_A,
+                     p.huber_failed.empty() ? fmt::format("{:.10g} A", p.huber_A.value) : "failed: " + p.huber_failed);
   out += fmt::format("  variance raw {:.3e} A², cleaned kept {:.3e} A²\n", p.variance_raw_A2,
                      p.variance_cleaned_A2);
   if (p.stationarity) {
