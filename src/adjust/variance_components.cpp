@@ -23,7 +23,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kClipFraction = 1e-9;
 // A damped step leaves at least this fraction of a component that the full step would make
 // negative, so the iteration approaches the boundary geometrically instead of jumping past it.
-constexpr double kKeepFraction = 0.1;
+constexpr double kKeepFraction = 0.01;
 // Step halvings of the likelihood safeguard before the step is taken as it is.
 constexpr int kMaxHalvings = 30;
 
@@ -322,6 +322,7 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
   res.method = options.method;
   bool converged = false;
   double last_change = kNaN;
+  double here_cache = kNaN;  // the restricted likelihood at θ, when known
   for (int it = 1; it <= options.max_iterations && !converged; ++it) {
     res.iterations = it;
     const Equations e = equations(options.method, A, l, comps, theta, active);
@@ -356,7 +357,10 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
     }
     if (std::none_of(active.begin(), active.end(), [](bool a) { return a; }))
       throw NumericalError("variance components: every component was estimated negative");
-    if (clipped_now) continue;
+    if (clipped_now) {
+      here_cache = kNaN;
+      continue;
+    }
     // The a-priori and the a-posteriori components agree: converged (take the update).
     last_change = (full - theta).cwiseAbs().maxCoeff() / std::max(full.maxCoeff(), theta.maxCoeff());
     if (alpha == 1.0 && last_change <= options.tolerance) {
@@ -366,14 +370,16 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
     }
     // Scoring can overshoot when the components are strongly correlated (it then cycles):
     // halve the step until the restricted likelihood does not decrease (a safeguarded scoring step).
-    const double here = reml_at(A, l, comps, theta, active);
+    const double here = std::isnan(here_cache) ? reml_at(A, l, comps, theta, active) : here_cache;
     VectorXd next = theta + alpha * (full - theta);
-    for (int h = 0; h < kMaxHalvings; ++h) {
-      if (reml_at(A, l, comps, next, active) >= here - 1e-12 * std::fabs(here)) break;
+    double there = reml_at(A, l, comps, next, active);
+    for (int h = 0; h < kMaxHalvings && !(there >= here - 1e-12 * std::fabs(here)); ++h) {
       alpha *= 0.5;
       next = theta + alpha * (full - theta);
+      there = reml_at(A, l, comps, next, active);
     }
     theta = next;
+    here_cache = there;
   }
   if (!converged)
     throw NumericalError(fmt::format("variance components did not converge in {} iterations "

@@ -53,13 +53,13 @@ MarkovFactors factors_for(const std::vector<double>& rho, int n) {
 }
 
 std::optional<MarkovEval> eval_markov(const MatrixXd& G, const VectorXd& l,
-                                      const std::vector<double>& rho, double start,
+                                      const std::vector<double>& rho, const Eigen::Vector2d& start,
                                       adjust::VceMethod method) {
   try {
     MarkovEval e{rho, factors_for(rho, static_cast<int>(l.size())), {}, kMinusInf};
     adjust::VceOptions o;
     o.method = method;
-    o.initial = Eigen::Vector2d(start, start);
+    o.initial = start;
     e.vce = adjust::estimate_variance_components(G, l, markov_components(e.factors), o);
     e.reml = e.vce.likelihood.reml;
     if (!std::isfinite(e.reml)) return std::nullopt;
@@ -400,7 +400,9 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
   report_progress(progress, 0, 5, "white noise");
   const auto ols = adjust::solve_linear(G, l, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)));
   const double s0sq = ols.vtpv / (n - 3);
-  if (!(s0sq > 0.0))
+  // Residuals at rounding level of the readings: an exact fit.
+  const double scale = l.cwiseAbs().maxCoeff();
+  if (!(std::sqrt(s0sq) > 1e-12 * scale))
     throw InputError("stochastic models: the readings fit the reversal model exactly (no "
                      "scatter): there is nothing to model");
   res.ols_residuals = ols.residuals;
@@ -454,32 +456,44 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
     }
   }
 
+  // VCE starts: the OLS variance for both components, or (warm start, much faster on the
+  // grids) the components of a neighbouring ρ, kept away from 0.
+  const Eigen::Vector2d cold(s0sq, s0sq);
+  const auto warm = [&](const std::optional<MarkovEval>& e) -> Eigen::Vector2d {
+    if (!e) return cold;
+    return e->vce.components.cwiseMax(1e-3 * s0sq);
+  };
   // Markov-1: grid and ML.
   report_progress(progress, 1, 5, "Markov-1");
-  std::optional<MarkovEval> m1_grid;
+  std::optional<MarkovEval> m1_grid, last;
   for (int k = 1; k <= 9; ++k) {
-    auto e = eval_markov(G, l, {0.1 * k}, s0sq, opt.vce_method);
+    auto e = eval_markov(G, l, {0.1 * k}, warm(last), opt.vce_method);
+    last = e;
     if (e && (!m1_grid || e->reml > m1_grid->reml)) m1_grid = std::move(e);
   }
   std::optional<MarkovEval> m1_ml;
   {
     // Scan (−1, 1) in steps of 0.05 for the bracket, then golden section.
     double best_rho = 0.0, best = kMinusInf;
+    last.reset();
+    Eigen::Vector2d start = cold;
     for (int k = -19; k <= 19; ++k) {
-      const auto e = eval_markov(G, l, {0.05 * k}, s0sq, opt.vce_method);
+      auto e = eval_markov(G, l, {0.05 * k}, warm(last), opt.vce_method);
       if (e && e->reml > best) {
         best = e->reml;
         best_rho = 0.05 * k;
+        start = warm(e);
       }
+      last = std::move(e);
     }
     if (std::isfinite(best)) {
       const auto fn = [&](double rho) {
-        const auto e = eval_markov(G, l, {rho}, s0sq, opt.vce_method);
+        const auto e = eval_markov(G, l, {rho}, start, opt.vce_method);
         return e ? e->reml : kMinusInf;
       };
       const auto [rho, v] = golden_max(fn, std::max(-1.0 + kEdge, best_rho - 0.05),
-                                       std::min(1.0 - kEdge, best_rho + 0.05), 1e-7);
-      m1_ml = eval_markov(G, l, {v >= best ? rho : best_rho}, s0sq, opt.vce_method);
+                                       std::min(1.0 - kEdge, best_rho + 0.05), 1e-6);
+      m1_ml = eval_markov(G, l, {v >= best ? rho : best_rho}, start, opt.vce_method);
     }
   }
   if (m1_grid)
@@ -493,38 +507,44 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
 
   // Markov-2: grid (also the likelihood surface) and ML.
   report_progress(progress, 2, 5, "Markov-2");
-  if (n >= kMinReadingsMarkov2) {
+  if (!opt.markov2) {
+    // left out on request
+  } else if (n >= kMinReadingsMarkov2) {
     for (int k = -9; k <= 9; ++k) {
       res.rho1_grid.push_back(0.1 * k);
       res.rho2_grid.push_back(0.1 * k);
     }
     res.markov2_surface = MatrixXd::Constant(19, 19, kNaN);
     std::optional<MarkovEval> m2_grid;
-    for (int a = 0; a < 19; ++a)
+    for (int a = 0; a < 19; ++a) {
+      last.reset();
       for (int b = 0; b < 19; ++b) {
         const double r1 = res.rho1_grid[static_cast<std::size_t>(a)];
         const double r2 = res.rho2_grid[static_cast<std::size_t>(b)];
         if (!ar2_stationary(r1, r2)) continue;
-        auto e = eval_markov(G, l, {r1, r2}, s0sq, opt.vce_method);
+        auto e = eval_markov(G, l, {r1, r2}, warm(last), opt.vce_method);
+        last = e;
         if (!e) continue;
         res.markov2_surface(a, b) = e->reml;
         if (!m2_grid || e->reml > m2_grid->reml) m2_grid = std::move(e);
       }
+    }
     if (m2_grid) {
       res.models.push_back(markov_fit(StochasticModel::Markov2Grid, *m2_grid, r, G, l, opt.route, false));
       report_progress(progress, 3, 5, "Markov-2 ML");
+      const Eigen::Vector2d start2 = warm(m2_grid);
       const auto fn = [&](const Eigen::Vector2d& p) {
         // Strictly inside the triangle, kEdge from its sides.
         if (!(p(0) + p(1) < 1.0 - kEdge && p(1) - p(0) < 1.0 - kEdge && std::fabs(p(1)) < 1.0 - kEdge))
           return kMinusInf;
-        const auto e = eval_markov(G, l, {p(0), p(1)}, s0sq, opt.vce_method);
+        const auto e = eval_markov(G, l, {p(0), p(1)}, start2, opt.vce_method);
         return e ? e->reml : kMinusInf;
       };
       const Eigen::Vector2d x0(m2_grid->rho[0], m2_grid->rho[1]);
       // Start inside the triangle (the grid point may sit on its edge region).
-      const auto [p, v] = nelder_mead_max(fn, x0, -0.05, 1e-7, 400);
+      const auto [p, v] = nelder_mead_max(fn, x0, -0.05, 1e-6, 400);
       const Eigen::Vector2d best = v >= m2_grid->reml ? p : x0;
-      auto e = eval_markov(G, l, {best(0), best(1)}, s0sq, opt.vce_method);
+      auto e = eval_markov(G, l, {best(0), best(1)}, start2, opt.vce_method);
       if (e)
         res.models.push_back(markov_fit(StochasticModel::Markov2Ml, *e, r, G, l, opt.route, true));
       else

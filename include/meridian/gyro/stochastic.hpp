@@ -82,6 +82,7 @@ struct StochasticOptions {
   adjust::VceMethod vce_method = adjust::VceMethod::LsVce;
   GlsRoute route = GlsRoute::Whitening;
   bool covariance_functions = true;  ///< include the C-type models
+  bool markov2 = true;               ///< include the Markov-2 models (grid and ML)
 };
 
 /// One reversal-point series.
