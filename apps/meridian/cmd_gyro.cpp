@@ -235,15 +235,6 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   reduce->add_flag("-q,--quiet", ra->quiet, "No progress bar");
   reduce->callback([ra, &exit_code] { exit_code = guarded([&] { return run_reduce(*ra); }); });
 
-  auto sto = std::make_shared<StochasticArgs>();
-  CLI::App* stoch = gyro->add_subcommand(
-      "stochastic", "Compare stochastic models (white noise, covariance functions, Markov-1/-2) of each reversal series");
-  stoch->add_option("FILE", sto->file, "Field book as for gyro reduce (YAML or JSON)")->required();
-  stoch->add_flag("--json", sto->json, "Print JSON instead of text");
-  stoch->add_option("-o,--output", sto->output, "Write to this file (atomically) instead of stdout");
-  stoch->add_flag("-q,--quiet", sto->quiet, "No progress bar");
-  stoch->callback([sto, &exit_code] { exit_code = guarded([&] { return run_stochastic(*sto); }); });
-
   auto ca = std::make_shared<CampaignArgs>();
   CLI::App* camp = gyro->add_subcommand("campaign", "Process a whole station campaign to grid azimuths");
   camp->add_option("FILE", ca->file, "Campaign file (YAML or JSON)")->required();
@@ -331,6 +322,15 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
     }
     exit_code = guarded([&] { return run_simulate(*sa, cmd); });
   });
+
+  auto sto = std::make_shared<StochasticArgs>();
+  CLI::App* stoch = gyro->add_subcommand(
+      "stochastic", "Compare stochastic models (white noise, covariance functions, Markov-1/-2) of each reversal series");
+  stoch->add_option("FILE", sto->file, "Field book as for gyro reduce (YAML or JSON)")->required();
+  stoch->add_flag("--json", sto->json, "Print JSON instead of text");
+  stoch->add_option("-o,--output", sto->output, "Write to this file (atomically) instead of stdout");
+  stoch->add_flag("-q,--quiet", sto->quiet, "No progress bar");
+  stoch->callback([sto, &exit_code] { exit_code = guarded([&] { return run_stochastic(*sto); }); });
 }
 
 }  // namespace meridian::cli

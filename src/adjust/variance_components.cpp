@@ -390,6 +390,11 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
   res.components = theta;
   res.clipped.resize(comps.size());
   for (std::size_t k = 0; k < comps.size(); ++k) res.clipped[k] = !active[k];
+  if (!options.details) {
+    res.covariance = MatrixXd::Constant(K, K, kNaN);
+    res.likelihood = gls_log_likelihood(A, l, factor_covariance(comps, theta, active));
+    return res;
+  }
   // Covariance of θ̂: N⁻¹ at θ̂ over the active components.
   const Equations e = equations(VceMethod::LsVce, A, l, comps, theta, active);
   const MatrixXd cov_active = e.n.ldlt().solve(MatrixXd::Identity(e.n.rows(), e.n.cols()));

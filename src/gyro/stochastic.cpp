@@ -39,6 +39,7 @@ VectorXd to_vector(const std::vector<double>& r) {
 // A Markov model fitted at fixed ρ: the VCE and what follows from it.
 struct MarkovEval {
   std::vector<double> rho;
+  Eigen::Vector2d start;  // the VCE's start, so the evaluation can be repeated with details
   MarkovFactors factors;
   adjust::VceResult vce;
   double reml = kMinusInf;
@@ -54,11 +55,12 @@ MarkovFactors factors_for(const std::vector<double>& rho, int n) {
 
 std::optional<MarkovEval> eval_markov(const MatrixXd& G, const VectorXd& l,
                                       const std::vector<double>& rho, const Eigen::Vector2d& start,
-                                      adjust::VceMethod method) {
+                                      adjust::VceMethod method, bool details = false) {
   try {
-    MarkovEval e{rho, factors_for(rho, static_cast<int>(l.size())), {}, kMinusInf};
+    MarkovEval e{rho, start, factors_for(rho, static_cast<int>(l.size())), {}, kMinusInf};
     adjust::VceOptions o;
     o.method = method;
+    o.details = details;
     o.initial = start;
     e.vce = adjust::estimate_variance_components(G, l, markov_components(e.factors), o);
     e.reml = e.vce.likelihood.reml;
@@ -115,8 +117,15 @@ Uncertain sigma_from_variance(double var, double sd_var) {
   return {s, s > 0.0 && std::isfinite(sd_var) ? sd_var / (2.0 * s) : kNaN};
 }
 
-ModelFit markov_fit(StochasticModel model, const MarkovEval& e, const std::vector<double>& readings,
-                    const MatrixXd& G, const VectorXd& l, GlsRoute route, bool ml) {
+ModelFit markov_fit(StochasticModel model, const MarkovEval& scan, const std::vector<double>& readings,
+                    const MatrixXd& G, const VectorXd& l, GlsRoute route, adjust::VceMethod method,
+                    bool ml) {
+  // The scan kept only the likelihood: repeat the same VCE with its covariance.
+  const auto full = eval_markov(G, l, scan.rho, scan.start, method, true);
+  if (!full)
+    throw NumericalError(fmt::format("{}: variance-component estimation failed on repetition",
+                                     to_string(model)));
+  const MarkovEval& e = *full;
   ModelFit f;
   f.model = model;
   f.rho = e.rho;
@@ -497,11 +506,11 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
     }
   }
   if (m1_grid)
-    res.models.push_back(markov_fit(StochasticModel::Markov1Grid, *m1_grid, r, G, l, opt.route, false));
+    res.models.push_back(markov_fit(StochasticModel::Markov1Grid, *m1_grid, r, G, l, opt.route, opt.vce_method, false));
   else
     res.notes.push_back("markov1-grid: VCE failed at every rho of the grid");
   if (m1_ml)
-    res.models.push_back(markov_fit(StochasticModel::Markov1Ml, *m1_ml, r, G, l, opt.route, true));
+    res.models.push_back(markov_fit(StochasticModel::Markov1Ml, *m1_ml, r, G, l, opt.route, opt.vce_method, true));
   else
     res.notes.push_back("markov1-ml: the restricted likelihood could not be maximised");
 
@@ -530,7 +539,7 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
       }
     }
     if (m2_grid) {
-      res.models.push_back(markov_fit(StochasticModel::Markov2Grid, *m2_grid, r, G, l, opt.route, false));
+      res.models.push_back(markov_fit(StochasticModel::Markov2Grid, *m2_grid, r, G, l, opt.route, opt.vce_method, false));
       report_progress(progress, 3, 5, "Markov-2 ML");
       const Eigen::Vector2d start2 = warm(m2_grid);
       const auto fn = [&](const Eigen::Vector2d& p) {
@@ -546,7 +555,7 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
       const Eigen::Vector2d best = v >= m2_grid->reml ? p : x0;
       auto e = eval_markov(G, l, {best(0), best(1)}, start2, opt.vce_method);
       if (e)
-        res.models.push_back(markov_fit(StochasticModel::Markov2Ml, *e, r, G, l, opt.route, true));
+        res.models.push_back(markov_fit(StochasticModel::Markov2Ml, *e, r, G, l, opt.route, opt.vce_method, true));
       else
         res.notes.push_back("markov2-ml: the restricted likelihood could not be maximised");
     } else {

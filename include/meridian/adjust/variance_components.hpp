@@ -84,6 +84,10 @@ struct VceOptions {
   /// Converged when every |θ_k − θ⁰_k| ≤ tolerance·max_k θ_k (relative to the largest
   /// component, so a component near zero does not stall the iteration); in (0, 1).
   double tolerance = 1e-10;
+  /// false: compute only the components, `clipped`, `iterations`, `notes` and `likelihood`
+  /// (covariance NaN, adjustment empty) — for profiling the likelihood over other parameters
+  /// of the covariance, where only its value is needed.
+  bool details = true;
 };
 
 struct VceResult {
