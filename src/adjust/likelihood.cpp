@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "meridian/core/error.hpp"
 #include "detail.hpp"
+#include "meridian/core/error.hpp"
 
 namespace meridian::adjust {
 namespace {
@@ -22,8 +22,8 @@ void check_sizes(const MatrixXd& A, Index n_cov, const char* what) {
     throw InputError(fmt::format("{}: needs more observations ({}) than parameters ({})", what,
                                  A.rows(), A.cols()));
   if (n_cov != A.rows())
-    throw InputError(fmt::format("observation covariance is {}×{} but A has {} rows", n_cov,
-                                 n_cov, A.rows()));
+    throw InputError(
+        fmt::format("observation covariance is {}×{} but A has {} rows", n_cov, n_cov, A.rows()));
   detail::check_finite(A, "design matrix A");
 }
 
@@ -39,8 +39,8 @@ double log_abs_det_gram(const MatrixXd& w) {
 GlsLikelihood gls_log_likelihood(const MatrixXd& A, const VectorXd& l, const CovarianceFactor& D) {
   check_sizes(A, D.size(), "log-likelihood");
   if (l.size() != A.rows())
-    throw InputError(fmt::format("observation vector l has {} entries but A has {} rows",
-                                 l.size(), A.rows()));
+    throw InputError(
+        fmt::format("observation vector l has {} entries but A has {} rows", l.size(), A.rows()));
   detail::check_finite(l, "observation vector l");
   const Index n = A.rows();
   const Index u = A.cols();
@@ -63,7 +63,8 @@ GlsLikelihood gls_log_likelihood(const MatrixXd& A, const VectorXd& l, const Cov
   const double nd = static_cast<double>(n);
   const double r = static_cast<double>(n - u);
   g.ml = -0.5 * (nd * kLog2Pi + g.log_det_covariance + g.vtpv);
-  g.reml = -0.5 * (r * kLog2Pi + g.log_det_covariance + g.log_det_normal - g.log_det_design + g.vtpv);
+  g.reml =
+      -0.5 * (r * kLog2Pi + g.log_det_covariance + g.log_det_normal - g.log_det_design + g.vtpv);
   return g;
 }
 

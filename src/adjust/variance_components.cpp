@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "meridian/core/error.hpp"
 #include "detail.hpp"
+#include "meridian/core/error.hpp"
 
 namespace meridian::adjust {
 namespace {
@@ -54,9 +54,10 @@ CovarianceFactor factor_covariance(const std::vector<VarianceComponent>& comps,
     return CovarianceFactor(d);
   } catch (const NumericalError& e) {
     if (zero.empty()) throw NumericalError("variance components: " + e.message());
-    throw NumericalError(fmt::format("variance components: with {} set to 0 the covariance is "
-                                     "singular ({})",
-                                     zero, e.message()));
+    throw NumericalError(
+        fmt::format("variance components: with {} set to 0 the covariance is "
+                    "singular ({})",
+                    zero, e.message()));
   }
 }
 
@@ -138,7 +139,7 @@ Equations helmert_equations(const MatrixXd& A, const VectorXd& l,
     e.r(a) = 0.5 * (fb[a].transpose() * vw).squaredNorm();
     for (Index b = 0; b <= a; ++b) {
       const MatrixXd s = fb[a].transpose() * fb[b];  // F̄_aᵀ·F̄_b
-      const double t1 = s.squaredNorm();              // tr(PQ_aPQ_b)
+      const double t1 = s.squaredNorm();             // tr(PQ_aPQ_b)
       const double t2 = chol.solve(g[a] * s * g[b].transpose()).trace();
       const double t3 = (ninv_w[a] * ninv_w[b]).trace();
       e.n(a, b) = e.n(b, a) = 0.5 * (t1 - 2.0 * t2 + t3);
@@ -170,9 +171,10 @@ VectorXd solve_equations(const Equations& e, const VectorXd& theta,
   const VectorXd d = e.n.diagonal();
   for (Index a = 0; a < d.size(); ++a)
     if (!(d(a) > 0.0))
-      throw NumericalError(fmt::format("variance components: {} is not determined by the "
-                                       "observations (its cofactor lies in the column space of A)",
-                                       names[static_cast<std::size_t>(a)]));
+      throw NumericalError(
+          fmt::format("variance components: {} is not determined by the "
+                      "observations (its cofactor lies in the column space of A)",
+                      names[static_cast<std::size_t>(a)]));
   const VectorXd s = d.cwiseSqrt().cwiseInverse();
   const MatrixXd ns = s.asDiagonal() * e.n * s.asDiagonal();
   const Eigen::LLT<MatrixXd> chol(ns);
@@ -185,9 +187,10 @@ VectorXd solve_equations(const Equations& e, const VectorXd& theta,
   if (!ok) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    throw NumericalError(fmt::format("variance components cannot be separated: the cofactor "
-                                     "matrices of {} are (nearly) proportional on the residuals",
-                                     list));
+    throw NumericalError(
+        fmt::format("variance components cannot be separated: the cofactor "
+                    "matrices of {} are (nearly) proportional on the residuals",
+                    list));
   }
   // Newton's step on the restricted likelihood where its Hessian N − S is negative definite
   // (fast near the maximum, where plain scoring θ = N⁻¹·r can cycle when the components are
@@ -206,14 +209,15 @@ void validate(const MatrixXd& A, const VectorXd& l, const std::vector<VarianceCo
   if (comps.empty()) throw InputError("variance components: no components given");
   if (A.cols() < 1) throw InputError("design matrix A has no columns (no parameters)");
   if (l.size() != A.rows())
-    throw InputError(fmt::format("observation vector l has {} entries but A has {} rows",
-                                 l.size(), A.rows()));
+    throw InputError(
+        fmt::format("observation vector l has {} entries but A has {} rows", l.size(), A.rows()));
   const Index n = A.rows();
   const auto k = static_cast<Index>(comps.size());
   if (n - A.cols() < k)
-    throw InputError(fmt::format("variance components: {} components need at least {} degrees "
-                                 "of freedom, the model has {} ({} observations, {} parameters)",
-                                 k, k, n - A.cols(), n, A.cols()));
+    throw InputError(
+        fmt::format("variance components: {} components need at least {} degrees "
+                    "of freedom, the model has {} ({} observations, {} parameters)",
+                    k, k, n - A.cols(), n, A.cols()));
   detail::check_finite(A, "design matrix A");
   detail::check_finite(l, "observation vector l");
   for (const auto& c : comps) {
@@ -230,16 +234,17 @@ void validate(const MatrixXd& A, const VectorXd& l, const std::vector<VarianceCo
                                    o.initial.size(), k));
     for (Index a = 0; a < k; ++a)
       if (!(std::isfinite(o.initial(a)) && o.initial(a) > 0.0))
-        throw InputError(fmt::format("variance components: initial value of {} must be finite "
-                                     "and > 0, is {}",
-                                     comps[static_cast<std::size_t>(a)].name, o.initial(a)));
+        throw InputError(
+            fmt::format("variance components: initial value of {} must be finite "
+                        "and > 0, is {}",
+                        comps[static_cast<std::size_t>(a)].name, o.initial(a)));
   }
   if (o.max_iterations < 1)
-    throw InputError(fmt::format("variance components: max_iterations must be ≥ 1, is {}",
-                                 o.max_iterations));
+    throw InputError(
+        fmt::format("variance components: max_iterations must be ≥ 1, is {}", o.max_iterations));
   if (!(o.tolerance > 0.0 && o.tolerance < 1.0))
-    throw InputError(fmt::format("variance components: tolerance must be in (0, 1), is {}",
-                                 o.tolerance));
+    throw InputError(
+        fmt::format("variance components: tolerance must be in (0, 1), is {}", o.tolerance));
 }
 
 std::vector<std::string> active_names(const std::vector<VarianceComponent>& comps,
@@ -265,9 +270,10 @@ std::string to_string(VceMethod m) { return m == VceMethod::Helmert ? "helmert" 
 VarianceComponent VarianceComponent::from_cofactor(std::string name, const MatrixXd& Q) {
   const Index n = Q.rows();
   if (n == 0 || Q.cols() != n)
-    throw InputError(fmt::format("variance component {}: cofactor matrix must be square and "
-                                 "non-empty, is {}×{}",
-                                 name, Q.rows(), Q.cols()));
+    throw InputError(
+        fmt::format("variance component {}: cofactor matrix must be square and "
+                    "non-empty, is {}×{}",
+                    name, Q.rows(), Q.cols()));
   detail::check_finite(Q, "cofactor matrix");
   const double scale = Q.cwiseAbs().maxCoeff();
   if (!((Q - Q.transpose()).cwiseAbs().maxCoeff() <= 1e-10 * scale))
@@ -275,11 +281,13 @@ VarianceComponent VarianceComponent::from_cofactor(std::string name, const Matri
   const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(0.5 * (Q + Q.transpose()));
   const VectorXd& lambda = eig.eigenvalues();  // ascending
   const double lmax = lambda(n - 1);
-  if (!(lmax > 0.0)) throw InputError(fmt::format("variance component {}: cofactor matrix is zero", name));
+  if (!(lmax > 0.0))
+    throw InputError(fmt::format("variance component {}: cofactor matrix is zero", name));
   if (lambda(0) < -1e-10 * lmax)
-    throw InputError(fmt::format("variance component {}: cofactor matrix is not positive "
-                                 "semi-definite (eigenvalue {:.3g}, largest {:.3g})",
-                                 name, lambda(0), lmax));
+    throw InputError(
+        fmt::format("variance component {}: cofactor matrix is not positive "
+                    "semi-definite (eigenvalue {:.3g}, largest {:.3g})",
+                    name, lambda(0), lmax));
   Index first = 0;
   while (first < n && lambda(first) <= 1e-14 * lmax) ++first;
   VarianceComponent c{std::move(name), MatrixXd(n, n - first)};
@@ -291,8 +299,8 @@ VarianceComponent VarianceComponent::from_cofactor(std::string name, const Matri
 MatrixXd assemble_covariance(const std::vector<VarianceComponent>& comps, const VectorXd& theta) {
   if (comps.empty()) throw InputError("variance components: no components given");
   if (theta.size() != static_cast<Index>(comps.size()))
-    throw InputError(fmt::format("{} component values for {} components", theta.size(),
-                                 comps.size()));
+    throw InputError(
+        fmt::format("{} component values for {} components", theta.size(), comps.size()));
   const Index n = comps.front().factor.rows();
   MatrixXd d = MatrixXd::Zero(n, n);
   for (std::size_t k = 0; k < comps.size(); ++k) {
@@ -346,13 +354,14 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
     bool clipped_now = false;
     for (Index k = 0; k < K; ++k) {
       const auto ks = static_cast<std::size_t>(k);
-      if (active[ks] && full(k) < 0.0 && theta(k) <= kClipFraction * std::max(largest, theta.maxCoeff())) {
+      if (active[ks] && full(k) < 0.0 &&
+          theta(k) <= kClipFraction * std::max(largest, theta.maxCoeff())) {
         active[ks] = false;
         theta(k) = 0.0;
         clipped_now = true;
-        res.notes.push_back(fmt::format(
-            "{} estimated negative ({:.3g}) at iteration {}: set to 0 and held there", comps[ks].name,
-            full(k), it));
+        res.notes.push_back(
+            fmt::format("{} estimated negative ({:.3g}) at iteration {}: set to 0 and held there",
+                        comps[ks].name, full(k), it));
       }
     }
     if (std::none_of(active.begin(), active.end(), [](bool a) { return a; }))
@@ -362,14 +371,16 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
       continue;
     }
     // The a-priori and the a-posteriori components agree: converged (take the update).
-    last_change = (full - theta).cwiseAbs().maxCoeff() / std::max(full.maxCoeff(), theta.maxCoeff());
+    last_change =
+        (full - theta).cwiseAbs().maxCoeff() / std::max(full.maxCoeff(), theta.maxCoeff());
     if (alpha == 1.0 && last_change <= options.tolerance) {
       theta = full;
       converged = true;
       break;
     }
     // Scoring can overshoot when the components are strongly correlated (it then cycles):
-    // halve the step until the restricted likelihood does not decrease (a safeguarded scoring step).
+    // halve the step until the restricted likelihood does not decrease (a safeguarded scoring
+    // step).
     const double here = std::isnan(here_cache) ? reml_at(A, l, comps, theta, active) : here_cache;
     VectorXd next = theta + alpha * (full - theta);
     double there = reml_at(A, l, comps, next, active);
@@ -382,10 +393,10 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
     here_cache = there;
   }
   if (!converged)
-    throw NumericalError(fmt::format("variance components did not converge in {} iterations "
-                                     "(last relative change {:.3g}; {})",
-                                     options.max_iterations, last_change,
-                                     component_list(comps, theta)));
+    throw NumericalError(
+        fmt::format("variance components did not converge in {} iterations "
+                    "(last relative change {:.3g}; {})",
+                    options.max_iterations, last_change, component_list(comps, theta)));
 
   res.components = theta;
   res.clipped.resize(comps.size());

@@ -14,7 +14,8 @@ using Eigen::MatrixXd;
 namespace {
 
 void check_n(int n) {
-  if (n < 1) throw InputError(fmt::format("Markov covariance: needs at least 1 reading, got {}", n));
+  if (n < 1)
+    throw InputError(fmt::format("Markov covariance: needs at least 1 reading, got {}", n));
 }
 
 }  // namespace
@@ -22,9 +23,10 @@ void check_n(int n) {
 MatrixXd MarkovFactors::covariance(double sigma1_sq, double sigma2_sq) const {
   if (!(std::isfinite(sigma1_sq) && sigma1_sq >= 0.0 && std::isfinite(sigma2_sq) &&
         sigma2_sq >= 0.0))
-    throw InputError(fmt::format("Markov covariance: variance components must be finite and "
-                                 ">= 0, are {} and {}",
-                                 sigma1_sq, sigma2_sq));
+    throw InputError(
+        fmt::format("Markov covariance: variance components must be finite and "
+                    ">= 0, are {} and {}",
+                    sigma1_sq, sigma2_sq));
   return sigma1_sq * q1() + sigma2_sq * q2();
 }
 
@@ -36,8 +38,8 @@ bool ar2_stationary(double rho1, double rho2) {
 MarkovFactors markov1_factors(int n, double rho) {
   check_n(n);
   if (!(std::isfinite(rho) && std::fabs(rho) < 1.0))
-    throw InputError(fmt::format("Markov-1: rho = {} is outside the stationary region |rho| < 1",
-                                 rho));
+    throw InputError(
+        fmt::format("Markov-1: rho = {} is outside the stationary region |rho| < 1", rho));
   const Index m = n;
   MarkovFactors f{MatrixXd::Zero(m, m), MatrixXd(m, 1)};
   double p = 1.0;  // ρ^k built by multiplication: the recursion, not pow()
@@ -57,10 +59,11 @@ MarkovFactors markov2_factors(int n, double rho1, double rho2) {
     const char* bound = rho1 + rho2 >= 1.0   ? "rho1 + rho2 < 1"
                         : rho2 - rho1 >= 1.0 ? "rho2 - rho1 < 1"
                                              : "|rho2| < 1";
-    throw InputError(fmt::format("Markov-2: (rho1, rho2) = ({}, {}) is outside the AR(2) "
-                                 "stationarity triangle ({} is violated): the process is "
-                                 "non-stationary",
-                                 rho1, rho2, bound));
+    throw InputError(
+        fmt::format("Markov-2: (rho1, rho2) = ({}, {}) is outside the AR(2) "
+                    "stationarity triangle ({} is violated): the process is "
+                    "non-stationary",
+                    rho1, rho2, bound));
   }
   const Index m = n;
   MarkovFactors f{MatrixXd::Zero(m, m), MatrixXd(m, 2)};

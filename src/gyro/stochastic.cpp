@@ -96,8 +96,8 @@ Eigen::Vector3d estimator_applied(const MatrixXd& G, const adjust::CovarianceFac
 
 // Fill north/amplitude/damping, likelihood and the implied autocorrelation of a model with
 // covariance D.
-void finish_fit(ModelFit& f, const std::vector<double>& readings, const MatrixXd& D,
-                GlsRoute route, int k) {
+void finish_fit(ModelFit& f, const std::vector<double>& readings, const MatrixXd& D, GlsRoute route,
+                int k) {
   const GlsFit g = reversal_gls(readings, D, route);
   f.north = {g.y(0), std::sqrt(g.covariance(0, 0))};
   f.amplitude = {g.y(1), std::sqrt(g.covariance(1, 1))};
@@ -117,14 +117,14 @@ Uncertain sigma_from_variance(double var, double sd_var) {
   return {s, s > 0.0 && std::isfinite(sd_var) ? sd_var / (2.0 * s) : kNaN};
 }
 
-ModelFit markov_fit(StochasticModel model, const MarkovEval& scan, const std::vector<double>& readings,
-                    const MatrixXd& G, const VectorXd& l, GlsRoute route, adjust::VceMethod method,
-                    bool ml) {
+ModelFit markov_fit(StochasticModel model, const MarkovEval& scan,
+                    const std::vector<double>& readings, const MatrixXd& G, const VectorXd& l,
+                    GlsRoute route, adjust::VceMethod method, bool ml) {
   // The scan kept only the likelihood: repeat the same VCE with its covariance.
   const auto full = eval_markov(G, l, scan.rho, scan.start, method, true);
   if (!full)
-    throw NumericalError(fmt::format("{}: variance-component estimation failed on repetition",
-                                     to_string(model)));
+    throw NumericalError(
+        fmt::format("{}: variance-component estimation failed on repetition", to_string(model)));
   const MarkovEval& e = *full;
   ModelFit f;
   f.model = model;
@@ -229,7 +229,9 @@ std::pair<Eigen::Vector2d, double> nelder_mead_max(
   std::array<double, 3> v{fn(p[0]), fn(p[1]), fn(p[2])};
   for (int it = 0; it < max_iter; ++it) {
     std::array<int, 3> o{0, 1, 2};
-    std::sort(o.begin(), o.end(), [&](int i, int j) { return v[static_cast<std::size_t>(i)] > v[static_cast<std::size_t>(j)]; });
+    std::sort(o.begin(), o.end(), [&](int i, int j) {
+      return v[static_cast<std::size_t>(i)] > v[static_cast<std::size_t>(j)];
+    });
     const auto b = static_cast<std::size_t>(o[0]), m = static_cast<std::size_t>(o[1]),
                w = static_cast<std::size_t>(o[2]);
     if ((p[b] - p[w]).norm() < tol && (p[b] - p[m]).norm() < tol) break;
@@ -280,9 +282,12 @@ struct CovFunction {
 
 double cov_shape(StochasticModel m, const std::vector<double>& p, double k) {
   switch (m) {
-    case StochasticModel::Exponential: return std::exp(-k / p[0]);
-    case StochasticModel::Gaussian: return std::exp(-(k / p[0]) * (k / p[0]));
-    default: return std::exp(-k / p[0]) * std::cos(p[1] * k);
+    case StochasticModel::Exponential:
+      return std::exp(-k / p[0]);
+    case StochasticModel::Gaussian:
+      return std::exp(-(k / p[0]) * (k / p[0]));
+    default:
+      return std::exp(-k / p[0]) * std::cos(p[1] * k);
   }
 }
 
@@ -324,14 +329,22 @@ std::optional<CovFunction> fit_cov_function(StochasticModel m, const std::vector
 
 std::string to_string(StochasticModel m) {
   switch (m) {
-    case StochasticModel::WhiteNoise: return "white-noise";
-    case StochasticModel::Exponential: return "c-exponential";
-    case StochasticModel::Gaussian: return "c-gaussian";
-    case StochasticModel::DampedCosine: return "c-damped-cosine";
-    case StochasticModel::Markov1Grid: return "markov1-grid";
-    case StochasticModel::Markov2Grid: return "markov2-grid";
-    case StochasticModel::Markov1Ml: return "markov1-ml";
-    case StochasticModel::Markov2Ml: return "markov2-ml";
+    case StochasticModel::WhiteNoise:
+      return "white-noise";
+    case StochasticModel::Exponential:
+      return "c-exponential";
+    case StochasticModel::Gaussian:
+      return "c-gaussian";
+    case StochasticModel::DampedCosine:
+      return "c-damped-cosine";
+    case StochasticModel::Markov1Grid:
+      return "markov1-grid";
+    case StochasticModel::Markov2Grid:
+      return "markov2-grid";
+    case StochasticModel::Markov1Ml:
+      return "markov1-ml";
+    case StochasticModel::Markov2Ml:
+      return "markov2-ml";
   }
   return "?";
 }
@@ -357,12 +370,13 @@ MatrixXd reversal_design(int n) {
 GlsFit reversal_gls(const std::vector<double>& readings, const MatrixXd& D, GlsRoute route) {
   const auto n = static_cast<Index>(readings.size());
   if (n < 4)
-    throw InputError(fmt::format("reversal GLS: needs at least 4 readings (3 unknowns + 1), "
-                                 "got {}",
-                                 n));
+    throw InputError(
+        fmt::format("reversal GLS: needs at least 4 readings (3 unknowns + 1), "
+                    "got {}",
+                    n));
   if (D.rows() != n || D.cols() != n)
-    throw InputError(fmt::format("reversal GLS: covariance is {}x{} for {} readings", D.rows(),
-                                 D.cols(), n));
+    throw InputError(
+        fmt::format("reversal GLS: covariance is {}x{} for {} readings", D.rows(), D.cols(), n));
   const MatrixXd G = reversal_design(static_cast<int>(n));
   const VectorXd l = to_vector(readings);
   GlsFit f;
@@ -392,9 +406,10 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
   const auto& r = input.readings;
   const int n = static_cast<int>(r.size());
   if (n < kMinReadings)
-    throw InputError(fmt::format("stochastic models: need at least {} readings (3 unknowns M, "
-                                 "A', c and 2 variance components, + 1), got {}",
-                                 kMinReadings, n));
+    throw InputError(
+        fmt::format("stochastic models: need at least {} readings (3 unknowns M, "
+                    "A', c and 2 variance components, + 1), got {}",
+                    kMinReadings, n));
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(r[static_cast<std::size_t>(i)]))
       throw InputError(fmt::format("stochastic models: reading {} is not finite", i + 1),
@@ -407,13 +422,15 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
 
   // White noise (OLS) with the one-component VCE σ̂_0² = vᵀv/(n − 3).
   report_progress(progress, 0, 5, "white noise");
-  const auto ols = adjust::solve_linear(G, l, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)));
+  const auto ols =
+      adjust::solve_linear(G, l, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)));
   const double s0sq = ols.vtpv / (n - 3);
   // Residuals at rounding level of the readings: an exact fit.
   const double scale = l.cwiseAbs().maxCoeff();
   if (!(std::sqrt(s0sq) > 1e-12 * scale))
-    throw InputError("stochastic models: the readings fit the reversal model exactly (no "
-                     "scatter): there is nothing to model");
+    throw InputError(
+        "stochastic models: the readings fit the reversal model exactly (no "
+        "scatter): there is nothing to model");
   res.ols_residuals = ols.residuals;
   {
     std::vector<double> chat(static_cast<std::size_t>(n));
@@ -440,13 +457,13 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
                                 StochasticModel::DampedCosine}) {
         const auto cf = fit_cov_function(m, head);
         if (!cf) {
-          res.notes.push_back(fmt::format("{}: no positive fit to the autocovariance", to_string(m)));
+          res.notes.push_back(
+              fmt::format("{}: no positive fit to the autocovariance", to_string(m)));
           continue;
         }
         MatrixXd Dc(n, n);
         for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j)
-            Dc(i, j) = cf->a * cov_shape(m, cf->params, std::abs(i - j));
+          for (int j = 0; j < n; ++j) Dc(i, j) = cf->a * cov_shape(m, cf->params, std::abs(i - j));
         try {
           ModelFit f;
           f.model = m;
@@ -457,9 +474,10 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
           f.sigma2 = {kNaN, kNaN};
           res.models.push_back(f);
         } catch (const NumericalError& e) {
-          res.notes.push_back(fmt::format("{}: left out, its covariance matrix is not positive "
-                                          "definite ({})",
-                                          to_string(m), e.what()));
+          res.notes.push_back(
+              fmt::format("{}: left out, its covariance matrix is not positive "
+                          "definite ({})",
+                          to_string(m), e.what()));
         }
       }
     }
@@ -506,11 +524,13 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
     }
   }
   if (m1_grid)
-    res.models.push_back(markov_fit(StochasticModel::Markov1Grid, *m1_grid, r, G, l, opt.route, opt.vce_method, false));
+    res.models.push_back(markov_fit(StochasticModel::Markov1Grid, *m1_grid, r, G, l, opt.route,
+                                    opt.vce_method, false));
   else
     res.notes.push_back("markov1-grid: VCE failed at every rho of the grid");
   if (m1_ml)
-    res.models.push_back(markov_fit(StochasticModel::Markov1Ml, *m1_ml, r, G, l, opt.route, opt.vce_method, true));
+    res.models.push_back(
+        markov_fit(StochasticModel::Markov1Ml, *m1_ml, r, G, l, opt.route, opt.vce_method, true));
   else
     res.notes.push_back("markov1-ml: the restricted likelihood could not be maximised");
 
@@ -539,12 +559,14 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
       }
     }
     if (m2_grid) {
-      res.models.push_back(markov_fit(StochasticModel::Markov2Grid, *m2_grid, r, G, l, opt.route, opt.vce_method, false));
+      res.models.push_back(markov_fit(StochasticModel::Markov2Grid, *m2_grid, r, G, l, opt.route,
+                                      opt.vce_method, false));
       report_progress(progress, 3, 5, "Markov-2 ML");
       const Eigen::Vector2d start2 = warm(m2_grid);
       const auto fn = [&](const Eigen::Vector2d& p) {
         // Strictly inside the triangle, kEdge from its sides.
-        if (!(p(0) + p(1) < 1.0 - kEdge && p(1) - p(0) < 1.0 - kEdge && std::fabs(p(1)) < 1.0 - kEdge))
+        if (!(p(0) + p(1) < 1.0 - kEdge && p(1) - p(0) < 1.0 - kEdge &&
+              std::fabs(p(1)) < 1.0 - kEdge))
           return kMinusInf;
         const auto e = eval_markov(G, l, {p(0), p(1)}, start2, opt.vce_method);
         return e ? e->reml : kMinusInf;
@@ -555,23 +577,27 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
       const Eigen::Vector2d best = v >= m2_grid->reml ? p : x0;
       auto e = eval_markov(G, l, {best(0), best(1)}, start2, opt.vce_method);
       if (e)
-        res.models.push_back(markov_fit(StochasticModel::Markov2Ml, *e, r, G, l, opt.route, opt.vce_method, true));
+        res.models.push_back(
+            markov_fit(StochasticModel::Markov2Ml, *e, r, G, l, opt.route, opt.vce_method, true));
       else
         res.notes.push_back("markov2-ml: the restricted likelihood could not be maximised");
     } else {
       res.notes.push_back("markov2-grid: VCE failed at every (rho1, rho2) of the grid");
     }
   } else {
-    res.notes.push_back(fmt::format("Markov-2 models need at least {} readings (3 unknowns, 4 "
-                                    "covariance parameters, + 1): left out",
-                                    kMinReadingsMarkov2));
+    res.notes.push_back(
+        fmt::format("Markov-2 models need at least {} readings (3 unknowns, 4 "
+                    "covariance parameters, + 1): left out",
+                    kMinReadingsMarkov2));
   }
   const auto has = [&](StochasticModel m) {
-    return std::any_of(res.models.begin(), res.models.end(), [&](const ModelFit& f) { return f.model == m; });
+    return std::any_of(res.models.begin(), res.models.end(),
+                       [&](const ModelFit& f) { return f.model == m; });
   };
   if (!has(StochasticModel::Markov1Grid) && !has(StochasticModel::Markov1Ml))
-    throw NumericalError("stochastic models: no Markov model could be fitted (variance-component "
-                         "estimation failed at every rho)");
+    throw NumericalError(
+        "stochastic models: no Markov model could be fitted (variance-component "
+        "estimation failed at every rho)");
 
   // Signal influence for the models without a signal term: the signal predicted by the ML
   // Markov model of smaller BIC.
@@ -585,19 +611,22 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
     const double s1 = ref->sigma1.value, s2 = ref->sigma2.value;
     const MatrixXd Dref = fac.covariance(s1 * s1, s2 * s2);
     const adjust::CovarianceFactor cref(Dref);
-    VectorXd rw = l - G * Eigen::Vector3d(ref->north.value, ref->amplitude.value, ref->damping.value);
+    VectorXd rw =
+        l - G * Eigen::Vector3d(ref->north.value, ref->amplitude.value, ref->damping.value);
     cref.whiten(rw);
     MatrixXd bw = fac.B;
     cref.whiten(bw);
     const VectorXd signal = fac.B * (s2 * s2 * (bw.transpose() * rw));
     for (auto& f : res.models) {
       if (f.model == StochasticModel::WhiteNoise) {
-        f.signal_influence = estimator_applied(G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), signal);
+        f.signal_influence =
+            estimator_applied(G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), signal);
       } else if (f.model == StochasticModel::Exponential || f.model == StochasticModel::Gaussian ||
                  f.model == StochasticModel::DampedCosine) {
         MatrixXd Dc(n, n);
         for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j) Dc(i, j) = f.sigma1.value * f.sigma1.value * cov_shape(f.model, f.rho, std::abs(i - j));
+          for (int j = 0; j < n; ++j)
+            Dc(i, j) = f.sigma1.value * f.sigma1.value * cov_shape(f.model, f.rho, std::abs(i - j));
         f.signal_influence = estimator_applied(G, adjust::CovarianceFactor(Dc), signal);
       }
     }
@@ -608,7 +637,8 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
   for (std::size_t i = 1; i < res.models.size(); ++i) {
     const auto& a = res.models[i];
     const auto& b = res.models[best];
-    if (a.bic < b.bic - 1e-9 || (std::fabs(a.bic - b.bic) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
+    if (a.bic < b.bic - 1e-9 ||
+        (std::fabs(a.bic - b.bic) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
       best = i;
   }
   res.models[best].recommended = true;
@@ -620,7 +650,8 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
     LikelihoodRatioTest t;
     t.null_model = null_m;
     t.alternative = alt;
-    t.statistic = std::max(0.0, 2.0 * (res.fit(alt).log_likelihood - res.fit(null_m).log_likelihood));
+    t.statistic =
+        std::max(0.0, 2.0 * (res.fit(alt).log_likelihood - res.fit(null_m).log_likelihood));
     t.dof = dof;
     t.p_value = adjust::chi_squared_upper_probability(t.statistic, dof);
     t.rejected = t.p_value < kLrtAlpha;

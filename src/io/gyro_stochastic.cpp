@@ -50,10 +50,11 @@ StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* p
       add(base + ".zero_after", det.label, false, 0.0, det.zero_after->reversals_div);
   }
   if (job.series.empty())
-    throw InputError("no reversal-point series with at least 6 readings (tracking reversals or "
-                     "zero-position runs): the stochastic models need 3 unknowns, 2 variance "
-                     "components and 1 more",
-                     ErrorContext{f.file, std::nullopt, "determinations"});
+    throw InputError(
+        "no reversal-point series with at least 6 readings (tracking reversals or "
+        "zero-position runs): the stochastic models need 3 unknowns, 2 variance "
+        "components and 1 more",
+        ErrorContext{f.file, std::nullopt, "determinations"});
   return job;
 }
 

@@ -76,12 +76,15 @@ TEST(Likelihood, DiagonalCovarianceClosedForm) {
   const VectorXd l = (VectorXd(4) << 1.0, 2.0, 4.0, 5.0).finished();
   const MatrixXd A = MatrixXd::Ones(4, 1);
   const double s2 = 2.5;
-  const auto g = gls_log_likelihood(A, l, CovarianceFactor::diagonal(VectorXd::Constant(4, std::sqrt(s2))));
+  const auto g =
+      gls_log_likelihood(A, l, CovarianceFactor::diagonal(VectorXd::Constant(4, std::sqrt(s2))));
   const double ss = 4.0 + 1.0 + 1.0 + 4.0;  // mean 3
   EXPECT_NEAR(g.ml, -2.0 * std::log(2.0 * M_PI * s2) - ss / (2.0 * s2), 1e-12);
   // REML: (n − 1) contrasts; ln det(AᵀD⁻¹A) − ln det(AᵀA) = ln(n/σ²) − ln n = −ln σ².
-  EXPECT_NEAR(g.reml, -1.5 * std::log(2.0 * M_PI) - 0.5 * (4.0 * std::log(s2) - std::log(s2)) - ss / (2.0 * s2),
-              1e-12);
+  EXPECT_NEAR(
+      g.reml,
+      -1.5 * std::log(2.0 * M_PI) - 0.5 * (4.0 * std::log(s2) - std::log(s2)) - ss / (2.0 * s2),
+      1e-12);
 }
 
 TEST(Likelihood, RemlDoesNotDependOnTheParametrisation) {

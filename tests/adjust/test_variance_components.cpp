@@ -180,7 +180,8 @@ TEST(VarianceComponents, NegativeComponentIsClippedAndSaid) {
   l << 5.0, 4.0, 6.0, 3.0, 7.0, 5.5, 4.5, 5.0;  // mean 5: the first residual is 0
   MatrixXd f2 = MatrixXd::Zero(n, 1);
   f2(0, 0) = 1.0;
-  const auto r = estimate_variance_components(A, l, {{"white", MatrixXd::Identity(n, n)}, {"spike", f2}});
+  const auto r =
+      estimate_variance_components(A, l, {{"white", MatrixXd::Identity(n, n)}, {"spike", f2}});
   EXPECT_TRUE(r.clipped[1]);
   EXPECT_EQ(r.components(1), 0.0);
   EXPECT_TRUE(std::isnan(r.sigma(1)));
@@ -194,16 +195,18 @@ TEST(VarianceComponents, NonConvergenceIsANumericalError) {
   const Correlated c = correlated_case(5, 1.5, 2.0);
   VceOptions o;
   o.max_iterations = 2;
-  EXPECT_THAT(message_of<NumericalError>([&] { estimate_variance_components(c.A, c.l, c.comps, o); }),
-              HasSubstr("did not converge in 2 iterations"));
+  EXPECT_THAT(
+      message_of<NumericalError>([&] { estimate_variance_components(c.A, c.l, c.comps, o); }),
+      HasSubstr("did not converge in 2 iterations"));
 }
 
 TEST(VarianceComponents, BadInput) {
   const Correlated c = correlated_case(5, 1.5, 2.0);
   // Fewer degrees of freedom than components.
   EXPECT_THAT(message_of<InputError>([&] {
-                estimate_variance_components(c.A.topRows(3), c.l.head(3),
-                                             {{"a", MatrixXd::Identity(3, 3)}, {"b", MatrixXd::Identity(3, 3)}});
+                estimate_variance_components(
+                    c.A.topRows(3), c.l.head(3),
+                    {{"a", MatrixXd::Identity(3, 3)}, {"b", MatrixXd::Identity(3, 3)}});
               }),
               HasSubstr("need at least 2 degrees of freedom"));
   EXPECT_THAT(message_of<InputError>([&] {
@@ -214,10 +217,11 @@ TEST(VarianceComponents, BadInput) {
   o.initial = VectorXd::Constant(2, -1.0);
   EXPECT_THROW(estimate_variance_components(c.A, c.l, c.comps, o), InputError);
   // Two identical components cannot be separated.
-  EXPECT_THAT(message_of<NumericalError>([&] {
-                estimate_variance_components(c.A, c.l, {c.comps[0], {"again", MatrixXd::Identity(24, 24)}});
-              }),
-              HasSubstr("cannot be separated"));
+  EXPECT_THAT(
+      message_of<NumericalError>([&] {
+        estimate_variance_components(c.A, c.l, {c.comps[0], {"again", MatrixXd::Identity(24, 24)}});
+      }),
+      HasSubstr("cannot be separated"));
   // A semi-definite component alone gives a singular covariance.
   MatrixXd f = MatrixXd::Zero(24, 1);
   f(0, 0) = 1.0;

@@ -64,8 +64,9 @@ TEST_F(CliStochastic, StochasticTextAndBadInput) {
   // Five readings: too few for any series.
   std::string few = kBook;
   const std::string all = few.substr(few.find("[\"358"), few.find("]") - few.find("[\"358") + 1);
-  few.replace(few.find(all), all.size(),
-              R"(["358 52 42.9180", "1 32 15.0905", "358 53 04.8283", "1 31 52.4514", "358 53 22.9319"])");
+  few.replace(
+      few.find(all), all.size(),
+      R"(["358 52 42.9180", "1 32 15.0905", "358 53 04.8283", "1 31 52.4514", "358 53 22.9319"])");
   const auto g = write("few.yaml", few);
   const CmdResult r = run("gyro stochastic " + g.string() + " -q");
   EXPECT_EQ(r.code, 1);

@@ -70,8 +70,10 @@ TEST(MarkovCovariance, Markov2FactorsAreTheUnrolledRecursion) {
         const VectorXd col = recursion(VectorXd::Unit(n, j), 0.0, 0.0, r1, r2);
         EXPECT_LT((f.C.col(j) - col).cwiseAbs().maxCoeff(), 1e-14) << n << " " << r1 << " " << r2;
       }
-      EXPECT_LT((f.B.col(0) - recursion(VectorXd::Zero(n), 1.0, 0.0, r1, r2)).cwiseAbs().maxCoeff(), 1e-14);
-      EXPECT_LT((f.B.col(1) - recursion(VectorXd::Zero(n), 0.0, 1.0, r1, r2)).cwiseAbs().maxCoeff(), 1e-14);
+      EXPECT_LT((f.B.col(0) - recursion(VectorXd::Zero(n), 1.0, 0.0, r1, r2)).cwiseAbs().maxCoeff(),
+                1e-14);
+      EXPECT_LT((f.B.col(1) - recursion(VectorXd::Zero(n), 0.0, 1.0, r1, r2)).cwiseAbs().maxCoeff(),
+                1e-14);
     }
   // The spec's check of ε_3.
   const double r1 = 0.6, r2 = -0.25;
@@ -90,9 +92,9 @@ TEST(MarkovCovariance, Markov2FactorsAreTheUnrolledRecursion) {
 TEST(MarkovCovariance, StationarityIsChecked) {
   EXPECT_TRUE(ar2_stationary(0.5, 0.3));
   EXPECT_TRUE(ar2_stationary(1.5, -0.6));
-  EXPECT_FALSE(ar2_stationary(0.5, 0.5));    // ρ1 + ρ2 = 1
-  EXPECT_FALSE(ar2_stationary(-0.5, 0.6));   // ρ2 − ρ1 > 1
-  EXPECT_FALSE(ar2_stationary(0.0, -1.0));   // |ρ2| = 1
+  EXPECT_FALSE(ar2_stationary(0.5, 0.5));   // ρ1 + ρ2 = 1
+  EXPECT_FALSE(ar2_stationary(-0.5, 0.6));  // ρ2 − ρ1 > 1
+  EXPECT_FALSE(ar2_stationary(0.0, -1.0));  // |ρ2| = 1
   EXPECT_FALSE(ar2_stationary(std::nan(""), 0.0));
   auto msg = [](auto f) {
     try {
@@ -167,14 +169,16 @@ TEST(Stochastic, RoutesAgree) {
       const auto& y = rb.models[i];
       ASSERT_EQ(x.model, y.model);
       SCOPED_TRACE(to_string(x.model));
-      const bool ml = x.model == StochasticModel::Markov1Ml || x.model == StochasticModel::Markov2Ml;
+      const bool ml =
+          x.model == StochasticModel::Markov1Ml || x.model == StochasticModel::Markov2Ml;
       const double tol = (ml && other == &c) ? 1e-4 : 1e-9;
       EXPECT_LT(rel(x.north.value, y.north.value), tol);
       EXPECT_LT(rel(x.north.sigma, y.north.sigma), tol);
       EXPECT_LT(rel(x.amplitude.value, y.amplitude.value), tol);
       EXPECT_LT(rel(x.amplitude.sigma, y.amplitude.sigma), tol);
       EXPECT_LT(rel(x.log_likelihood, y.log_likelihood), tol);
-      for (std::size_t k = 0; k < x.rho.size(); ++k) EXPECT_LT(rel(x.rho[k], y.rho[k]), ml ? 1e-4 : 1e-9);
+      for (std::size_t k = 0; k < x.rho.size(); ++k)
+        EXPECT_LT(rel(x.rho[k], y.rho[k]), ml ? 1e-4 : 1e-9);
       if (std::isfinite(x.sigma1.value)) {
         EXPECT_LT(rel(x.sigma1.value, y.sigma1.value), tol);
       }
@@ -247,14 +251,16 @@ TEST(Stochastic, ComparisonTableIsComplete) {
 TEST(Stochastic, BadInput) {
   StochasticInput in;
   in.readings = {1.0, 9.0, 2.0, 8.0, 3.0};
-  EXPECT_THAT([&] {
-    try {
-      analyse_stochastic(in);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  }(), HasSubstr("need at least 6 readings"));
+  EXPECT_THAT(
+      [&] {
+        try {
+          analyse_stochastic(in);
+        } catch (const InputError& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      }(),
+      HasSubstr("need at least 6 readings"));
   in.readings = {1.0, 9.0, 2.0, 8.0, 3.0, std::nan(""), 4.0};
   EXPECT_THROW(analyse_stochastic(in), InputError);
   // An exact fit of (R2): nothing to model.

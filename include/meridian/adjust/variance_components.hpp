@@ -95,12 +95,12 @@ struct VceResult {
   /// Covariance of θ̂ (K×K): the inverse of N at θ̂ over the components not clipped; rows and
   /// columns of clipped components are 0.
   Eigen::MatrixXd covariance;
-  std::vector<bool> clipped;   ///< the estimate went negative and was set to 0
-  int iterations = 0;          ///< updates of θ until convergence (≥ 1)
+  std::vector<bool> clipped;  ///< the estimate went negative and was set to 0
+  int iterations = 0;         ///< updates of θ until convergence (≥ 1)
   VceMethod method = VceMethod::LsVce;
-  LeastSquaresResult adjustment;  ///< the GLS with D(θ̂) (a-priori σ0 = 1)
-  GlsLikelihood likelihood;       ///< log-likelihoods at θ̂ and x̂
-  std::vector<std::string> notes; ///< clipped components, one sentence each
+  LeastSquaresResult adjustment;   ///< the GLS with D(θ̂) (a-priori σ0 = 1)
+  GlsLikelihood likelihood;        ///< log-likelihoods at θ̂ and x̂
+  std::vector<std::string> notes;  ///< clipped components, one sentence each
 
   /// σ of θ̂_k: sqrt(covariance(k, k)); NaN when component k was clipped. Throws InputError
   /// when k is out of range.

@@ -105,7 +105,7 @@ struct ModelFit {
   Uncertain sigma1;
   Uncertain sigma2;  ///< σ_2 (signal; Markov models) and its σ; NaN otherwise
   Eigen::Vector3d signal_influence = Eigen::Vector3d::Zero();  ///< ΔŶ = (ΔM, ΔA′, Δc)
-  double log_likelihood = 0.0;  ///< REML ℓ
+  double log_likelihood = 0.0;                                 ///< REML ℓ
   double aic = 0.0;
   double bic = 0.0;
   int covariance_parameters = 0;  ///< k
@@ -127,8 +127,9 @@ struct LikelihoodRatioTest {
 
 struct StochasticResult {
   int readings = 0;
-  std::vector<ModelFit> models;  ///< in the order of StochasticModel (models that fail are left out)
-  int recommended = 0;           ///< index into models
+  std::vector<ModelFit>
+      models;           ///< in the order of StochasticModel (models that fail are left out)
+  int recommended = 0;  ///< index into models
   std::vector<LikelihoodRatioTest> tests;
   Eigen::VectorXd ols_residuals;  ///< v of the white-noise fit
   /// Empirical autocorrelation ĉ_k/ĉ_0 of the OLS residuals, k = 0 … n−1.

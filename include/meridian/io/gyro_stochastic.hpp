@@ -21,8 +21,9 @@ namespace meridian::io {
 
 /// One series of the file and its analysis.
 struct StochasticSeries {
-  std::string label;   ///< "determinations[0]" or "determinations[1].zero_before" (+ the book's label)
-  bool tracking = true;  ///< circle readings (arcsec) or zero-position scale readings (div)
+  std::string
+      label;  ///< "determinations[0]" or "determinations[1].zero_before" (+ the book's label)
+  bool tracking = true;        ///< circle readings (arcsec) or zero-position scale readings (div)
   double reference_rad = 0.0;  ///< tracking: readings are arcsec relative to this
   gyro::StochasticInput input;
   gyro::StochasticResult result;
