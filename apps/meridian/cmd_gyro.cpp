@@ -1,4 +1,4 @@
-// meridian gyro reduce | campaign | orientations | simulate | transit-factor | template
+// meridian gyro reduce | campaign | orientations | simulate | transit-factor | template | stochastic
 
 #include <iostream>
 #include <filesystem>
@@ -17,9 +17,11 @@
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/gyro/station_simulator.hpp"
 #include "meridian/io/gyro_jobs.hpp"
+#include "meridian/io/gyro_stochastic.hpp"
 #include "meridian/io/gyro_writers.hpp"
 #include "meridian/report/gyro_html.hpp"
 #include "meridian/report/gyro_json.hpp"
+#include "meridian/report/gyro_stochastic.hpp"
 #include "meridian/report/gyro_text.hpp"
 #include "meridian/report/html.hpp"
 
@@ -44,6 +46,19 @@ int run_reduce(const ReduceArgs& a) {
                        : report::render_html(report::gyro_reduce_document(job.file.file, job.file.input, job.result));
   emit(a.output, out);
   if (!a.report.empty()) emit(a.report, html);
+  return kOk;
+}
+
+struct StochasticArgs {
+  std::string file, output;
+  bool json = false, quiet = false;
+};
+
+int run_stochastic(const StochasticArgs& a) {
+  TerminalProgress progress(a.quiet);
+  const io::StochasticJob job = io::run_stochastic_file(a.file, &progress);
+  progress.finish();
+  emit(a.output, a.json ? report::stochastic_to_json(job).dump(2) + "\n" : report::stochastic_text(job));
   return kOk;
 }
 
@@ -307,6 +322,15 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
     }
     exit_code = guarded([&] { return run_simulate(*sa, cmd); });
   });
+
+  auto sto = std::make_shared<StochasticArgs>();
+  CLI::App* stoch = gyro->add_subcommand(
+      "stochastic", "Compare stochastic models (white noise, covariance functions, Markov-1/-2) of each reversal series");
+  stoch->add_option("FILE", sto->file, "Field book as for gyro reduce (YAML or JSON)")->required();
+  stoch->add_flag("--json", sto->json, "Print JSON instead of text");
+  stoch->add_option("-o,--output", sto->output, "Write to this file (atomically) instead of stdout");
+  stoch->add_flag("-q,--quiet", sto->quiet, "No progress bar");
+  stoch->callback([sto, &exit_code] { exit_code = guarded([&] { return run_stochastic(*sto); }); });
 }
 
 }  // namespace meridian::cli

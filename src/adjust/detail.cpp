@@ -55,6 +55,26 @@ ScaledQr scaled_qr(MatrixXd w) {
   return s;
 }
 
+ScaledQr full_rank_qr(MatrixXd w, double tol) {
+  const Index u = w.cols();
+  ScaledQr s = scaled_qr(std::move(w));
+  if (s.first_zero_column >= 0)
+    throw NumericalError(fmt::format(
+        "normal matrix is singular: parameter {} is not determined by the observations "
+        "(its column of A is zero)", s.first_zero_column));
+  if (const Index k = s.rank(tol); k < u)
+    throw NumericalError(fmt::format(
+        "normal matrix is singular: parameter {} is not determined by the observations "
+        "(its column of A depends linearly on the others; rank {} of {})", s.column_at(k), k, u));
+  return s;
+}
+
+MatrixXd thin_q(const ScaledQr& s) {
+  MatrixXd q = MatrixXd::Identity(s.qr.rows(), s.qr.cols());
+  q.applyOnTheLeft(s.qr.householderQ());
+  return q;
+}
+
 Index ScaledQr::rank(double tol) const {
   const MatrixXd& r = qr.matrixQR();
   const Index u = r.cols();

@@ -46,4 +46,11 @@ struct ScaledQr {
 
 ScaledQr scaled_qr(Eigen::MatrixXd w);
 
+/// scaled_qr of a whitened design that must have full column rank: throws NumericalError
+/// naming the first undetermined parameter when a column is zero or |R_kk| ≤ tol·|R_00|.
+ScaledQr full_rank_qr(Eigen::MatrixXd w, double tol);
+
+/// The first u columns of Q of a ScaledQr (n×u, orthonormal): a basis of the column space.
+Eigen::MatrixXd thin_q(const ScaledQr& s);
+
 }  // namespace meridian::adjust::detail

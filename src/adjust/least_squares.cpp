@@ -23,22 +23,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // against (Σ⁻¹)_ii for Baarda's w).
 constexpr double kTinyQvv = 1e-12;
 
-// The scaled QR of the whitened design; throws NumericalError naming the first
-// undetermined parameter when a column is zero or |R_kk| ≤ tol·|R_00|.
-detail::ScaledQr full_rank_qr(MatrixXd w, double tol) {
-  const Index u = w.cols();
-  detail::ScaledQr s = detail::scaled_qr(std::move(w));
-  if (s.first_zero_column >= 0)
-    throw NumericalError(fmt::format(
-        "normal matrix is singular: parameter {} is not determined by the observations "
-        "(its column of A is zero)", s.first_zero_column));
-  if (const Index k = s.rank(tol); k < u)
-    throw NumericalError(fmt::format(
-        "normal matrix is singular: parameter {} is not determined by the observations "
-        "(its column of A depends linearly on the others; rank {} of {})", s.column_at(k), k, u));
-  return s;
-}
-
 // Baarda's w for correlated observations: P·v = L⁻ᵀ·ṽ and P·Q_vv·P = L⁻ᵀ·(I − Q1·Q1ᵀ)·L⁻¹,
 // so (P·Q_vv·P)_ii = (Σ⁻¹)_ii − ‖(L⁻ᵀ·Q1)_i‖² with (Σ⁻¹)_ii the squared norm of column i of L⁻¹.
 VectorXd w_statistics(const VectorXd& vw, const MatrixXd& lt_q1, const CovarianceFactor& cov) {
@@ -200,6 +184,11 @@ CovarianceFactor CovarianceFactor::diagonal(const VectorXd& sigma) {
   return f;
 }
 
+double CovarianceFactor::log_determinant() const {
+  if (is_diagonal()) return variances_.array().log().sum();
+  return 2.0 * lower_.diagonal().array().log().sum();
+}
+
 void CovarianceFactor::whiten(Eigen::Ref<MatrixXd> m) const {
   check_rows(m.rows(), size(), "whiten");
   if (is_diagonal())
@@ -255,7 +244,7 @@ LeastSquaresResult solve_linear(const MatrixXd& A, const VectorXd& l,
   sigma_ll.whiten(aw);
   VectorXd lw = l;
   sigma_ll.whiten(lw);
-  return finish(full_rank_qr(std::move(aw), tol), lw, sigma_ll);
+  return finish(detail::full_rank_qr(std::move(aw), tol), lw, sigma_ll);
 }
 
 LeastSquaresResult solve_linear(const MatrixXd& A, const VectorXd& l, const MatrixXd& sigma_ll) {

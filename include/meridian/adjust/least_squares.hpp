@@ -80,6 +80,8 @@ class CovarianceFactor {
   bool is_diagonal() const { return lower_.size() == 0; }
   /// Σ_ii.
   const Eigen::VectorXd& variances() const { return variances_; }
+  /// ln det Σ_ll = 2·Σ_i ln L_ii (for likelihoods; finite, as Σ_ll is positive definite).
+  double log_determinant() const;
 
   /// m ← L⁻¹·m (m has size() rows).
   void whiten(Eigen::Ref<Eigen::MatrixXd> m) const;

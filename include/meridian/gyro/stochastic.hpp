@@ -1,0 +1,167 @@
+#pragma once
+/// \file stochastic.hpp
+/// Stochastic modelling of one reversal-point series (gyro-stochastic spec §4–§5): the same
+/// functional model fitted under competing models of the reading errors, compared by their
+/// restricted likelihood.
+///
+/// Functional model: the linearised reversal-point model (R2) of gyro-theodolite.md,
+///     r_i = M + (−1)^i·A′ + (−1)^{i+1}·(2i − 1)·c,   i = 1 … n,
+/// design G (n×3, columns M, A′, c), unknowns Y = (M, A′, c): M the north reading α_N (tracking
+/// runs) or the zero position, A′ the amplitude α_0 (signed: A′ > 0 when r_2 > r_1 about M,
+/// i.e. even readings lie above the centre), c the damping term. Residuals v = G·Ŷ − L.
+/// Every value is in the unit of the readings (arcsec for circle readings, div for scale
+/// readings): the caller converts at the edges.
+///
+/// Stochastic models compared (D = D(L)):
+/// * white noise (ordinary least squares): D = σ_1²·I;
+/// * C-type covariance functions fitted to the empirical autocovariance of the OLS residuals
+///   ĉ_k = Σ_i v_i·v_{i+k}/n: exponential a·e^{−k/b}, Gaussian a·e^{−(k/b)²}, damped cosine
+///   (second-order Markov) a·e^{−k/b}·cos(ω·k); D_ij = c(|i − j|);
+/// * Markov-1 and Markov-2 (markov_covariance.hpp), D = σ_1²·C·Cᵀ + σ_2²·B·Bᵀ, with ρ chosen
+///   on the classical grid (ρ = 0.1 … 0.9; ρ_1, ρ_2 ∈ {−0.9, −0.8, …, 0.9} inside the AR(2)
+///   triangle) and by maximising the restricted likelihood (profile over the variance
+///   components, which are estimated by VCE at every ρ).
+/// For every Markov model σ_1², σ_2² are estimated by variance-component estimation
+/// (adjust::estimate_variance_components; a negative estimate is clipped to 0 and said).
+///
+/// Comparison: the REML log-likelihood ℓ (all models share G, so REML likelihoods compare);
+/// AIC = −2ℓ + 2k, BIC = −2ℓ + k·ln(n − 3), k the number of covariance parameters (white 1;
+/// exponential, Gaussian 2; damped cosine 3; Markov-1 3; Markov-2 4). The recommended model
+/// is the one of smallest BIC (on a tie the one with fewer parameters). Likelihood-ratio
+/// tests: white noise against Markov-1 (ML; 2 degrees of freedom — σ_2 is not identified at
+/// ρ = 0, so the χ² reference is approximate) and Markov-1 against Markov-2 (ML; 1 degree of
+/// freedom, ρ_2 = 0), at α = 5 %.
+///
+/// Signal influence (spec §4): for a Markov model X̂ = σ_2²·Bᵀ·D⁻¹·(L − G·Ŷ) and
+/// ΔŶ = (GᵀD⁻¹G)⁻¹·GᵀD⁻¹·B·X̂. For white noise and the covariance-function models, which have
+/// no signal term of their own, ΔŶ is their estimator applied to the signal B·X̂ predicted by
+/// the Markov model of maximum likelihood with the smaller BIC — how much of that signal each
+/// model lets into M and A′.
+///
+/// Standard deviations: D_Ŷ = (GᵀD⁻¹G)⁻¹ with D at the estimated components (not rescaled).
+/// σ of ρ and of the components of the ML models from the inverse REML Fisher information over
+/// (ρ…, σ_1², σ_2²) (∂D/∂ρ by central differences); of the grid models from the VCE alone.
+/// σ(σ_k) = σ(σ_k²)/(2σ_k).
+///
+/// Sources: Grafarend & Kleusberg (gyro VCE); Teunissen & Amiri-Simkooei (2008) J Geod
+/// 82:65–82; Harville (1977) JASA 72:320–338; Akaike (1974), Schwarz (1978).
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "meridian/adjust/variance_components.hpp"
+#include "meridian/core/progress.hpp"
+#include "meridian/core/uncertain.hpp"
+
+namespace meridian::gyro {
+
+enum class StochasticModel {
+  WhiteNoise,    ///< ordinary least squares, D = σ_1²·I
+  Exponential,   ///< C-type: a·e^{−k/b}
+  Gaussian,      ///< C-type: a·e^{−(k/b)²}
+  DampedCosine,  ///< C-type: a·e^{−k/b}·cos(ω·k)
+  Markov1Grid,   ///< Markov-1, ρ from the grid 0.1 … 0.9
+  Markov2Grid,   ///< Markov-2, (ρ_1, ρ_2) from the grid on [−0.9, 0.9]²
+  Markov1Ml,     ///< Markov-1, ρ by maximum restricted likelihood
+  Markov2Ml,     ///< Markov-2, (ρ_1, ρ_2) by maximum restricted likelihood
+};
+
+/// "white-noise", "c-exponential", "c-gaussian", "c-damped-cosine", "markov1-grid",
+/// "markov2-grid", "markov1-ml", "markov2-ml".
+std::string to_string(StochasticModel m);
+
+/// How the GLS is computed (both give the same numbers to rounding; spec §5).
+enum class GlsRoute {
+  Whitening,        ///< L⁻¹·G, L⁻¹·L with D = L·Lᵀ and a QR (adjust::solve_linear)
+  NormalEquations,  ///< GᵀD⁻¹G and GᵀD⁻¹L with D⁻¹ applied by Cholesky solves
+};
+
+struct StochasticOptions {
+  adjust::VceMethod vce_method = adjust::VceMethod::LsVce;
+  GlsRoute route = GlsRoute::Whitening;
+  bool covariance_functions = true;  ///< include the C-type models
+  bool markov2 = true;               ///< include the Markov-2 models (grid and ML)
+};
+
+/// One reversal-point series.
+struct StochasticInput {
+  std::vector<double> readings;  ///< r_1 … r_n in one unit (n ≥ 6: 3 unknowns, 2 components, +1)
+  StochasticOptions options;
+};
+
+/// One model's fit. Values in the readings' unit; NaN where a quantity does not apply.
+struct ModelFit {
+  StochasticModel model = StochasticModel::WhiteNoise;
+  Uncertain north;      ///< M (α_N or zero position) and m_M
+  Uncertain amplitude;  ///< A′ (α_0) and its σ
+  Uncertain damping;    ///< c and its σ
+  /// Markov-1: (ρ); Markov-2: (ρ_1, ρ_2); exponential, Gaussian: (b) in lags; damped cosine:
+  /// (b, ω) with ω in rad per lag. Empty for white noise.
+  std::vector<double> rho;
+  std::vector<double> rho_sigma;  ///< σ of rho (ML models; NaN otherwise)
+  /// σ_1 (noise; for white noise the σ of one reading; for C-type sqrt(a)) and its σ.
+  Uncertain sigma1;
+  Uncertain sigma2;  ///< σ_2 (signal; Markov models) and its σ; NaN otherwise
+  Eigen::Vector3d signal_influence = Eigen::Vector3d::Zero();  ///< ΔŶ = (ΔM, ΔA′, Δc)
+  double log_likelihood = 0.0;                                 ///< REML ℓ
+  double aic = 0.0;
+  double bic = 0.0;
+  int covariance_parameters = 0;  ///< k
+  int vce_iterations = 0;         ///< at the chosen ρ (0 for models without VCE)
+  bool recommended = false;
+  /// D_{i,i+k}/sqrt(D_ii·D_{i+k,i+k}) averaged over i, k = 0 … n−1.
+  std::vector<double> implied_autocorrelation;
+  std::vector<std::string> notes;
+};
+
+struct LikelihoodRatioTest {
+  StochasticModel null_model = StochasticModel::WhiteNoise;
+  StochasticModel alternative = StochasticModel::Markov1Ml;
+  double statistic = 0.0;  ///< 2·(ℓ_alt − ℓ_null), ≥ 0 up to rounding
+  int dof = 0;
+  double p_value = 1.0;
+  bool rejected = false;  ///< the null model is rejected at α = 5 %
+};
+
+struct StochasticResult {
+  int readings = 0;
+  std::vector<ModelFit>
+      models;           ///< in the order of StochasticModel (models that fail are left out)
+  int recommended = 0;  ///< index into models
+  std::vector<LikelihoodRatioTest> tests;
+  Eigen::VectorXd ols_residuals;  ///< v of the white-noise fit
+  /// Empirical autocorrelation ĉ_k/ĉ_0 of the OLS residuals, k = 0 … n−1.
+  std::vector<double> residual_autocorrelation;
+  /// Profile REML of Markov-2 on the grid: rho1_grid × rho2_grid, NaN outside the triangle or
+  /// where VCE failed.
+  std::vector<double> rho1_grid, rho2_grid;
+  Eigen::MatrixXd markov2_surface;
+  std::vector<std::string> notes;
+
+  /// The fit of model m; throws InputError when it is not in models.
+  const ModelFit& fit(StochasticModel m) const;
+};
+
+/// Fit and compare the models for one series. Throws InputError when n < 6 (3 unknowns and 2
+/// variance components + 1), a reading is not finite, or the series has no scatter (all
+/// residuals of OLS zero); NumericalError when no Markov model could be fitted. Individual
+/// models that fail (covariance not positive definite, VCE not converging) are left out with a
+/// note in StochasticResult::notes. Results never contain NaN in M, A′ or their σ.
+StochasticResult analyse_stochastic(const StochasticInput& input, Progress* progress = nullptr);
+
+/// The GLS of (R2) with a given covariance D (n×n, positive definite, else NumericalError):
+/// Ŷ and D_Ŷ by the chosen route. Throws InputError when sizes differ or n < 4.
+struct GlsFit {
+  Eigen::Vector3d y;
+  Eigen::Matrix3d covariance;
+  Eigen::VectorXd residuals;  ///< v = G·Ŷ − L
+};
+GlsFit reversal_gls(const std::vector<double>& readings, const Eigen::MatrixXd& D,
+                    GlsRoute route = GlsRoute::Whitening);
+
+/// The design G of (R2) for n readings (n×3).
+Eigen::MatrixXd reversal_design(int n);
+
+}  // namespace meridian::gyro

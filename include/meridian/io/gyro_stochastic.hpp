@@ -1,0 +1,43 @@
+#pragma once
+/// \file gyro_stochastic.hpp
+/// `meridian gyro stochastic FILE`: the reversal-point series of a field book (as for
+/// `gyro reduce`) — each tracking determination's circle readings and each zero-position run's
+/// scale readings — each analysed under the competing stochastic models
+/// (gyro::analyse_stochastic).
+///
+/// Units at this edge: tracking readings are converted from radians to arc-seconds relative
+/// to `reference_rad` (the first reading rounded down to a whole degree; readings unwrapped
+/// across 0°/360°), zero-position readings stay in divisions. The north reading is
+/// reference + M, normalised to [0°, 360°).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "meridian/core/progress.hpp"
+#include "meridian/gyro/stochastic.hpp"
+
+namespace meridian::io {
+
+/// One series of the file and its analysis.
+struct StochasticSeries {
+  std::string
+      label;  ///< "determinations[0]" or "determinations[1].zero_before" (+ the book's label)
+  bool tracking = true;        ///< circle readings (arcsec) or zero-position scale readings (div)
+  double reference_rad = 0.0;  ///< tracking: readings are arcsec relative to this
+  gyro::StochasticInput input;
+  gyro::StochasticResult result;
+};
+
+struct StochasticJob {
+  std::string file;
+  std::vector<StochasticSeries> series;
+};
+
+/// Read a reduce field book and analyse every series. Throws the reader's
+/// ParseError/InputError (file, line, field) and, for a series that cannot be analysed, its
+/// InputError/NumericalError with the file and the series' field ("determinations[2].reversals").
+/// A file without any series of at least 6 readings is an InputError.
+StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* progress = nullptr);
+
+}  // namespace meridian::io

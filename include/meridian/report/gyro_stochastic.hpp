@@ -1,0 +1,28 @@
+#pragma once
+/// \file gyro_stochastic.hpp
+/// Text and JSON of `meridian gyro stochastic` (io/gyro_stochastic.hpp): per series the
+/// model-comparison table, the likelihood-ratio tests and the recommended model.
+///
+/// JSON: {file, series: [{label, kind ("tracking" | "zero-position"), readings, models: [...],
+/// recommended, tests: [...], notes}]}. Each model: name, north_reading_deg (tracking; the
+/// centre reference + M normalised to [0, 360)) or zero_position_div (zero-position runs),
+/// sigma_north_arcsec | sigma_zero_position_div, amplitude_arcsec | amplitude_div (A′ of
+/// (R2), signed), sigma_amplitude_*, rho [..], rho_sigma [..], sigma1_*, sigma1_sigma_*,
+/// sigma2_*, sigma2_sigma_*, signal_influence_* (ΔM), signal_influence_amplitude_*,
+/// log_likelihood (REML), aic, bic, covariance_parameters, vce_iterations, recommended
+/// (true for exactly one), notes. Values that do not apply or cannot be stated are null.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "meridian/io/gyro_stochastic.hpp"
+
+namespace meridian::report {
+
+nlohmann::json stochastic_to_json(const io::StochasticJob& job);
+
+/// The comparison table per series (fixed-width text; σ in arcsec or div).
+std::string stochastic_text(const io::StochasticJob& job);
+
+}  // namespace meridian::report

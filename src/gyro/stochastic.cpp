@@ -1,0 +1,666 @@
+#include "meridian/gyro/stochastic.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "meridian/adjust/likelihood.hpp"
+#include "meridian/adjust/statistics.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/gyro/markov_covariance.hpp"
+
+namespace meridian::gyro {
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMinusInf = -std::numeric_limits<double>::infinity();
+constexpr double kLrtAlpha = 0.05;
+constexpr int kMinReadings = 6;
+constexpr int kMinReadingsMarkov2 = 8;  // 3 unknowns + 4 covariance parameters + 1
+// Keep ML estimates this far inside the stationary region.
+constexpr double kEdge = 1e-3;
+
+VectorXd to_vector(const std::vector<double>& r) {
+  VectorXd l(static_cast<Index>(r.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) l(static_cast<Index>(i)) = r[i];
+  return l;
+}
+
+// A Markov model fitted at fixed ρ: the VCE and what follows from it.
+struct MarkovEval {
+  std::vector<double> rho;
+  Eigen::Vector2d start;  // the VCE's start, so the evaluation can be repeated with details
+  MarkovFactors factors;
+  adjust::VceResult vce;
+  double reml = kMinusInf;
+};
+
+std::vector<adjust::VarianceComponent> markov_components(const MarkovFactors& f) {
+  return {{"sigma1^2", f.C}, {"sigma2^2", f.B}};
+}
+
+MarkovFactors factors_for(const std::vector<double>& rho, int n) {
+  return rho.size() == 1 ? markov1_factors(n, rho[0]) : markov2_factors(n, rho[0], rho[1]);
+}
+
+std::optional<MarkovEval> eval_markov(const MatrixXd& G, const VectorXd& l,
+                                      const std::vector<double>& rho, const Eigen::Vector2d& start,
+                                      adjust::VceMethod method, bool details = false) {
+  try {
+    MarkovEval e{rho, start, factors_for(rho, static_cast<int>(l.size())), {}, kMinusInf};
+    adjust::VceOptions o;
+    o.method = method;
+    o.details = details;
+    o.initial = start;
+    e.vce = adjust::estimate_variance_components(G, l, markov_components(e.factors), o);
+    e.reml = e.vce.likelihood.reml;
+    if (!std::isfinite(e.reml)) return std::nullopt;
+    return e;
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+double implied_lag_correlation(const MatrixXd& D, Index k) {
+  const Index n = D.rows();
+  double s = 0.0;
+  for (Index i = 0; i + k < n; ++i) s += D(i, i + k) / std::sqrt(D(i, i) * D(i + k, i + k));
+  return s / static_cast<double>(n - k);
+}
+
+std::vector<double> implied_autocorrelation(const MatrixXd& D) {
+  std::vector<double> out;
+  for (Index k = 0; k < D.rows(); ++k) out.push_back(implied_lag_correlation(D, k));
+  return out;
+}
+
+// ΔŶ = (GᵀD⁻¹G)⁻¹·GᵀD⁻¹·s: the GLS estimator applied to the signal s.
+Eigen::Vector3d estimator_applied(const MatrixXd& G, const adjust::CovarianceFactor& cov,
+                                  const VectorXd& s) {
+  MatrixXd gw = G;
+  cov.whiten(gw);
+  VectorXd sw = s;
+  cov.whiten(sw);
+  return gw.colPivHouseholderQr().solve(sw);
+}
+
+// Fill north/amplitude/damping, likelihood and the implied autocorrelation of a model with
+// covariance D.
+void finish_fit(ModelFit& f, const std::vector<double>& readings, const MatrixXd& D, GlsRoute route,
+                int k) {
+  const GlsFit g = reversal_gls(readings, D, route);
+  f.north = {g.y(0), std::sqrt(g.covariance(0, 0))};
+  f.amplitude = {g.y(1), std::sqrt(g.covariance(1, 1))};
+  f.damping = {g.y(2), std::sqrt(g.covariance(2, 2))};
+  const MatrixXd G = reversal_design(static_cast<int>(readings.size()));
+  const auto lik = adjust::gls_log_likelihood(G, to_vector(readings), adjust::CovarianceFactor(D));
+  f.log_likelihood = lik.reml;
+  f.covariance_parameters = k;
+  const double r = static_cast<double>(readings.size()) - 3.0;
+  f.aic = -2.0 * f.log_likelihood + 2.0 * k;
+  f.bic = -2.0 * f.log_likelihood + k * std::log(r);
+  f.implied_autocorrelation = implied_autocorrelation(D);
+}
+
+Uncertain sigma_from_variance(double var, double sd_var) {
+  const double s = std::sqrt(std::max(var, 0.0));
+  return {s, s > 0.0 && std::isfinite(sd_var) ? sd_var / (2.0 * s) : kNaN};
+}
+
+ModelFit markov_fit(StochasticModel model, const MarkovEval& scan,
+                    const std::vector<double>& readings, const MatrixXd& G, const VectorXd& l,
+                    GlsRoute route, adjust::VceMethod method, bool ml) {
+  // The scan kept only the likelihood: repeat the same VCE with its covariance.
+  const auto full = eval_markov(G, l, scan.rho, scan.start, method, true);
+  if (!full)
+    throw NumericalError(
+        fmt::format("{}: variance-component estimation failed on repetition", to_string(model)));
+  const MarkovEval& e = *full;
+  ModelFit f;
+  f.model = model;
+  f.rho = e.rho;
+  const Eigen::VectorXd& th = e.vce.components;
+  const MatrixXd D = e.factors.covariance(th(0), th(1));
+  finish_fit(f, readings, D, route, static_cast<int>(e.rho.size()) + 2);
+  f.vce_iterations = e.vce.iterations;
+  f.notes = e.vce.notes;
+  // σ of the components from the VCE; for ML models from the Fisher information over (ρ, θ).
+  VectorXd sd_theta(2);
+  for (int k = 0; k < 2; ++k) sd_theta(k) = e.vce.sigma(k);
+  f.rho_sigma.assign(e.rho.size(), kNaN);
+  if (ml) {
+    const adjust::CovarianceFactor cov(D);
+    std::vector<MatrixXd> deriv;
+    const int n = static_cast<int>(readings.size());
+    for (std::size_t a = 0; a < e.rho.size(); ++a) {
+      const double h = 1e-5;
+      std::vector<double> up = e.rho, dn = e.rho;
+      up[a] += h;
+      dn[a] -= h;
+      try {
+        deriv.push_back((factors_for(up, n).covariance(th(0), th(1)) -
+                         factors_for(dn, n).covariance(th(0), th(1))) /
+                        (2.0 * h));
+      } catch (const InputError&) {
+        deriv.clear();
+        break;
+      }
+    }
+    std::vector<int> comp_index;
+    if (!deriv.empty()) {
+      for (int k = 0; k < 2; ++k)
+        if (!e.vce.clipped[static_cast<std::size_t>(k)]) {
+          deriv.push_back(k == 0 ? e.factors.q1() : e.factors.q2());
+          comp_index.push_back(k);
+        }
+      const MatrixXd info = adjust::reml_fisher_information(G, cov, deriv);
+      const Eigen::LDLT<MatrixXd> ldlt(info);
+      const MatrixXd inv = ldlt.solve(MatrixXd::Identity(info.rows(), info.cols()));
+      const bool ok = ldlt.info() == Eigen::Success && inv.allFinite() &&
+                      (inv.diagonal().array() > 0.0).all() && ldlt.isPositive();
+      if (ok) {
+        for (std::size_t a = 0; a < e.rho.size(); ++a)
+          f.rho_sigma[a] = std::sqrt(inv(static_cast<Index>(a), static_cast<Index>(a)));
+        for (std::size_t j = 0; j < comp_index.size(); ++j) {
+          const auto idx = static_cast<Index>(e.rho.size() + j);
+          sd_theta(comp_index[j]) = std::sqrt(inv(idx, idx));
+        }
+      } else {
+        f.notes.push_back("the Fisher information of rho is singular: sigma of rho not stated");
+      }
+    } else {
+      f.notes.push_back("rho is at the edge of the stationary region: sigma of rho not stated");
+    }
+  }
+  f.sigma1 = sigma_from_variance(th(0), sd_theta(0));
+  f.sigma2 = sigma_from_variance(th(1), sd_theta(1));
+  // Signal prediction X̂ = σ_2²·Bᵀ·D⁻¹·(L − G·Ŷ) and its influence.
+  const adjust::CovarianceFactor cov(D);
+  const VectorXd resid = l - G * Eigen::Vector3d(f.north.value, f.amplitude.value, f.damping.value);
+  VectorXd rw = resid;
+  cov.whiten(rw);
+  MatrixXd bw = e.factors.B;
+  cov.whiten(bw);
+  const VectorXd xhat = th(1) * (bw.transpose() * rw);
+  f.signal_influence = estimator_applied(G, cov, e.factors.B * xhat);
+  return f;
+}
+
+// Golden-section maximisation of f on [a, b].
+std::pair<double, double> golden_max(const std::function<double(double)>& fn, double a, double b,
+                                     double tol) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = fn(c), fd = fn(d);
+  while (b - a > tol) {
+    if (fc >= fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - g * (b - a);
+      fc = fn(c);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + g * (b - a);
+      fd = fn(d);
+    }
+  }
+  return fc >= fd ? std::pair{c, fc} : std::pair{d, fd};
+}
+
+// Nelder–Mead maximisation in 2-D (f = −∞ outside the domain).
+std::pair<Eigen::Vector2d, double> nelder_mead_max(
+    const std::function<double(const Eigen::Vector2d&)>& fn, Eigen::Vector2d x0, double step,
+    double tol, int max_iter) {
+  std::array<Eigen::Vector2d, 3> p{x0, x0 + Eigen::Vector2d(step, 0.0),
+                                   x0 + Eigen::Vector2d(0.0, step)};
+  std::array<double, 3> v{fn(p[0]), fn(p[1]), fn(p[2])};
+  for (int it = 0; it < max_iter; ++it) {
+    std::array<int, 3> o{0, 1, 2};
+    std::sort(o.begin(), o.end(), [&](int i, int j) {
+      return v[static_cast<std::size_t>(i)] > v[static_cast<std::size_t>(j)];
+    });
+    const auto b = static_cast<std::size_t>(o[0]), m = static_cast<std::size_t>(o[1]),
+               w = static_cast<std::size_t>(o[2]);
+    if ((p[b] - p[w]).norm() < tol && (p[b] - p[m]).norm() < tol) break;
+    const Eigen::Vector2d c = 0.5 * (p[b] + p[m]);
+    const Eigen::Vector2d r = c + (c - p[w]);
+    const double fr = fn(r);
+    if (fr > v[b]) {
+      const Eigen::Vector2d ex = c + 2.0 * (c - p[w]);
+      const double fe = fn(ex);
+      if (fe > fr) {
+        p[w] = ex;
+        v[w] = fe;
+      } else {
+        p[w] = r;
+        v[w] = fr;
+      }
+    } else if (fr > v[m]) {
+      p[w] = r;
+      v[w] = fr;
+    } else {
+      const Eigen::Vector2d ct = c + 0.5 * (p[w] - c);
+      const double fct = fn(ct);
+      if (fct > v[w]) {
+        p[w] = ct;
+        v[w] = fct;
+      } else {
+        for (std::size_t i = 0; i < 3; ++i)
+          if (i != b) {
+            p[i] = p[b] + 0.5 * (p[i] - p[b]);
+            v[i] = fn(p[i]);
+          }
+      }
+    }
+  }
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < 3; ++i)
+    if (v[i] > v[best]) best = i;
+  return {p[best], v[best]};
+}
+
+// The C-type models: fit a·f_b(k) (and ω) to the empirical autocovariance by least squares
+// over a grid of the shape parameters (a in closed form for each shape).
+struct CovFunction {
+  StochasticModel model;
+  std::vector<double> params;  // b or (b, ω)
+  double a = 0.0;
+};
+
+double cov_shape(StochasticModel m, const std::vector<double>& p, double k) {
+  switch (m) {
+    case StochasticModel::Exponential:
+      return std::exp(-k / p[0]);
+    case StochasticModel::Gaussian:
+      return std::exp(-(k / p[0]) * (k / p[0]));
+    default:
+      return std::exp(-k / p[0]) * std::cos(p[1] * k);
+  }
+}
+
+std::optional<CovFunction> fit_cov_function(StochasticModel m, const std::vector<double>& chat) {
+  const auto K = chat.size();
+  std::optional<CovFunction> best;
+  double best_ss = std::numeric_limits<double>::infinity();
+  const int nb = 120;
+  const int nw = m == StochasticModel::DampedCosine ? 60 : 1;
+  for (int ib = 0; ib < nb; ++ib) {
+    // b from 0.1 to 100 lags, logarithmically
+    const double b = 0.1 * std::pow(1000.0, static_cast<double>(ib) / (nb - 1));
+    for (int iw = 0; iw < nw; ++iw) {
+      std::vector<double> p{b};
+      if (m == StochasticModel::DampedCosine) p.push_back(M_PI * (iw + 1) / nw);
+      double sff = 0.0, sfc = 0.0;
+      for (std::size_t k = 0; k < K; ++k) {
+        const double fk = cov_shape(m, p, static_cast<double>(k));
+        sff += fk * fk;
+        sfc += fk * chat[k];
+      }
+      const double a = sfc / sff;
+      if (!(a > 0.0)) continue;
+      double ss = 0.0;
+      for (std::size_t k = 0; k < K; ++k) {
+        const double d = chat[k] - a * cov_shape(m, p, static_cast<double>(k));
+        ss += d * d;
+      }
+      if (ss < best_ss) {
+        best_ss = ss;
+        best = CovFunction{m, p, a};
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::string to_string(StochasticModel m) {
+  switch (m) {
+    case StochasticModel::WhiteNoise:
+      return "white-noise";
+    case StochasticModel::Exponential:
+      return "c-exponential";
+    case StochasticModel::Gaussian:
+      return "c-gaussian";
+    case StochasticModel::DampedCosine:
+      return "c-damped-cosine";
+    case StochasticModel::Markov1Grid:
+      return "markov1-grid";
+    case StochasticModel::Markov2Grid:
+      return "markov2-grid";
+    case StochasticModel::Markov1Ml:
+      return "markov1-ml";
+    case StochasticModel::Markov2Ml:
+      return "markov2-ml";
+  }
+  return "?";
+}
+
+const ModelFit& StochasticResult::fit(StochasticModel m) const {
+  for (const auto& f : models)
+    if (f.model == m) return f;
+  throw InputError(fmt::format("stochastic model {} was not fitted", to_string(m)));
+}
+
+MatrixXd reversal_design(int n) {
+  if (n < 1) throw InputError(fmt::format("reversal design: needs n >= 1 readings, got {}", n));
+  MatrixXd G(n, 3);
+  for (int i = 1; i <= n; ++i) {
+    const double s = (i % 2 == 0) ? 1.0 : -1.0;  // (−1)^i
+    G(i - 1, 0) = 1.0;
+    G(i - 1, 1) = s;
+    G(i - 1, 2) = -s * (2.0 * i - 1.0);
+  }
+  return G;
+}
+
+GlsFit reversal_gls(const std::vector<double>& readings, const MatrixXd& D, GlsRoute route) {
+  const auto n = static_cast<Index>(readings.size());
+  if (n < 4)
+    throw InputError(
+        fmt::format("reversal GLS: needs at least 4 readings (3 unknowns + 1), "
+                    "got {}",
+                    n));
+  if (D.rows() != n || D.cols() != n)
+    throw InputError(
+        fmt::format("reversal GLS: covariance is {}x{} for {} readings", D.rows(), D.cols(), n));
+  const MatrixXd G = reversal_design(static_cast<int>(n));
+  const VectorXd l = to_vector(readings);
+  GlsFit f;
+  if (route == GlsRoute::Whitening) {
+    const auto r = adjust::solve_linear(G, l, adjust::CovarianceFactor(D));
+    f.y = r.x;
+    f.covariance = r.cofactor;
+    f.residuals = r.residuals;
+    return f;
+  }
+  // Normal equations: D⁻¹·G and D⁻¹·l by Cholesky solves (no inverse of D).
+  const Eigen::LLT<MatrixXd> llt(D);
+  if (llt.info() != Eigen::Success)
+    throw NumericalError("reversal GLS: the covariance of the readings is not positive definite");
+  const MatrixXd pg = llt.solve(G);
+  const Eigen::Matrix3d N = G.transpose() * pg;
+  const Eigen::LLT<Eigen::Matrix3d> nl(N);
+  if (nl.info() != Eigen::Success)
+    throw NumericalError("reversal GLS: the normal matrix is not positive definite");
+  f.y = nl.solve(pg.transpose() * l);
+  f.covariance = nl.solve(Eigen::Matrix3d::Identity());
+  f.residuals = G * f.y - l;
+  return f;
+}
+
+StochasticResult analyse_stochastic(const StochasticInput& input, Progress* progress) {
+  const auto& r = input.readings;
+  const int n = static_cast<int>(r.size());
+  if (n < kMinReadings)
+    throw InputError(
+        fmt::format("stochastic models: need at least {} readings (3 unknowns M, "
+                    "A', c and 2 variance components, + 1), got {}",
+                    kMinReadings, n));
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(r[static_cast<std::size_t>(i)]))
+      throw InputError(fmt::format("stochastic models: reading {} is not finite", i + 1),
+                       ErrorContext{"", std::nullopt, fmt::format("readings[{}]", i)});
+  const auto& opt = input.options;
+  const MatrixXd G = reversal_design(n);
+  const VectorXd l = to_vector(r);
+  StochasticResult res;
+  res.readings = n;
+
+  // White noise (OLS) with the one-component VCE σ̂_0² = vᵀv/(n − 3).
+  report_progress(progress, 0, 5, "white noise");
+  const auto ols =
+      adjust::solve_linear(G, l, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)));
+  const double s0sq = ols.vtpv / (n - 3);
+  // Residuals at rounding level of the readings: an exact fit.
+  const double scale = l.cwiseAbs().maxCoeff();
+  if (!(std::sqrt(s0sq) > 1e-12 * scale))
+    throw InputError(
+        "stochastic models: the readings fit the reversal model exactly (no "
+        "scatter): there is nothing to model");
+  res.ols_residuals = ols.residuals;
+  {
+    std::vector<double> chat(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) {
+      double s = 0.0;
+      for (int i = 0; i + k < n; ++i) s += ols.residuals(i) * ols.residuals(i + k);
+      chat[static_cast<std::size_t>(k)] = s / n;
+    }
+    for (int k = 0; k < n; ++k)
+      res.residual_autocorrelation.push_back(chat[static_cast<std::size_t>(k)] / chat[0]);
+    ModelFit w;
+    w.model = StochasticModel::WhiteNoise;
+    const MatrixXd D = s0sq * MatrixXd::Identity(n, n);
+    finish_fit(w, r, D, opt.route, 1);
+    w.sigma1 = {std::sqrt(s0sq), std::sqrt(s0sq) / std::sqrt(2.0 * (n - 3))};
+    w.sigma2 = {kNaN, kNaN};
+    w.vce_iterations = 1;
+    res.models.push_back(w);
+
+    if (opt.covariance_functions) {
+      // Lags used for the fit: up to n/2 (longer lags rest on too few products).
+      const std::vector<double> head(chat.begin(), chat.begin() + std::max(2, n / 2));
+      for (StochasticModel m : {StochasticModel::Exponential, StochasticModel::Gaussian,
+                                StochasticModel::DampedCosine}) {
+        const auto cf = fit_cov_function(m, head);
+        if (!cf) {
+          res.notes.push_back(
+              fmt::format("{}: no positive fit to the autocovariance", to_string(m)));
+          continue;
+        }
+        MatrixXd Dc(n, n);
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j) Dc(i, j) = cf->a * cov_shape(m, cf->params, std::abs(i - j));
+        try {
+          ModelFit f;
+          f.model = m;
+          f.rho = cf->params;
+          f.rho_sigma.assign(cf->params.size(), kNaN);
+          finish_fit(f, r, Dc, opt.route, static_cast<int>(cf->params.size()) + 1);
+          f.sigma1 = {std::sqrt(cf->a), kNaN};
+          f.sigma2 = {kNaN, kNaN};
+          res.models.push_back(f);
+        } catch (const NumericalError& e) {
+          res.notes.push_back(
+              fmt::format("{}: left out, its covariance matrix is not positive "
+                          "definite ({})",
+                          to_string(m), e.what()));
+        }
+      }
+    }
+  }
+
+  // VCE starts: the OLS variance for both components, or (warm start, much faster on the
+  // grids) the components of a neighbouring ρ, kept away from 0.
+  const Eigen::Vector2d cold(s0sq, s0sq);
+  const auto warm = [&](const std::optional<MarkovEval>& e) -> Eigen::Vector2d {
+    if (!e) return cold;
+    return e->vce.components.cwiseMax(1e-3 * s0sq);
+  };
+  // Markov-1: grid and ML.
+  report_progress(progress, 1, 5, "Markov-1");
+  std::optional<MarkovEval> m1_grid, last;
+  for (int k = 1; k <= 9; ++k) {
+    auto e = eval_markov(G, l, {0.1 * k}, warm(last), opt.vce_method);
+    last = e;
+    if (e && (!m1_grid || e->reml > m1_grid->reml)) m1_grid = std::move(e);
+  }
+  std::optional<MarkovEval> m1_ml;
+  {
+    // Scan (−1, 1) in steps of 0.05 for the bracket, then golden section.
+    double best_rho = 0.0, best = kMinusInf;
+    last.reset();
+    Eigen::Vector2d start = cold;
+    for (int k = -19; k <= 19; ++k) {
+      auto e = eval_markov(G, l, {0.05 * k}, warm(last), opt.vce_method);
+      if (e && e->reml > best) {
+        best = e->reml;
+        best_rho = 0.05 * k;
+        start = warm(e);
+      }
+      last = std::move(e);
+    }
+    if (std::isfinite(best)) {
+      const auto fn = [&](double rho) {
+        const auto e = eval_markov(G, l, {rho}, start, opt.vce_method);
+        return e ? e->reml : kMinusInf;
+      };
+      const auto [rho, v] = golden_max(fn, std::max(-1.0 + kEdge, best_rho - 0.05),
+                                       std::min(1.0 - kEdge, best_rho + 0.05), 1e-6);
+      m1_ml = eval_markov(G, l, {v >= best ? rho : best_rho}, start, opt.vce_method);
+    }
+  }
+  if (m1_grid)
+    res.models.push_back(markov_fit(StochasticModel::Markov1Grid, *m1_grid, r, G, l, opt.route,
+                                    opt.vce_method, false));
+  else
+    res.notes.push_back("markov1-grid: VCE failed at every rho of the grid");
+  if (m1_ml)
+    res.models.push_back(
+        markov_fit(StochasticModel::Markov1Ml, *m1_ml, r, G, l, opt.route, opt.vce_method, true));
+  else
+    res.notes.push_back("markov1-ml: the restricted likelihood could not be maximised");
+
+  // Markov-2: grid (also the likelihood surface) and ML.
+  report_progress(progress, 2, 5, "Markov-2");
+  if (!opt.markov2) {
+    // left out on request
+  } else if (n >= kMinReadingsMarkov2) {
+    for (int k = -9; k <= 9; ++k) {
+      res.rho1_grid.push_back(0.1 * k);
+      res.rho2_grid.push_back(0.1 * k);
+    }
+    res.markov2_surface = MatrixXd::Constant(19, 19, kNaN);
+    std::optional<MarkovEval> m2_grid;
+    for (int a = 0; a < 19; ++a) {
+      last.reset();
+      for (int b = 0; b < 19; ++b) {
+        const double r1 = res.rho1_grid[static_cast<std::size_t>(a)];
+        const double r2 = res.rho2_grid[static_cast<std::size_t>(b)];
+        if (!ar2_stationary(r1, r2)) continue;
+        auto e = eval_markov(G, l, {r1, r2}, warm(last), opt.vce_method);
+        last = e;
+        if (!e) continue;
+        res.markov2_surface(a, b) = e->reml;
+        if (!m2_grid || e->reml > m2_grid->reml) m2_grid = std::move(e);
+      }
+    }
+    if (m2_grid) {
+      res.models.push_back(markov_fit(StochasticModel::Markov2Grid, *m2_grid, r, G, l, opt.route,
+                                      opt.vce_method, false));
+      report_progress(progress, 3, 5, "Markov-2 ML");
+      const Eigen::Vector2d start2 = warm(m2_grid);
+      const auto fn = [&](const Eigen::Vector2d& p) {
+        // Strictly inside the triangle, kEdge from its sides.
+        if (!(p(0) + p(1) < 1.0 - kEdge && p(1) - p(0) < 1.0 - kEdge &&
+              std::fabs(p(1)) < 1.0 - kEdge))
+          return kMinusInf;
+        const auto e = eval_markov(G, l, {p(0), p(1)}, start2, opt.vce_method);
+        return e ? e->reml : kMinusInf;
+      };
+      const Eigen::Vector2d x0(m2_grid->rho[0], m2_grid->rho[1]);
+      // Start inside the triangle (the grid point may sit on its edge region).
+      const auto [p, v] = nelder_mead_max(fn, x0, -0.05, 1e-6, 400);
+      const Eigen::Vector2d best = v >= m2_grid->reml ? p : x0;
+      auto e = eval_markov(G, l, {best(0), best(1)}, start2, opt.vce_method);
+      if (e)
+        res.models.push_back(
+            markov_fit(StochasticModel::Markov2Ml, *e, r, G, l, opt.route, opt.vce_method, true));
+      else
+        res.notes.push_back("markov2-ml: the restricted likelihood could not be maximised");
+    } else {
+      res.notes.push_back("markov2-grid: VCE failed at every (rho1, rho2) of the grid");
+    }
+  } else {
+    res.notes.push_back(
+        fmt::format("Markov-2 models need at least {} readings (3 unknowns, 4 "
+                    "covariance parameters, + 1): left out",
+                    kMinReadingsMarkov2));
+  }
+  const auto has = [&](StochasticModel m) {
+    return std::any_of(res.models.begin(), res.models.end(),
+                       [&](const ModelFit& f) { return f.model == m; });
+  };
+  if (!has(StochasticModel::Markov1Grid) && !has(StochasticModel::Markov1Ml))
+    throw NumericalError(
+        "stochastic models: no Markov model could be fitted (variance-component "
+        "estimation failed at every rho)");
+
+  // Signal influence for the models without a signal term: the signal predicted by the ML
+  // Markov model of smaller BIC.
+  report_progress(progress, 4, 5, "comparison");
+  {
+    const ModelFit* ref = nullptr;
+    for (StochasticModel m : {StochasticModel::Markov1Ml, StochasticModel::Markov2Ml})
+      if (has(m) && (!ref || res.fit(m).bic < ref->bic)) ref = &res.fit(m);
+    if (!ref) ref = &res.fit(StochasticModel::Markov1Grid);
+    const MarkovFactors fac = factors_for(ref->rho, n);
+    const double s1 = ref->sigma1.value, s2 = ref->sigma2.value;
+    const MatrixXd Dref = fac.covariance(s1 * s1, s2 * s2);
+    const adjust::CovarianceFactor cref(Dref);
+    VectorXd rw =
+        l - G * Eigen::Vector3d(ref->north.value, ref->amplitude.value, ref->damping.value);
+    cref.whiten(rw);
+    MatrixXd bw = fac.B;
+    cref.whiten(bw);
+    const VectorXd signal = fac.B * (s2 * s2 * (bw.transpose() * rw));
+    for (auto& f : res.models) {
+      if (f.model == StochasticModel::WhiteNoise) {
+        f.signal_influence =
+            estimator_applied(G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), signal);
+      } else if (f.model == StochasticModel::Exponential || f.model == StochasticModel::Gaussian ||
+                 f.model == StochasticModel::DampedCosine) {
+        MatrixXd Dc(n, n);
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j)
+            Dc(i, j) = f.sigma1.value * f.sigma1.value * cov_shape(f.model, f.rho, std::abs(i - j));
+        f.signal_influence = estimator_applied(G, adjust::CovarianceFactor(Dc), signal);
+      }
+    }
+  }
+
+  // Recommendation: smallest BIC, fewer parameters on a tie.
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < res.models.size(); ++i) {
+    const auto& a = res.models[i];
+    const auto& b = res.models[best];
+    if (a.bic < b.bic - 1e-9 ||
+        (std::fabs(a.bic - b.bic) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
+      best = i;
+  }
+  res.models[best].recommended = true;
+  res.recommended = static_cast<int>(best);
+
+  // Likelihood-ratio tests.
+  const auto lrt = [&](StochasticModel null_m, StochasticModel alt, int dof) {
+    if (!has(null_m) || !has(alt)) return;
+    LikelihoodRatioTest t;
+    t.null_model = null_m;
+    t.alternative = alt;
+    t.statistic =
+        std::max(0.0, 2.0 * (res.fit(alt).log_likelihood - res.fit(null_m).log_likelihood));
+    t.dof = dof;
+    t.p_value = adjust::chi_squared_upper_probability(t.statistic, dof);
+    t.rejected = t.p_value < kLrtAlpha;
+    res.tests.push_back(t);
+  };
+  lrt(StochasticModel::WhiteNoise, StochasticModel::Markov1Ml, 2);
+  lrt(StochasticModel::Markov1Ml, StochasticModel::Markov2Ml, 1);
+  report_progress(progress, 5, 5, "done");
+  return res;
+}
+
+}  // namespace meridian::gyro

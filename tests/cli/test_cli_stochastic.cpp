@@ -1,0 +1,77 @@
+// `meridian gyro stochastic`: the binary on a field book — the JSON contract of the issue,
+// the truth of the simulated series within the stated σ, and bad input.
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.hpp"
+
+namespace {
+
+using meridian_test::CmdResult;
+class CliStochastic : public meridian_test::CliTest {};
+
+// 14 tracking reversals from `meridian gyro simulate --mode tracking --seed 5
+// --tracking-reversals 14 --sigma-tracking-arcsec 3`; truth M = 0°12'34" (white reading noise).
+constexpr const char* kBook = R"(instrument:
+  scale_value_arcsec: 600
+  torsion_ratio: 0.3
+station:
+  latitude_deg: 34.2
+determinations:
+  - mode: tracking
+    method: all
+    reversals: ["358 52 42.9180", "1 32 15.0905", "358 53 04.8283", "1 31 52.4514", "358 53 22.9319", "1 31 34.4356", "358 53 38.8450", "1 31 19.7890", "358 53 59.9224", "1 30 57.1074", "358 54 19.5692", "1 30 39.5889", "358 54 34.2398", "1 30 18.2602"]
+    sigma_reading_arcsec: 3
+)";
+
+TEST_F(CliStochastic, StochasticJsonContract) {
+  const auto f = write("book.yaml", kBook);
+  const CmdResult r = run("gyro stochastic " + f.string() + " --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("series").size(), 1u);
+  const auto& s = j.at("series")[0];
+  EXPECT_EQ(s.at("kind"), "tracking");
+  EXPECT_EQ(s.at("readings"), 14);
+  int recommended = 0;
+  for (const auto& m : s.at("models")) {
+    for (const char* k : {"name", "north_reading_deg", "sigma_north_arcsec", "amplitude_arcsec",
+                          "sigma_amplitude_arcsec", "rho", "rho_sigma", "sigma1_arcsec",
+                          "sigma1_sigma_arcsec", "sigma2_arcsec", "sigma2_sigma_arcsec",
+                          "signal_influence_arcsec", "log_likelihood", "aic", "bic", "recommended"})
+      EXPECT_TRUE(m.contains(k)) << k;
+    recommended += m.at("recommended").get<bool>() ? 1 : 0;
+    // The truth within 3σ (white noise of 3" per reading).
+    const double n = m.at("north_reading_deg");
+    const double sig = m.at("sigma_north_arcsec");
+    EXPECT_LT(std::fabs((n - (12.0 / 60.0 + 34.0 / 3600.0)) * 3600.0), 3.0 * std::max(sig, 0.5))
+        << m.at("name");
+  }
+  EXPECT_EQ(recommended, 1);
+  EXPECT_EQ(s.at("models").size(), 8u);
+  EXPECT_EQ(s.at("tests").size(), 2u);
+}
+
+TEST_F(CliStochastic, StochasticTextAndBadInput) {
+  const auto f = write("book.yaml", kBook);
+  const CmdResult t = run("gyro stochastic " + f.string() + " -q");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("recommended:"), std::string::npos);
+  EXPECT_NE(t.out.find("markov2-ml"), std::string::npos);
+  // Five readings: too few for any series.
+  std::string few = kBook;
+  const std::string all = few.substr(few.find("[\"358"), few.find("]") - few.find("[\"358") + 1);
+  few.replace(
+      few.find(all), all.size(),
+      R"(["358 52 42.9180", "1 32 15.0905", "358 53 04.8283", "1 31 52.4514", "358 53 22.9319"])");
+  const auto g = write("few.yaml", few);
+  const CmdResult r = run("gyro stochastic " + g.string() + " -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("at least 6 readings"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+}  // namespace

@@ -1,0 +1,282 @@
+// Stochastic models of reversal-point series (gyro-stochastic spec): the Markov factors
+// against the unrolled recursion, ρ = 0 against ordinary least squares and the spec's closed
+// forms, the computational routes against each other, the signal prediction against the
+// dense textbook formula, bad input.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/gyro/markov_covariance.hpp"
+#include "meridian/gyro/stochastic.hpp"
+
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using meridian::InputError;
+using meridian::NumericalError;
+using namespace meridian::gyro;
+using ::testing::HasSubstr;
+
+// ε by running the recursion ε_i = Δ_i + ρ_1·ε_{i−1} + ρ_2·ε_{i−2} with ε_0 = X_1,
+// ε_{−1} = X_2 (Markov-1: ρ_2 = 0, X_0 = X_1).
+VectorXd recursion(const VectorXd& delta, double x1, double x2, double rho1, double rho2) {
+  const Index n = delta.size();
+  VectorXd e(n);
+  double em1 = x1, em2 = x2;  // ε_{i−1}, ε_{i−2}
+  for (Index i = 0; i < n; ++i) {
+    e(i) = delta(i) + rho1 * em1 + rho2 * em2;
+    em2 = em1;
+    em1 = e(i);
+  }
+  return e;
+}
+
+TEST(MarkovCovariance, Markov1FactorsAreTheUnrolledRecursion) {
+  for (int n = 1; n <= 6; ++n)
+    for (double rho : {-0.7, 0.0, 0.3, 0.9}) {
+      const MarkovFactors f = markov1_factors(n, rho);
+      ASSERT_EQ(f.C.rows(), n);
+      ASSERT_EQ(f.B.cols(), 1);
+      for (int j = 0; j < n; ++j) {
+        const VectorXd col = recursion(VectorXd::Unit(n, j), 0.0, 0.0, rho, 0.0);
+        EXPECT_LT((f.C.col(j) - col).cwiseAbs().maxCoeff(), 1e-15) << n << " " << rho;
+      }
+      const VectorXd b = recursion(VectorXd::Zero(n), 1.0, 0.0, rho, 0.0);
+      EXPECT_LT((f.B.col(0) - b).cwiseAbs().maxCoeff(), 1e-15);
+      // Closed form of the spec: C_ij = ρ^{i−j}, B_i = ρ^i.
+      for (int i = 0; i < n; ++i) {
+        EXPECT_NEAR(f.B(i, 0), std::pow(rho, i + 1), 1e-15);
+        for (int j = 0; j <= i; ++j) EXPECT_NEAR(f.C(i, j), std::pow(rho, i - j), 1e-15);
+        for (int j = i + 1; j < n; ++j) EXPECT_EQ(f.C(i, j), 0.0);
+      }
+      const MatrixXd D = f.covariance(4.0, 25.0);
+      EXPECT_LT((D - (4.0 * f.C * f.C.transpose() + 25.0 * f.B * f.B.transpose())).norm(), 1e-12);
+    }
+}
+
+TEST(MarkovCovariance, Markov2FactorsAreTheUnrolledRecursion) {
+  for (int n = 1; n <= 6; ++n)
+    for (auto [r1, r2] : {std::pair{0.5, 0.3}, std::pair{-0.4, 0.2}, std::pair{1.2, -0.5},
+                          std::pair{0.0, 0.0}, std::pair{-0.9, -0.05}}) {
+      const MarkovFactors f = markov2_factors(n, r1, r2);
+      ASSERT_EQ(f.B.cols(), 2);
+      for (int j = 0; j < n; ++j) {
+        const VectorXd col = recursion(VectorXd::Unit(n, j), 0.0, 0.0, r1, r2);
+        EXPECT_LT((f.C.col(j) - col).cwiseAbs().maxCoeff(), 1e-14) << n << " " << r1 << " " << r2;
+      }
+      EXPECT_LT((f.B.col(0) - recursion(VectorXd::Zero(n), 1.0, 0.0, r1, r2)).cwiseAbs().maxCoeff(),
+                1e-14);
+      EXPECT_LT((f.B.col(1) - recursion(VectorXd::Zero(n), 0.0, 1.0, r1, r2)).cwiseAbs().maxCoeff(),
+                1e-14);
+    }
+  // The spec's check of ε_3.
+  const double r1 = 0.6, r2 = -0.25;
+  const MarkovFactors f = markov2_factors(3, r1, r2);
+  EXPECT_NEAR(f.C(2, 1), r1, 1e-15);
+  EXPECT_NEAR(f.C(2, 0), r1 * r1 + r2, 1e-15);
+  EXPECT_NEAR(f.B(2, 0), r1 * r1 * r1 + 2.0 * r1 * r2, 1e-15);
+  EXPECT_NEAR(f.B(2, 1), r1 * r1 * r2 + r2 * r2, 1e-15);
+  // With ρ_2 = 0 Markov-2 is Markov-1.
+  const MarkovFactors a = markov2_factors(6, 0.45, 0.0), b = markov1_factors(6, 0.45);
+  EXPECT_LT((a.C - b.C).norm(), 1e-15);
+  EXPECT_LT((a.B.col(0) - b.B.col(0)).norm(), 1e-15);
+  EXPECT_EQ(a.B.col(1).norm(), 0.0);
+}
+
+TEST(MarkovCovariance, StationarityIsChecked) {
+  EXPECT_TRUE(ar2_stationary(0.5, 0.3));
+  EXPECT_TRUE(ar2_stationary(1.5, -0.6));
+  EXPECT_FALSE(ar2_stationary(0.5, 0.5));   // ρ1 + ρ2 = 1
+  EXPECT_FALSE(ar2_stationary(-0.5, 0.6));  // ρ2 − ρ1 > 1
+  EXPECT_FALSE(ar2_stationary(0.0, -1.0));  // |ρ2| = 1
+  EXPECT_FALSE(ar2_stationary(std::nan(""), 0.0));
+  auto msg = [](auto f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(msg([] { markov2_factors(5, 0.7, 0.4); }), HasSubstr("rho1 + rho2 < 1 is violated"));
+  EXPECT_THAT(msg([] { markov2_factors(5, -0.7, 0.4); }), HasSubstr("rho2 - rho1 < 1 is violated"));
+  EXPECT_THAT(msg([] { markov1_factors(5, 1.0); }), HasSubstr("outside the stationary region"));
+  EXPECT_THROW(markov1_factors(0, 0.5), InputError);
+  EXPECT_THROW(markov1_factors(4, 0.5).covariance(-1.0, 1.0), InputError);
+}
+
+std::vector<double> simulated_series(int n, double rho, double s1, double s2, std::uint64_t seed,
+                                     Eigen::Vector3d y = {754.0, 4800.0, 3.0}) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> N(0.0, 1.0);
+  VectorXd delta(n);
+  for (int i = 0; i < n; ++i) delta(i) = s1 * N(rng);
+  const VectorXd e = recursion(delta, s2 * N(rng), 0.0, rho, 0.0);
+  const VectorXd l = reversal_design(n) * y + e;
+  return {l.data(), l.data() + n};
+}
+
+TEST(Stochastic, DesignIsR2) {
+  const MatrixXd G = reversal_design(3);
+  // r_i = M + (−1)^i·A′ + (−1)^{i+1}·(2i − 1)·c
+  EXPECT_EQ(G.row(0), Eigen::RowVector3d(1.0, -1.0, 1.0));
+  EXPECT_EQ(G.row(1), Eigen::RowVector3d(1.0, 1.0, -3.0));
+  EXPECT_EQ(G.row(2), Eigen::RowVector3d(1.0, -1.0, 5.0));
+}
+
+TEST(Stochastic, RhoZeroIsOrdinaryLeastSquares) {
+  // Markov-1 with ρ = 0: C = I, B = 0, D = σ1²·I; the GLS is OLS, and for n = 5 the spec's
+  // closed form M = (2r1 + 3r2 + 2r3 + 3r4 + 2r5)/12 with q_MM = 0.2083.
+  const std::vector<double> r{100.0, 910.0, 130.0, 880.0, 155.0};
+  const MarkovFactors f = markov1_factors(5, 0.0);
+  EXPECT_EQ(f.B.norm(), 0.0);
+  const double s2 = 9.0;
+  for (GlsRoute route : {GlsRoute::Whitening, GlsRoute::NormalEquations}) {
+    const GlsFit g = reversal_gls(r, f.covariance(s2, 123.0), route);
+    const double m = (2 * r[0] + 3 * r[1] + 2 * r[2] + 3 * r[3] + 2 * r[4]) / 12.0;
+    EXPECT_NEAR(g.y(0), m, 1e-10);
+    EXPECT_NEAR(g.covariance(0, 0) / s2, 0.2083, 5e-5);
+    // Dense OLS reference.
+    const MatrixXd G = reversal_design(5);
+    const VectorXd l = Eigen::Map<const VectorXd>(r.data(), 5);
+    const VectorXd y = (G.transpose() * G).inverse() * G.transpose() * l;
+    EXPECT_LT((g.y - y).cwiseAbs().maxCoeff(), 1e-9);
+  }
+}
+
+TEST(Stochastic, RoutesAgree) {
+  // Whitening against normal equations: every model to 1e-9. Helmert against LS-VCE: the
+  // models at fixed ρ to 1e-9; the ML models to the optimiser's tolerance (their ρ comes from
+  // a search whose path depends on rounding).
+  const auto r = simulated_series(20, 0.6, 2.0, 5.0, 11);
+  StochasticInput a, b, c;
+  a.readings = b.readings = c.readings = r;
+  b.options.route = GlsRoute::NormalEquations;
+  c.options.vce_method = meridian::adjust::VceMethod::Helmert;
+  const auto ra = analyse_stochastic(a);
+  auto rel = [](double x, double y) { return std::fabs(x - y) / std::max(std::fabs(x), 1e-300); };
+  for (const auto* other : {&b, &c}) {
+    const auto rb = analyse_stochastic(*other);
+    ASSERT_EQ(ra.models.size(), rb.models.size());
+    for (std::size_t i = 0; i < ra.models.size(); ++i) {
+      const auto& x = ra.models[i];
+      const auto& y = rb.models[i];
+      ASSERT_EQ(x.model, y.model);
+      SCOPED_TRACE(to_string(x.model));
+      const bool ml =
+          x.model == StochasticModel::Markov1Ml || x.model == StochasticModel::Markov2Ml;
+      const double tol = (ml && other == &c) ? 1e-4 : 1e-9;
+      EXPECT_LT(rel(x.north.value, y.north.value), tol);
+      EXPECT_LT(rel(x.north.sigma, y.north.sigma), tol);
+      EXPECT_LT(rel(x.amplitude.value, y.amplitude.value), tol);
+      EXPECT_LT(rel(x.amplitude.sigma, y.amplitude.sigma), tol);
+      EXPECT_LT(rel(x.log_likelihood, y.log_likelihood), tol);
+      for (std::size_t k = 0; k < x.rho.size(); ++k)
+        EXPECT_LT(rel(x.rho[k], y.rho[k]), ml ? 1e-4 : 1e-9);
+      if (std::isfinite(x.sigma1.value)) {
+        EXPECT_LT(rel(x.sigma1.value, y.sigma1.value), tol);
+      }
+    }
+  }
+  // GLS routes on a Markov-2 covariance.
+  const MatrixXd D = markov2_factors(20, 0.5, 0.3).covariance(4.0, 25.0);
+  const GlsFit w = reversal_gls(r, D, GlsRoute::Whitening);
+  const GlsFit ne = reversal_gls(r, D, GlsRoute::NormalEquations);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LT(rel(w.y(k), ne.y(k)), 1e-9);
+    EXPECT_LT(rel(w.covariance(k, k), ne.covariance(k, k)), 1e-9);
+  }
+}
+
+TEST(Stochastic, SignalPredictionIsTheDenseFormula) {
+  const auto r = simulated_series(16, 0.7, 2.0, 8.0, 5);
+  StochasticInput in;
+  in.readings = r;
+  in.options.covariance_functions = false;
+  const auto res = analyse_stochastic(in);
+  const ModelFit& f = res.fit(StochasticModel::Markov1Grid);
+  const MarkovFactors mf = markov1_factors(16, f.rho[0]);
+  const double s1 = f.sigma1.value * f.sigma1.value, s2 = f.sigma2.value * f.sigma2.value;
+  const MatrixXd D = mf.covariance(s1, s2);
+  const MatrixXd P = D.inverse();  // explicit inverse: the independent reference
+  const MatrixXd G = reversal_design(16);
+  const VectorXd l = Eigen::Map<const VectorXd>(r.data(), 16);
+  const MatrixXd N = G.transpose() * P * G;
+  const VectorXd y = N.inverse() * G.transpose() * P * l;
+  EXPECT_NEAR(f.north.value, y(0), 1e-9 * std::fabs(y(0)));
+  EXPECT_NEAR(f.north.sigma, std::sqrt(N.inverse()(0, 0)), 1e-9);
+  const VectorXd xhat = s2 * mf.B.transpose() * P * (l - G * y);
+  const VectorXd dy = N.inverse() * G.transpose() * P * mf.B * xhat;
+  EXPECT_NEAR(f.signal_influence(0), dy(0), 1e-9 * std::max(1.0, std::fabs(dy(0))));
+  EXPECT_NEAR(f.signal_influence(1), dy(1), 1e-9 * std::max(1.0, std::fabs(dy(1))));
+}
+
+TEST(Stochastic, ComparisonTableIsComplete) {
+  const auto r = simulated_series(20, 0.6, 2.0, 5.0, 3);
+  StochasticInput in;
+  in.readings = r;
+  const auto res = analyse_stochastic(in);
+  int recommended = 0;
+  for (const auto& f : res.models) {
+    SCOPED_TRACE(to_string(f.model));
+    recommended += f.recommended ? 1 : 0;
+    EXPECT_TRUE(std::isfinite(f.north.value) && std::isfinite(f.north.sigma));
+    EXPECT_TRUE(std::isfinite(f.amplitude.value) && std::isfinite(f.amplitude.sigma));
+    EXPECT_TRUE(std::isfinite(f.log_likelihood) && std::isfinite(f.aic) && std::isfinite(f.bic));
+    EXPECT_NEAR(f.aic, -2.0 * f.log_likelihood + 2.0 * f.covariance_parameters, 1e-9);
+    EXPECT_NEAR(f.bic, -2.0 * f.log_likelihood + f.covariance_parameters * std::log(17.0), 1e-9);
+  }
+  EXPECT_EQ(recommended, 1);
+  EXPECT_TRUE(res.models[static_cast<std::size_t>(res.recommended)].recommended);
+  // ML maximises what the grid samples.
+  EXPECT_GE(res.fit(StochasticModel::Markov1Ml).log_likelihood,
+            res.fit(StochasticModel::Markov1Grid).log_likelihood - 1e-9);
+  EXPECT_GE(res.fit(StochasticModel::Markov2Ml).log_likelihood,
+            res.fit(StochasticModel::Markov2Grid).log_likelihood - 1e-9);
+  // Markov-1 is nested in Markov-2 (ρ2 = 0).
+  EXPECT_GE(res.fit(StochasticModel::Markov2Ml).log_likelihood,
+            res.fit(StochasticModel::Markov1Ml).log_likelihood - 1e-6);
+  ASSERT_EQ(res.tests.size(), 2u);
+  EXPECT_EQ(res.markov2_surface.rows(), 19);
+  EXPECT_EQ(res.residual_autocorrelation.size(), 20u);
+  EXPECT_DOUBLE_EQ(res.residual_autocorrelation[0], 1.0);
+}
+
+TEST(Stochastic, BadInput) {
+  StochasticInput in;
+  in.readings = {1.0, 9.0, 2.0, 8.0, 3.0};
+  EXPECT_THAT(
+      [&] {
+        try {
+          analyse_stochastic(in);
+        } catch (const InputError& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      }(),
+      HasSubstr("need at least 6 readings"));
+  in.readings = {1.0, 9.0, 2.0, 8.0, 3.0, std::nan(""), 4.0};
+  EXPECT_THROW(analyse_stochastic(in), InputError);
+  // An exact fit of (R2): nothing to model.
+  const VectorXd exact = reversal_design(8) * Eigen::Vector3d(10.0, 5.0, 0.1);
+  in.readings.assign(exact.data(), exact.data() + 8);
+  EXPECT_THROW(analyse_stochastic(in), InputError);
+  // Not positive definite.
+  const std::vector<double> r = simulated_series(6, 0.5, 1.0, 1.0, 1);
+  EXPECT_THROW(reversal_gls(r, MatrixXd::Ones(6, 6)), NumericalError);
+  EXPECT_THROW(reversal_gls(r, MatrixXd::Ones(6, 6), GlsRoute::NormalEquations), NumericalError);
+  EXPECT_THROW(reversal_gls(r, MatrixXd::Identity(5, 5)), InputError);
+  // Six readings: Markov-2 is left out with a note, the rest is computed.
+  in.readings = r;
+  const auto res = analyse_stochastic(in);
+  EXPECT_THROW(res.fit(StochasticModel::Markov2Ml), InputError);
+  EXPECT_THAT(res.notes, ::testing::Contains(HasSubstr("Markov-2 models need at least 8")));
+}
+
+}  // namespace

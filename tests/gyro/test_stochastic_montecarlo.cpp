@@ -1,0 +1,131 @@
+// Monte Carlo validation of the stochastic models (gyro-stochastic spec §6): series simulated
+// with known Markov-1 errors, many replications. Label `montecarlo`.
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "meridian/adjust/variance_components.hpp"
+#include "meridian/gyro/markov_covariance.hpp"
+#include "meridian/gyro/stochastic.hpp"
+
+namespace {
+
+using Eigen::VectorXd;
+using namespace meridian::gyro;
+
+// ε_i = Δ_i + ρ·ε_{i−1}, ε_0 = X_0, run as a recursion (not through C and B).
+std::vector<double> series(int n, double rho, double s1, double s2, std::mt19937_64& rng) {
+  std::normal_distribution<double> N(0.0, 1.0);
+  double e = s2 * N(rng);
+  const VectorXd y = reversal_design(n) * Eigen::Vector3d(754.0, 4800.0, 3.0);
+  std::vector<double> r(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    e = s1 * N(rng) + rho * e;
+    r[static_cast<std::size_t>(i)] = y(i) + e;
+  }
+  return r;
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+double sd(const std::vector<double>& v) {
+  const double m = mean(v);
+  double s = 0.0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / static_cast<double>(v.size() - 1));
+}
+
+TEST(StochasticMonteCarlo, MlRhoAndReportedSigmaOfNorth) {
+  const int n = 30, runs = 100;
+  const double rho = 0.6, s1 = 2.0, s2 = 5.0;
+  std::mt19937_64 rng(2026);
+  const Eigen::MatrixXd D_true = markov1_factors(n, rho).covariance(s1 * s1, s2 * s2);
+  std::vector<double> rho_hat, rho_sd, m_gls, m_ols, sd_gls, m_true, sd_true;
+  for (int k = 0; k < runs; ++k) {
+    StochasticInput in;
+    in.readings = series(n, rho, s1, s2, rng);
+    in.options.covariance_functions = false;
+    in.options.markov2 = false;
+    const auto res = analyse_stochastic(in);
+    const ModelFit& ml = res.fit(StochasticModel::Markov1Ml);
+    rho_hat.push_back(ml.rho[0]);
+    if (std::isfinite(ml.rho_sigma[0])) rho_sd.push_back(ml.rho_sigma[0]);
+    m_gls.push_back(ml.north.value);
+    sd_gls.push_back(ml.north.sigma);
+    m_ols.push_back(res.fit(StochasticModel::WhiteNoise).north.value);
+    const GlsFit t = reversal_gls(in.readings, D_true);
+    m_true.push_back(t.y(0));
+    sd_true.push_back(std::sqrt(t.covariance(0, 0)));
+  }
+  const double bias = mean(rho_hat) - rho;
+  std::printf("ML rho: mean %.4f (bias %.4f), scatter %.4f, mean reported sigma %.4f\n",
+              mean(rho_hat), bias, sd(rho_hat), mean(rho_sd));
+  std::printf(
+      "north: GLS (ML rho) scatter %.4f, mean reported m %.4f; GLS (true D) scatter "
+      "%.4f, reported m %.4f; OLS scatter %.4f\n",
+      sd(m_gls), mean(sd_gls), sd(m_true), mean(sd_true), sd(m_ols));
+  // Unbiased to within its standard error: the bias is below the σ of one estimate.
+  EXPECT_LT(std::fabs(bias), mean(rho_sd));
+  // The GLS with the Markov-1 covariance: its reported m_αN matches the empirical scatter
+  // within 10 % and it scatters less than OLS.
+  EXPECT_NEAR(mean(sd_true) / sd(m_true), 1.0, 0.10);
+  // GLS is the best linear estimator: its σ is below the true σ of OLS under D (sandwich).
+  const Eigen::MatrixXd G = reversal_design(n);
+  const Eigen::Matrix3d Ni = (G.transpose() * G).inverse();
+  const double sd_ols_true = std::sqrt((Ni * G.transpose() * D_true * G * Ni)(0, 0));
+  std::printf("true sigma of the OLS north under D: %.4f\n", sd_ols_true);
+  EXPECT_LE(mean(sd_true), sd_ols_true);
+  // With ρ and the components estimated from the same 30 readings (EGLS) the reported m_αN is
+  // optimistic (measured: about 0.82 of the scatter with this seed; docs/gyro-stochastic.md):
+  // the plug-in σ ignores the uncertainty of ρ̂. Guard against it getting worse.
+  EXPECT_GT(mean(sd_gls) / sd(m_gls), 0.75);
+}
+
+TEST(StochasticMonteCarlo, VceRecoversTheComponents) {
+  const int n = 30, runs = 300;
+  const double rho = 0.6, s1 = 2.0, s2 = 5.0;
+  std::mt19937_64 rng(77);
+  const MarkovFactors f = markov1_factors(n, rho);
+  const std::vector<meridian::adjust::VarianceComponent> comps{{"sigma1^2", f.C},
+                                                               {"sigma2^2", f.B}};
+  int within1 = 0, within2 = 0, both = 0, both2 = 0, within1_2 = 0, within2_2 = 0;
+  for (int k = 0; k < runs; ++k) {
+    const auto r = series(n, rho, s1, s2, rng);
+    const VectorXd l = Eigen::Map<const VectorXd>(r.data(), n);
+    const auto v = meridian::adjust::estimate_variance_components(reversal_design(n), l, comps);
+    const double h1 = std::sqrt(v.components(0)), h2 = std::sqrt(v.components(1));
+    const double e1 = v.sigma(0) / (2.0 * h1);
+    const double e2 =
+        v.clipped[1] ? std::sqrt(std::sqrt(v.covariance(1, 1))) : v.sigma(1) / (2.0 * h2);
+    const bool w1 = std::fabs(h1 - s1) <= e1;
+    const bool w2 = std::isfinite(e2) && std::fabs(h2 - s2) <= e2;
+    within1 += w1;
+    within2 += w2;
+    both += w1 && w2;
+    within1_2 += std::fabs(h1 - s1) <= 2.0 * e1;
+    within2_2 += std::isfinite(e2) && std::fabs(h2 - s2) <= 2.0 * e2;
+    both2 +=
+        (std::fabs(h1 - s1) <= 2.0 * e1) && std::isfinite(e2) && std::fabs(h2 - s2) <= 2.0 * e2;
+  }
+  std::printf(
+      "VCE within 1 sigma: sigma1 %d, sigma2 %d, both %d; within 2 sigma: sigma1 %d, "
+      "sigma2 %d, both %d; of %d\n",
+      within1, within2, both, within1_2, within2_2, both2, runs);
+  // A calibrated σ covers the truth in 68 % of runs at 1σ (binomial 3σ band for 300 runs:
+  // 60 %–76 %), so the spec's "≥ 90 % within σ" is checked at 2σ (95 % expected) for σ1.
+  // σ2 is NOT checked: one series holds a single realisation of the initial state X_0, so
+  // σ2² is not consistently estimable from it and its normal-theory σ does not cover
+  // (measured coverage printed above; docs/gyro-stochastic.md).
+  EXPECT_GE(within1, 0.60 * runs);
+  EXPECT_LE(within1, 0.76 * runs);
+  EXPECT_GE(within1_2, 0.9 * runs);
+}
+
+}  // namespace
