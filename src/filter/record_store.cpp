@@ -135,6 +135,11 @@ double* RecordStore::append() {
     if (bytes > options_.memory_limit_bytes) {
       spill(epoch);
     } else {
+      // Reserve up to the limit (at most 64 MB) at once: no copies while the line grows, and
+      // pages are only touched as records arrive.
+      if (memory_.capacity() == 0)
+        memory_.reserve(std::min<std::size_t>(options_.memory_limit_bytes, std::size_t{64} << 20) /
+                        sizeof(double));
       memory_.resize(memory_.size() + record_doubles_);
       ++count_;
       return memory_.data() + memory_.size() - record_doubles_;

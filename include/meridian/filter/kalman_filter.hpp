@@ -31,6 +31,7 @@
 #include <Eigen/Dense>
 
 #include "meridian/filter/detail/checks.hpp"
+#include "meridian/filter/detail/small_matrix.hpp"
 #include "meridian/filter/discretisation.hpp"
 #include "meridian/filter/estimate.hpp"
 #include "meridian/filter/innovation.hpp"
@@ -194,9 +195,9 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
   detail::check_shape(q.rows(), q.cols(), size(), size(), "process noise Q_d", next);
   detail::check_input_covariance(q, "process noise Q_d", next);
   Matrix<N, N> phi_p;
-  phi_p.noalias() = phi * estimate_.P;
+  phi_p.noalias() = detail::product(phi, estimate_.P);
   Matrix<N, N> p = q;
-  p.noalias() += phi_p * phi.transpose();
+  p.noalias() += detail::product(phi_p, phi.transpose());
   p = (0.5 * (p + p.transpose())).eval();
   detail::check_covariance_diagonal(p, "predicted covariance P⁻", next);
   predicted_.x = x;
@@ -246,10 +247,10 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
   in.S = R;
   in.S.noalias() += H * U;
   in.S = (0.5 * (in.S + in.S.transpose())).eval();
-  const Eigen::LLT<Matrix<M, M>> llt(in.S);
-  if (llt.info() != Eigen::Success) [[unlikely]]
+  Vector<M> s_nu = nu;  // S⁻¹·ν
+  if (!detail::cholesky_solve_in_place(in.S, s_nu)) [[unlikely]]
     detail::throw_not_positive_definite("innovation covariance S = H·P⁻·Hᵀ + R", epoch_, in.S);
-  in.nis = nu.dot(llt.solve(nu));
+  in.nis = nu.dot(s_nu);
   if (!std::isfinite(in.nis)) [[unlikely]]
     detail::throw_numerical(epoch_, "normalised innovation squared is not finite (S is "
                                     "numerically singular)");
@@ -259,17 +260,18 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
     return in;
   }
 
-  const Matrix<M, N> kt = llt.solve(U.transpose());  // Kᵀ = S⁻¹·(P⁻Hᵀ)ᵀ
+  Matrix<N, M> K = U;  // K = (P⁻Hᵀ)·S⁻¹ (S was factored above: positive definite)
+  detail::cholesky_right_solve_in_place(in.S, K);
   Vector<N> x = estimate_.x;
-  x.noalias() += kt.transpose() * nu;
+  x.noalias() += K * nu;
   Matrix<N, N> b = P;  // (I − KH)·P⁻
-  b.noalias() -= kt.transpose() * U.transpose();
+  b.noalias() -= detail::product(K, U.transpose());
   Matrix<N, M> bht;
-  bht.noalias() = b * H.transpose();
-  b.noalias() -= bht * kt;  // (I − KH)·P⁻·(I − KH)ᵀ
+  bht.noalias() = detail::product(b, H.transpose());
+  b.noalias() -= detail::product(bht, K.transpose());  // (I − KH)·P⁻·(I − KH)ᵀ
   Matrix<N, M> kr;
-  kr.noalias() = kt.transpose() * R;
-  b.noalias() += kr * kt;  // + K·R·Kᵀ
+  kr.noalias() = K * R;
+  b.noalias() += detail::product(kr, K.transpose());  // + K·R·Kᵀ
   b = (0.5 * (b + b.transpose())).eval();
   detail::check_covariance_diagonal(b, "covariance P after the update", epoch_);
   if (!x.allFinite()) [[unlikely]]

@@ -6,7 +6,7 @@
 ///
 /// Equations (Rauch, Tung & Striebel, AIAA J. 3(8), 1965; Bar-Shalom et al. 2001 §8.6), for
 /// k = K−2 … 0, starting from x̂ˢ_{K−1} = x̂_{K−1}, Pˢ_{K−1} = P_{K−1}:
-///   C_k = P_k·Φ_{k+1}ᵀ·(P⁻_{k+1})⁻¹   (Cᵀ by a Cholesky solve with P⁻_{k+1}; no inverse),
+///   C_k = P_k·Φ_{k+1}ᵀ·(P⁻_{k+1})⁻¹   (by a Cholesky solve with P⁻_{k+1}; no inverse),
 ///   x̂ˢ_k = x̂_k + C_k·(x̂ˢ_{k+1} − x̂⁻_{k+1}),
 ///   Pˢ_k = P_k + C_k·(Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ, then Pˢ ← ½(Pˢ + Pˢᵀ).
 /// For an extended filter the stored Φ is the Jacobian and x̂⁻ = f(x̂): the extended RTS smoother.
@@ -20,6 +20,7 @@
 #include <Eigen/Dense>
 
 #include "meridian/filter/detail/checks.hpp"
+#include "meridian/filter/detail/small_matrix.hpp"
 #include "meridian/filter/estimate.hpp"
 #include "meridian/filter/smoother_storage.hpp"
 
@@ -36,23 +37,21 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
   Estimate<N> s = next.filtered;
   sink(reader.index(), static_cast<const Estimate<N>&>(s));
   Matrix<N, N> a;
-  Matrix<N, N> ct;
+  Matrix<N, N> c;
   Matrix<N, N> t;
   Vector<N> dx;
   while (reader.next(cur)) {
     const Eigen::Index k = reader.index();
-    const Eigen::LLT<Matrix<N, N>> llt(next.predicted.P);
-    if (llt.info() != Eigen::Success) [[unlikely]]
+    c.noalias() = detail::product(cur.filtered.P, next.phi.transpose());  // P_k·Φ_{k+1}ᵀ
+    if (!detail::cholesky_right_solve_in_place(next.predicted.P, c)) [[unlikely]]  // C_k
       detail::throw_not_positive_definite("predicted covariance P⁻", k + 1, next.predicted.P);
-    a.noalias() = next.phi * cur.filtered.P;  // Φ_{k+1}·P_k = (P_k·Φ_{k+1}ᵀ)ᵀ
-    ct = llt.solve(a);                        // C_kᵀ
     dx = s.x - next.predicted.x;
     s.x = cur.filtered.x;
-    s.x.noalias() += ct.transpose() * dx;
+    s.x.noalias() += c * dx;
     t = s.P - next.predicted.P;
-    a.noalias() = t * ct;  // (Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ
+    a.noalias() = detail::product(t, c.transpose());  // (Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ
     s.P = cur.filtered.P;
-    s.P.noalias() += ct.transpose() * a;
+    s.P.noalias() += detail::product(c, a);
     s.P = (0.5 * (s.P + s.P.transpose())).eval();
     detail::check_covariance_diagonal(s.P, "smoothed covariance", k);
     if (!s.x.allFinite()) [[unlikely]]
