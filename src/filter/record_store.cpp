@@ -70,9 +70,10 @@ void read_all(int fd, void* data, std::size_t bytes, off_t offset, std::uint64_t
 
 }  // namespace
 
-RecordStore::RecordStore(std::uint32_t state_size, std::size_t record_doubles,
+RecordStore::RecordStore(const char* magic, std::uint32_t state_size, std::size_t record_doubles,
                          StorageOptions options)
-    : state_size_(state_size), record_doubles_(record_doubles), options_(std::move(options)) {
+    : magic_(magic),
+      state_size_(state_size), record_doubles_(record_doubles), options_(std::move(options)) {
   const std::size_t record_bytes = record_doubles_ * sizeof(double);
   buffer_records_ = std::max<std::size_t>(1, options_.buffer_bytes / record_bytes);
 }
@@ -80,7 +81,8 @@ RecordStore::RecordStore(std::uint32_t state_size, std::size_t record_doubles,
 RecordStore::~RecordStore() { close(); }
 
 RecordStore::RecordStore(RecordStore&& other) noexcept
-    : state_size_(other.state_size_),
+    : magic_(other.magic_),
+      state_size_(other.state_size_),
       record_doubles_(other.record_doubles_),
       options_(std::move(other.options_)),
       count_(other.count_),
@@ -97,6 +99,7 @@ RecordStore::RecordStore(RecordStore&& other) noexcept
 RecordStore& RecordStore::operator=(RecordStore&& other) noexcept {
   if (this != &other) {
     close();
+    magic_ = other.magic_;
     state_size_ = other.state_size_;
     record_doubles_ = other.record_doubles_;
     options_ = std::move(other.options_);
@@ -128,8 +131,7 @@ std::uint64_t RecordStore::file_bytes() const {
   return kSpillHeaderBytes + count_ * record_doubles_ * sizeof(double);
 }
 
-double* RecordStore::append() {
-  const std::uint64_t epoch = count_;
+double* RecordStore::append(std::uint64_t epoch) {
   if (fd_ < 0) {
     const std::size_t bytes = (memory_.size() + record_doubles_) * sizeof(double);
     if (bytes > options_.memory_limit_bytes) {
@@ -172,7 +174,7 @@ void RecordStore::spill(std::uint64_t epoch) {
     path_ = name;
 
   Header h{};
-  std::memcpy(h.magic, kSpillMagic, sizeof h.magic);
+  std::memcpy(h.magic, magic_, sizeof h.magic);
   h.version = kSpillVersion;
   h.state_size = state_size_;
   h.record_count = 0;  // written by flush()
@@ -206,7 +208,7 @@ RecordStore::ReverseReader RecordStore::read_reverse() {
     struct stat st {};
     if (::fstat(fd_, &st) != 0) throw_io(count_, "cannot inspect the smoother's spill file", errno);
     const std::size_t record_bytes = record_doubles_ * sizeof(double);
-    if (std::memcmp(h.magic, kSpillMagic, sizeof h.magic) != 0 || h.version != kSpillVersion ||
+    if (std::memcmp(h.magic, magic_, sizeof h.magic) != 0 || h.version != kSpillVersion ||
         h.state_size != state_size_ || h.record_count != count_ ||
         h.record_bytes != record_bytes || h.byte_order_mark != kSpillByteOrderMark ||
         static_cast<std::uint64_t>(st.st_size) != kSpillHeaderBytes + count_ * record_bytes)

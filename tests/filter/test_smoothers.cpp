@@ -259,7 +259,7 @@ TEST(SmootherStorage, SpillPathIsBitIdenticalToMemory) {
   const auto line = dov_line(2000, 24);
   constexpr int n = DovState::size;
   const std::size_t record_bytes = SmootherStorage<n>::record_doubles(n) * sizeof(double);
-  EXPECT_EQ(record_bytes, 1216u);
+  EXPECT_EQ(record_bytes, 712u);  // index of Φ, x̂⁻, upper P⁻, x̂, upper P
 
   SmootherStorage<n> memory(n, {std::numeric_limits<std::size_t>::max(), dir.path, 1 << 20});
   // Spilled from the first record, with a 7-record buffer: many block boundaries.
@@ -272,7 +272,9 @@ TEST(SmootherStorage, SpillPathIsBitIdenticalToMemory) {
   EXPECT_FALSE(memory.spilled());
   EXPECT_TRUE(spilled.spilled());
   EXPECT_TRUE(midway.spilled());
-  EXPECT_EQ(spilled.file_bytes(), 32u + 2000u * record_bytes);
+  // A constant Φ is stored once (plus the identity of epoch 0).
+  EXPECT_EQ(spilled.transitions(), 2);
+  EXPECT_EQ(spilled.file_bytes(), 32u + 2000u * record_bytes + 32u + 2u * 64u * 8u);
   EXPECT_TRUE(dir.empty());  // anonymous: no name on disk even while in use
 
   const auto a = rts_smooth(memory);
@@ -280,6 +282,21 @@ TEST(SmootherStorage, SpillPathIsBitIdenticalToMemory) {
   const auto c = rts_smooth(midway);
   EXPECT_TRUE(bit_identical(a, b));
   EXPECT_TRUE(bit_identical(a, c));
+  // A Φ that changes at every epoch (an extended filter's Jacobian): one transition per epoch,
+  // spilled on their own, still bit-identical.
+  SmootherStorage<n> memory_varying(n, {std::numeric_limits<std::size_t>::max(), dir.path, 1 << 20});
+  SmootherStorage<n> spilled_varying(n, {0, dir.path, 5 * record_bytes});
+  for (auto* s : {&memory_varying, &spilled_varying}) {
+    KalmanFilter<n> kf(line.initial);
+    for (Index k = 0; k < 300; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      if (k > 0) kf.predict((1.0 + 1e-9 * static_cast<double>(k)) * line.steps[i].phi, line.steps[i].q);
+      kf.update(line.z[i], line.H, line.R);
+      s->append(kf.predicted(), kf.transition(), kf.estimate());
+    }
+  }
+  EXPECT_EQ(spilled_varying.transitions(), 300);
+  EXPECT_TRUE(bit_identical(rts_smooth(memory_varying), rts_smooth(spilled_varying)));
   EXPECT_TRUE(bit_identical(two_filter(line, memory), two_filter(line, spilled)));
   // A second pass over the same storage reads the same records.
   EXPECT_TRUE(bit_identical(a, rts_smooth(spilled)));
@@ -290,7 +307,9 @@ TEST(SmootherStorage, SpillFileHasTheDocumentedFormatAndIsRemoved) {
   const auto line = dov_line(10, 25);
   constexpr int n = DovState::size;
   fs::path path;
+  fs::path phi_path;
   std::vector<Estimate<n>> predicted;
+  std::vector<Estimate<n>> filtered;
   {
     StorageOptions options{0, dir.path, 1 << 20, false};
     SmootherStorage<n> storage(n, options);
@@ -300,6 +319,7 @@ TEST(SmootherStorage, SpillFileHasTheDocumentedFormatAndIsRemoved) {
       kf.update(line.z[static_cast<std::size_t>(k)], line.H, line.R);
       storage.append(kf.predicted(), kf.transition(), kf.estimate());
       predicted.push_back(kf.predicted());
+      filtered.push_back(kf.estimate());
     }
     path = storage.spill_path();
     ASSERT_FALSE(path.empty());
@@ -322,24 +342,46 @@ TEST(SmootherStorage, SpillFileHasTheDocumentedFormatAndIsRemoved) {
     EXPECT_EQ(version, 1u);
     EXPECT_EQ(state_size, 8u);
     EXPECT_EQ(count, 10u);
-    EXPECT_EQ(record_bytes, 8u * (2 * 64 + 3 * 8));
+    EXPECT_EQ(record_bytes, 8u * (1 + 2 * 8 + 8 * 9));
     EXPECT_EQ(bom, 0x01020304u);
     EXPECT_EQ(fs::file_size(path), 32u + 10u * record_bytes);
-    // Record 3: Φ_3 column-major, x̂⁻_3, P⁻_3 upper triangle column by column.
+    // Record 3: index of Φ_3, x̂⁻_3, P⁻_3 upper triangle column by column, x̂_3, P_3.
     std::vector<double> rec(record_bytes / 8);
     in.seekg(32 + 3 * record_bytes);
     in.read(reinterpret_cast<char*>(rec.data()), record_bytes);
+    EXPECT_EQ(rec[0], 1.0);  // transition 0 is the identity of epoch 0, 1 the constant Φ
+    EXPECT_EQ(rec[1 + 2], predicted[3].x(2));
+    EXPECT_EQ(rec[9 + 0], predicted[3].P(0, 0));
+    EXPECT_EQ(rec[9 + 1], predicted[3].P(0, 1));
+    EXPECT_EQ(rec[9 + 2], predicted[3].P(1, 1));
+    EXPECT_EQ(rec[9 + 3], predicted[3].P(0, 2));
+    EXPECT_EQ(rec[45 + 2], filtered[3].x(2));
+    EXPECT_EQ(rec[53 + 3], filtered[3].P(0, 2));
+
+    // The transitions: Φ column-major, the identity then the line's constant Φ.
+    phi_path = storage.transition_path();
+    ASSERT_FALSE(phi_path.empty());
+    std::ifstream tin(phi_path, std::ios::binary);
+    tin.read(magic, 8);
+    EXPECT_EQ(std::string(magic, 8), "MRDN-PHI");
+    tin.seekg(16);
+    tin.read(reinterpret_cast<char*>(&count), 8);
+    tin.read(reinterpret_cast<char*>(&record_bytes), 4);
+    EXPECT_EQ(count, 2u);
+    EXPECT_EQ(record_bytes, 8u * 64u);
+    std::vector<double> phi(64);
+    tin.seekg(32);
+    tin.read(reinterpret_cast<char*>(phi.data()), 512);
+    EXPECT_EQ(phi[0], 1.0);
+    EXPECT_EQ(phi[1], 0.0);
+    tin.read(reinterpret_cast<char*>(phi.data()), 512);
     const auto& step = line.steps[3];
-    EXPECT_EQ(rec[0], step.phi(0, 0));
-    EXPECT_EQ(rec[1], step.phi(1, 0));
-    EXPECT_EQ(rec[8], step.phi(0, 1));
-    EXPECT_EQ(rec[64 + 2], predicted[3].x(2));
-    EXPECT_EQ(rec[72 + 0], predicted[3].P(0, 0));
-    EXPECT_EQ(rec[72 + 1], predicted[3].P(0, 1));
-    EXPECT_EQ(rec[72 + 2], predicted[3].P(1, 1));
-    EXPECT_EQ(rec[72 + 3], predicted[3].P(0, 2));
+    EXPECT_EQ(phi[0], step.phi(0, 0));
+    EXPECT_EQ(phi[1], step.phi(1, 0));
+    EXPECT_EQ(phi[8], step.phi(0, 1));
   }
   EXPECT_FALSE(fs::exists(path));  // removed by the destructor
+  EXPECT_FALSE(fs::exists(phi_path));
 
   // Removed when an exception unwinds the stack.
   try {

@@ -31,8 +31,10 @@ struct StorageOptions {
   bool anonymous = true;
 };
 
-/// The spill file's header (smoother_storage.hpp documents the format).
+/// The spill files' header (smoother_storage.hpp documents the format): the magic of the
+/// epoch records' file and of the transitions' file.
 inline constexpr char kSpillMagic[8] = {'M', 'R', 'D', 'N', '-', 'R', 'T', 'S'};
+inline constexpr char kTransitionMagic[8] = {'M', 'R', 'D', 'N', '-', 'P', 'H', 'I'};
 inline constexpr std::uint32_t kSpillVersion = 1;
 inline constexpr std::size_t kSpillHeaderBytes = 32;
 inline constexpr std::uint32_t kSpillByteOrderMark = 0x01020304u;
@@ -41,8 +43,10 @@ namespace detail {
 
 class RecordStore {
  public:
-  /// Records of `record_doubles` doubles for a state of `state_size` (written to the header).
-  RecordStore(std::uint32_t state_size, std::size_t record_doubles, StorageOptions options);
+  /// Records of `record_doubles` doubles for a state of `state_size` (written to the header,
+  /// after the 8 characters of `magic`, which must outlive the store).
+  RecordStore(const char* magic, std::uint32_t state_size, std::size_t record_doubles,
+              StorageOptions options);
   ~RecordStore();
   RecordStore(const RecordStore&) = delete;
   RecordStore& operator=(const RecordStore&) = delete;
@@ -50,9 +54,9 @@ class RecordStore {
   RecordStore& operator=(RecordStore&& other) noexcept;
 
   /// Space for the next record (record_doubles() doubles), valid until the next call of any
-  /// member. Throws IoError (naming the epoch = record index) when the spill file cannot be
-  /// created or written.
-  double* append();
+  /// member. Throws IoError naming `epoch` (the line's epoch being stored) when the spill file
+  /// cannot be created or written.
+  double* append(std::uint64_t epoch);
   /// Number of records appended.
   std::uint64_t size() const { return count_; }
   std::size_t record_doubles() const { return record_doubles_; }
@@ -90,6 +94,7 @@ class RecordStore {
   void flush(std::uint64_t epoch);
   void close() noexcept;
 
+  const char* magic_;
   std::uint32_t state_size_;
   std::size_t record_doubles_;
   StorageOptions options_;
