@@ -1,7 +1,8 @@
 // Google Benchmark of the estimation core on the deflection model's shape (8 states, 2
 // observations, docs/filter.md): the forward filter alone, forward filter + RTS smoother with
 // the records in memory and spilled to disk, and the peak memory of a 10⁷-epoch line on the
-// spill path (`--spill-line=10000000`, see main()). Figures and the commands that produce them: docs/benchmarks.md.
+// spill path (`--spill-line=10000000`, see main()). Figures and the commands that produce them:
+// docs/benchmarks.md.
 //
 // Observations are simulated once (4096 epochs of the model, reused cyclically) so the loop
 // measures the filter, not the random number generator.
@@ -42,8 +43,11 @@ struct Scenario {
 const Scenario& scenario() {
   static const Scenario s = [] {
     const DovParameters p;
-    Scenario out{discretise(dov_model(p), 0.1), dov_observation_matrix(),
-                 dov_observation_covariance(p), dov_initial(p), {}};
+    Scenario out{discretise(dov_model(p), 0.1),
+                 dov_observation_matrix(),
+                 dov_observation_covariance(p),
+                 dov_initial(p),
+                 {}};
     std::mt19937_64 rng(1);
     Vector<N> truth = out.initial.x + draw<N>(out.initial.P, rng);
     for (int k = 0; k < 4096; ++k) {
@@ -98,7 +102,8 @@ void BM_ForwardRtsMemory(benchmark::State& state) {
 }
 BENCHMARK(BM_ForwardRtsMemory)->Arg(100'000)->Unit(benchmark::kMillisecond);
 
-// Default options: records beyond 32 MB go to the spill file (std::filesystem::temp_directory_path()).
+// Default options: records beyond 32 MB go to the spill file
+// (std::filesystem::temp_directory_path()).
 void BM_ForwardRtsSpill(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(forward_and_smooth(state.range(0), {}));
   state.SetItemsProcessed(state.iterations() * state.range(0));

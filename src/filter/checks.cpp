@@ -35,8 +35,8 @@ void throw_not_positive_definite(const char* name, Eigen::Index epoch,
 void check_shape(Eigen::Index rows, Eigen::Index cols, Eigen::Index expected_rows,
                  Eigen::Index expected_cols, const char* name, Eigen::Index epoch) {
   if (rows != expected_rows || cols != expected_cols) [[unlikely]]
-    throw_input(epoch, fmt::format("{} is {}×{}, expected {}×{}", name, rows, cols,
-                                   expected_rows, expected_cols));
+    throw_input(epoch, fmt::format("{} is {}×{}, expected {}×{}", name, rows, cols, expected_rows,
+                                   expected_cols));
 }
 
 }  // namespace meridian::filter::detail

@@ -23,8 +23,8 @@ ConsistencySeries summarise(const std::vector<ConsistencyRun>& runs,
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const std::vector<double>& v = runs[i].*member;
     if (v.size() != epochs)
-      throw InputError(fmt::format("run {} has {} {} values, run 0 has {}", i, v.size(), name,
-                                   epochs));
+      throw InputError(
+          fmt::format("run {} has {} {} values, run 0 has {}", i, v.size(), name, epochs));
     for (std::size_t k = 0; k < epochs; ++k) {
       if (!(std::isfinite(v[k]) && v[k] >= 0.0))
         throw InputError(fmt::format("run {}: {} of epoch {} is {}", i, name, k, v[k]));

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <unsupported/Eigen/MatrixFunctions>
 #include <fmt/format.h>
+#include <unsupported/Eigen/MatrixFunctions>
 
 #include "meridian/core/error.hpp"
 
@@ -24,11 +24,11 @@ DiscreteModel<Eigen::Dynamic> discretise_dynamic(const MatrixXd& F, const Matrix
                                                  Discretisation method) {
   const Index n = F.rows();
   if (n < 1 || F.cols() != n)
-    throw InputError(fmt::format("dynamics matrix F must be square and not empty, is {}×{}", n,
-                                 F.cols()));
+    throw InputError(
+        fmt::format("dynamics matrix F must be square and not empty, is {}×{}", n, F.cols()));
   if (G.rows() != n || G.cols() < 1)
-    throw InputError(fmt::format("noise input matrix G is {}×{}, expected {} rows", G.rows(),
-                                 G.cols(), n));
+    throw InputError(
+        fmt::format("noise input matrix G is {}×{}, expected {} rows", G.rows(), G.cols(), n));
   const Index w = G.cols();
   if (q_c.rows() != w || q_c.cols() != w)
     throw InputError(fmt::format("noise density Q_c is {}×{}, expected {}×{} (columns of G)",
@@ -72,9 +72,10 @@ DiscreteModel<Eigen::Dynamic> discretise_dynamic(const MatrixXd& F, const Matrix
   }
   d.q = (0.5 * (d.q + d.q.transpose())).eval();
   if (!d.phi.allFinite() || !d.q.allFinite())
-    throw NumericalError(fmt::format("the discretised model is not finite (‖F‖·Δt too large: "
-                                     "Δt = {} s)",
-                                     dt_s));
+    throw NumericalError(
+        fmt::format("the discretised model is not finite (‖F‖·Δt too large: "
+                    "Δt = {} s)",
+                    dt_s));
   return d;
 }
 

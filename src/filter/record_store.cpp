@@ -73,7 +73,9 @@ void read_all(int fd, void* data, std::size_t bytes, off_t offset, std::uint64_t
 RecordStore::RecordStore(const char* magic, std::uint32_t state_size, std::size_t record_doubles,
                          StorageOptions options)
     : magic_(magic),
-      state_size_(state_size), record_doubles_(record_doubles), options_(std::move(options)) {
+      state_size_(state_size),
+      record_doubles_(record_doubles),
+      options_(std::move(options)) {
   const std::size_t record_bytes = record_doubles_ * sizeof(double);
   buffer_records_ = std::max<std::size_t>(1, options_.buffer_bytes / record_bytes);
 }
@@ -209,12 +211,13 @@ RecordStore::ReverseReader RecordStore::read_reverse() {
     if (::fstat(fd_, &st) != 0) throw_io(count_, "cannot inspect the smoother's spill file", errno);
     const std::size_t record_bytes = record_doubles_ * sizeof(double);
     if (std::memcmp(h.magic, magic_, sizeof h.magic) != 0 || h.version != kSpillVersion ||
-        h.state_size != state_size_ || h.record_count != count_ ||
-        h.record_bytes != record_bytes || h.byte_order_mark != kSpillByteOrderMark ||
+        h.state_size != state_size_ || h.record_count != count_ || h.record_bytes != record_bytes ||
+        h.byte_order_mark != kSpillByteOrderMark ||
         static_cast<std::uint64_t>(st.st_size) != kSpillHeaderBytes + count_ * record_bytes)
-      throw IoError(fmt::format("the smoother's spill file is not as written ({} bytes for {} "
-                                "records of {} bytes)",
-                                st.st_size, count_, record_bytes));
+      throw IoError(
+          fmt::format("the smoother's spill file is not as written ({} bytes for {} "
+                      "records of {} bytes)",
+                      st.st_size, count_, record_bytes));
   }
   return ReverseReader(*this);
 }

@@ -14,9 +14,9 @@ namespace {
 
 using meridian::InputError;
 using meridian::filter::ContinuousModel;
-using meridian::filter::discretise;
 using meridian::filter::DiscreteModel;
 using meridian::filter::Discretisation;
+using meridian::filter::discretise;
 using meridian::filter::Matrix;
 using namespace meridian::filter::examples;
 
@@ -126,15 +126,13 @@ TEST(VanLoan, DeflectionModelSatisfiesTheSemigroupProperty) {
   const Matrix<8, 8> q2 = one.phi * one.q * one.phi.transpose() + one.q;
   EXPECT_LT((two.phi - phi2).cwiseAbs().maxCoeff(), 1e-14);
   // Q_d is singular in the attitude states (no noise reaches them): compare the noise block.
-  const auto block = [](const Matrix<8, 8>& m) {
-    return m.bottomRightCorner<4, 4>().eval();
-  };
+  const auto block = [](const Matrix<8, 8>& m) { return m.bottomRightCorner<4, 4>().eval(); };
   EXPECT_LT(meridian::filter::testing::covariance_difference(block(two.q), block(q2)), 1e-12);
   // The stationary variance of δη, δξ is σ² (q = σ²·4ζω0): Q_d → σ² after a long step.
   const auto far = discretise(model, 2.0e5);
-  EXPECT_NEAR(far.q(DovState::delta_eta, DovState::delta_eta) /
-                  (p.sigma_model_rad * p.sigma_model_rad),
-              1.0, 1e-9);
+  EXPECT_NEAR(
+      far.q(DovState::delta_eta, DovState::delta_eta) / (p.sigma_model_rad * p.sigma_model_rad),
+      1.0, 1e-9);
 }
 
 TEST(FirstOrder, ErrorShrinksWithTheStep) {
@@ -179,10 +177,9 @@ TEST(Discretise, RejectsBadInput) {
   EXPECT_THROW(discretise(model, 1.0), InputError);
   model = double_integrator(-1.0);
   EXPECT_THROW(discretise(model, 1.0), InputError);
-  EXPECT_THROW(meridian::filter::discretise_dynamic(Eigen::MatrixXd::Zero(2, 3),
-                                                    Eigen::MatrixXd::Zero(2, 1),
-                                                    Eigen::MatrixXd::Zero(1, 1), 1.0,
-                                                    Discretisation::VanLoan),
+  EXPECT_THROW(meridian::filter::discretise_dynamic(
+                   Eigen::MatrixXd::Zero(2, 3), Eigen::MatrixXd::Zero(2, 1),
+                   Eigen::MatrixXd::Zero(1, 1), 1.0, Discretisation::VanLoan),
                InputError);
 }
 

@@ -19,8 +19,8 @@ namespace {
 using meridian::InputError;
 using meridian::NumericalError;
 using meridian::filter::Estimate;
-using meridian::filter::InnovationGate;
 using meridian::filter::Innovation;
+using meridian::filter::InnovationGate;
 using meridian::filter::KalmanFilter;
 using meridian::filter::Matrix;
 using meridian::filter::Vector;
@@ -245,8 +245,9 @@ TEST(KalmanFilter, ErrorsNameTheEpoch) {
   EXPECT_EQ(c.field, "epoch 5");
   EXPECT_THAT(c.what, HasSubstr("observation z has a non-finite value"));
 
-  c = catch_error<NumericalError>(
-      [&] { kf.update(Vector<2>(1.0, 1.0), Matrix<2, CvState::size>::Zero(), Matrix<2, 2>::Zero()); });
+  c = catch_error<NumericalError>([&] {
+    kf.update(Vector<2>(1.0, 1.0), Matrix<2, CvState::size>::Zero(), Matrix<2, 2>::Zero());
+  });
   EXPECT_TRUE(c.thrown);
   EXPECT_EQ(c.field, "epoch 5");
   EXPECT_THAT(c.what, HasSubstr("innovation covariance"));
@@ -257,9 +258,8 @@ TEST(KalmanFilter, ErrorsNameTheEpoch) {
   EXPECT_EQ(c.field, "epoch 6");
   EXPECT_THAT(c.what, HasSubstr("not symmetric"));
 
-  c = catch_error<NumericalError>([&] {
-    kf.predict(1e200 * Matrix<CvState::size, CvState::size>::Identity(), d.q);
-  });
+  c = catch_error<NumericalError>(
+      [&] { kf.predict(1e200 * Matrix<CvState::size, CvState::size>::Identity(), d.q); });
   EXPECT_TRUE(c.thrown);
   EXPECT_EQ(c.field, "epoch 6");
 

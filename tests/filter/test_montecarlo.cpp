@@ -51,8 +51,7 @@ MonteCarloConsistency run(const Scenario& s) {
   const auto filter_step = meridian::filter::discretise(model, 1.0);
   Matrix<1, S::size> H;
   H << 1.0, 0.0;
-  const Estimate<S::size> init{Vector<S::size>::Zero(),
-                               Vector<S::size>(10.0, 1.0).asDiagonal()};
+  const Estimate<S::size> init{Vector<S::size>::Zero(), Vector<S::size>(10.0, 1.0).asDiagonal()};
   return monte_carlo_consistency(
       300,
       [&](int r) {

@@ -122,7 +122,8 @@ Line<DovState::size, 2> dov_line(Index epochs, std::uint64_t seed) {
   line.H = dov_observation_matrix();
   line.R = dov_observation_covariance(p);
   const auto d = meridian::filter::discretise(dov_model(p), 1.0);
-  simulate<DovState::size, 2>(line, epochs, {1.0}, [&](double) { return d; }, seed);
+  simulate<DovState::size, 2>(
+      line, epochs, {1.0}, [&](double) { return d; }, seed);
   return line;
 }
 
@@ -284,13 +285,15 @@ TEST(SmootherStorage, SpillPathIsBitIdenticalToMemory) {
   EXPECT_TRUE(bit_identical(a, c));
   // A Φ that changes at every epoch (an extended filter's Jacobian): one transition per epoch,
   // spilled on their own, still bit-identical.
-  SmootherStorage<n> memory_varying(n, {std::numeric_limits<std::size_t>::max(), dir.path, 1 << 20});
+  SmootherStorage<n> memory_varying(n,
+                                    {std::numeric_limits<std::size_t>::max(), dir.path, 1 << 20});
   SmootherStorage<n> spilled_varying(n, {0, dir.path, 5 * record_bytes});
   for (auto* s : {&memory_varying, &spilled_varying}) {
     KalmanFilter<n> kf(line.initial);
     for (Index k = 0; k < 300; ++k) {
       const auto i = static_cast<std::size_t>(k);
-      if (k > 0) kf.predict((1.0 + 1e-9 * static_cast<double>(k)) * line.steps[i].phi, line.steps[i].q);
+      if (k > 0)
+        kf.predict((1.0 + 1e-9 * static_cast<double>(k)) * line.steps[i].phi, line.steps[i].q);
       kf.update(line.z[i], line.H, line.R);
       s->append(kf.predicted(), kf.transition(), kf.estimate());
     }

@@ -52,11 +52,11 @@ struct ConsistencyRun {
 
 /// Averages of one statistic over the replications.
 struct ConsistencySeries {
-  double dof = 0.0;                    ///< n (NEES) or m (NIS) of each value
-  std::vector<double> average;         ///< ensemble average per epoch, over the R runs
-  ChiSquaredInterval epoch_interval;   ///< interval of one epoch's average (R samples; exact)
-  double fraction_inside = 0.0;        ///< share of epochs whose average is inside it
-  double overall_average = 0.0;        ///< average over all runs and epochs
+  double dof = 0.0;                     ///< n (NEES) or m (NIS) of each value
+  std::vector<double> average;          ///< ensemble average per epoch, over the R runs
+  ChiSquaredInterval epoch_interval;    ///< interval of one epoch's average (R samples; exact)
+  double fraction_inside = 0.0;         ///< share of epochs whose average is inside it
+  double overall_average = 0.0;         ///< average over all runs and epochs
   ChiSquaredInterval overall_interval;  ///< its interval (R·K samples; see the file comment)
   bool overall_inside() const { return overall_interval.contains(overall_average); }
 };

@@ -59,8 +59,7 @@ struct DiscreteModel {
 /// (within 1e-12 of its largest entry) or has a negative diagonal, an entry is not finite, or
 /// dt_s is not finite and > 0; NumericalError when the exponential is not finite (F·Δt too
 /// large).
-DiscreteModel<Eigen::Dynamic> discretise_dynamic(const Eigen::MatrixXd& F,
-                                                 const Eigen::MatrixXd& G,
+DiscreteModel<Eigen::Dynamic> discretise_dynamic(const Eigen::MatrixXd& F, const Eigen::MatrixXd& G,
                                                  const Eigen::MatrixXd& q_c, double dt_s,
                                                  Discretisation method);
 

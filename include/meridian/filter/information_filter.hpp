@@ -86,15 +86,15 @@ class BackwardInformationFilter {
   template <int M>
   void add_observation(const Vector<M>& z, const Matrix<M, N>& H, const Matrix<M, M>& R) {
     detail::check_shape(H.rows(), H.cols(), z.rows(), size(), "observation matrix H", epoch_);
-    detail::check_shape(R.rows(), R.cols(), z.rows(), z.rows(), "observation covariance R",
-                        epoch_);
+    detail::check_shape(R.rows(), R.cols(), z.rows(), z.rows(), "observation covariance R", epoch_);
     detail::check_finite(z, "observation z", epoch_);
     detail::check_finite(H, "observation matrix H", epoch_);
     detail::check_finite(R, "observation covariance R", epoch_);
     const Eigen::LLT<Matrix<M, M>> llt(R);
     if (llt.info() != Eigen::Success) [[unlikely]]
-      detail::throw_input(epoch_, "observation covariance R is not positive definite (the "
-                                  "information filter needs R⁻¹)");
+      detail::throw_input(epoch_,
+                          "observation covariance R is not positive definite (the "
+                          "information filter needs R⁻¹)");
     const Matrix<M, N> hw = llt.matrixL().solve(H);  // L⁻¹·H
     const Vector<M> zw = llt.matrixL().solve(z);     // L⁻¹·z
     Y_.noalias() += hw.transpose() * hw;

@@ -19,10 +19,10 @@ namespace meridian::filter {
 /// The innovation of one update (a vector observation, or one scalar of a sequential update).
 template <int M>
 struct Innovation {
-  Eigen::Index epoch = 0;  ///< epoch of the update (0-based)
-  Vector<M> nu;            ///< innovation ν = z − h(x̂⁻) (observation units)
-  Matrix<M, M> S;          ///< its covariance S = H·P⁻·Hᵀ + R (symmetric positive definite)
-  double nis = 0.0;        ///< νᵀ·S⁻¹·ν (dimensionless, ≥ 0)
+  Eigen::Index epoch = 0;   ///< epoch of the update (0-based)
+  Vector<M> nu;             ///< innovation ν = z − h(x̂⁻) (observation units)
+  Matrix<M, M> S;           ///< its covariance S = H·P⁻·Hᵀ + R (symmetric positive definite)
+  double nis = 0.0;         ///< νᵀ·S⁻¹·ν (dimensionless, ≥ 0)
   double gate_limit = 0.0;  ///< χ²_{1−α}(m) of the gate; +∞ when no gate was applied
   bool accepted = true;     ///< false: NIS > gate_limit, the state was left unchanged
   /// Degrees of freedom m = dim ν.

@@ -41,12 +41,12 @@ namespace meridian::filter {
 /// Innovations of a sequential update: one scalar observation at a time (R diagonal).
 template <int M>
 struct SequentialInnovations {
-  Eigen::Index epoch = 0;                 ///< epoch of the update
-  Vector<M> nu;                           ///< ν_i = z_i − h_iᵀ·x̂ (x̂ after the scalars before i)
-  Vector<M> s;                            ///< S_i = h_iᵀ·P·h_i + r_i
-  Vector<M> nis;                          ///< ν_i²/S_i
-  Eigen::Matrix<bool, M, 1> accepted;     ///< false: scalar i failed the gate and was skipped
-  double gate_limit = 0.0;                ///< χ²_{1−α}(1); +∞ without a gate
+  Eigen::Index epoch = 0;  ///< epoch of the update
+  Vector<M> nu;            ///< ν_i = z_i − h_iᵀ·x̂ (x̂ after the scalars before i)
+  Vector<M> s;             ///< S_i = h_iᵀ·P·h_i + r_i
+  Vector<M> nis;           ///< ν_i²/S_i
+  Eigen::Matrix<bool, M, 1> accepted;  ///< false: scalar i failed the gate and was skipped
+  double gate_limit = 0.0;             ///< χ²_{1−α}(1); +∞ without a gate
   /// Number of scalars rejected by the gate.
   Eigen::Index rejected() const { return accepted.size() - accepted.count(); }
 };
@@ -117,8 +117,7 @@ class KalmanFilter {
   template <int M>
   Innovation<M> update_linear(const Vector<M>& z, const Matrix<M, N>& H, const Matrix<M, M>& R);
   template <int M>
-  Innovation<M> update_nonlinear(const Vector<M>& nu, const Matrix<M, N>& H,
-                                 const Matrix<M, M>& R);
+  Innovation<M> update_nonlinear(const Vector<M>& nu, const Matrix<M, N>& H, const Matrix<M, M>& R);
   template <int M>
   SequentialInnovations<M> update_scalars(const Vector<M>& z, const Matrix<M, N>& H,
                                           const Vector<M>& r);
@@ -252,8 +251,9 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
     detail::throw_not_positive_definite("innovation covariance S = H·P⁻·Hᵀ + R", epoch_, in.S);
   in.nis = nu.dot(s_nu);
   if (!std::isfinite(in.nis)) [[unlikely]]
-    detail::throw_numerical(epoch_, "normalised innovation squared is not finite (S is "
-                                    "numerically singular)");
+    detail::throw_numerical(epoch_,
+                            "normalised innovation squared is not finite (S is "
+                            "numerically singular)");
   in.gate_limit = gate_.limit(m);
   if (!(in.nis <= in.gate_limit)) {
     in.accepted = false;
@@ -283,8 +283,7 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
 
 template <int N>
 template <int M>
-SequentialInnovations<M> KalmanFilter<N>::update_scalars(const Vector<M>& z,
-                                                         const Matrix<M, N>& H,
+SequentialInnovations<M> KalmanFilter<N>::update_scalars(const Vector<M>& z, const Matrix<M, N>& H,
                                                          const Vector<M>& r) {
   detail::check_shape(H.rows(), H.cols(), z.rows(), size(), "observation matrix H", epoch_);
   detail::check_shape(r.rows(), 1, z.rows(), 1, "observation variances r", epoch_);

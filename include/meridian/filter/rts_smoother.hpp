@@ -65,9 +65,8 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
 template <int N>
 std::vector<Estimate<N>> rts_smooth(SmootherStorage<N>& storage) {
   std::vector<Estimate<N>> out(static_cast<std::size_t>(storage.size()));
-  rts_smooth(storage, [&](Eigen::Index k, const Estimate<N>& e) {
-    out[static_cast<std::size_t>(k)] = e;
-  });
+  rts_smooth(storage,
+             [&](Eigen::Index k, const Estimate<N>& e) { out[static_cast<std::size_t>(k)] = e; });
   return out;
 }
 

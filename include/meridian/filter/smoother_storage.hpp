@@ -71,14 +71,12 @@ class SmootherStorage {
   /// Append epoch k = size(): the predicted estimate, the transition Φ_k that led to it and
   /// the filtered estimate (KalmanFilter::predicted(), transition(), estimate()). Throws
   /// InputError when a size does not match, IoError when a spill file cannot be written.
-  void append(const Estimate<N>& predicted, const Matrix<N, N>& phi,
-              const Estimate<N>& filtered) {
+  void append(const Estimate<N>& predicted, const Matrix<N, N>& phi, const Estimate<N>& filtered) {
     const auto epoch = static_cast<Eigen::Index>(store_.size());
     detail::check_shape(phi.rows(), phi.cols(), n_, n_, "transition Φ", epoch);
     detail::check_shape(predicted.P.rows(), predicted.x.rows(), n_, n_, "predicted estimate",
                         epoch);
-    detail::check_shape(filtered.P.rows(), filtered.x.rows(), n_, n_, "filtered estimate",
-                        epoch);
+    detail::check_shape(filtered.P.rows(), filtered.x.rows(), n_, n_, "filtered estimate", epoch);
     if (transitions_.size() == 0 || !(phi.array() == last_phi_.array()).all()) {
       double* t = transitions_.append(static_cast<std::uint64_t>(epoch));
       for (Eigen::Index j = 0; j < n_ * n_; ++j) t[j] = phi.data()[j];

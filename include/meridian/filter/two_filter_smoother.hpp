@@ -107,8 +107,9 @@ void two_filter_smooth(SmootherStorage<N>& forward, Replay&& replay, Sink&& sink
     sink(k, s);
     replay(k, backward);
     if (k > 0 && backward.epoch() != k - 1)
-      detail::throw_input(k, "the replay of the two-filter smoother must predict the backward "
-                             "filter to the previous epoch");
+      detail::throw_input(k,
+                          "the replay of the two-filter smoother must predict the backward "
+                          "filter to the previous epoch");
   }
 }
 

@@ -80,9 +80,9 @@ class RecordStore {
     friend class RecordStore;
     explicit ReverseReader(const RecordStore& store);
     const RecordStore* store_;
-    std::vector<double> block_;   // spill path: records [first_, first_ + block count)
-    std::uint64_t first_ = 0;     // index of block_'s first record
-    std::uint64_t remaining_;     // records not yet returned
+    std::vector<double> block_;  // spill path: records [first_, first_ + block count)
+    std::uint64_t first_ = 0;    // index of block_'s first record
+    std::uint64_t remaining_;    // records not yet returned
     std::uint64_t index_ = 0;
   };
   /// Flushes the write buffer and the header's count, checks the header, and starts reading.

@@ -14,9 +14,9 @@ namespace meridian::filter::detail {
 
 /// True when every dimension of a and b is known at compile time.
 template <typename A, typename B>
-inline constexpr bool kFixedProduct =
-    A::RowsAtCompileTime != Eigen::Dynamic && A::ColsAtCompileTime != Eigen::Dynamic &&
-    B::ColsAtCompileTime != Eigen::Dynamic;
+inline constexpr bool kFixedProduct = (A::RowsAtCompileTime != Eigen::Dynamic) &&
+                                      (A::ColsAtCompileTime != Eigen::Dynamic) &&
+                                      (B::ColsAtCompileTime != Eigen::Dynamic);
 
 /// a·b: coefficient-based for fixed sizes, Eigen's default product otherwise. Assign it with
 /// .noalias() (the result must not alias an operand).
@@ -33,8 +33,7 @@ auto product(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b) {
 /// alg. 4.2.1). Returns false, B untouched, when A is not positive definite (a pivot that is
 /// not > 0 or not finite). Fixed sizes: plain loops the compiler unrolls; dynamic: Eigen::LLT.
 template <int N, int K>
-bool cholesky_solve_in_place(const Eigen::Matrix<double, N, N>& A,
-                             Eigen::Matrix<double, N, K>& B) {
+bool cholesky_solve_in_place(const Eigen::Matrix<double, N, N>& A, Eigen::Matrix<double, N, K>& B) {
   if constexpr (N == Eigen::Dynamic || K == Eigen::Dynamic) {
     const Eigen::LLT<Eigen::Matrix<double, N, N>> llt(A);
     if (llt.info() != Eigen::Success) return false;
