@@ -14,10 +14,11 @@ namespace meridian::filter {
 
 /// Where the smoother's forward records are kept (smoother_storage.hpp).
 struct StorageOptions {
-  /// Records stay in memory while they take at most this many bytes (the vector holding them
-  /// may briefly take 1.5 times this while it grows); at the first record
-  /// beyond it all of them move to the spill file and later ones follow there. 0: spill from
-  /// the first record; SIZE_MAX: never spill.
+  /// Records stay in memory while they take at most this many bytes — per store: the epoch
+  /// records and the transitions each have this limit (up to 64 MB is reserved at the first
+  /// record, so the records are not copied while the line grows; only pages in use count); at
+  /// the first record beyond it all of them move to the spill file and later ones follow
+  /// there. 0: spill from the first record; SIZE_MAX: never spill.
   std::size_t memory_limit_bytes = std::size_t{32} << 20;
   /// Directory of the spill file; empty: std::filesystem::temp_directory_path().
   std::filesystem::path spill_directory;
