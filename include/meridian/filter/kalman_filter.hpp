@@ -1,0 +1,324 @@
+#pragma once
+/// \file kalman_filter.hpp
+/// Linear and extended Kalman filter: predict with Φ and Q_d, update in Joseph form with a
+/// symmetric P, a whole observation vector at once or one scalar at a time, each update
+/// reporting its innovation, NIS and χ² gate decision (innovation.hpp).
+///
+/// Equations as implemented (docs/filter.md; Bar-Shalom, Li & Kirubarajan 2001 ch. 5;
+/// Grewal & Andrews, Kalman filtering, 4th ed., 2015, ch. 4 for the Joseph form):
+///   predict   x̂⁻ = Φ·x̂  (extended: x̂⁻ = f(x̂) given by the caller, Φ = ∂f/∂x),
+///             P⁻ = Φ·P·Φᵀ + Q_d;
+///   update    ν = z − H·x̂⁻ (extended: z − h(x̂⁻) given by the caller), S = H·P⁻·Hᵀ + R,
+///             NIS = νᵀS⁻¹ν, gate: reject when NIS > χ²_{1−α}(m) (state unchanged),
+///             K = P⁻·Hᵀ·S⁻¹ (S by Cholesky, never inverted), x̂ = x̂⁻ + K·ν,
+///             P = (I − K·H)·P⁻·(I − K·H)ᵀ + K·R·Kᵀ (Joseph), then P ← ½(P + Pᵀ).
+/// The Joseph products use the rank-m structure of K·H: (I − KH)·P⁻ = P⁻ − K·(P⁻Hᵀ)ᵀ and
+/// B·(I − KH)ᵀ = B − (B·Hᵀ)·Kᵀ, O(N²m) instead of O(N³), the same products as the textbook
+/// form.
+///
+/// Epochs: the filter starts at epoch 0 with the initial estimate; each predict moves to the
+/// next epoch; updates belong to the current epoch. Every error names the epoch
+/// (ErrorContext::field "epoch 1234"). Functions give the strong guarantee: after an exception
+/// the filter is as it was before the call.
+///
+/// Errors: InputError for a non-finite or mis-shaped input, an asymmetric Q_d or R (beyond
+/// 1e-9 of its largest entry), a negative variance; NumericalError when S is not positive
+/// definite, NIS is not finite, or P loses its positive finite diagonal.
+
+#include <string>
+#include <utility>
+
+#include <Eigen/Dense>
+
+#include "meridian/filter/detail/checks.hpp"
+#include "meridian/filter/detail/small_matrix.hpp"
+#include "meridian/filter/discretisation.hpp"
+#include "meridian/filter/estimate.hpp"
+#include "meridian/filter/innovation.hpp"
+
+namespace meridian::filter {
+
+/// Innovations of a sequential update: one scalar observation at a time (R diagonal).
+template <int M>
+struct SequentialInnovations {
+  Eigen::Index epoch = 0;  ///< epoch of the update
+  Vector<M> nu;            ///< ν_i = z_i − h_iᵀ·x̂ (x̂ after the scalars before i)
+  Vector<M> s;             ///< S_i = h_iᵀ·P·h_i + r_i
+  Vector<M> nis;           ///< ν_i²/S_i
+  Eigen::Matrix<bool, M, 1> accepted;  ///< false: scalar i failed the gate and was skipped
+  double gate_limit = 0.0;             ///< χ²_{1−α}(1); +∞ without a gate
+  /// Number of scalars rejected by the gate.
+  Eigen::Index rejected() const { return accepted.size() - accepted.count(); }
+};
+
+/// Kalman filter of an N-state (N fixed, or Eigen::Dynamic). A value type: copy it to branch.
+template <int N>
+class KalmanFilter {
+ public:
+  /// Start at epoch 0 from `initial` (finite, symmetric within 1e-9 relative, positive
+  /// definite: else InputError naming epoch 0). `gate` applies to every update.
+  explicit KalmanFilter(Estimate<N> initial, InnovationGate gate = InnovationGate());
+
+  /// Move to the next epoch with x̂⁻ = Φ·x̂, P⁻ = Φ·P·Φᵀ + Q_d.
+  void predict(const Matrix<N, N>& phi, const Matrix<N, N>& q);
+  /// predict(model.phi, model.q).
+  void predict(const DiscreteModel<N>& model) { predict(model.phi, model.q); }
+  /// Extended: move to the next epoch with x̂⁻ = x_predicted = f(x̂) computed by the caller,
+  /// Φ = ∂f/∂x at x̂, P⁻ = Φ·P·Φᵀ + Q_d.
+  void predict_extended(const Vector<N>& x_predicted, const Matrix<N, N>& phi,
+                        const Matrix<N, N>& q);
+
+  /// Linear update with z = H·x + v, v ~ N(0, R): z (m), H (m×N), R (m×m symmetric). The
+  /// observation size m is H's compile-time row count (Eigen::Dynamic for a MatrixXd); any
+  /// Eigen expression is accepted. A gate rejection leaves the state unchanged and is
+  /// reported in the result.
+  template <typename Z, typename H, typename R>
+  Innovation<H::RowsAtCompileTime> update(const Eigen::MatrixBase<Z>& z,
+                                          const Eigen::MatrixBase<H>& h,
+                                          const Eigen::MatrixBase<R>& r) {
+    constexpr int M = H::RowsAtCompileTime;
+    return update_linear<M>(z.derived(), h.derived(), r.derived());
+  }
+  /// Extended update with the innovation ν = z − h(x̂⁻) computed by the caller and the
+  /// Jacobian H = ∂h/∂x at x̂⁻.
+  template <typename V, typename H, typename R>
+  Innovation<H::RowsAtCompileTime> update_extended(const Eigen::MatrixBase<V>& nu,
+                                                   const Eigen::MatrixBase<H>& h,
+                                                   const Eigen::MatrixBase<R>& r) {
+    constexpr int M = H::RowsAtCompileTime;
+    return update_nonlinear<M>(nu.derived(), h.derived(), r.derived());
+  }
+  /// Linear update one scalar at a time with independent observation errors of variances
+  /// r (m, each ≥ 0): row i of H and z_i use the estimate after scalars 0…i−1. Each scalar is
+  /// gated alone (1 degree of freedom). Equals update() with R = diag(r) when nothing is
+  /// rejected.
+  template <typename Z, typename H, typename R>
+  SequentialInnovations<H::RowsAtCompileTime> update_sequential(const Eigen::MatrixBase<Z>& z,
+                                                                const Eigen::MatrixBase<H>& h,
+                                                                const Eigen::MatrixBase<R>& r) {
+    constexpr int M = H::RowsAtCompileTime;
+    return update_scalars<M>(z.derived(), h.derived(), r.derived());
+  }
+
+  /// The current estimate (after the updates applied so far at this epoch).
+  const Estimate<N>& estimate() const { return estimate_; }
+  /// The predicted estimate of this epoch (before its updates); the initial one at epoch 0.
+  const Estimate<N>& predicted() const { return predicted_; }
+  /// Φ that led to this epoch (identity at epoch 0).
+  const Matrix<N, N>& transition() const { return phi_; }
+  /// Current epoch, 0-based.
+  Eigen::Index epoch() const { return epoch_; }
+  /// Number of states.
+  Eigen::Index size() const { return estimate_.x.size(); }
+  const InnovationGate& gate() const { return gate_; }
+
+ private:
+  void commit_prediction(const Vector<N>& x, const Matrix<N, N>& phi, const Matrix<N, N>& q);
+  template <int M>
+  Innovation<M> update_linear(const Vector<M>& z, const Matrix<M, N>& H, const Matrix<M, M>& R);
+  template <int M>
+  Innovation<M> update_nonlinear(const Vector<M>& nu, const Matrix<M, N>& H, const Matrix<M, M>& R);
+  template <int M>
+  SequentialInnovations<M> update_scalars(const Vector<M>& z, const Matrix<M, N>& H,
+                                          const Vector<M>& r);
+  template <int M>
+  Innovation<M> apply_update(const Vector<M>& nu, const Matrix<M, N>& H, const Matrix<M, M>& R);
+
+  Estimate<N> estimate_;
+  Estimate<N> predicted_;
+  Matrix<N, N> phi_;
+  InnovationGate gate_;
+  Eigen::Index epoch_ = 0;
+};
+
+namespace detail {
+
+/// InputError naming the epoch unless m is symmetric within 1e-9 of its largest |entry| and
+/// its diagonal is ≥ 0 (a covariance given by the caller: Q_d, R, P_0).
+template <typename Derived>
+inline void check_input_covariance(const Eigen::MatrixBase<Derived>& m, const char* name,
+                                   Eigen::Index epoch) {
+  check_finite(m, name, epoch);
+  const double scale = m.cwiseAbs().maxCoeff();
+  if ((m - m.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) [[unlikely]]
+    throw_input(epoch, std::string(name) + " is not symmetric");
+  if ((m.diagonal().array() < 0.0).any()) [[unlikely]]
+    throw_input(epoch, std::string(name) + " has a negative variance on its diagonal");
+}
+
+}  // namespace detail
+
+// ---------------------------------------------------------------------------------------------
+// Implementation.
+
+template <int N>
+KalmanFilter<N>::KalmanFilter(Estimate<N> initial, InnovationGate gate)
+    : estimate_(std::move(initial)), gate_(gate) {
+  const Eigen::Index n = estimate_.x.size();
+  if (n < 1) detail::throw_input(0, "the initial state is empty");
+  detail::check_shape(estimate_.P.rows(), estimate_.P.cols(), n, n, "initial covariance P0", 0);
+  detail::check_finite(estimate_.x, "initial state x0", 0);
+  detail::check_input_covariance(estimate_.P, "initial covariance P0", 0);
+  if (Eigen::LLT<Matrix<N, N>>(estimate_.P).info() != Eigen::Success)
+    detail::throw_input(0, "initial covariance P0 is not positive definite");
+  estimate_.P = (0.5 * (estimate_.P + estimate_.P.transpose())).eval();
+  predicted_ = estimate_;
+  phi_ = Matrix<N, N>::Identity(n, n);
+}
+
+template <int N>
+void KalmanFilter<N>::predict(const Matrix<N, N>& phi, const Matrix<N, N>& q) {
+  const Eigen::Index next = epoch_ + 1;
+  detail::check_shape(phi.rows(), phi.cols(), size(), size(), "transition Φ", next);
+  detail::check_finite(phi, "transition Φ", next);
+  Vector<N> x;
+  x.noalias() = phi * estimate_.x;
+  commit_prediction(x, phi, q);
+}
+
+template <int N>
+void KalmanFilter<N>::predict_extended(const Vector<N>& x_predicted, const Matrix<N, N>& phi,
+                                       const Matrix<N, N>& q) {
+  const Eigen::Index next = epoch_ + 1;
+  detail::check_shape(x_predicted.rows(), 1, size(), 1, "predicted state f(x)", next);
+  detail::check_shape(phi.rows(), phi.cols(), size(), size(), "transition Φ", next);
+  detail::check_finite(x_predicted, "predicted state f(x)", next);
+  detail::check_finite(phi, "transition Φ", next);
+  commit_prediction(x_predicted, phi, q);
+}
+
+template <int N>
+void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& phi,
+                                        const Matrix<N, N>& q) {
+  const Eigen::Index next = epoch_ + 1;
+  detail::check_shape(q.rows(), q.cols(), size(), size(), "process noise Q_d", next);
+  detail::check_input_covariance(q, "process noise Q_d", next);
+  Matrix<N, N> phi_p;
+  phi_p.noalias() = detail::product(phi, estimate_.P);
+  Matrix<N, N> p = q;
+  p.noalias() += detail::product(phi_p, phi.transpose());
+  p = (0.5 * (p + p.transpose())).eval();
+  detail::check_covariance_diagonal(p, "predicted covariance P⁻", next);
+  predicted_.x = x;
+  predicted_.P = p;
+  estimate_ = predicted_;
+  phi_ = phi;
+  epoch_ = next;
+}
+
+template <int N>
+template <int M>
+Innovation<M> KalmanFilter<N>::update_linear(const Vector<M>& z, const Matrix<M, N>& H,
+                                             const Matrix<M, M>& R) {
+  detail::check_shape(H.rows(), H.cols(), z.rows(), size(), "observation matrix H", epoch_);
+  detail::check_finite(z, "observation z", epoch_);
+  detail::check_finite(H, "observation matrix H", epoch_);
+  Vector<M> nu = z;
+  nu.noalias() -= H * estimate_.x;
+  return apply_update<M>(nu, H, R);
+}
+
+template <int N>
+template <int M>
+Innovation<M> KalmanFilter<N>::update_nonlinear(const Vector<M>& nu, const Matrix<M, N>& H,
+                                                const Matrix<M, M>& R) {
+  detail::check_shape(H.rows(), H.cols(), nu.rows(), size(), "observation matrix H", epoch_);
+  detail::check_finite(nu, "innovation ν", epoch_);
+  detail::check_finite(H, "observation matrix H", epoch_);
+  return apply_update<M>(nu, H, R);
+}
+
+template <int N>
+template <int M>
+Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M, N>& H,
+                                            const Matrix<M, M>& R) {
+  const Eigen::Index m = nu.rows();
+  if (m < 1) detail::throw_input(epoch_, "the observation is empty");
+  detail::check_shape(R.rows(), R.cols(), m, m, "observation covariance R", epoch_);
+  detail::check_input_covariance(R, "observation covariance R", epoch_);
+
+  Innovation<M> in;
+  in.epoch = epoch_;
+  in.nu = nu;
+  const Matrix<N, N>& P = estimate_.P;
+  Matrix<N, M> U;  // P⁻·Hᵀ
+  U.noalias() = P * H.transpose();
+  in.S = R;
+  in.S.noalias() += H * U;
+  in.S = (0.5 * (in.S + in.S.transpose())).eval();
+  Vector<M> s_nu = nu;  // S⁻¹·ν
+  if (!detail::cholesky_solve_in_place(in.S, s_nu)) [[unlikely]]
+    detail::throw_not_positive_definite("innovation covariance S = H·P⁻·Hᵀ + R", epoch_, in.S);
+  in.nis = nu.dot(s_nu);
+  if (!std::isfinite(in.nis)) [[unlikely]]
+    detail::throw_numerical(epoch_,
+                            "normalised innovation squared is not finite (S is "
+                            "numerically singular)");
+  in.gate_limit = gate_.limit(m);
+  if (!(in.nis <= in.gate_limit)) {
+    in.accepted = false;
+    return in;
+  }
+
+  Matrix<N, M> K = U;  // K = (P⁻Hᵀ)·S⁻¹ (S was factored above: positive definite)
+  detail::cholesky_right_solve_in_place(in.S, K);
+  Vector<N> x = estimate_.x;
+  x.noalias() += K * nu;
+  Matrix<N, N> b = P;  // (I − KH)·P⁻
+  b.noalias() -= detail::product(K, U.transpose());
+  Matrix<N, M> bht;
+  bht.noalias() = detail::product(b, H.transpose());
+  b.noalias() -= detail::product(bht, K.transpose());  // (I − KH)·P⁻·(I − KH)ᵀ
+  Matrix<N, M> kr;
+  kr.noalias() = K * R;
+  b.noalias() += detail::product(kr, K.transpose());  // + K·R·Kᵀ
+  b = (0.5 * (b + b.transpose())).eval();
+  detail::check_covariance_diagonal(b, "covariance P after the update", epoch_);
+  if (!x.allFinite()) [[unlikely]]
+    detail::throw_numerical(epoch_, "state x̂ after the update is not finite");
+  estimate_.x = x;
+  estimate_.P = b;
+  return in;
+}
+
+template <int N>
+template <int M>
+SequentialInnovations<M> KalmanFilter<N>::update_scalars(const Vector<M>& z, const Matrix<M, N>& H,
+                                                         const Vector<M>& r) {
+  detail::check_shape(H.rows(), H.cols(), z.rows(), size(), "observation matrix H", epoch_);
+  detail::check_shape(r.rows(), 1, z.rows(), 1, "observation variances r", epoch_);
+  detail::check_finite(z, "observation z", epoch_);
+  detail::check_finite(H, "observation matrix H", epoch_);
+  detail::check_finite(r, "observation variances r", epoch_);
+  const Eigen::Index m = z.rows();
+  SequentialInnovations<M> out;
+  out.epoch = epoch_;
+  out.nu.resize(m);
+  out.s.resize(m);
+  out.nis.resize(m);
+  out.accepted.resize(m);
+  out.gate_limit = gate_.limit(1);
+  const KalmanFilter before = *this;  // strong guarantee across the scalars
+  try {
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const Matrix<1, N> h = H.row(i);
+      Vector<1> nu;
+      nu(0) = z(i) - (h * estimate_.x)(0);
+      const Matrix<1, 1> ri = Matrix<1, 1>::Constant(r(i));
+      const Innovation<1> in = apply_update<1>(nu, h, ri);
+      out.nu(i) = in.nu(0);
+      out.s(i) = in.S(0, 0);
+      out.nis(i) = in.nis;
+      out.accepted(i) = in.accepted;
+    }
+  } catch (...) {
+    *this = before;
+    throw;
+  }
+  return out;
+}
+
+// The dynamic-size filter is compiled once in src/filter/kalman_filter.cpp.
+extern template class KalmanFilter<Eigen::Dynamic>;
+
+}  // namespace meridian::filter

@@ -1,0 +1,73 @@
+#pragma once
+/// \file rts_smoother.hpp
+/// Rauch–Tung–Striebel fixed-interval smoother over a whole line, streaming: it reads the
+/// forward records (smoother_storage.hpp) last epoch first and hands each smoothed estimate to
+/// the caller, so memory stays flat however long the line.
+///
+/// Equations (Rauch, Tung & Striebel, AIAA J. 3(8), 1965; Bar-Shalom et al. 2001 §8.6), for
+/// k = K−2 … 0, starting from x̂ˢ_{K−1} = x̂_{K−1}, Pˢ_{K−1} = P_{K−1}:
+///   C_k = P_k·Φ_{k+1}ᵀ·(P⁻_{k+1})⁻¹   (by a Cholesky solve with P⁻_{k+1}; no inverse),
+///   x̂ˢ_k = x̂_k + C_k·(x̂ˢ_{k+1} − x̂⁻_{k+1}),
+///   Pˢ_k = P_k + C_k·(Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ, then Pˢ ← ½(Pˢ + Pˢᵀ).
+/// For an extended filter the stored Φ is the Jacobian and x̂⁻ = f(x̂): the extended RTS smoother.
+///
+/// Errors: NumericalError naming the epoch when P⁻_{k+1} is not positive definite ("epoch
+/// k+1") or Pˢ_k loses its positive finite diagonal ("epoch k"); IoError from the storage.
+
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "meridian/filter/detail/checks.hpp"
+#include "meridian/filter/detail/small_matrix.hpp"
+#include "meridian/filter/estimate.hpp"
+#include "meridian/filter/smoother_storage.hpp"
+
+namespace meridian::filter {
+
+/// Smooth the line in `storage`, calling sink(k, const Estimate<N>& smoothed) for
+/// k = size()−1 down to 0 (reverse time order). The storage can be read again afterwards.
+template <int N, typename Sink>
+void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
+  auto reader = storage.read_reverse();
+  EpochRecord<N> next;  // epoch k+1
+  EpochRecord<N> cur;   // epoch k
+  if (!reader.next(next)) return;
+  Estimate<N> s = next.filtered;
+  sink(reader.index(), static_cast<const Estimate<N>&>(s));
+  Matrix<N, N> a;
+  Matrix<N, N> c;
+  Matrix<N, N> t;
+  Vector<N> dx;
+  while (reader.next(cur)) {
+    const Eigen::Index k = reader.index();
+    c.noalias() = detail::product(cur.filtered.P, next.phi.transpose());  // P_k·Φ_{k+1}ᵀ
+    if (!detail::cholesky_right_solve_in_place(next.predicted.P, c)) [[unlikely]]  // C_k
+      detail::throw_not_positive_definite("predicted covariance P⁻", k + 1, next.predicted.P);
+    dx = s.x - next.predicted.x;
+    s.x = cur.filtered.x;
+    s.x.noalias() += c * dx;
+    t = s.P - next.predicted.P;
+    a.noalias() = detail::product(t, c.transpose());  // (Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ
+    s.P = cur.filtered.P;
+    s.P.noalias() += detail::product(c, a);
+    s.P = (0.5 * (s.P + s.P.transpose())).eval();
+    detail::check_covariance_diagonal(s.P, "smoothed covariance", k);
+    if (!s.x.allFinite()) [[unlikely]]
+      detail::throw_numerical(k, "smoothed state is not finite");
+    sink(k, static_cast<const Estimate<N>&>(s));
+    std::swap(next, cur);
+  }
+}
+
+/// The smoothed estimates of the whole line in time order (index = epoch), for short lines.
+template <int N>
+std::vector<Estimate<N>> rts_smooth(SmootherStorage<N>& storage) {
+  std::vector<Estimate<N>> out(static_cast<std::size_t>(storage.size()));
+  rts_smooth(storage,
+             [&](Eigen::Index k, const Estimate<N>& e) { out[static_cast<std::size_t>(k)] = e; });
+  return out;
+}
+
+}  // namespace meridian::filter
