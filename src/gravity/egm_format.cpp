@@ -13,6 +13,7 @@
 
 #include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/core/utf8.hpp"
 #include "text_util.hpp"
 
 namespace meridian::gravity {
@@ -63,6 +64,11 @@ class CofReader {
     if (n0 == -1 && m0 == -1) return std::nullopt;
     if (!(n0 >= m0 && m0 >= 0) || n0 > 100000)
       throw ParseError(fmt::format("bad degree and order {} {} at offset {}", n0, m0, offset() - sizeof nm), {file_, {}, what});
+    // The whole set must be in the file before anything is allocated, so a
+    // header claiming a huge degree is a truncated file, not an allocation.
+    const std::uint64_t N0 = static_cast<std::uint64_t>(n0), M0 = static_cast<std::uint64_t>(m0);
+    const std::uint64_t c_count = (M0 + 1) * (N0 + 1) - M0 * (M0 + 1) / 2;  // columns m = 0..M0 of length N0 + 1 − m
+    need(8 * (2 * c_count - (N0 + 1)), what);
     const int n = t.max_degree < 0 ? n0 : std::min(t.max_degree, n0);
     const int m = std::min({t.max_order < 0 ? n : t.max_order, m0, n});
     SphericalHarmonicCoefficients c(n, m);
@@ -105,7 +111,6 @@ GravityModelData read_egm_file(const std::filesystem::path& path, const Truncati
   if (!in) throw IoError("cannot open gravity model metadata file", {file, {}, ""});
   GravityModelData model;
   model.source_file = file;
-  model.tide_system = "unknown";
   std::string line;
   int line_no = 1;
   if (!std::getline(in, line) || line.rfind("EGMF-", 0) != 0)
@@ -129,8 +134,15 @@ GravityModelData read_egm_file(const std::filesystem::path& path, const Truncati
       if (!v || !std::isfinite(*v)) throw ParseError(fmt::format("{} is not a number: \"{}\"", key, val), {file, line_no, key});
       return *v;
     };
-    if (key == "Name") model.name = val;
-    else if (key == "Description") model.description = val;
+    auto text = [&]() {
+      if (const auto bad = first_invalid_utf8(val))
+        throw ParseError(fmt::format("{} is not UTF-8 text (byte 0x{:02X} at position {})", key,
+                                     static_cast<unsigned char>(val[*bad]), *bad + 1),
+                         {file, line_no, key});
+      return val;
+    };
+    if (key == "Name") model.name = text();
+    else if (key == "Description") model.description = text();
     else if (key == "ModelRadius") model.radius_m = number();
     else if (key == "ModelMass") model.gm_m3_s2 = number();
     else if (key == "AngularVelocity") omega = number();
@@ -144,6 +156,7 @@ GravityModelData read_egm_file(const std::filesystem::path& path, const Truncati
     else if (key == "Normalization") {
       if (val != "FULL" && val != "Full" && val != "full")
         throw ParseError("normalization \"" + val + "\" is not supported (only FULL)", {file, line_no, key});
+      model.normalization = val;
     } else if (key == "ByteOrder") {
       if (val != "Little" && val != "little")
         throw ParseError("byte order \"" + val + "\" is not supported (only Little)", {file, line_no, key});

@@ -95,6 +95,47 @@ TEST(IcgemReader, RejectsBadFilesNamingTheLine) {
   EXPECT_THROW((void)read_icgem_file(scratch_dir() / "does_not_exist.gfc"), meridian::IoError);
 }
 
+// A header's degree is checked against the file's size before anything is
+// allocated: 10^9 would need 5·10^17 coefficients (8·10^18 bytes).
+TEST(IcgemReader, HugeDegreeInTheHeaderIsAnInputErrorNotAnAllocation) {
+  std::string huge = kHead;
+  huge.replace(huge.find("max_degree 3"), 12, "max_degree 1000000000");
+  const fs::path p = write_text("huge.gfc", huge + kBody);
+  expect_parse_error([&] { (void)read_icgem_file(p); }, p, 12, "max_degree 1000000000 cannot be right");
+  try {
+    (void)read_icgem_file(p);
+  } catch (const meridian::InputError& e) {
+    EXPECT_EQ(e.context().field, "max_degree");
+  }
+  // Truncated on load, the same file is read as far as it is complete.
+  EXPECT_EQ(read_icgem_file(p, {3, -1}).coefficients.max_degree(), 3);
+  // The bound is the shortest possible file: one that just holds it passes it
+  // (and is then read normally); one byte less fails before allocation.
+  std::string min = kHead;
+  min.replace(min.find("max_degree 3"), 12, "max_degree 2");
+  const std::string body = "gfc 2 0 0 0\ngfc 2 1 0 0\ngfc 2 2 0 0";
+  EXPECT_NO_THROW((void)read_icgem_file(write_text("min.gfc", min + body)));
+}
+
+TEST(IcgemReader, HeaderTextMustBeUtf8AndMetadataIsKeptAsStated) {
+  std::string latin1 = kHead;
+  latin1.replace(latin1.find("modelname tiny"), 14, "modelname t\xE9st");
+  const fs::path p = write_text("latin1.gfc", latin1 + kBody);
+  expect_parse_error([&] { (void)read_icgem_file(p); }, p, 4, "modelname is not UTF-8 text (byte 0xE9 at position 2)");
+  std::string utf8 = kHead;
+  utf8.replace(utf8.find("modelname tiny"), 14, "modelname t\xC3\xA9st");
+  const GravityModelData ok = read_icgem_file(write_text("utf8.gfc", utf8 + kBody));
+  EXPECT_EQ(ok.name, "t\xC3\xA9st");
+  EXPECT_EQ(ok.tide_system, "tide_free");
+  EXPECT_EQ(ok.normalization, "fully_normalized");
+  // Keys left out: nothing is invented.
+  std::string bare = kHead;
+  for (const char* line : {"norm fully_normalized\n", "tide_system tide_free\n"}) bare.erase(bare.find(line), std::strlen(line));
+  const GravityModelData b = read_icgem_file(write_text("bare.gfc", bare + kBody));
+  EXPECT_EQ(b.tide_system, "");
+  EXPECT_EQ(b.normalization, "");
+}
+
 TEST(EgmFormat, WriteReadRoundTripIsExactAndMatchesIcgem) {
   meridian::gravity::SyntheticModelOptions o;
   o.max_degree = 50;
@@ -146,6 +187,16 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   const double one = 1.0;
   std::memcpy(c00.data() + 16, &one, 8);
   expect(meta, c00, bcof, "degree 0 coefficient must be 0");
+  // A .cof claiming degree and order 100000 (4·10^10 bytes of coefficients)
+  // in a short file: truncated, found before allocating.
+  std::string huge = cof.substr(0, 8);
+  const std::int32_t nm[2] = {100000, 100000};
+  huge.append(reinterpret_cast<const char*>(nm), sizeof nm);
+  huge += cof.substr(16);
+  expect(meta, huge, bcof, "file truncated: gravitational needs 80001600008 bytes");
+  std::string latin1 = meta;
+  latin1.replace(latin1.find("Description"), 11, "Description caf\xE9");
+  expect(latin1, cof, egm, "Description is not UTF-8 text");
 }
 
 TEST(ModelLookup, FindsModelsByNameInGeographicLibDirectories) {
