@@ -9,6 +9,8 @@
 #include <limits>
 #include <string>
 
+#include <string_view>
+
 #include <fmt/format.h>
 
 #include "meridian/core/atomic_file.hpp"
@@ -86,9 +88,20 @@ class CofReader {
         skip((len - keep) * 8, what);
       }
     }
-    for (std::size_t k = 0; k < c.size(); ++k)
-      if (!std::isfinite(c.c_values()[k]) || !std::isfinite(c.s_values()[k]))
+    // Fully normalised gravitational coefficients are at most 1 in absolute
+    // value (C̄00 = 1; |C̄20| ≈ 4.8e-4 for the Earth); the correction set is
+    // in metres and is only required to be finite.
+    const bool normalised = std::string_view(what) == "gravitational";
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const double cv = c.c_values()[k], sv = c.s_values()[k];
+      if (!std::isfinite(cv) || !std::isfinite(sv))
         throw ParseError(fmt::format("non-finite coefficient (entry {} of the {} set)", k, what), {file_, {}, what});
+      if (normalised && (std::abs(cv) > 1 || std::abs(sv) > 1))
+        throw ParseError(fmt::format("coefficient {:g} (entry {} of the {} set) is not a fully normalised coefficient "
+                                     "(|value| <= 1)",
+                                     std::abs(cv) > 1 ? cv : sv, k, what),
+                         {file_, {}, what});
+    }
     return c;
   }
   void expect_end() {

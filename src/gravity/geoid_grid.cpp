@@ -17,6 +17,8 @@
 namespace meridian::gravity {
 namespace {
 
+constexpr double kMinStep_deg = 1e-6;
+
 constexpr double kDeg = std::numbers::pi / 180;
 
 std::string slurp(const std::filesystem::path& p) {
@@ -56,8 +58,10 @@ GeoidGrid read_gtx(const std::filesystem::path& path) {
   g.rows = big_endian<std::int32_t>(d.data() + 32);
   g.cols = big_endian<std::int32_t>(d.data() + 36);
   // Negated comparisons so that NaN fails every test.
-  const bool ok = lat0 >= -90 && lat0 <= 90 && lon0 >= -360 && lon0 <= 360 && dlat > 0 && dlat <= 180 &&
-                  dlon > 0 && dlon <= 360 && g.rows >= 2 && g.cols >= 2 &&
+  // Steps below 1e-6 deg (0.1 m) are no geoid grid (and a denormal step made
+  // the slope deflection infinite).
+  const bool ok = lat0 >= -90 && lat0 <= 90 && lon0 >= -360 && lon0 <= 360 && dlat >= kMinStep_deg && dlat <= 180 &&
+                  dlon >= kMinStep_deg && dlon <= 360 && g.rows >= 2 && g.cols >= 2 &&
                   lat0 + (g.rows - 1) * dlat <= 90 + 1e-9 && (g.cols - 1) * dlon <= 360 + 1e-9;
   if (!ok)
     throw ParseError(fmt::format("implausible .gtx header: origin {} {}, step {} {}, size {} x {}", lat0, lon0, dlat, dlon,
@@ -337,7 +341,10 @@ GridPointResult evaluate_grid_point(const GeoidGrid& grid, double lat_rad, doubl
   r.interpolation_used = h.used;
   if (!h.note.empty()) r.notes.push_back(h.note);
   try {
-    r.fallback = grid_deflection_fallback(grid, lat_rad, lon_rad, 6378137.0, 1 / 298.257223563, interpolation);
+    const GridDeflection d = grid_deflection_fallback(grid, lat_rad, lon_rad, 6378137.0, 1 / 298.257223563, interpolation);
+    if (!std::isfinite(d.xi_rad) || !std::isfinite(d.eta_rad))
+      throw InputError("the grid's slope is not finite here", {grid.source_file, {}, "lat"});
+    r.fallback = d;
   } catch (const InputError& e) {
     r.fallback_unavailable =
         "the grid-gradient deflection needs N one grid step north, south, east and west of the point: " + e.message();

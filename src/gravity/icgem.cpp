@@ -1,6 +1,7 @@
 #include "meridian/gravity/icgem.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -131,6 +132,9 @@ GravityModelData read_icgem_file(const std::filesystem::path& path, const Trunca
     const auto c = detail::parse_double(f[3]), s = detail::parse_double(f[4]);
     if (!c || !std::isfinite(*c)) throw fail(fmt::format("C is not a number: \"{}\"", f[3]), "C");
     if (!s || !std::isfinite(*s)) throw fail(fmt::format("S is not a number: \"{}\"", f[4]), "S");
+    // Fully normalised coefficients are at most 1 in absolute value (C̄00 = 1).
+    if (std::abs(*c) > 1) throw fail(fmt::format("C = {:g} is not a fully normalised coefficient (|C| <= 1)", *c), "C");
+    if (std::abs(*s) > 1) throw fail(fmt::format("S = {:g} is not a fully normalised coefficient (|S| <= 1)", *s), "S");
     for (std::size_t i = 5; i < f.size(); ++i)
       if (!detail::parse_double(f[i])) throw fail(fmt::format("field {} is not a number: \"{}\"", i + 1, f[i]));
     if (*n > N || *m > M) continue;  // truncated away

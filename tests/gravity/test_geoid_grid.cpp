@@ -359,6 +359,7 @@ TEST(GeoidGridCases, ImplausibleHeadersAreRejectedBeforeUse) {
   rejected("pole.gtx", gtx_of(3, 3, 85, 0, 10, flat));        // rows beyond 90° N
   rejected("tinystep.gtx", gtx_of(2, 2, 0, 0, 0, flat));      // zero step
   rejected("nanorigin.gtx", gtx_of(2, 2, std::nan(""), 0, 1, flat));
+  rejected("denormal.gtx", gtx_of(7, 12, -90, -180, 7.59e-321, flat));  // found by fuzz_grid_gtx: infinite slope
   // A header claiming 10^6 × 10^6 nodes in a file of 56 bytes: a size error, no allocation.
   std::string huge = gtx_of(2, 2, 0, 0, 1e-4, flat);
   std::string be;

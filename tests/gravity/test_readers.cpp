@@ -6,10 +6,12 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "gravity_test_support.hpp"
 #include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/model_lookup.hpp"
 
 namespace {
@@ -117,6 +119,26 @@ TEST(IcgemReader, HugeDegreeInTheHeaderIsAnInputErrorNotAnAllocation) {
   EXPECT_NO_THROW((void)read_icgem_file(write_text("min.gfc", min + body)));
 }
 
+// Fully normalised coefficients are at most 1 in absolute value; a larger one
+// is a damaged file, not a model to evaluate (fuzz_egm found NaN from one).
+TEST(IcgemReader, CoefficientsBeyondOneAreRejected) {
+  std::string body = kBody;
+  body.replace(body.find("gfc 3 1 2e-6"), 12, "gfc 3 1 2e+6");
+  const fs::path p = write_text("big.gfc", std::string(kHead) + body);
+  expect_parse_error([&] { (void)read_icgem_file(p); }, p, 18, "C = 2e+06 is not a fully normalised coefficient");
+}
+
+// The engine's last line of defence: a model whose values overflow is a
+// NumericalError, never NaN or infinity in an output.
+TEST(GravityFieldGuard, NonFiniteValuesAreANumericalError) {
+  GravityModelData m = read_icgem_file(write_text("ok.gfc", std::string(kHead) + kBody));
+  m.coefficients.set(3, 1, 1e305, 1e305);  // times GM/a ≈ 6e7: beyond the largest double
+  const meridian::gravity::GravityField field(m, {false, 1});
+  EXPECT_THROW((void)field.evaluate({0.5, 0.2, 0}), meridian::NumericalError);
+  const std::vector<meridian::gravity::GeodeticPoint> pts(5, {0.5, 0.2, 0});
+  EXPECT_THROW((void)field.evaluate(pts), meridian::NumericalError);
+}
+
 TEST(IcgemReader, HeaderTextMustBeUtf8AndMetadataIsKeptAsStated) {
   std::string latin1 = kHead;
   latin1.replace(latin1.find("modelname tiny"), 14, "modelname t\xE9st");
@@ -194,6 +216,11 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   huge.append(reinterpret_cast<const char*>(nm), sizeof nm);
   huge += cof.substr(16);
   expect(meta, huge, bcof, "file truncated: gravitational needs 80001600008 bytes");
+  // Found by fuzz_egm: a coefficient of -9.6e301 gave N = NaN and xi = 4.7e307 arcsec.
+  std::string big = cof;
+  const double beyond = -9.6e301;
+  std::memcpy(big.data() + 16 + 8 * 5, &beyond, 8);
+  expect(meta, big, bcof, "is not a fully normalised coefficient (|value| <= 1)");
   std::string latin1 = meta;
   latin1.replace(latin1.find("Description"), 11, "Description caf\xE9");
   expect(latin1, cof, egm, "Description is not UTF-8 text");

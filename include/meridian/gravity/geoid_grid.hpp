@@ -64,7 +64,7 @@ class GeoidGrid {
 /// GeographicLib `.pgm` (P5, 16-bit, `# Offset`, `# Scale`, rows from 90°N,
 /// columns from 0°E over 360°). Errors (ParseError/IoError naming the file):
 /// bad header (a `.gtx` origin outside [−90°, 90°] × [−360°, 360°], steps not
-/// in (0°, 180°] and (0°, 360°], fewer than 2 rows or columns, rows beyond the
+/// in [1e-6°, 180°] and [1e-6°, 360°], fewer than 2 rows or columns, rows beyond the
 /// pole, columns spanning more than 360° plus one repeated column), sizes,
 /// truncated or over-long data, `.pgm` header text that is not UTF-8.
 GeoidGrid read_geoid_grid(const std::filesystem::path& path);
