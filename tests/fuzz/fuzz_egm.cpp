@@ -14,7 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view in(reinterpret_cast<const char*>(data), size);
   const auto at = in.find(kSplit);
   const std::string_view meta = in.substr(0, at);
-  const std::string_view cof = at == std::string_view::npos ? std::string_view() : in.substr(at + kSplit.size());
+  const std::string_view cof =
+      at == std::string_view::npos ? std::string_view() : in.substr(at + kSplit.size());
   const auto p = write("model.egm", meta);
   write("model.egm.cof", cof);
   expect_value_or_error([&] { check_model(meridian::gravity::read_egm_file(p)); });

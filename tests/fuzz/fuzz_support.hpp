@@ -28,10 +28,12 @@ namespace meridian_fuzz {
 inline const std::filesystem::path& scratch() {
   static const std::filesystem::path dir = [] {
     std::error_code ec;
-    const char* env = std::getenv("MERIDIAN_FUZZ_SCRATCH");  // scripts/fuzz.sh's, removed when it ends
+    const char* env =
+        std::getenv("MERIDIAN_FUZZ_SCRATCH");  // scripts/fuzz.sh's, removed when it ends
     const auto base = env && *env ? std::filesystem::path(env)
-                      : std::filesystem::is_directory("/dev/shm", ec) ? std::filesystem::path("/dev/shm")
-                                                                       : std::filesystem::temp_directory_path();
+                      : std::filesystem::is_directory("/dev/shm", ec)
+                          ? std::filesystem::path("/dev/shm")
+                          : std::filesystem::temp_directory_path();
     const auto d = base / ("meridian-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     std::atexit([] {  // libFuzzer's own exits skip this; scripts/fuzz.sh cleans up after them
@@ -46,7 +48,8 @@ inline const std::filesystem::path& scratch() {
 /// Writes `bytes` to scratch()/name and returns the path.
 inline std::filesystem::path write(const std::string& name, std::string_view bytes) {
   const auto p = scratch() / name;
-  std::ofstream(p, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(p, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   return p;
 }
 
