@@ -34,8 +34,8 @@ if [ "${MERIDIAN_SKIP_SANITIZERS:-0}" != 1 ]; then
 fi
 if [ "${MERIDIAN_SKIP_FUZZ:-0}" != 1 ]; then
   # Every reader's libFuzzer harness for a bounded time (docs/reliability.md):
-  # 7 harnesses x FUZZ_SECONDS (20 s) plus the clang build, within CI's budget.
-  echo "== libFuzzer harnesses (clang, ASan+UBSan), ${FUZZ_SECONDS:-20} s each"
-  FUZZ_SECONDS=${FUZZ_SECONDS:-20} bash scripts/fuzz.sh
+  # 7 harnesses x 15 s plus the clang build (about 4.5 CPU-minutes): about 4 minutes on 2 cores.
+  echo "== libFuzzer harnesses (clang, ASan+UBSan), ${FUZZ_SECONDS:-15} s each"
+  FUZZ_SECONDS=${FUZZ_SECONDS:-15} bash scripts/fuzz.sh
 fi
 echo "== all tests passed"
