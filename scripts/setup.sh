@@ -11,6 +11,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium fonts-dejavu-core fonts-liberation fonts-noto-cjk
+  # libFuzzer harnesses (scripts/fuzz.sh): clang and its fuzzer/sanitizer runtimes.
+  clang libclang-rt-14-dev
 )
 # Node.js and npm only fetch the report JavaScript; any installed node will do.
 command -v npm > /dev/null || packages+=(nodejs npm)

@@ -58,6 +58,12 @@ struct SynthArgs {
   std::string out;
 };
 
+// Text read from files is validated as UTF-8 by the readers; a path is
+// whatever the file system holds, so bytes that are not UTF-8 become U+FFFD.
+std::string json_text(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 gravity::GravityModelData load(const ModelArgs& a) {
   return gravity::load_model(a.model, {a.max_degree, -1});
 }
@@ -67,7 +73,7 @@ int run_point(const PointArgs& a) {
   const gravity::GravityField field(m, {false, a.threads});
   const gravity::GeodeticPoint p{io::parse_latitude_rad(a.lat), io::parse_longitude_rad(a.lon), a.h};
   const gravity::PointResult r{gravity::model_info(m, field), p, field.evaluate(p)};
-  emit("", a.json ? report::gravity_point_to_json(r).dump(2) + "\n" : report::gravity_point_text(r));
+  emit("", a.json ? json_text(report::gravity_point_to_json(r)) : report::gravity_point_text(r));
   return kOk;
 }
 
@@ -76,6 +82,14 @@ int run_points(const PointsArgs& a) {
   io::PointsInput input(a.input);
   const gravity::GravityModelData m = load(a);
   const gravity::GravityField field(m, {false, a.threads});
+  // The CSV has no room for it: the model as its file states it goes to
+  // stderr (and the report); warnings even with --quiet.
+  {
+    const gravity::ModelInfo info = gravity::model_info(m, field);
+    if (!a.quiet) std::fputs(report::model_text(info).c_str(), stderr);
+    else
+      for (const std::string& w : gravity::model_warnings(info)) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   gravity::PointsOptions options;
   if (a.track_tolerance_arcsec > 0) options.track_tolerance_rad = units::arcsec_to_rad(a.track_tolerance_arcsec);
   // With a file output nothing appears unless the whole run succeeds.
@@ -118,7 +132,7 @@ int run_grid(const GridArgs& a) {
   else if (a.interpolation == "bilinear") interp = gravity::GridInterpolation::Bilinear;
   else throw InputError("unknown interpolation \"" + a.interpolation + "\" (bilinear or bicubic)", {"", {}, "--interpolation"});
   const gravity::GridPointResult r = gravity::evaluate_grid_point(g, lat, lon, interp);
-  emit("", a.json ? report::geoid_grid_to_json(r).dump(2) + "\n" : report::geoid_grid_text(r));
+  emit("", a.json ? json_text(report::geoid_grid_to_json(r)) : report::geoid_grid_text(r));
   return kOk;
 }
 

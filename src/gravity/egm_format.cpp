@@ -9,10 +9,13 @@
 #include <limits>
 #include <string>
 
+#include <string_view>
+
 #include <fmt/format.h>
 
 #include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/core/utf8.hpp"
 #include "text_util.hpp"
 
 namespace meridian::gravity {
@@ -63,6 +66,11 @@ class CofReader {
     if (n0 == -1 && m0 == -1) return std::nullopt;
     if (!(n0 >= m0 && m0 >= 0) || n0 > 100000)
       throw ParseError(fmt::format("bad degree and order {} {} at offset {}", n0, m0, offset() - sizeof nm), {file_, {}, what});
+    // The whole set must be in the file before anything is allocated, so a
+    // header claiming a huge degree is a truncated file, not an allocation.
+    const std::uint64_t N0 = static_cast<std::uint64_t>(n0), M0 = static_cast<std::uint64_t>(m0);
+    const std::uint64_t c_count = (M0 + 1) * (N0 + 1) - M0 * (M0 + 1) / 2;  // columns m = 0..M0 of length N0 + 1 − m
+    need(8 * (2 * c_count - (N0 + 1)), what);
     const int n = t.max_degree < 0 ? n0 : std::min(t.max_degree, n0);
     const int m = std::min({t.max_order < 0 ? n : t.max_order, m0, n});
     SphericalHarmonicCoefficients c(n, m);
@@ -80,9 +88,20 @@ class CofReader {
         skip((len - keep) * 8, what);
       }
     }
-    for (std::size_t k = 0; k < c.size(); ++k)
-      if (!std::isfinite(c.c_values()[k]) || !std::isfinite(c.s_values()[k]))
+    // Fully normalised gravitational coefficients are at most 1 in absolute
+    // value (C̄00 = 1; |C̄20| ≈ 4.8e-4 for the Earth); the correction set is
+    // in metres and is only required to be finite.
+    const bool normalised = std::string_view(what) == "gravitational";
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const double cv = c.c_values()[k], sv = c.s_values()[k];
+      if (!std::isfinite(cv) || !std::isfinite(sv))
         throw ParseError(fmt::format("non-finite coefficient (entry {} of the {} set)", k, what), {file_, {}, what});
+      if (normalised && (std::abs(cv) > 1 || std::abs(sv) > 1))
+        throw ParseError(fmt::format("coefficient {:g} (entry {} of the {} set) is not a fully normalised coefficient "
+                                     "(|value| <= 1)",
+                                     std::abs(cv) > 1 ? cv : sv, k, what),
+                         {file_, {}, what});
+    }
     return c;
   }
   void expect_end() {
@@ -105,7 +124,6 @@ GravityModelData read_egm_file(const std::filesystem::path& path, const Truncati
   if (!in) throw IoError("cannot open gravity model metadata file", {file, {}, ""});
   GravityModelData model;
   model.source_file = file;
-  model.tide_system = "unknown";
   std::string line;
   int line_no = 1;
   if (!std::getline(in, line) || line.rfind("EGMF-", 0) != 0)
@@ -129,8 +147,15 @@ GravityModelData read_egm_file(const std::filesystem::path& path, const Truncati
       if (!v || !std::isfinite(*v)) throw ParseError(fmt::format("{} is not a number: \"{}\"", key, val), {file, line_no, key});
       return *v;
     };
-    if (key == "Name") model.name = val;
-    else if (key == "Description") model.description = val;
+    auto text = [&]() {
+      if (const auto bad = first_invalid_utf8(val))
+        throw ParseError(fmt::format("{} is not UTF-8 text (byte 0x{:02X} at position {})", key,
+                                     static_cast<unsigned char>(val[*bad]), *bad + 1),
+                         {file, line_no, key});
+      return val;
+    };
+    if (key == "Name") model.name = text();
+    else if (key == "Description") model.description = text();
     else if (key == "ModelRadius") model.radius_m = number();
     else if (key == "ModelMass") model.gm_m3_s2 = number();
     else if (key == "AngularVelocity") omega = number();
@@ -144,6 +169,7 @@ GravityModelData read_egm_file(const std::filesystem::path& path, const Truncati
     else if (key == "Normalization") {
       if (val != "FULL" && val != "Full" && val != "full")
         throw ParseError("normalization \"" + val + "\" is not supported (only FULL)", {file, line_no, key});
+      model.normalization = val;
     } else if (key == "ByteOrder") {
       if (val != "Little" && val != "little")
         throw ParseError("byte order \"" + val + "\" is not supported (only Little)", {file, line_no, key});

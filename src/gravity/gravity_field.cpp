@@ -144,10 +144,30 @@ void GravityField::evaluate_block(const GeodeticPoint* p, std::size_t count, Qua
   }
 }
 
+namespace {
+
+// Values a model gives are finite or the evaluation is a NumericalError
+// (coefficients, GM or radius out of range), never NaN in an output.
+void check_finite_values(const FieldValues& v, Quantities what, std::size_t index) {
+  const bool defl = wants(what, Quantities::Deflection), geoid = wants(what, Quantities::Geoid);
+  const bool ok = (!defl || (std::isfinite(v.disturbing_potential_m2_s2) && std::isfinite(v.xi_rad) &&
+                             std::isfinite(v.eta_rad) && std::isfinite(v.anomaly_m_s2) && std::isfinite(v.dT_east_m_s2) &&
+                             std::isfinite(v.dT_north_m_s2) && std::isfinite(v.dT_up_m_s2) &&
+                             std::isfinite(v.xi_astro_rad) && std::isfinite(v.eta_astro_rad))) &&
+                  (!geoid || std::isfinite(v.geoid_m));
+  if (!ok)
+    throw NumericalError("the model gives a value that is not finite here: its coefficients, GM or reference radius "
+                         "are out of range",
+                         {"", {}, fmt::format("points[{}]", index)});
+}
+
+}  // namespace
+
 FieldValues GravityField::evaluate(const GeodeticPoint& p, Quantities what) const {
   check_point(p);
   FieldValues v;
   evaluate_block(&p, 1, what, &v);
+  check_finite_values(v, what, 0);
   return v;
 }
 
@@ -178,6 +198,7 @@ std::vector<FieldValues> GravityField::evaluate(std::span<const GeodeticPoint> p
     for (std::size_t i = 1; i < nthreads; ++i) pool.emplace_back(work);
     work();
   }
+  for (std::size_t i = 0; i < out.size(); ++i) check_finite_values(out[i], what, i);
   return out;
 }
 

@@ -1,6 +1,8 @@
 #include "meridian/gravity/icgem.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -8,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "meridian/core/utf8.hpp"
 #include "text_util.hpp"
 
 namespace meridian::gravity {
@@ -19,6 +22,16 @@ std::string slurp(const std::filesystem::path& path) {
   std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw IoError("error reading gravity model file", {path.string(), {}, ""});
   return s;
+}
+
+// Gfc lines a complete model to degree n, order m needs (2 ≤ degree; degrees
+// 0 and 1 may be omitted).
+std::uint64_t required_lines(int n, int m) {
+  if (n < 2) return 0;
+  const std::uint64_t N = static_cast<std::uint64_t>(n), M = static_cast<std::uint64_t>(m);
+  const std::uint64_t k = std::min(N, M);  // degrees 2..k have every order
+  const std::uint64_t full = k >= 2 ? (k + 1) * (k + 2) / 2 - 3 : 0;
+  return full + (N - std::max<std::uint64_t>(k, 1)) * (M + 1);
 }
 
 std::string lower(std::string_view s) {
@@ -34,7 +47,6 @@ GravityModelData read_icgem_file(const std::filesystem::path& path, const Trunca
   const std::string text = slurp(path);
   GravityModelData model;
   model.source_file = file;
-  model.tide_system = "unknown";
   std::optional<double> gm, radius;
   std::optional<int> max_degree;
   std::vector<std::string_view> f;
@@ -43,6 +55,14 @@ GravityModelData read_icgem_file(const std::filesystem::path& path, const Trunca
   bool in_header = true;
   auto fail = [&](const std::string& msg, const std::string& field = {}) -> ParseError {
     return ParseError(msg, {file, line_no, field});
+  };
+  // Header text that reaches outputs (JSON, HTML) must be UTF-8.
+  auto text_value = [&](std::string_view v, const char* key) {
+    if (const auto bad = first_invalid_utf8(v))
+      throw fail(fmt::format("{} is not UTF-8 text (byte 0x{:02X} at position {})", key,
+                             static_cast<unsigned char>(v[*bad]), *bad + 1),
+                 key);
+    return std::string(v);
   };
   std::vector<int> seen;  // line where (n, m) was given, 0 = not yet
   int N = -1, M = -1;
@@ -63,6 +83,15 @@ GravityModelData read_icgem_file(const std::filesystem::path& path, const Trunca
         N = truncation.max_degree < 0 ? *max_degree : std::min(truncation.max_degree, *max_degree);
         const int mo = truncation.max_order < 0 ? N : truncation.max_order;
         M = std::min(mo, N);
+        // A header's degree is a claim about the file: check it against the
+        // file's size before allocating (the shortest line "gfc 2 0 0 0" has
+        // 11 characters and a line end), so memory stays proportional to it.
+        const std::uint64_t lines = required_lines(N, M), bytes = lines > 0 ? 12 * lines - 1 : 0;
+        if (bytes > text.size())
+          throw fail(fmt::format("max_degree {} cannot be right: a complete model to degree {} (order {}) has {} gfc "
+                                 "lines, at least {} bytes, and the file has {} bytes",
+                                 *max_degree, N, M, lines, bytes, text.size()),
+                     "max_degree");
         model.file_max_degree = *max_degree;
         model.coefficients = SphericalHarmonicCoefficients(N, M);
         seen.assign(model.coefficients.size(), 0);
@@ -81,12 +110,13 @@ GravityModelData read_icgem_file(const std::filesystem::path& path, const Trunca
         const auto v = f.size() >= 2 ? detail::parse_int(f[1]) : std::nullopt;
         if (!v || *v < 0) throw fail("max_degree must be a non-negative integer", "max_degree");
         max_degree = *v;
-      } else if (key == "modelname" && f.size() >= 2) model.name = std::string(f[1]);
-      else if (key == "tide_system" && f.size() >= 2) model.tide_system = std::string(f[1]);
+      } else if (key == "modelname" && f.size() >= 2) model.name = text_value(f[1], "modelname");
+      else if (key == "tide_system" && f.size() >= 2) model.tide_system = text_value(f[1], "tide_system");
       else if (key == "product_type" && f.size() >= 2 && lower(f[1]) != "gravity_field")
         throw fail(fmt::format("product_type \"{}\" is not a gravity_field", f[1]), "product_type");
       else if (key == "norm" && f.size() >= 2 && lower(f[1]) != "fully_normalized")
         throw fail(fmt::format("normalisation \"{}\" is not supported (only fully_normalized)", f[1]), "norm");
+      else if (key == "norm" && f.size() >= 2) model.normalization = std::string(f[1]);
       continue;
     }
     const std::string key = lower(f[0]);
@@ -102,6 +132,9 @@ GravityModelData read_icgem_file(const std::filesystem::path& path, const Trunca
     const auto c = detail::parse_double(f[3]), s = detail::parse_double(f[4]);
     if (!c || !std::isfinite(*c)) throw fail(fmt::format("C is not a number: \"{}\"", f[3]), "C");
     if (!s || !std::isfinite(*s)) throw fail(fmt::format("S is not a number: \"{}\"", f[4]), "S");
+    // Fully normalised coefficients are at most 1 in absolute value (C̄00 = 1).
+    if (std::abs(*c) > 1) throw fail(fmt::format("C = {:g} is not a fully normalised coefficient (|C| <= 1)", *c), "C");
+    if (std::abs(*s) > 1) throw fail(fmt::format("S = {:g} is not a fully normalised coefficient (|S| <= 1)", *s), "S");
     for (std::size_t i = 5; i < f.size(); ++i)
       if (!detail::parse_double(f[i])) throw fail(fmt::format("field {} is not a number: \"{}\"", i + 1, f[i]));
     if (*n > N || *m > M) continue;  // truncated away

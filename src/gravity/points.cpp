@@ -1,11 +1,29 @@
 #include "meridian/gravity/points.hpp"
 
+#include <fmt/format.h>
+
 #include "meridian/gravity/track.hpp"
 
 namespace meridian::gravity {
 
 ModelInfo model_info(const GravityModelData& model, const GravityField& field) {
-  return {model.name, model.source_file, field.max_degree(), model.file_max_degree};
+  return {model.name,     model.source_file, field.max_degree(),    model.file_max_degree, model.gm_m3_s2,
+          model.radius_m, model.tide_system, model.normalization, model.description};
+}
+
+std::vector<std::string> model_warnings(const ModelInfo& model) {
+  std::vector<std::string> w;
+  if (model.tide_system.empty() || model.tide_system == "unknown")
+    w.push_back(fmt::format(
+        "the model file {} its tide system: the geoid heights and deflections are in the system of its "
+        "coefficients, whichever that is (mean-tide, zero-tide and tide-free geoids differ by up to decimetres at "
+        "high latitudes); find it in the model's documentation before combining them with other heights",
+        model.tide_system.empty() ? "does not state" : "gives \"unknown\" as"));
+  return w;
+}
+
+std::string normalization_text(const ModelInfo& model) {
+  return model.normalization.empty() ? "fully normalised (not stated; the format's default)" : model.normalization;
 }
 
 std::size_t points_chunk_size(const PointsOptions& options) noexcept {

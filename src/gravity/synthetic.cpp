@@ -50,6 +50,7 @@ GravityModelData make_synthetic_model(const SyntheticModelOptions& o) {
   m.name = fmt::format("synth{}s{}", o.max_degree, o.seed);
   m.description = fmt::format("Meridian synthetic model, Kaula {:g}/n^2, degree {}, seed {}", o.kaula_scale, o.max_degree, o.seed);
   m.tide_system = "tide_free";
+  m.normalization = "fully_normalized";
   m.gm_m3_s2 = 3.986004415e14;
   m.radius_m = 6378136.3;
   m.file_max_degree = o.max_degree;

@@ -10,6 +10,7 @@
 
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/core/utf8.hpp"
 
 namespace meridian::io {
 namespace {
@@ -42,6 +43,17 @@ std::optional<double> whole_number(const std::string& s) {
   while (used < s.size() && std::isspace(static_cast<unsigned char>(s[used]))) ++used;
   if (used != s.size()) return std::nullopt;
   return v;
+}
+
+// `s` with every byte outside printable ASCII shown as \xHH, for messages.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    const auto b = static_cast<unsigned char>(ch);
+    if (b >= 0x20 && b < 0x7F) out += ch;
+    else out += fmt::format("\\x{:02X}", b);
+  }
+  return out;
 }
 
 }  // namespace
@@ -159,7 +171,12 @@ bool Node::boolean() const {
 
 std::string Node::string() const {
   if (!node_.IsScalar()) fail("expected a text value");
-  return node_.Scalar();
+  const std::string& s = node_.Scalar();
+  // Text goes on into JSON and HTML, which need UTF-8: say where it is not.
+  if (const auto bad = first_invalid_utf8(s))
+    fail(fmt::format("text is not UTF-8 (byte 0x{:02X} at position {} of \"{}\"); save the file as UTF-8",
+                     static_cast<unsigned char>(s[*bad]), *bad + 1, printable(s)));
+  return s;
 }
 
 Angle Node::angle() const { return angle(AngleUnit::Dms); }

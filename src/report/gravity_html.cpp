@@ -191,8 +191,17 @@ Document gravity_points_document(const std::string& input, const gravity::ModelI
                                          ? std::to_string(model.max_degree)
                                          : fmt::format("{} (the file has {})", model.max_degree,
                                                        model.file_max_degree)},
+                {"model GM", fmt::format("{} m^3/s^2", model.gm_m3_s2)},
+                {"model reference radius", fmt::format("{} m", model.radius_m)},
+                {"tide system", model.tide_system.empty() ? "not stated by the file" : model.tide_system},
+                {"normalisation", gravity::normalization_text(model)},
                 {"evaluation", evaluation_text(options)},
                 {"points", std::to_string(summary.count())}};
+  if (const auto warnings = gravity::model_warnings(model); !warnings.empty()) {
+    Section w{"warnings", "Warnings", {}, 2};
+    w.blocks.push_back(Notes{"", warnings, true});
+    doc.sections.push_back(w);
+  }
   doc.sections.push_back(summary_section(summary));
   if (summary.count() > 0) {
     Section maps{"maps", "Maps", {}, 2};

@@ -3,12 +3,28 @@
 #include "meridian/core/units.hpp"
 
 namespace meridian::report {
+namespace {
+
+using nlohmann::json;
+
+// A text the file may not state: null then.
+json stated(const std::string& s) { return s.empty() ? json(nullptr) : json(s); }
+
+}  // namespace
 
 nlohmann::json gravity_point_to_json(const gravity::PointResult& r) {
   const gravity::FieldValues& v = r.values;
-  return {{"model", r.model.name},
-          {"model_file", r.model.source_file},
-          {"max_degree", r.model.max_degree},
+  const gravity::ModelInfo& m = r.model;
+  return {{"model", m.name},
+          {"model_file", m.source_file},
+          {"max_degree", m.max_degree},
+          {"file_max_degree", m.file_max_degree},
+          {"model_description", stated(m.description)},
+          {"gm_m3_s2", m.gm_m3_s2},
+          {"reference_radius_m", m.radius_m},
+          {"tide_system", stated(m.tide_system)},
+          {"normalization", stated(m.normalization)},
+          {"warnings", gravity::model_warnings(m)},
           {"latitude_deg", units::rad_to_deg(r.point.lat_rad)},
           {"longitude_deg", units::rad_to_deg(r.point.lon_rad)},
           {"height_m", r.point.height_m},
@@ -22,14 +38,29 @@ nlohmann::json gravity_point_to_json(const gravity::PointResult& r) {
 }
 
 nlohmann::json geoid_grid_to_json(const gravity::GridPointResult& r) {
-  return {{"grid", r.grid_file},
-          {"interpolation", gravity::to_string(r.interpolation)},
-          {"latitude_deg", units::rad_to_deg(r.lat_rad)},
-          {"longitude_deg", units::rad_to_deg(r.lon_rad)},
-          {"geoid_m", r.geoid_m},
-          {"fallback_xi_arcsec", units::rad_to_arcsec(r.fallback.xi_rad)},
-          {"fallback_eta_arcsec", units::rad_to_arcsec(r.fallback.eta_rad)},
-          {"fallback_method", r.fallback.method}};
+  const bool have = r.fallback.has_value();
+  json j = {{"grid", r.grid_file},
+            {"grid_format", r.grid.format},
+            {"grid_metadata", r.grid.metadata},
+            {"model", r.grid.model ? json(*r.grid.model) : json(nullptr)},
+            {"max_degree", nullptr},
+            {"gm_m3_s2", nullptr},
+            {"reference_radius_m", nullptr},
+            {"tide_system", nullptr},
+            {"normalization", nullptr},
+            {"interpolation", gravity::to_string(r.interpolation)},
+            {"interpolation_used", gravity::to_string(r.interpolation_used)},
+            {"latitude_deg", units::rad_to_deg(r.lat_rad)},
+            {"longitude_deg", units::rad_to_deg(r.lon_rad)},
+            {"geoid_m", r.geoid_m},
+            {"fallback_available", have},
+            {"fallback_xi_arcsec", have ? json(units::rad_to_arcsec(r.fallback->xi_rad)) : json(nullptr)},
+            {"fallback_eta_arcsec", have ? json(units::rad_to_arcsec(r.fallback->eta_rad)) : json(nullptr)},
+            {"fallback_method", gravity::GridDeflection{}.method},
+            {"fallback_unavailable_reason", have ? json(nullptr) : json(r.fallback_unavailable)},
+            {"notes", r.notes},
+            {"warnings", r.grid.warnings}};
+  return j;
 }
 
 }  // namespace meridian::report

@@ -1,26 +1,59 @@
 #include "meridian/report/gravity_text.hpp"
 
+#include <iterator>
+
 #include <fmt/format.h>
 
 #include "meridian/core/units.hpp"
 
 namespace meridian::report {
 
+namespace {
+
+std::string model_lines(const gravity::ModelInfo& m) {
+  return fmt::format("model {} (degree {}, {})\nmodel GM {} m^3/s^2, reference radius {} m, tide system {}, normalisation {}\n",
+                     m.name, m.max_degree, m.source_file, m.gm_m3_s2, m.radius_m,
+                     m.tide_system.empty() ? "not stated" : m.tide_system, gravity::normalization_text(m));
+}
+
+void append_warnings(std::string& out, const gravity::ModelInfo& m) {
+  for (const std::string& w : gravity::model_warnings(m)) fmt::format_to(std::back_inserter(out), "warning: {}\n", w);
+}
+
+}  // namespace
+
+std::string model_text(const gravity::ModelInfo& model) {
+  std::string out = model_lines(model);
+  append_warnings(out, model);
+  return out;
+}
+
 std::string gravity_point_text(const gravity::PointResult& r) {
-  return fmt::format(
-      "model {} (degree {}, {})\npoint lat {:.9f} deg, lon {:.9f} deg, h {:.3f} m\n"
-      "xi_arcsec  {:.9f}\neta_arcsec {:.9f}\ngeoid_m    {:.9f}\n",
-      r.model.name, r.model.max_degree, r.model.source_file, units::rad_to_deg(r.point.lat_rad),
-      units::rad_to_deg(r.point.lon_rad), r.point.height_m, units::rad_to_arcsec(r.values.xi_rad),
-      units::rad_to_arcsec(r.values.eta_rad), r.values.geoid_m);
+  std::string out = model_lines(r.model);
+  fmt::format_to(std::back_inserter(out),
+                 "point lat {:.9f} deg, lon {:.9f} deg, h {:.3f} m\n"
+                 "xi_arcsec  {:.9f}\neta_arcsec {:.9f}\ngeoid_m    {:.9f}\n",
+                 units::rad_to_deg(r.point.lat_rad), units::rad_to_deg(r.point.lon_rad), r.point.height_m,
+                 units::rad_to_arcsec(r.values.xi_rad), units::rad_to_arcsec(r.values.eta_rad), r.values.geoid_m);
+  append_warnings(out, r.model);
+  return out;
 }
 
 std::string geoid_grid_text(const gravity::GridPointResult& r) {
-  return fmt::format(
-      "grid {} ({})\ngeoid_m    {:.6f}\nxi_arcsec  {:.3f}  [{}]\neta_arcsec {:.3f}  [{}]\n",
-      r.grid_file, gravity::to_string(r.interpolation), r.geoid_m,
-      units::rad_to_arcsec(r.fallback.xi_rad), r.fallback.method,
-      units::rad_to_arcsec(r.fallback.eta_rad), r.fallback.method);
+  std::string out = fmt::format("grid {} ({})\nmodel {}; degree, GM, reference radius, tide system, normalisation: not stated\n"
+                                "geoid_m    {:.6f}\n",
+                                r.grid_file, gravity::to_string(r.interpolation),
+                                r.grid.model ? *r.grid.model : "not stated", r.geoid_m);
+  const char* method = gravity::GridDeflection{}.method;
+  if (r.fallback)
+    fmt::format_to(std::back_inserter(out), "xi_arcsec  {:.3f}  [{}]\neta_arcsec {:.3f}  [{}]\n",
+                   units::rad_to_arcsec(r.fallback->xi_rad), method, units::rad_to_arcsec(r.fallback->eta_rad), method);
+  else
+    fmt::format_to(std::back_inserter(out), "xi_arcsec  unavailable  [{}]\neta_arcsec unavailable  [{}]\nnote: {}\n",
+                   method, method, r.fallback_unavailable);
+  for (const std::string& n : r.notes) fmt::format_to(std::back_inserter(out), "note: {}\n", n);
+  for (const std::string& w : r.grid.warnings) fmt::format_to(std::back_inserter(out), "warning: {}\n", w);
+  return out;
 }
 
 }  // namespace meridian::report

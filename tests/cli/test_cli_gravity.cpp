@@ -201,3 +201,110 @@ TEST_F(GravityCli, BadCsvLeavesNoReport) {
 }
 
 }  // namespace
+
+namespace {
+
+// Model metadata as the file states it (issue 16): the synthetic model's
+// .gfc states its tide system and normalisation, its .egm (GeographicLib's
+// format has no key for it) does not, and then a warning says so.
+TEST_F(GravityCli, ModelMetadataAsStatedByTheFileAndAWarningWhenItIsNot) {
+  ASSERT_EQ(run("gravity synth-model --degree 8 --seed 3 --out m").code, 0);
+  const CmdResult g = run("gravity point --model m.gfc 60 25 --json");
+  ASSERT_EQ(g.code, 0) << g.err;
+  const auto j = nlohmann::json::parse(g.out);
+  EXPECT_EQ(j["model"], "synth8s3");
+  EXPECT_EQ(j["max_degree"], 8);
+  EXPECT_EQ(j["file_max_degree"], 8);
+  EXPECT_EQ(j["gm_m3_s2"].get<double>(), 3.986004415e14);  // the .gfc's earth_gravity_constant line
+  EXPECT_NEAR(j["reference_radius_m"].get<double>(), 6378136.3, 1e-6);
+  EXPECT_EQ(j["tide_system"], "tide_free");
+  EXPECT_EQ(j["normalization"], "fully_normalized");
+  EXPECT_TRUE(j["warnings"].empty());
+  const CmdResult e = run("gravity point --model m.egm 60 25 --json --max-degree 5");
+  ASSERT_EQ(e.code, 0) << e.err;
+  const auto k = nlohmann::json::parse(e.out);
+  EXPECT_EQ(k["max_degree"], 5);
+  EXPECT_EQ(k["file_max_degree"], 8);
+  EXPECT_TRUE(k["tide_system"].is_null());
+  EXPECT_TRUE(k["normalization"].is_null());
+  ASSERT_EQ(k["warnings"].size(), 1u);
+  EXPECT_NE(k["warnings"][0].get<std::string>().find("does not state its tide system"), std::string::npos);
+  const CmdResult t = run("gravity point --model m.gfc 60 25");
+  EXPECT_NE(t.out.find("\nmodel GM 398600441500000 m^3/s^2, reference radius 6378136.3 m, tide system tide_free, "
+                       "normalisation fully_normalized\n"),
+            std::string::npos)
+      << t.out;
+  const CmdResult te = run("gravity point --model m.egm 60 25");
+  EXPECT_NE(te.out.find("tide system not stated, normalisation fully normalised (not stated; the format's default)\n"),
+            std::string::npos)
+      << te.out;
+  EXPECT_NE(te.out.find("\nwarning: the model file does not state its tide system"), std::string::npos) << te.out;
+  // gravity points: the CSV is unchanged, the model goes to stderr (warnings even with --quiet).
+  const CmdResult p = run("gravity points --model m.egm -q", "60,25\n");
+  ASSERT_EQ(p.code, 0) << p.err;
+  EXPECT_EQ(p.out.rfind("lat_deg,lon_deg,h_m,xi_arcsec,eta_arcsec,geoid_m\n60.0000000000,25.0000000000,", 0), 0u);
+  EXPECT_EQ(p.err.rfind("warning: the model file does not state its tide system", 0), 0u) << p.err;
+  const CmdResult pg = run("gravity points --model m.gfc", "60,25\n");
+  EXPECT_EQ(pg.err.rfind("model synth8s3 (degree 8, m.gfc)\nmodel GM", 0), 0u) << pg.err;
+}
+
+// The issue's geoid-grid cases, run as a user would on the files of
+// ../shared/cases/geoid-grids (skipped when absent; the unit tests build the
+// same grids from their formulas).
+class GeoidGridCasesCli : public GravityCli {
+ protected:
+  void SetUp() override {
+    GravityCli::SetUp();
+    cases_ = fs::path(MERIDIAN_SOURCE_DIR) / ".." / "shared" / "cases" / "geoid-grids";
+    if (!fs::exists(cases_ / "tile.gtx") || !fs::exists(cases_ / "west-180.gtx"))
+      GTEST_SKIP() << cases_ << " not present";
+  }
+  CmdResult grid(const std::string& file, const std::string& args) {
+    return run("gravity geoid-grid --grid " + (cases_ / file).string() + " " + args);
+  }
+  fs::path cases_;
+};
+
+TEST_F(GeoidGridCasesCli, GlobalGridFromMinus180WithoutRepeatedColumn) {
+  // GeographicLib's GeoidEval -l on the same grid as .pgm: -15.715771 m.
+  for (const char* lon : {"175.3", "-184.7", "535.3"}) {
+    const CmdResult r = grid("west-180.gtx", std::string("--interpolation bilinear 9.9959 ") + lon);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("\ngeoid_m    -15.715771\n"), std::string::npos) << r.out;
+  }
+}
+
+TEST_F(GeoidGridCasesCli, TileWithNoDataNodesGivesNOrNamesTheNode) {
+  // 56.30 21.20 (bicubic asked; edge cell, bilinear used): N = 20.12 m on the
+  // tile's plane, the deflection unavailable (its southern neighbour is outside).
+  CmdResult r = grid("tile.gtx", "56.30 21.20 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["geoid_m"].get<double>(), 20 + 0.8 * 0.30 - 0.6 * 0.20, 1e-5);
+  EXPECT_EQ(j["interpolation_used"], "bilinear");
+  EXPECT_FALSE(j["fallback_available"].get<bool>());
+  EXPECT_TRUE(j["fallback_xi_arcsec"].is_null());
+  r = grid("tile.gtx", "56.30 21.20");
+  EXPECT_NE(r.out.find("\ngeoid_m    20.120000\nxi_arcsec  unavailable"), std::string::npos) << r.out;
+  // 56.70 21.90 bilinear: 20.02 m.
+  r = grid("tile.gtx", "--interpolation bilinear 56.70 21.90 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["geoid_m"].get<double>(), 20 + 0.8 * 0.70 - 0.6 * 0.90, 1e-5);
+  EXPECT_TRUE(j["fallback_available"].get<bool>());
+  // 56.20 23.30: a corner holds 9999 (bilinear through it would be 3611.76 m): an input error naming the node.
+  for (const char* interp : {"bilinear", "bicubic"}) {
+    r = grid("tile.gtx", std::string("--interpolation ") + interp + " 56.20 23.30");
+    EXPECT_EQ(r.code, 1) << interp;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find("node(0,5)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("lat 56.000000 deg, lon 23.500000 deg, which holds 9999"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("3611"), std::string::npos) << r.err;
+  }
+  // A longitude outside the tile is named as the longitude.
+  r = grid("tile.gtx", "56.5 30");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find(": lon: longitude 30.000000 deg is outside"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -2,7 +2,14 @@
 // Gravity (Debian geographiclib-tools, installed by scripts/setup.sh) on the
 // same model file. CTest label `reference`: fails when the tool is missing.
 
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
 #include <sstream>
 #include <string>
 
@@ -41,3 +48,53 @@ TEST_F(GravityCli, PointJsonMatchesGeographicLibGravityTool) {
   EXPECT_NEAR(j["geoid_m"].get<double>(), n, 1e-6);
 }
 
+
+// `meridian gravity geoid-grid` on ../shared/cases/geoid-grids/west-180.gtx
+// (a global grid from -180 deg without a repeated column) against
+// GeographicLib's GeoidEval -l (bilinear) on the same nodes written here as a
+// GeographicLib .pgm (rows from 90 N, columns from 0 E; the nodes are whole
+// centimetres, so offset -30 m and scale 1 mm hold them exactly). Skipped
+// when the case file is absent; fails when GeoidEval is missing.
+TEST_F(GravityCli, GeoidGridMatchesGeoidEvalOnAGlobalGridFromMinus180) {
+  namespace fs = std::filesystem;
+  const fs::path gtx = fs::path(MERIDIAN_SOURCE_DIR) / ".." / "shared" / "cases" / "geoid-grids" / "west-180.gtx";
+  if (!fs::exists(gtx)) GTEST_SKIP() << gtx << " not present";
+  std::ifstream in(gtx, std::ios::binary);
+  const std::string d((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(d.size(), 40u + 4u * 19u * 36u);
+  auto be32 = [&](std::size_t at) {
+    std::uint32_t u = 0;
+    for (int k = 0; k < 4; ++k) u = (u << 8) | static_cast<unsigned char>(d[at + static_cast<std::size_t>(k)]);
+    return u;
+  };
+  auto node = [&](int r, int c) {  // gtx: row 0 at -90, column 0 at -180
+    const std::uint32_t u = be32(40 + 4 * static_cast<std::size_t>(r * 36 + c));
+    float f;
+    std::memcpy(&f, &u, 4);
+    return static_cast<double>(f);
+  };
+  std::string pgm = "P5\n# Description west-180.gtx as pgm\n# Offset -30\n# Scale 0.001\n36 19\n65535\n";
+  for (int r = 0; r < 19; ++r)
+    for (int c = 0; c < 36; ++c) {
+      const long v = std::lround((node(18 - r, (c + 18) % 36) + 30) / 0.001);
+      pgm += static_cast<char>((v >> 8) & 0xFF);
+      pgm += static_cast<char>(v & 0xFF);
+    }
+  std::ofstream(dir_ / "w180.pgm", std::ios::binary) << pgm;
+  ASSERT_EQ(std::system("command -v GeoidEval > /dev/null 2>&1"), 0)
+      << "GeographicLib's GeoidEval tool is needed (Debian geographiclib-tools; scripts/setup.sh installs it)";
+  for (const auto& [lat, lon] : std::vector<std::pair<double, double>>{
+           {9.9959, 175.3}, {-45.2, 179.99}, {60.5, -179.5}, {0.1, -0.1}, {89.5, 123.4}, {-33.3, 185.0}}) {
+    const std::string where = std::to_string(lat) + " " + std::to_string(lon);
+    const CmdResult gl = shell("echo '" + where + "' | GeoidEval -n w180 -d . -l");
+    ASSERT_EQ(gl.code, 0) << gl.err;
+    double n_gl = 0;
+    std::istringstream(gl.out) >> n_gl;
+    const CmdResult r = run("gravity geoid-grid --grid " + gtx.string() + " --interpolation bilinear --json -- " + where);
+    ASSERT_EQ(r.code, 0) << r.err;
+    // GeoidEval prints 4 decimals; the nodes differ from their float32 copies by < 1e-6 m.
+    EXPECT_NEAR(nlohmann::json::parse(r.out)["geoid_m"].get<double>(), n_gl, 6e-5) << where;
+  }
+  const CmdResult gl = shell("echo '9.9959 175.3' | GeoidEval -n w180 -d . -l");
+  EXPECT_EQ(gl.out.rfind("-15.7158", 0), 0u) << gl.out;  // the issue's -15.715771 m
+}

@@ -6,10 +6,12 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "gravity_test_support.hpp"
 #include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/model_lookup.hpp"
 
 namespace {
@@ -95,6 +97,67 @@ TEST(IcgemReader, RejectsBadFilesNamingTheLine) {
   EXPECT_THROW((void)read_icgem_file(scratch_dir() / "does_not_exist.gfc"), meridian::IoError);
 }
 
+// A header's degree is checked against the file's size before anything is
+// allocated: 10^9 would need 5·10^17 coefficients (8·10^18 bytes).
+TEST(IcgemReader, HugeDegreeInTheHeaderIsAnInputErrorNotAnAllocation) {
+  std::string huge = kHead;
+  huge.replace(huge.find("max_degree 3"), 12, "max_degree 1000000000");
+  const fs::path p = write_text("huge.gfc", huge + kBody);
+  expect_parse_error([&] { (void)read_icgem_file(p); }, p, 12, "max_degree 1000000000 cannot be right");
+  try {
+    (void)read_icgem_file(p);
+  } catch (const meridian::InputError& e) {
+    EXPECT_EQ(e.context().field, "max_degree");
+  }
+  // Truncated on load, the same file is read as far as it is complete.
+  EXPECT_EQ(read_icgem_file(p, {3, -1}).coefficients.max_degree(), 3);
+  // The bound is the shortest possible file: one that just holds it passes it
+  // (and is then read normally); one byte less fails before allocation.
+  std::string min = kHead;
+  min.replace(min.find("max_degree 3"), 12, "max_degree 2");
+  const std::string body = "gfc 2 0 0 0\ngfc 2 1 0 0\ngfc 2 2 0 0";
+  EXPECT_NO_THROW((void)read_icgem_file(write_text("min.gfc", min + body)));
+}
+
+// Fully normalised coefficients are at most 1 in absolute value; a larger one
+// is a damaged file, not a model to evaluate (fuzz_egm found NaN from one).
+TEST(IcgemReader, CoefficientsBeyondOneAreRejected) {
+  std::string body = kBody;
+  body.replace(body.find("gfc 3 1 2e-6"), 12, "gfc 3 1 2e+6");
+  const fs::path p = write_text("big.gfc", std::string(kHead) + body);
+  expect_parse_error([&] { (void)read_icgem_file(p); }, p, 18, "C = 2e+06 is not a fully normalised coefficient");
+}
+
+// The engine's last line of defence: a model whose values overflow is a
+// NumericalError, never NaN or infinity in an output.
+TEST(GravityFieldGuard, NonFiniteValuesAreANumericalError) {
+  GravityModelData m = read_icgem_file(write_text("ok.gfc", std::string(kHead) + kBody));
+  m.coefficients.set(3, 1, 1e305, 1e305);  // times GM/a ≈ 6e7: beyond the largest double
+  const meridian::gravity::GravityField field(m, {false, 1});
+  EXPECT_THROW((void)field.evaluate({0.5, 0.2, 0}), meridian::NumericalError);
+  const std::vector<meridian::gravity::GeodeticPoint> pts(5, {0.5, 0.2, 0});
+  EXPECT_THROW((void)field.evaluate(pts), meridian::NumericalError);
+}
+
+TEST(IcgemReader, HeaderTextMustBeUtf8AndMetadataIsKeptAsStated) {
+  std::string latin1 = kHead;
+  latin1.replace(latin1.find("modelname tiny"), 14, "modelname t\xE9st");
+  const fs::path p = write_text("latin1.gfc", latin1 + kBody);
+  expect_parse_error([&] { (void)read_icgem_file(p); }, p, 4, "modelname is not UTF-8 text (byte 0xE9 at position 2)");
+  std::string utf8 = kHead;
+  utf8.replace(utf8.find("modelname tiny"), 14, "modelname t\xC3\xA9st");
+  const GravityModelData ok = read_icgem_file(write_text("utf8.gfc", utf8 + kBody));
+  EXPECT_EQ(ok.name, "t\xC3\xA9st");
+  EXPECT_EQ(ok.tide_system, "tide_free");
+  EXPECT_EQ(ok.normalization, "fully_normalized");
+  // Keys left out: nothing is invented.
+  std::string bare = kHead;
+  for (const char* line : {"norm fully_normalized\n", "tide_system tide_free\n"}) bare.erase(bare.find(line), std::strlen(line));
+  const GravityModelData b = read_icgem_file(write_text("bare.gfc", bare + kBody));
+  EXPECT_EQ(b.tide_system, "");
+  EXPECT_EQ(b.normalization, "");
+}
+
 TEST(EgmFormat, WriteReadRoundTripIsExactAndMatchesIcgem) {
   meridian::gravity::SyntheticModelOptions o;
   o.max_degree = 50;
@@ -146,6 +209,21 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   const double one = 1.0;
   std::memcpy(c00.data() + 16, &one, 8);
   expect(meta, c00, bcof, "degree 0 coefficient must be 0");
+  // A .cof claiming degree and order 100000 (4·10^10 bytes of coefficients)
+  // in a short file: truncated, found before allocating.
+  std::string huge = cof.substr(0, 8);
+  const std::int32_t nm[2] = {100000, 100000};
+  huge.append(reinterpret_cast<const char*>(nm), sizeof nm);
+  huge += cof.substr(16);
+  expect(meta, huge, bcof, "file truncated: gravitational needs 80001600008 bytes");
+  // Found by fuzz_egm: a coefficient of -9.6e301 gave N = NaN and xi = 4.7e307 arcsec.
+  std::string big = cof;
+  const double beyond = -9.6e301;
+  std::memcpy(big.data() + 16 + 8 * 5, &beyond, 8);
+  expect(meta, big, bcof, "is not a fully normalised coefficient (|value| <= 1)");
+  std::string latin1 = meta;
+  latin1.replace(latin1.find("Description"), 11, "Description caf\xE9");
+  expect(latin1, cof, egm, "Description is not UTF-8 text");
 }
 
 TEST(ModelLookup, FindsModelsByNameInGeographicLibDirectories) {

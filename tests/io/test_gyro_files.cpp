@@ -152,6 +152,21 @@ TEST(GyroFiles, ErrorsNameFileLineAndField) {
   EXPECT_THROW(io::read_gyro_reduce_file(d.write("none.yaml", "x").parent_path() / "missing.yaml"), IoError);
 }
 
+// Text fields go on into JSON and HTML: bytes that are not UTF-8 (a name
+// saved as Latin-1) are an input error at the field's line, not an internal
+// error when the JSON is written (issue 16).
+TEST(GyroFiles, TextThatIsNotUtf8IsNamedWithFileAndLine) {
+  TempDir d;
+  std::string s = kIssueExample;
+  s.replace(s.find("instrument:\n"), 12, "instrument:\n  name: \"K\xF6ln\"\n");
+  expect_error([&] { io::read_gyro_reduce_file(d.write("latin1.yaml", s)); },
+               {"latin1.yaml:2:", "instrument.name", "not UTF-8", "0xF6", "K\\xF6ln"});
+  // The same name in UTF-8 is read as it is.
+  std::string u = kIssueExample;
+  u.replace(u.find("instrument:\n"), 12, "instrument:\n  name: \"K\xC3\xB6ln\"\n");
+  EXPECT_NO_THROW(io::read_gyro_reduce_file(d.write("utf8.yaml", u)));
+}
+
 TEST(GyroFiles, CampaignWriteReadRoundTrip) {
   TempDir d;
   const auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 5);

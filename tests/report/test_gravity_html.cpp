@@ -48,7 +48,7 @@ gravity::PointsSummary summary_of(int n, std::size_t capacity) {
   return s;
 }
 
-const gravity::ModelInfo kModel{"synth60s1", "m.gfc", 60, 60};
+const gravity::ModelInfo kModel{"synth60s1", "m.gfc", 60, 60, 3.986004415e14, 6378136.3, "tide_free", "fully_normalized", ""};
 
 TEST(GravityPointsDocument, HasSummaryMapsAndDefinitions) {
   // The quantities a user maps: xi, eta and N, one map each.
@@ -88,7 +88,7 @@ TEST(GravityPointsDocument, StatisticsTableAndHeader) {
   const auto s = summary_of(3, 100);  // xi = -3", -2", -1"; N = 30, 30.01, 30.02
   gravity::PointsOptions track;
   track.track_tolerance_rad = 1e-3 * units::kArcsecond;
-  const Document d = gravity_points_document("line.csv", {"m", "m.egm", 60, 360}, track, s);
+  const Document d = gravity_points_document("line.csv", {"m", "m.egm", 60, 360, 3.986004415e14, 6378136.3, "", "", ""}, track, s);
   const Section* sum = find_section(d, "summary");
   ASSERT_NE(sum, nullptr);
   const Table* stats = nullptr;
@@ -108,6 +108,20 @@ TEST(GravityPointsDocument, StatisticsTableAndHeader) {
   EXPECT_NE(header.find("model=m;"), std::string::npos) << header;
   EXPECT_NE(header.find("60 (the file has 360)"), std::string::npos) << header;
   EXPECT_NE(header.find("0.001000\""), std::string::npos) << header;
+  // The model as the file states it: an .egm states no tide system, so a warning section says so.
+  EXPECT_NE(header.find("model GM=398600441500000 m^3/s^2;model reference radius=6378136.3 m;"), std::string::npos)
+      << header;
+  EXPECT_NE(header.find("tide system=not stated by the file;normalisation=fully normalised (not stated"),
+            std::string::npos)
+      << header;
+  const Section* warn = find_section(d, "warnings");
+  ASSERT_NE(warn, nullptr);
+  const auto* wn = std::get_if<Notes>(&warn->blocks.at(0));
+  ASSERT_NE(wn, nullptr);
+  ASSERT_EQ(wn->items.size(), 1u);
+  EXPECT_NE(wn->items[0].find("does not state its tide system"), std::string::npos);
+  // A model that states it has no warning section.
+  EXPECT_EQ(find_section(gravity_points_document("line.csv", kModel, track, s), "warnings"), nullptr);
   // The sign convention is stated.
   const Section* def = find_section(d, "definitions");
   ASSERT_NE(def, nullptr);

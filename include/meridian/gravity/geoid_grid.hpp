@@ -6,8 +6,9 @@
 /// labelled fallback only (see grid_deflection_fallback).
 
 #include <cstdint>
-#include <limits>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,23 +16,42 @@ namespace meridian::gravity {
 
 /// A regular latitude/longitude grid of geoid heights (metres). Node (r, c)
 /// lies at latitude first_lat_rad + r·dlat_rad, longitude
-/// first_lon_rad + c·dlon_rad (dlat may be negative: rows north to south).
+/// first_lon_rad + c·dlon_rad (dlat may be negative: rows north to south;
+/// dlon is positive).
 class GeoidGrid {
  public:
+  /// GTX's no-data value (NOAA VDatum, PROJ).
+  static constexpr float kGtxNoData = -88.8888f;
+  /// Nodes with |value| above this hold no data. The Earth's geoid lies
+  /// within about −107 m (south of India) and +86 m (New Guinea) in EGM2008;
+  /// 150 m leaves room for any model or datum while catching fill values
+  /// such as 9999 or −32768 that are not flagged as GTX no-data.
+  static constexpr double kMaxGeoidHeight_m = 150.0;
+
   std::string source_file;
   std::string format;            ///< "gtx" or "pgm"
   double first_lat_rad = 0, first_lon_rad = 0, dlat_rad = 0, dlon_rad = 0;
   int rows = 0, cols = 0;
-  bool wraps_longitude = false;  ///< covers all longitudes (column index taken modulo the period)
-  int lon_period_cols = 0;       ///< columns per 360° when wraps_longitude
+  /// Covers all longitudes: cols·Δλ reaches 360° with or without a repeated
+  /// first column (360°/Δλ a whole number); column indices are then taken
+  /// modulo lon_period_cols.
+  bool wraps_longitude = false;
+  int lon_period_cols = 0;  ///< columns per 360° when wraps_longitude
+  /// `.pgm` header comments `# Key value` as read (Description, DateTime,
+  /// Vertical_Datum, …; Offset and Scale included); empty for `.gtx`, whose
+  /// header holds only the geometry.
+  std::map<std::string, std::string> metadata;
 
-  /// Height at node (r, c) in metres; NaN where the file has no data.
-  double node_m(int r, int c) const noexcept {
+  /// The value stored at node (r, c) in metres (0 ≤ r < rows, 0 ≤ c < cols),
+  /// no-data values included.
+  double stored_m(int r, int c) const noexcept {
     const std::size_t k = static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c);
     if (!u16_.empty()) return offset_m_ + scale_m_ * u16_[k];
-    const float v = f32_[k];
-    return v == -88.8888f ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(v);
+    return static_cast<double>(f32_[k]);
   }
+  /// Height at node (r, c) in metres; nullopt where the node holds no data:
+  /// kGtxNoData, a value that is not finite, or |value| > kMaxGeoidHeight_m.
+  std::optional<double> node_m(int r, int c) const noexcept;
 
   // Storage (readers fill one of them).
   std::vector<float> f32_;          ///< gtx: float32 heights, −88.8888 = no data
@@ -43,7 +63,10 @@ class GeoidGrid {
 /// Δlon in degrees, rows, cols; then float32 heights, south row first) or a
 /// GeographicLib `.pgm` (P5, 16-bit, `# Offset`, `# Scale`, rows from 90°N,
 /// columns from 0°E over 360°). Errors (ParseError/IoError naming the file):
-/// bad header, sizes, truncated data.
+/// bad header (a `.gtx` origin outside [−90°, 90°] × [−360°, 360°], steps not
+/// in [1e-6°, 180°] and [1e-6°, 360°], fewer than 2 rows or columns, rows beyond the
+/// pole, columns spanning more than 360° plus one repeated column), sizes,
+/// truncated or over-long data, `.pgm` header text that is not UTF-8.
 GeoidGrid read_geoid_grid(const std::filesystem::path& path);
 
 enum class GridInterpolation { Bilinear, Bicubic };
@@ -51,11 +74,31 @@ enum class GridInterpolation { Bilinear, Bicubic };
 /// "bilinear" or "bicubic", as the CLI option and the JSON output name them.
 const char* to_string(GridInterpolation interpolation) noexcept;
 
-/// Interpolated geoid height (m) at geodetic (lat_rad, lon_rad). Bicubic is
-/// Keys' cubic convolution (a = −1/2; exact for quadratics) on the 4×4
-/// nodes around the point, falling back to bilinear where those are not all
-/// inside the grid. Throws InputError outside the grid or where a needed
-/// node has no data.
+/// An interpolated geoid height and how it was obtained.
+struct GridHeight {
+  double geoid_m = 0;
+  GridInterpolation used = GridInterpolation::Bicubic;  ///< may be Bilinear where Bicubic was asked (see note)
+  std::string note;  ///< why the interpolation used differs from the one asked; empty when it does not
+};
+
+/// Interpolated geoid height at geodetic (lat_rad, lon_rad). The longitude
+/// is reduced modulo 360° to the grid's longitudes first (a grid on
+/// 230°–250° E takes −124.5°; one on 172°–190° E takes −179°). Bilinear uses
+/// the 4 nodes around the point (GeographicLib's Geoid with cubic = false);
+/// bicubic is Keys' cubic convolution (a = −1/2; exact for quadratics) on
+/// the 4×4 nodes around it. Only nodes with a non-zero weight are needed.
+/// Bicubic falls back to bilinear (GridHeight::used, note) where its 4×4
+/// nodes are not all inside the grid, or where a needed one of them holds
+/// no data but the 4 bilinear nodes do. Throws InputError with field "lat"
+/// or "lon" for a coordinate that is not finite, a latitude outside ±90° or
+/// outside the grid, a longitude outside a regional grid; and with field
+/// "node(r,c)" naming the node, its position and value when a node the
+/// interpolation needs holds no data (GeoidGrid::node_m) — never a height
+/// computed from a no-data value.
+GridHeight grid_geoid_height(const GeoidGrid& grid, double lat_rad, double lon_rad,
+                             GridInterpolation interpolation = GridInterpolation::Bicubic);
+
+/// grid_geoid_height(...).geoid_m.
 double grid_geoid_height_m(const GeoidGrid& grid, double lat_rad, double lon_rad,
                            GridInterpolation interpolation = GridInterpolation::Bicubic);
 
@@ -63,24 +106,46 @@ double grid_geoid_height_m(const GeoidGrid& grid, double lat_rad, double lon_rad
 /// distance), η = −∂N/∂(east distance), central differences of the
 /// interpolated surface over one grid step on the ellipsoid (a_m, f).
 /// Inaccurate (quantisation, interpolation slope discontinuities, the grid's
-/// smoothing); prefer a spherical-harmonic model (GravityField).
+/// smoothing); prefer a spherical-harmonic model (GravityField). Throws as
+/// grid_geoid_height for any of the four neighbours.
 struct GridDeflection {
   double xi_rad = 0, eta_rad = 0;
   const char* method = "grid-gradient fallback (not a spherical-harmonic deflection)";
 };
 GridDeflection grid_deflection_fallback(const GeoidGrid& grid, double lat_rad, double lon_rad,
-                                        double a_m = 6378137.0, double f = 1 / 298.257223563);
+                                        double a_m = 6378137.0, double f = 1 / 298.257223563,
+                                        GridInterpolation interpolation = GridInterpolation::Bicubic);
+
+/// What a grid file says about the model its heights come from. A `.gtx`
+/// says nothing; a GeographicLib `.pgm` names it in `# Description` at most.
+/// None of the formats states the degree, GM, reference radius, tide system
+/// or normalisation, so `warnings` always says so.
+struct GridModelInfo {
+  std::string format;                    ///< "gtx" or "pgm"
+  std::optional<std::string> model;      ///< `.pgm` Description, when given
+  std::map<std::string, std::string> metadata;  ///< GeoidGrid::metadata
+  std::vector<std::string> warnings;     ///< what the file does not state
+};
+GridModelInfo grid_model_info(const GeoidGrid& grid);
 
 /// `meridian gravity geoid-grid`: N and the labelled fallback deflection at one point.
 struct GridPointResult {
   std::string grid_file;  ///< GeoidGrid::source_file
-  GridInterpolation interpolation = GridInterpolation::Bicubic;
-  double lat_rad = 0, lon_rad = 0;
-  double geoid_m = 0;       ///< grid_geoid_height_m
-  GridDeflection fallback;  ///< grid_deflection_fallback on the default ellipsoid (FALLBACK ONLY)
+  GridModelInfo grid;
+  GridInterpolation interpolation = GridInterpolation::Bicubic;       ///< asked for
+  GridInterpolation interpolation_used = GridInterpolation::Bicubic;  ///< GridHeight::used
+  double lat_rad = 0, lon_rad = 0;  ///< as given (the longitude not reduced)
+  double geoid_m = 0;               ///< grid_geoid_height
+  /// grid_deflection_fallback on the default ellipsoid with the same
+  /// interpolation (FALLBACK ONLY); nullopt when a neighbour is unavailable.
+  std::optional<GridDeflection> fallback;
+  std::string fallback_unavailable;  ///< why fallback is nullopt
+  std::vector<std::string> notes;    ///< GridHeight::note, when there is one
 };
 
-/// grid_geoid_height_m and grid_deflection_fallback at one point (errors as theirs).
+/// grid_geoid_height and grid_deflection_fallback at one point. Errors as
+/// grid_geoid_height's for N; a failure of the deflection (a neighbour outside
+/// the grid or without data) only leaves `fallback` empty, with the reason.
 GridPointResult evaluate_grid_point(const GeoidGrid& grid, double lat_rad, double lon_rad,
                                     GridInterpolation interpolation = GridInterpolation::Bicubic);
 

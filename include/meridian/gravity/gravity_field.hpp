@@ -107,12 +107,15 @@ class GravityField {
   double model_radius_m() const noexcept { return radius_m_; }
 
   /// All quantities at one point. Throws InputError for a latitude outside
-  /// ±90°, a height outside [kMinHeight_m, kMaxHeight_m] or non-finite input.
+  /// ±90°, a height outside [kMinHeight_m, kMaxHeight_m] or non-finite input;
+  /// NumericalError when a requested value is not finite (a model whose
+  /// coefficients, GM or radius are out of range): never NaN or infinity.
   FieldValues evaluate(const GeodeticPoint& p, Quantities what = Quantities::All) const;
 
   /// Many points, vectorised across points and spread over
   /// FieldOptions::threads threads. Result i belongs to points[i]. All
-  /// points are validated first (InputError with field "points[i]").
+  /// points are validated first (InputError with field "points[i]");
+  /// NumericalError as the single-point evaluate, field "points[i]".
   std::vector<FieldValues> evaluate(std::span<const GeodeticPoint> points,
                                     Quantities what = Quantities::All) const;
 

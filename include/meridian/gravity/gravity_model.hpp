@@ -35,7 +35,14 @@ struct GeoidCorrection {
 struct GravityModelData {
   std::string name;                  ///< model name (ICGEM modelname / egm Name)
   std::string description;
-  std::string tide_system;           ///< as stated by the file ("tide_free", "zero_tide", "unknown", …)
+  /// As stated by the file ("tide_free", "zero_tide", "mean_tide", "unknown", …);
+  /// empty when the file does not say (a GeographicLib `.egm` never does).
+  std::string tide_system;
+  /// As stated by the file (ICGEM `norm`: "fully_normalized"; `.egm`
+  /// `Normalization`: "FULL"); empty when it does not say. Either way the
+  /// coefficients are fully normalised (coefficients.hpp): the readers
+  /// reject every other normalisation, and both formats default to it.
+  std::string normalization;
   std::string source_file;           ///< path it was read from (empty for generated models)
   double gm_m3_s2 = 0;               ///< GM of the model (m³/s²)
   double radius_m = 0;               ///< reference radius a of the expansion (m)

@@ -20,16 +20,32 @@
 
 namespace meridian::gravity {
 
-/// The model a result came from, as reports name it.
+/// The model a result came from, as reports name it: what its file states.
 struct ModelInfo {
   std::string name;         ///< GravityModelData::name
   std::string source_file;  ///< the file it was read from
   int max_degree = 0;       ///< degree evaluated (after truncation on load)
   int file_max_degree = 0;  ///< degree stated by the file
+  double gm_m3_s2 = 0;      ///< GM of the model (m³/s²), as read
+  double radius_m = 0;      ///< reference radius a of the expansion (m), as read
+  std::string tide_system;    ///< GravityModelData::tide_system; empty when the file does not say
+  std::string normalization;  ///< GravityModelData::normalization; empty when the file does not say
+  std::string description;    ///< GravityModelData::description
 };
 
 /// ModelInfo of a model and the engine built from it.
 ModelInfo model_info(const GravityModelData& model, const GravityField& field);
+
+/// What a user must know about a model's metadata before using its
+/// numbers: a warning when the file does not state its tide system (or
+/// states "unknown"), since N and ξ, η then belong to an unnamed one
+/// (mean-tide, zero-tide and tide-free geoids differ by up to decimetres at
+/// high latitudes). Empty when there is nothing to warn about.
+std::vector<std::string> model_warnings(const ModelInfo& model);
+
+/// The normalisation as reports print it: as stated, or "fully normalised
+/// (not stated; the format's default)" — the only one the readers accept.
+std::string normalization_text(const ModelInfo& model);
 
 /// `gravity point`: the model's values at one point.
 struct PointResult {

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses of tests/fuzz (clang, ASan+UBSan, in
+# build-fuzz/) and runs each for a bounded time on a copy of its seed corpus.
+#   scripts/fuzz.sh                   every harness for FUZZ_SECONDS (default 20) each
+#   scripts/fuzz.sh fuzz_icgem ...    only these harnesses
+#   FUZZ_RUNS=1000000 scripts/fuzz.sh bounded by executions instead of time
+# A crash, a leak, a hang (> 10 s on one input) or an allocation above
+# FUZZ_RSS_MB (default 1024) stops with the reproducer written to
+# build-fuzz/findings/<harness>/ and exit status 1. docs/reliability.md
+# records the runs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${FUZZ_SECONDS:-20}
+rss=${FUZZ_RSS_MB:-1024}
+harnesses=(fuzz_gyro_reduce fuzz_gyro_campaign fuzz_icgem fuzz_egm fuzz_grid_gtx fuzz_grid_pgm fuzz_points_csv)
+(($#)) && harnesses=("$@")
+command -v clang++ > /dev/null || { echo "fuzz.sh: clang++ is missing (scripts/setup.sh installs it)" >&2; exit 1; }
+if [ ! -f build-fuzz/CMakeCache.txt ]; then
+  # -O1 with line tables (libFuzzer's advice), assertions on.
+  CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Fuzz -DCMAKE_CXX_FLAGS_FUZZ="-O1 -gline-tables-only" \
+    -DMERIDIAN_BUILD_FUZZERS=ON -DMERIDIAN_BUILD_TESTS=OFF -DMERIDIAN_HTML_REPORTS=OFF > /dev/null
+fi
+cmake --build build-fuzz -j"$(nproc)" --target fuzzers
+# The harnesses write each input to a file (the readers take paths): in memory where possible.
+scratch_base=/dev/shm; [ -d "$scratch_base" ] && [ -w "$scratch_base" ] || scratch_base=${TMPDIR:-/tmp}
+MERIDIAN_FUZZ_SCRATCH=$(mktemp -d "$scratch_base/meridian-fuzz.XXXXXX")
+export MERIDIAN_FUZZ_SCRATCH
+trap 'rm -rf "$MERIDIAN_FUZZ_SCRATCH"' EXIT
+status=0
+for h in "${harnesses[@]}"; do
+  work=build-fuzz/corpus/$h findings=build-fuzz/findings/$h
+  mkdir -p "$work" "$findings"
+  cp -n tests/fuzz/corpus/"$h"/* "$work"/ 2> /dev/null || true
+  limit=(-max_total_time="$seconds")
+  [ -n "${FUZZ_RUNS:-}" ] && limit=(-runs="$FUZZ_RUNS")
+  echo "== $h (${FUZZ_RUNS:+$FUZZ_RUNS runs}${FUZZ_RUNS:-$seconds s})"
+  if ! ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    build-fuzz/tests/fuzz/"$h" "${limit[@]}" -max_len=16384 -timeout=10 -rss_limit_mb="$rss" \
+      -malloc_limit_mb="$rss" -print_final_stats=1 -artifact_prefix="$findings/" "$work" \
+      > "build-fuzz/$h.log" 2>&1; then
+    tail -n 60 "build-fuzz/$h.log"
+    echo "fuzz.sh: $h found a problem; reproducer in $findings/" >&2
+    status=1
+  fi
+  grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb" "build-fuzz/$h.log" | tr '\n' ' '
+  echo
+done
+exit $status

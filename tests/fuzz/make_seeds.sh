@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Regenerates the seed corpora in tests/fuzz/corpus/ from examples/ and from
+# files the CLI writes (a synthetic degree-4 model), plus tiny grids and point
+# files made here. Usage: tests/fuzz/make_seeds.sh [path/to/meridian]
+set -euo pipefail
+cd "$(dirname "$0")"
+exe=${1:-../../build/meridian}
+c=corpus
+rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv}
+tmp=$(mktemp -d) && trap 'rm -rf "$tmp"' EXIT
+for f in tracking nontracking-noisy spec-scenario-2 transit-factor; do cp ../../examples/$f.yaml $c/fuzz_gyro_reduce/; done
+cp ../../examples/campaign.yaml $c/fuzz_gyro_campaign/
+# The same books as JSON (the readers take JSON as is).
+python3 - "$c" <<'PY'
+import json, sys, yaml
+c = sys.argv[1]
+for src, dst in [("../../examples/tracking.yaml", "fuzz_gyro_reduce/tracking.json"),
+                 ("../../examples/campaign.yaml", "fuzz_gyro_campaign/campaign.json")]:
+    with open(src) as f:
+        doc = yaml.safe_load(f)
+    with open(f"{c}/{dst}", "w") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+PY
+"$exe" gravity synth-model --degree 4 --seed 1 --out "$tmp/s4" > /dev/null
+cp "$tmp/s4.gfc" $c/fuzz_icgem/synth4.gfc
+{ cat "$tmp/s4.egm"; printf '\n@@COF@@\n'; cat "$tmp/s4.egm.cof"; } > $c/fuzz_egm/synth4.egm-and-cof
+python3 - "$c" <<'PY'
+import struct, sys
+c = sys.argv[1]
+def gtx(path, lat0, lon0, dlat, dlon, rows, cols, f):
+    with open(path, "wb") as out:
+        out.write(struct.pack(">ddddii", lat0, lon0, dlat, dlon, rows, cols))
+        for r in range(rows):
+            for k in range(cols):
+                out.write(struct.pack(">f", f(lat0 + r * dlat, lon0 + k * dlon)))
+plane = lambda la, lo: 20 + 0.8 * (la - 56) - 0.6 * (lo - 21)
+gtx(f"{c}/fuzz_grid_gtx/tile.gtx", 56, 21, 0.5, 0.5, 4, 4, lambda la, lo: -88.8888 if (la, lo) == (57.0, 22.0) else plane(la, lo))
+gtx(f"{c}/fuzz_grid_gtx/global30-west180.gtx", -90, -180, 30, 30, 7, 12, lambda la, lo: 0.1 * la - 0.05 * lo)
+gtx(f"{c}/fuzz_grid_gtx/antimeridian.gtx", -20, 172, 2, 2, 3, 5, lambda la, lo: 10 + 0.1 * la)
+# A GeographicLib .pgm: rows from 90 N, columns from 0 E over 360 deg.
+rows, cols = 7, 12
+with open(f"{c}/fuzz_grid_pgm/global30.pgm", "wb") as out:
+    out.write(b"P5\n# Description seed grid\n# Offset -108\n# Scale 0.003\n%d %d\n65535\n" % (cols, rows))
+    for r in range(rows):
+        for k in range(cols):
+            out.write(struct.pack(">H", (r * 977 + k * 131) % 65536))
+PY
+printf 'lat,lon,h\n10,20,0\n-89.9,0,5000\n45 30 00,-120,100\n' > $c/fuzz_points_csv/header-comma.csv
+printf '# comment\r\n56.3;21.2;10.5\r\n\r\n-33 52 10.5;151 12 30;0\r\n' > $c/fuzz_points_csv/semicolon-crlf.csv
+printf '0 0\n89.999 539.9 -400\n' > $c/fuzz_points_csv/whitespace.csv
+du -sh $c
