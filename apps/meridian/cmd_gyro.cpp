@@ -58,7 +58,7 @@ int run_stochastic(const StochasticArgs& a) {
   TerminalProgress progress(a.quiet);
   const io::StochasticJob job = io::run_stochastic_file(a.file, &progress);
   progress.finish();
-  emit(a.output, a.json ? report::stochastic_to_json(job).dump(2) + "\n" : report::stochastic_text(job));
+  emit(a.output, a.json ? report::stochastic_to_json(job.file, job.result).dump(2) + "\n" : report::stochastic_text(job.file, job.result));
   return kOk;
 }
 

@@ -19,7 +19,7 @@ StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* p
   const auto& dets = f.input.determinations;
   const auto add = [&](std::string field, std::string label, bool tracking, double ref,
                        std::vector<double> readings) {
-    StochasticSeries s;
+    gyro::StochasticSeries s;
     s.label = label.empty() ? field : field + " (" + label + ")";
     s.tracking = tracking;
     s.reference_rad = ref;
@@ -32,7 +32,7 @@ StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* p
       locate_error(e, f.file, f.lines);
       throw;
     }
-    job.series.push_back(std::move(s));
+    job.result.series.push_back(std::move(s));
   };
   for (std::size_t d = 0; d < dets.size(); ++d) {
     const auto& det = dets[d];
@@ -49,7 +49,7 @@ StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* p
     if (det.zero_after && det.zero_after->reversals_div.size() >= 6)
       add(base + ".zero_after", det.label, false, 0.0, det.zero_after->reversals_div);
   }
-  if (job.series.empty())
+  if (job.result.series.empty())
     throw InputError(
         "no reversal-point series with at least 6 readings (tracking reversals or "
         "zero-position runs): the stochastic models need 3 unknowns, 2 variance "

@@ -17,7 +17,7 @@ nlohmann::json nums(const std::vector<double>& v) {
   return a;
 }
 
-double north_deg(const io::StochasticSeries& s, double m_arcsec) {
+double north_deg(const gyro::StochasticSeries& s, double m_arcsec) {
   double deg = (s.reference_rad + units::arcsec_to_rad(m_arcsec)) / units::kDegree;
   deg = std::fmod(deg, 360.0);
   if (deg < 0.0) deg += 360.0;
@@ -26,9 +26,9 @@ double north_deg(const io::StochasticSeries& s, double m_arcsec) {
 
 }  // namespace
 
-nlohmann::json stochastic_to_json(const io::StochasticJob& job) {
-  nlohmann::json out{{"file", job.file}, {"series", nlohmann::json::array()}};
-  for (const auto& s : job.series) {
+nlohmann::json stochastic_to_json(const std::string& file, const gyro::StochasticBookResult& book) {
+  nlohmann::json out{{"file", file}, {"series", nlohmann::json::array()}};
+  for (const auto& s : book.series) {
     const std::string u = s.tracking ? "arcsec" : "div";
     nlohmann::json js{
         {"label", s.label},
@@ -79,12 +79,12 @@ nlohmann::json stochastic_to_json(const io::StochasticJob& job) {
   return out;
 }
 
-std::string stochastic_text(const io::StochasticJob& job) {
-  std::string o = fmt::format("Stochastic models of reversal-point series: {}\n", job.file);
+std::string stochastic_text(const std::string& file, const gyro::StochasticBookResult& book) {
+  std::string o = fmt::format("Stochastic models of reversal-point series: {}\n", file);
   const auto f = [](double x, int d) {
     return std::isfinite(x) ? fmt::format("{:.{}f}", x, d) : std::string("-");
   };
-  for (const auto& s : job.series) {
+  for (const auto& s : book.series) {
     o += fmt::format("\n{} — {} readings ({})\n", s.label, s.result.readings,
                      s.tracking ? "circle, arcsec" : "scale, div");
     o += fmt::format(

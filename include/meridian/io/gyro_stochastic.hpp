@@ -12,26 +12,16 @@
 
 #include <filesystem>
 #include <string>
-#include <vector>
 
 #include "meridian/core/progress.hpp"
-#include "meridian/gyro/stochastic.hpp"
+#include "meridian/gyro/stochastic_book.hpp"
 
 namespace meridian::io {
 
-/// One series of the file and its analysis.
-struct StochasticSeries {
-  std::string
-      label;  ///< "determinations[0]" or "determinations[1].zero_before" (+ the book's label)
-  bool tracking = true;        ///< circle readings (arcsec) or zero-position scale readings (div)
-  double reference_rad = 0.0;  ///< tracking: readings are arcsec relative to this
-  gyro::StochasticInput input;
-  gyro::StochasticResult result;
-};
-
+/// A field book and the analysis of its series.
 struct StochasticJob {
   std::string file;
-  std::vector<StochasticSeries> series;
+  gyro::StochasticBookResult result;
 };
 
 /// Read a reduce field book and analyse every series. Throws the reader's

@@ -1,6 +1,6 @@
 #pragma once
 /// \file gyro_stochastic.hpp
-/// Text and JSON of `meridian gyro stochastic` (io/gyro_stochastic.hpp): per series the
+/// Text and JSON of `meridian gyro stochastic` (gyro/stochastic_book.hpp): per series the
 /// model-comparison table, the likelihood-ratio tests and the recommended model.
 ///
 /// JSON: {file, series: [{label, kind ("tracking" | "zero-position"), readings, models: [...],
@@ -16,13 +16,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "meridian/io/gyro_stochastic.hpp"
+#include "meridian/gyro/stochastic_book.hpp"
 
 namespace meridian::report {
 
-nlohmann::json stochastic_to_json(const io::StochasticJob& job);
+/// JSON of the analysis of the field book `file`.
+nlohmann::json stochastic_to_json(const std::string& file, const gyro::StochasticBookResult& book);
 
 /// The comparison table per series (fixed-width text; σ in arcsec or div).
-std::string stochastic_text(const io::StochasticJob& job);
+std::string stochastic_text(const std::string& file, const gyro::StochasticBookResult& book);
 
 }  // namespace meridian::report
