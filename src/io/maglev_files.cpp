@@ -20,7 +20,29 @@ namespace {
 struct Columns {
   std::size_t time = 0, current = 1;
   std::optional<std::size_t> position;
+  double time_scale = 1.0;     // header unit → s
+  double current_scale = 1.0;  // header unit → A
 };
+
+// The factor that turns a value in the header's unit into SI (s or A); the unit of a column
+// the header names is never ignored: an unknown one is an input error at the header line.
+double unit_scale(RecordReader& rr, std::size_t column, const char* field, bool current) {
+  const auto& header = rr.header();
+  if (column >= header.size()) return 1.0;
+  const std::string& u = header[column].unit;
+  if (current) {
+    if (u.empty() || u == "A") return 1.0;
+    if (u == "mA") return 1e-3;
+    if (u == "uA" || u == "µA" || u == "μA") return 1e-6;
+  } else {
+    if (u.empty() || u == "s") return 1.0;
+    if (u == "ms") return 1e-3;
+    if (u == "min") return 60.0;
+  }
+  throw InputError(fmt::format("unit [{}] is not understood here (use {})", u,
+                               current ? "A, mA or uA" : "s, ms or min"),
+                   {rr.source(), rr.header_line(), field});
+}
 
 Columns series_columns(RecordReader& rr) {
   Columns c;
@@ -32,6 +54,8 @@ Columns series_columns(RecordReader& rr) {
       c.current = *i;
     }
     c.position = rr.find_column("position");
+    c.time_scale = unit_scale(rr, c.time, "time", false);
+    c.current_scale = unit_scale(rr, c.current, "current", true);
   }
   return c;
 }
@@ -65,8 +89,8 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
               r.context(*c.position, {"position"}));
         f = one;
       }
-      const double t = r.number(c.time, {"time", "time"});
-      const double i = r.number(c.current, {"current", "current"});
+      const double t = r.number(c.time, {"time", "time"}) * c.time_scale;
+      const double i = r.number(c.current, {"current", "current"}) * c.current_scale;
       if (!f->series.time_s.empty() && !(t > f->series.time_s.back()))
         throw InputError(
             fmt::format("time does not increase ({} s after {} s)", t, f->series.time_s.back()),
@@ -146,6 +170,9 @@ maglev::CalibrationInput read_maglev_calibration_table(const std::string& path) 
     if (all)
       for (int k = 0; k < 5; ++k) col[k] = *rr.find_column(names[k]);
   }
+  double scale[5] = {1.0, 1.0, 1.0, 1.0, 1.0};
+  if (!rr.header().empty())
+    for (int k = 1; k < 5; ++k) scale[k] = unit_scale(rr, col[k], names[k], true);
   maglev::CalibrationInput in;
   RecordChunk chunk;
   while (rr.next(chunk, 4096)) {
@@ -158,8 +185,8 @@ maglev::CalibrationInput read_maglev_calibration_table(const std::string& path) 
             r.context());
       maglev::CalibrationSetup s;
       s.azimuth_rad = r.angle(col[0], {"azimuth"}).rad();
-      s.mean1_A = {r.number(col[1], {"mean1"}), r.number(col[2], {"sigma1"})};
-      s.mean2_A = {r.number(col[3], {"mean2"}), r.number(col[4], {"sigma2"})};
+      s.mean1_A = {r.number(col[1], {"mean1"}) * scale[1], r.number(col[2], {"sigma1"}) * scale[2]};
+      s.mean2_A = {r.number(col[3], {"mean2"}) * scale[3], r.number(col[4], {"sigma2"}) * scale[4]};
       if (!(s.mean1_A.sigma > 0.0))
         throw InputError("sigma1 must be > 0", r.context(col[2], {"sigma1"}));
       if (!(s.mean2_A.sigma > 0.0))

@@ -268,6 +268,11 @@ const std::vector<Column>& RecordReader::header() {
   return layout_->columns;
 }
 
+int RecordReader::header_line() {
+  header();
+  return header_line_;
+}
+
 std::optional<std::size_t> RecordReader::find_column(std::string_view name) {
   const auto& cs = header();
   for (std::size_t i = 0; i < cs.size(); ++i)

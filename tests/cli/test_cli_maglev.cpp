@@ -2,6 +2,7 @@
 // calibrate, and the errors for bad input (exit codes, file:line:field).
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -149,6 +150,38 @@ TEST_F(MaglevCli, BadInputNamesFileLineAndField) {
   r = run("maglev reduce d-1.csv d-2.csv --latitude 35 -q");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("--scale"), std::string::npos) << r.err;
+}
+
+// Units in the header are applied, never ignored: the same series in ms and mA gives the
+// same determination; a unit that is not understood is an error at the header line.
+TEST_F(MaglevCli, HeaderUnitsAreAppliedOrRefused) {
+  ASSERT_EQ(run(sim_ + "--samples 3000 --seed 2 --out d").code, 0);
+  for (const char* pos : {"1", "2"}) {
+    std::istringstream in(slurp(dir_ / (std::string("d-") + pos + ".csv")));
+    std::string line, out = "# converted\ntime [ms],current [mA]\n";
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+      const auto comma = line.find(',');
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.17g,%.17g\n", std::stod(line.substr(0, comma)) * 1e3,
+                    std::stod(line.substr(comma + 1)) * 1e3);
+      out += buf;
+    }
+    write(std::string("m-") + pos + ".csv", out);
+  }
+  const CmdResult si = run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 --json -q");
+  const CmdResult milli = run("maglev reduce m-1.csv m-2.csv --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(si.code, 0) << si.err;
+  ASSERT_EQ(milli.code, 0) << milli.err;
+  const auto a = nlohmann::json::parse(si.out)["result"];
+  const auto b = nlohmann::json::parse(milli.out)["result"];
+  EXPECT_NEAR(b["alpha1_arcsec"].get<double>(), a["alpha1_arcsec"].get<double>(), 1e-6);
+  EXPECT_NEAR(b["alpha1_sigma_arcsec"].get<double>(), a["alpha1_sigma_arcsec"].get<double>(), 1e-6);
+  write("volt.csv", "# a comment\ntime [s],current [V]\n0,0.01\n1,0.02\n");
+  const CmdResult r = run("maglev reduce volt.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("volt.csv:2: current"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("[V]"), std::string::npos) << r.err;
 }
 
 TEST_F(MaglevCli, HtmlReportsShowTheSeriesAndSegments) {

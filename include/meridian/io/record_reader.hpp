@@ -208,6 +208,8 @@ class RecordReader {
   /// line and the columns there are.
   std::size_t require_column(std::string_view name);
 
+  /// Line of the header (1-based; read now if not yet read); 0 without a header.
+  int header_line();
   /// The delimiter in use: Auto until the first data line has been read.
   Delimiter delimiter() const noexcept { return delimiter_; }
   /// Bytes consumed from the stream so far (line ends included); for progress.
