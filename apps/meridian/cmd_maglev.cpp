@@ -241,12 +241,16 @@ int run_simulate(const SimulateArgs& a, const std::string& command) {
   t.latitude_rad = lat;
   t.circle_reading1_rad = angle_option(a.reading1, "--reading1");
   maglev::NoiseSpec s1 = a.noise, s2 = a.noise;
+  s2.start_s = a.noise.start_s + static_cast<double>(a.noise.samples) / a.noise.rate_hz + 30.0;
   for (const auto& b : a.bursts) {
     int pos = 1;
-    const auto burst = parse_burst(b, pos);
-    (pos == 1 ? s1 : s2).bursts.push_back(burst);
+    maglev::Burst burst = parse_burst(b, pos);
+    // Burst times count from the start of their position's series.
+    maglev::NoiseSpec& s = pos == 1 ? s1 : s2;
+    burst.begin_s += s.start_s;
+    burst.end_s += s.start_s;
+    s.bursts.push_back(burst);
   }
-  s2.start_s = a.noise.start_s + static_cast<double>(a.noise.samples) / a.noise.rate_hz + 30.0;
   const auto in = maglev::simulate_determination(t, s1, s2, a.seed);
   const std::string header = fmt::format(
       "made by: {}\ntruth: alpha1 {:.6f} deg, K {} A*s/rad, b {} A, latitude {:.6f} deg, r1 {:.6f} "
@@ -378,7 +382,7 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--drift", sa->noise.drift_A_per_s, "Drift (A/s)")->capture_default_str();
   sim->add_option(
       "--burst", sa->bursts,
-      "Interference: position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz (repeatable)");
+      "Interference: position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz, times from the start of that position's series (repeatable)");
   sim->add_option("--seed", sa->seed, "Random seed")->capture_default_str();
   sim->add_flag("--one-file", sa->one_file,
                 "Write OUT.csv with a position column instead of OUT-1.csv, OUT-2.csv");

@@ -17,10 +17,16 @@ PositionSeries simulate_series(double mean_A, const NoiseSpec& spec, std::uint64
     throw InputError("noise σ must be ≥ 0");
   if (!(std::abs(spec.ar1_phi) < 1.0))
     throw InputError("the AR(1) coefficient must be within (−1, 1)");
-  for (const auto& b : spec.bursts)
+  const double last_s = spec.start_s + static_cast<double>(spec.samples - 1) / spec.rate_hz;
+  for (const auto& b : spec.bursts) {
     if (!(b.end_s > b.begin_s) || b.frequency_begin_hz < 0.0 || b.frequency_end_hz < 0.0)
       throw InputError(fmt::format("burst [{} s, {} s) is empty or has a negative frequency",
                                    b.begin_s, b.end_s));
+    // A burst that touches no sample would be silently absent from the series.
+    if (b.end_s <= spec.start_s || b.begin_s > last_s)
+      throw InputError(fmt::format("burst [{} s, {} s) lies outside the series [{} s, {} s]",
+                                   b.begin_s, b.end_s, spec.start_s, last_s));
+  }
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> n01(0.0, 1.0);
   PositionSeries s;

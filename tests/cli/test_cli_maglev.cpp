@@ -184,6 +184,25 @@ TEST_F(MaglevCli, HeaderUnitsAreAppliedOrRefused) {
   EXPECT_NE(r.err.find("[V]"), std::string::npos) << r.err;
 }
 
+// A burst on position 2 counts from that position's start and shows in its plain mean; a
+// burst that touches no sample is an error rather than silently absent.
+TEST_F(MaglevCli, SimulatedBurstsArePlacedInTheirPositionOrRefused) {
+  const std::string base = sim_ + "--samples 3000 --rate-hz 20 --seed 4 ";
+  ASSERT_EQ(run(base + "--out clean").code, 0);
+  ASSERT_EQ(run(base + "--burst 2:10:40:2e-3:6e-4:0.5:8 --out hit").code, 0);
+  const auto mean2 = [&](const std::string& prefix) {
+    const CmdResult r =
+        run("maglev reduce " + prefix + "-1.csv " + prefix + "-2.csv --scale 8000 --latitude 35 --json -q");
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(r.out)["position2"]["mean_all_A"].get<double>();
+  };
+  // The burst's offset (0.6 mA at full envelope over 30 s of 150 s) moves the plain mean.
+  EXPECT_GT(std::abs(mean2("hit") - mean2("clean")), 5e-5);
+  const CmdResult r = run(base + "--burst 1:500:600:2e-3:6e-4:0.5:8 --out miss");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("outside the series"), std::string::npos) << r.err;
+}
+
 TEST_F(MaglevCli, HtmlReportsShowTheSeriesAndSegments) {
   ASSERT_EQ(run(sim_ + "--samples 4000 --rate-hz 20 --burst 1:63:103:2e-3:6e-4:0.5:8 --seed 2 --out d").code, 0);
   const CmdResult r = run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 -q -o out.txt --report r.html");

@@ -16,7 +16,8 @@
 /// Deterministic for a seed (std::mt19937_64; the same seed gives the same
 /// series on one standard library). Units: SI (A, s, Hz, rad).
 /// Errors: InputError for a non-positive rate or sample count, σ < 0,
-/// |φ| ≥ 1, a burst with end ≤ begin or a negative frequency.
+/// |φ| ≥ 1, a burst with end ≤ begin or a negative frequency, a burst that touches no
+/// sample (its times are on the series' clock, which starts at start_s).
 
 #include <cstdint>
 #include <vector>
