@@ -16,9 +16,12 @@
 ///     segments on its own (a run too short for the level gets the deepest
 ///     level it allows; a run too short for level 1 is used as it is);
 ///  3. the mean of the cleaned kept samples. Its σ is that of the kept raw
-///     samples (series_statistics.hpp, effective sample size): denoising
-///     removes high-frequency noise but not the low-frequency part that
-///     limits a mean, so it does not make the mean more precise.
+///     samples taken as one series (series_statistics.hpp, effective sample
+///     size; the same estimator as for all samples, so the same samples give
+///     the same σ): denoising removes high-frequency noise but not the
+///     low-frequency part that limits a mean, so it does not make the mean
+///     more precise. A warning when the correlation time exceeds a tenth of
+///     the segment length (the segment tests are then approximate).
 /// Without processing, every sample is kept and used raw.
 /// Then model.hpp: α_1 = asin((Ī_1 − Ī_2)/(2A)), N_G = r_1 − α_1, b̂.
 ///
