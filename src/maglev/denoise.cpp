@@ -126,7 +126,19 @@ DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options) 
       if (r.noise_sigma > 0.0) {
         std::vector<double> z(d.size());
         for (std::size_t i = 0; i < d.size(); ++i) z[i] = d[i] / r.noise_sigma;
-        lambda = r.noise_sigma * sure_threshold(z);
+        const double t = sure_threshold(z);
+        // λ_j is the chosen coefficient's own |d_i| (σ·|d_i/σ| may differ from it in the last
+        // bit), so that coefficient sits exactly on the threshold and the tie rule decides:
+        // hard keeps |d| ≥ λ (pywt.threshold), soft shrinks it to 0.
+        lambda = 0.0;
+        if (t > 0.0) {
+          double best = HUGE_VAL;
+          for (double v : d)
+            if (std::abs(std::abs(v) - r.noise_sigma * t) < best) {
+              best = std::abs(std::abs(v) - r.noise_sigma * t);
+              lambda = std::abs(v);
+            }
+        }
       } else {
         lambda = 0.0;
       }

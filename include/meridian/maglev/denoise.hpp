@@ -16,9 +16,11 @@
 ///    risk estimate SURE(t) = n_j − 2·#{|d_i/σ| ≤ t} + Σ min((d_i/σ)², t²)
 ///    over t ∈ {0, |d_i/σ|} (Donoho & Johnstone 1995, Adapting to unknown
 ///    smoothness via wavelet shrinkage, JASA 90(432)), limited to the
-///    universal threshold of the level σ·sqrt(2·ln n_j); λ_j = σ·t.
+///    universal threshold of the level σ·sqrt(2·ln n_j); λ_j = |d_i| of the
+///    coefficient at the minimum (exactly, not σ·t rounded).
 /// Thresholding (pywt.threshold): soft d → sign(d)·max(|d| − λ, 0); hard
-/// d → d when |d| ≥ λ, else 0.
+/// d → d when |d| ≥ λ, else 0. Ties: a SURE threshold always equals one
+/// |d_i|; hard thresholding keeps that coefficient (|d| ≥ λ), soft makes it 0.
 /// With the universal rule the result equals pywt.wavedec → pywt.threshold
 /// on every detail array → pywt.waverec, trimmed to n (tests compare 1e-10).
 ///
