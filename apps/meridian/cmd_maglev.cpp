@@ -1,6 +1,7 @@
 // meridian maglev reduce | denoise | simulate | calibrate
 
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,13 +53,39 @@ struct DenoiseArgs {
   }
 };
 
+// Invalid option values are command-line errors (exit 2, as a missing option), checked by CLI11
+// before anything runs.
+const CLI::Validator kWaveletName =
+    CLI::IsMember({"db2", "db3", "db4", "db5", "db6", "db7", "db8", "db9", "db10"});
+
+CLI::Validator open_unit_interval() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !(v > 0.0 && v < 1.0))
+          return fmt::format("{} is not in (0, 1)", text);
+        return {};
+      },
+      "in (0, 1)");
+}
+
 void add_denoise_options(CLI::App* c, DenoiseArgs& d) {
-  c->add_option("--wavelet", d.wavelet, "Daubechies wavelet db2 … db10")->capture_default_str();
-  c->add_option("--level", d.level, "Decomposition levels p")->capture_default_str();
-  c->add_option("--mode", d.mode, "Signal extension: symmetric | periodization")
+  c->add_option("--wavelet", d.wavelet, "Daubechies wavelet db2 … db10")
+      ->check(kWaveletName)
       ->capture_default_str();
-  c->add_option("--threshold", d.threshold, "soft | hard")->capture_default_str();
-  c->add_option("--rule", d.rule, "universal (sigma*sqrt(2 ln n)) | sure")->capture_default_str();
+  c->add_option("--level", d.level, "Decomposition levels p")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  c->add_option("--mode", d.mode, "Signal extension: symmetric | periodization")
+      ->check(CLI::IsMember({"symmetric", "periodization"}))
+      ->capture_default_str();
+  c->add_option("--threshold", d.threshold, "soft | hard")
+      ->check(CLI::IsMember({"soft", "hard"}))
+      ->capture_default_str();
+  c->add_option("--rule", d.rule, "universal (sigma*sqrt(2 ln n)) | sure")
+      ->check(CLI::IsMember({"universal", "sure"}))
+      ->capture_default_str();
 }
 
 struct ReduceArgs {
@@ -158,9 +185,9 @@ struct DenoiseCmdArgs {
 int run_denoise(const DenoiseCmdArgs& a) {
   const auto f = io::read_maglev_series_file(a.file, 0);
   const auto opts = a.d.options();
-  maglev::validate_series(f.series, "series");
   maglev::DenoiseResult r;
   try {
+    maglev::validate_series(f.series, "series");
     r = maglev::denoise(f.series.current_A, opts);
   } catch (Error& e) {
     e.add_context(f.file);
@@ -340,11 +367,23 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   red->add_flag("--no-process", ra->no_process,
                 "Plain means of all samples (no tests, no denoising)");
   red->add_flag("--no-denoise", ra->no_denoise, "Stationarity tests without wavelet denoising");
-  red->add_option("--segment", ra->segment, "Segment length in samples (0: about 20 segments)")
+  red->add_option("--segment", ra->segment,
+                  "Segment length in samples, >= 32 (0: about 20 segments)")
+      ->check(CLI::Validator(
+          [](std::string& t) -> std::string {
+            char* end = nullptr;
+            const long v = std::strtol(t.c_str(), &end, 10);
+            return !t.empty() && *end == '\0' && (v == 0 || v >= 32)
+                       ? std::string()
+                       : t + " is not 0 (automatic) or at least 32";
+          },
+          "0 or >= 32"))
       ->capture_default_str();
   red->add_option("--alpha", ra->alpha, "Significance level per position (family-wise)")
+      ->check(open_unit_interval())
       ->capture_default_str();
   red->add_option("--lags", ra->lags, "Autocovariance lags M of the segment test")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   add_denoise_options(red, ra->d);
   red->add_flag("--json", ra->json, "Print JSON instead of text");
@@ -352,7 +391,15 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   red->add_option("--report", ra->report,
                   "Also write a self-contained HTML report (series, segments) to this file");
   red->add_flag("-q,--quiet", ra->quiet, "No progress bar");
-  red->callback([ra, &exit_code] { exit_code = guarded([&] { return run_reduce(*ra); }); });
+  red->callback([ra, &exit_code] {
+    // K and φ may come from --config / --calibration; with neither file a missing option is a
+    // command-line error (exit 2). A file that lacks them is a bad input (exit 1).
+    if (!ra->scale && ra->config.empty() && ra->calibration.empty())
+      throw CLI::RequiredError("--scale (or --config / --calibration giving K)");
+    if (ra->latitude.empty() && ra->config.empty())
+      throw CLI::RequiredError("--latitude (or --config giving latitude)");
+    exit_code = guarded([&] { return run_reduce(*ra); });
+  });
 
   auto da = std::make_shared<DenoiseCmdArgs>();
   CLI::App* den = mg->add_subcommand(
@@ -423,7 +470,9 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   cal->add_option("--latitude", ca->latitude, "Latitude (DMS or deg)")->required();
   cal->add_option("--nominal-scale", ca->nominal_scale,
                   "Nominal K to compare the slopes with (A*s/rad)");
-  cal->add_option("--alpha", ca->alpha, "Significance level")->capture_default_str();
+  cal->add_option("--alpha", ca->alpha, "Significance level")
+      ->check(open_unit_interval())
+      ->capture_default_str();
   cal->add_flag("--json", ca->json,
                 "Print JSON (also the stored calibration for reduce --calibration)");
   cal->add_option("-o,--output", ca->output, "Write to this file (atomically) instead of stdout");

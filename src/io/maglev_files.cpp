@@ -64,6 +64,7 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
                MaglevSeriesFile* two) {
   RecordChunk chunk;
   const std::size_t need = std::max({c.time, c.current, c.position.value_or(0)}) + 1;
+  const std::size_t allowed = std::max(need, rr.header().size());
   while (rr.next(chunk, 65536)) {
     for (std::size_t k = 0; k < chunk.size(); ++k) {
       const Record r = chunk[k];
@@ -71,6 +72,15 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
         throw InputError(fmt::format("expected {} columns (time, current{}), got {}", need,
                                      c.position ? ", position" : "", r.size()),
                          r.context());
+      // A value beyond the columns the header names (or beyond time, current without a header)
+      // is a stray value, not something to drop silently; empty trailing fields are allowed.
+      for (std::size_t col = allowed; col < r.size(); ++col)
+        if (!r.field(col).empty())
+          throw InputError(
+              fmt::format("unexpected value \"{}\" in column {}: the {} names {} columns", r.field(col),
+                          col + 1, rr.header().empty() ? "format (time, current)" : "header",
+                          allowed),
+              r.context());
       int pos = want == 0 ? 1 : want;
       if (c.position) {
         const double p = r.number(*c.position, {"position", "position"});

@@ -77,8 +77,37 @@ TEST_F(MaglevCli, DenoiseWritesTheSeriesAndRefusesTooDeepALevel) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("level"), std::string::npos) << r.err;
   r = run("maglev denoise d-1.csv --wavelet db12");
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);  // an invalid option value is a bad command line
   EXPECT_NE(r.err.find("db2"), std::string::npos) << r.err;
+}
+
+// Invalid option values and missing required constants are command-line errors: exit 2
+// (docs/cli.md), before any file is read.
+TEST_F(MaglevCli, InvalidOptionValuesExitTwo) {
+  ASSERT_EQ(run(sim_ + "--samples 1000 --seed 5 --out d").code, 0);
+  for (const char* opts : {"--wavelet db1", "--wavelet haar", "--mode zero", "--rule minimax",
+                           "--threshold medium", "--level 0"}) {
+    const CmdResult r = run(std::string("maglev denoise d-1.csv ") + opts);
+    EXPECT_EQ(r.code, 2) << opts << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << opts;
+  }
+  const std::string red = "maglev reduce d-1.csv d-2.csv -q ";
+  for (const char* opts :
+       {"--scale 8000 --latitude 35 --alpha 0", "--scale 8000 --latitude 35 --alpha 1",
+        "--scale 8000 --latitude 35 --alpha x", "--scale 8000 --latitude 35 --lags 0",
+        "--scale 8000 --latitude 35 --segment 10", "--scale 8000 --latitude 35 --mode zero",
+        "--latitude 35", "--scale 8000"}) {
+    const CmdResult r = run(red + opts);
+    EXPECT_EQ(r.code, 2) << opts << ": " << r.err;
+  }
+  CmdResult r = run(red + "--latitude 35");
+  EXPECT_NE(r.err.find("--scale"), std::string::npos) << r.err;
+  r = run(red + "--scale 8000");
+  EXPECT_NE(r.err.find("--latitude"), std::string::npos) << r.err;
+  r = run("maglev calibrate nothing.csv --latitude 35 --alpha 1.5");
+  EXPECT_EQ(r.code, 2) << r.err;
+  // Valid values still run.
+  EXPECT_EQ(run(red + "--scale 8000 --latitude 35 --alpha 0.01 --lags 5 --segment 0").code, 0);
 }
 
 TEST_F(MaglevCli, CalibrationRecoversTheLinesAndFeedsReduce) {
@@ -130,7 +159,28 @@ TEST_F(MaglevCli, BadInputNamesFileLineAndField) {
   r = run("maglev reduce const.csv d-2.csv --scale 8000 --latitude 35 -q");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("const.csv"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("constant"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no variation in the series"), std::string::npos) << r.err;
+  // denoise names the file, not an internal field.
+  r = run("maglev denoise const.csv --level 2");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("const.csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no variation in the series"), std::string::npos) << r.err;
+  // A stray third value (no position column in the header): an error at file:line.
+  std::string extra = "time [s],current [A]\n";
+  for (int i = 0; i < 100; ++i)
+    extra += std::to_string(i) + ",0.01" + std::to_string(i % 7) + (i == 88 ? ",3\n" : "\n");
+  write("extra.csv", extra);
+  r = run("maglev reduce extra.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("extra.csv:90"), std::string::npos) << r.err;
+  r = run("maglev denoise extra.csv --level 2");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("extra.csv:90"), std::string::npos) << r.err;
+  // Empty trailing fields are not values.
+  std::string trailing = "time,current\n";
+  for (int i = 0; i < 100; ++i) trailing += std::to_string(i) + ",0.01" + std::to_string(i % 7) + ",\n";
+  write("trailing.csv", trailing);
+  EXPECT_EQ(run("maglev denoise trailing.csv --level 2").code, 0);
   // A position missing from a one-file input.
   write("one.csv", "time,current,position\n0,0.01,1\n1,0.02,1\n");
   r = run("maglev reduce one.csv --scale 8000 --latitude 35 -q");
@@ -146,9 +196,9 @@ TEST_F(MaglevCli, BadInputNamesFileLineAndField) {
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.err.find("> 1"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
-  // Missing constants.
+  // Missing constants: a bad command line.
   r = run("maglev reduce d-1.csv d-2.csv --latitude 35 -q");
-  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--scale"), std::string::npos) << r.err;
 }
 
