@@ -17,9 +17,12 @@ M=${1:-../build/meridian}
   --levels 0 -o transit-factor.yaml
 # Maglev gyro (docs/maglev-gyro.md): a two-position determination, 4000 samples per position at
 # 20 Hz, alpha1 = 1.1459 deg, vibration on 20 % of position 1 (63-103 s); one file with a position column.
-#   meridian maglev reduce maglev-disturbed.csv --scale 8000 --latitude 35
-"$M" maglev simulate --alpha1=1.1459 --samples=4000 --rate-hz=20 --white=1e-5 --ar1-phi=0.8 --ar1-sigma=2e-6 \
-  --burst=1:63:103:2e-3:6e-4:0.5:8 --seed=12 --one-file --out maglev-disturbed
+# Its bias b = 1.75e-5 A is the constant deviation I* of the calibration below (same instrument), so
+#   meridian maglev calibrate maglev-calibration.csv --latitude 35 --json -o cal.json
+#   meridian maglev reduce maglev-disturbed.csv --calibration cal.json --latitude 35
+# passes the symmetry check.  Plain:  meridian maglev reduce maglev-disturbed.csv --scale 8000 --latitude 35
+"$M" maglev simulate --alpha1=1.1459 --bias=1.75e-5 --samples=4000 --rate-hz=20 --white=1e-5 --ar1-phi=0.8 \
+  --ar1-sigma=2e-6 --burst=1:63:103:2e-3:6e-4:0.5:8 --seed=12 --one-file --out maglev-disturbed
 # A multi-angle calibration at 7 set-ups (-3 deg ... 3 deg) with a trend deviation (slopes 1.01 and 0.99 of
 # K*w*cos(phi)), alpha* = 0.11459 deg, I* = 1.75e-5 A:  meridian maglev calibrate maglev-calibration.csv --latitude 35
 "$M" maglev simulate --calibration-azimuths=-3,-2,-1,0,1,2,3 --slope-ratio1=1.01 --slope-ratio2=0.99 \

@@ -84,16 +84,16 @@ std::string maglev_reduce_text(const maglev::ReduceResult& r) {
 }
 
 std::string maglev_calibration_text(const maglev::CalibrationResult& r) {
-  std::string out = "Maglev gyro multi-angle calibration (I = k·sin α + c)\n";
+  std::string out = "Maglev gyro multi-angle calibration (I = k·sin α + c, k in A/rad)\n";
   auto line = [&](const char* name, const maglev::LineFit& f) {
-    out += fmt::format("  {:<10} k = {:.9g} ± {:.3g} A   c = {:.9g} ± {:.3g} A   σ̂0 = {:.2f}\n",
+    out += fmt::format("  {:<10} k = {:.9g} ± {:.3g} A/rad   c = {:.9g} ± {:.3g} A   σ̂0 = {:.2f}\n",
                        name, f.slope_A_per_rad.value, f.slope_A_per_rad.sigma, f.intercept_A.value,
                        f.intercept_A.sigma, f.global_test.sigma0);
   };
   line("position 1", r.position1);
   line("position 2", r.position2);
   line("mean line", r.mean_line);
-  out += fmt::format("trend deviation k1 + k2 = {:.6g} ± {:.3g} A (z = {:.2f}, {})\n",
+  out += fmt::format("trend deviation k1 + k2 = {:.6g} ± {:.3g} A/rad (z = {:.2f}, {})\n",
                      r.trend_deviation_A_per_rad.value, r.trend_deviation_A_per_rad.sigma,
                      r.trend_z, r.trend_significant ? "significant" : "not significant");
   out += fmt::format("best set-up azimuth α* = {} ± {:.3f}\"\n",

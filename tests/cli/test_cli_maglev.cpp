@@ -134,6 +134,51 @@ TEST_F(MaglevCli, CalibrationRecoversTheLinesAndFeedsReduce) {
   const auto k = nlohmann::json::parse(r.out);
   EXPECT_NEAR(k["scale_A_s_per_rad"].get<double>(), j["scale_A_s_per_rad"].get<double>(), 1e-9);
   ASSERT_TRUE(k.contains("symmetry"));
+  EXPECT_TRUE(k["symmetry"]["passed"].get<bool>()) << k["symmetry"].dump();
+}
+
+// The shipped examples come from one instrument: the disturbed determination's bias is the
+// calibration's I* (trial finding 11: z = 1105 when b was 2e-4 A and I* 1.75e-5 A).
+TEST_F(MaglevCli, ShippedExamplesPassTheSymmetryCheck) {
+  const std::string ex = std::string(MERIDIAN_SOURCE_DIR) + "/examples/";
+  CmdResult r = run("maglev calibrate " + ex + "maglev-calibration.csv --latitude 35 --json -o cal.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("maglev reduce " + ex + "maglev-disturbed.csv --calibration cal.json --latitude 35 --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto k = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(k["symmetry"]["passed"].get<bool>()) << k["symmetry"].dump();
+  // Truth of the example: α1 = 1.1459°; the burst on position 1 is rejected.
+  EXPECT_NEAR(k["result"]["alpha1_arcsec"].get<double>(), 1.1459 * 3600,
+              3 * k["result"]["alpha1_sigma_arcsec"].get<double>());
+  EXPECT_FALSE(k["position1"]["rejected_segments"].empty());
+  // The calibration's slopes are printed in A/rad, as its warnings and JSON keys say.
+  r = run("maglev calibrate " + ex + "maglev-calibration.csv --latitude 35");
+  EXPECT_NE(r.out.find("k = 0.48"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(" A   c ="), std::string::npos) << r.out;
+}
+
+// Usability (trial finding 17): a short series is denoised at the deepest level it allows when
+// --level is not given; a σ from a handful of samples is flagged.
+TEST_F(MaglevCli, ShortSeriesAreHandledWithoutSurprises) {
+  ASSERT_EQ(run(sim_ + "--samples 300 --seed 5 --out d").code, 0);
+  CmdResult r = run("maglev denoise d-1.csv -o out.csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // pywt.dwt_max_level(300, 8) = floor(log2(300/7)) = 5.
+  EXPECT_NE(slurp(dir_ / "out.csv").find("db4 levels 5"), std::string::npos);
+  r = run("maglev denoise d-1.csv --level 6");  // asked explicitly: refused
+  EXPECT_EQ(r.code, 1);
+  write("s4.csv", "time,current\n0,1\n1,2\n2,1.5\n3,1.2\n");
+  r = run("maglev denoise s4.csv");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("too few for any level"), std::string::npos) << r.err;
+  ASSERT_EQ(run(sim_ + "--samples 2 --seed 5 --out n2").code, 0);
+  r = run("maglev reduce n2-1.csv n2-2.csv --scale 8000 --latitude 35 --no-process");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("rests on 2 samples"), std::string::npos) << r.out;
+  ASSERT_EQ(run(sim_ + "--samples 100 --seed 5 --out n100").code, 0);
+  r = run("maglev reduce n100-1.csv n100-2.csv --scale 8000 --latitude 35");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("no processing"), std::string::npos) << r.err;
 }
 
 TEST_F(MaglevCli, BadInputNamesFileLineAndField) {
