@@ -1,5 +1,6 @@
 // meridian maglev reduce | denoise | simulate | calibrate
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -180,11 +181,18 @@ int run_reduce(const ReduceArgs& a) {
 struct DenoiseCmdArgs {
   std::string file, output;
   DenoiseArgs d;
+  bool level_given = false;
 };
 
 int run_denoise(const DenoiseCmdArgs& a) {
   const auto f = io::read_maglev_series_file(a.file, 0);
-  const auto opts = a.d.options();
+  auto opts = a.d.options();
+  // The default level 6 is lowered to what a short series allows (as reduce does); an explicit
+  // --level is taken as asked and refused when too deep.
+  if (!a.level_given)
+    opts.level = std::max(
+        1, std::min(opts.level, maglev::max_level(f.series.current_A.size(),
+                                                  maglev::Wavelet(opts.wavelet_order))));
   maglev::DenoiseResult r;
   try {
     maglev::validate_series(f.series, "series");
@@ -337,7 +345,8 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   red->add_option("FILES", ra->files,
                   "One CSV with a position column, or two CSVs (position 1, position 2)")
       ->required()
-      ->expected(1, 2);
+      ->expected(1, 2)
+      ->type_name("FILE [FILE2]");
   red->add_option("--config", ra->config,
                   "YAML/JSON with scale_A_s_per_rad, latitude, circle_reading1, ...");
   red->add_option("--calibration", ra->calibration,
@@ -403,11 +412,16 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
 
   auto da = std::make_shared<DenoiseCmdArgs>();
   CLI::App* den = mg->add_subcommand(
-      "denoise", "Wavelet-denoise a series (time, value CSV); writes time,value CSV");
-  den->add_option("CSV", da->file, "Input CSV (time, value); - for stdin")->required();
+      "denoise",
+      "Wavelet-denoise a series (time, current CSV; header units applied); writes "
+      "`time [s],current [A]` CSV in SI units (default level 6, lowered for a short series)");
+  den->add_option("CSV", da->file, "Input CSV (time, current); - for stdin")->required();
   add_denoise_options(den, da->d);
   den->add_option("-o,--output", da->output, "Write to this file (atomically) instead of stdout");
-  den->callback([da, &exit_code] { exit_code = guarded([&] { return run_denoise(*da); }); });
+  den->callback([da, den, &exit_code] {
+    da->level_given = den->get_option("--level")->count() > 0;
+    exit_code = guarded([&] { return run_denoise(*da); });
+  });
 
   auto sa = std::make_shared<SimulateArgs>();
   CLI::App* sim = mg->add_subcommand(

@@ -166,6 +166,14 @@ ReduceResult process(const ReduceInput& in, Progress* progress) {
     r.warnings.push_back(fmt::format("Huber solution: {}", e.message()));
   }
   if (!in.options.process) r.notes.push_back("not processed: plain means of all samples");
+  // σ from a handful of samples (or of effective samples) is itself very uncertain.
+  for (const auto* p : {&r.position1, &r.position2})
+    if (p->kept.n_eff < 30.0)
+      r.warnings.push_back(fmt::format(
+          "position {}: the σ of its mean rests on {} samples (n_eff {:.1f}): it is itself "
+          "uncertain by ±{:.0f} % or more",
+          p == &r.position1 ? 1 : 2, p->kept.n, p->kept.n_eff,
+          100.0 / std::sqrt(2.0 * std::max(p->kept.n_eff - 1.0, 1.0))));
   if (in.options.prior_bias_A) {
     const auto& b = *in.options.prior_bias_A;
     const double s = std::sqrt(r.position1.cleaned_mean_A.sigma * r.position1.cleaned_mean_A.sigma +

@@ -32,7 +32,10 @@ StationarityResult test_stationarity(std::span<const double> x, const Stationari
     throw InputError(fmt::format("segment length {} is too short (at least 32 samples)", L),
                      ErrorContext{{}, std::nullopt, "segment_length"});
   if (n < 2 * L)
-    throw InputError(fmt::format("{} samples are too few for two segments of {}", n, L),
+    throw InputError(fmt::format("{} samples are too few for two segments of {} (segments need "
+                                 "at least 32 samples: use shorter segments, or no processing "
+                                 "for plain means of all samples)",
+                                 n, L),
                      ErrorContext{{}, std::nullopt, "segment_length"});
   const int M = o.autocovariance_lags;
   if (M < 1 || static_cast<std::size_t>(M) >= L / 4)

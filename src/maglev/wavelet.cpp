@@ -300,6 +300,11 @@ WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, E
                             int level) {
   require_finite(x, "series");
   const int top = max_level(x.size(), wavelet);
+  if (top < 1)
+    throw InputError(fmt::format("{} samples are too few for any level with {} (level 1 needs at "
+                                 "least {} samples)",
+                                 x.size(), wavelet.name(), 2 * (wavelet.filter_length() - 1)),
+                     ErrorContext{{}, std::nullopt, "level"});
   if (level < 1 || level > top)
     throw InputError(
         fmt::format(
