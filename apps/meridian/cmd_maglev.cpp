@@ -90,6 +90,7 @@ void add_denoise_options(CLI::App* c, DenoiseArgs& d) {
 }
 
 struct ReduceArgs {
+  std::string file1, file2;
   std::vector<std::string> files;
   std::string config, calibration, latitude, reading1, target, instrument_constant = "0";
   std::optional<double> scale, prior_bias;
@@ -342,11 +343,11 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   auto ra = std::make_shared<ReduceArgs>();
   CLI::App* red =
       mg->add_subcommand("reduce", "Two-position determination from rotor-current series (CSV)");
-  red->add_option("FILES", ra->files,
-                  "One CSV with a position column, or two CSVs (position 1, position 2)")
-      ->required()
-      ->expected(1, 2)
-      ->type_name("FILE [FILE2]");
+  // Two positionals, so that the usage line reads FILE [FILE2].
+  red->add_option("FILE", ra->file1,
+                  "CSV of position 1, or one CSV with a position column for both")
+      ->required();
+  red->add_option("FILE2", ra->file2, "CSV of position 2 (when FILE holds position 1 only)");
   red->add_option("--config", ra->config,
                   "YAML/JSON with scale_A_s_per_rad, latitude, circle_reading1, ...");
   red->add_option("--calibration", ra->calibration,
@@ -401,6 +402,8 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
                   "Also write a self-contained HTML report (series, segments) to this file");
   red->add_flag("-q,--quiet", ra->quiet, "No progress bar");
   red->callback([ra, &exit_code] {
+    ra->files = {ra->file1};
+    if (!ra->file2.empty()) ra->files.push_back(ra->file2);
     // K and φ may come from --config / --calibration; with neither file a missing option is a
     // command-line error (exit 2). A file that lacks them is a bad input (exit 1).
     if (!ra->scale && ra->config.empty() && ra->calibration.empty())
