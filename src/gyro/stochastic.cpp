@@ -403,8 +403,27 @@ void series_checks(StochasticResult& res, const StochasticInput& in, const Model
                 "errors are correlated (compare sigma1 of the Markov models)"));
   }
   // (R2) is (R1) with e^{−iκ} ≈ 1 − iκ; the rest, at the fitted decay, less what G absorbs.
-  const double a = white.amplitude.value, c = white.damping.value;
-  const double kappa = a != 0.0 ? 2.0 * c / a : 0.0;
+  // κ from (R1) itself, r_i = M + (−1)^i·A·e^{−iκ}, by least squares (M, A linear, κ by golden
+  // section from (R2)'s start κ = 2c/A′): (R2)'s own κ is biased by the misfit it has to report.
+  const VectorXd l = Eigen::Map<const VectorXd>(in.readings.data(), n);
+  const auto r1_fit = [&](double k, Eigen::Vector2d* ma) {
+    MatrixXd H(n, 2);
+    for (int i = 1; i <= n; ++i) {
+      H(i - 1, 0) = 1.0;
+      H(i - 1, 1) = (i % 2 == 0 ? 1.0 : -1.0) * std::exp(-i * k);
+    }
+    const Eigen::Vector2d x = H.colPivHouseholderQr().solve(l);
+    if (ma) *ma = x;
+    return -(H * x - l).squaredNorm();
+  };
+  const double k2 = white.amplitude.value != 0.0 ? 2.0 * white.damping.value / white.amplitude.value : 0.0;
+  double kappa = 0.0, a = 0.0;
+  if (k2 > 0.0 && std::isfinite(k2)) {
+    kappa = golden_max([&](double k) { return r1_fit(k, nullptr); }, 0.0, 3.0 * k2, 1e-4 * k2).first;
+    Eigen::Vector2d ma;
+    r1_fit(kappa, &ma);
+    a = ma(1);
+  }
   if (kappa > 0.0 && std::isfinite(kappa)) {
     VectorXd q(n);
     for (int i = 1; i <= n; ++i) {

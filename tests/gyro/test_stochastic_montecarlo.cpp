@@ -88,6 +88,42 @@ TEST(StochasticMonteCarlo, MlRhoAndReportedSigmaOfNorth) {
   EXPECT_GT(mean(sd_gls) / sd(m_gls), 0.75);
 }
 
+// The C-type models' m of M against the empirical scatter (user trial, finding 7: with the
+// amplitude ĉ = Σvv/n their σ were √((n−3)/n) too small). White-noise readings, where the
+// true covariance is σ²·I: the mean reported m² must match the empirical variance of M̂ (the
+// m² of white noise is unbiased for it, E s² = σ²).
+TEST(StochasticMonteCarlo, CovarianceFunctionSigmaOfNorth) {
+  for (const int n : {7, 20}) {
+    const int runs = 400;
+    std::mt19937_64 rng(77 + n);
+    std::vector<std::vector<double>> m_hat(4), m_rep2(4);
+    const StochasticModel models[4] = {StochasticModel::WhiteNoise, StochasticModel::Exponential,
+                                       StochasticModel::Gaussian, StochasticModel::DampedCosine};
+    for (int k = 0; k < runs; ++k) {
+      StochasticInput in;
+      in.readings = series(n, 0.0, 5.0, 0.0, rng);
+      in.options.markov2 = false;
+      const auto res = analyse_stochastic(in);
+      for (int j = 0; j < 4; ++j) {
+        const auto& f = res.fit(models[j]);
+        m_hat[static_cast<std::size_t>(j)].push_back(f.north.value);
+        m_rep2[static_cast<std::size_t>(j)].push_back(f.north.sigma * f.north.sigma);
+      }
+    }
+    for (int j = 0; j < 4; ++j) {
+      const double emp = sd(m_hat[static_cast<std::size_t>(j)]);
+      const double rep = std::sqrt(mean(m_rep2[static_cast<std::size_t>(j)]));
+      std::printf("n = %d %s: empirical sd of M %.3f, rms reported m %.3f, ratio %.3f\n", n,
+                  to_string(models[j]).c_str(), emp, rep, rep / emp);
+      // 400 runs: the sd of an sd estimate is ~3.5 %; white noise and the functions that end
+      // at (or near) white noise must be within 15 %. The damped cosine, whose shape is
+      // chosen from a handful of lags, is allowed to be optimistic by up to 30 %.
+      const double tol = models[j] == StochasticModel::DampedCosine ? 0.30 : 0.15;
+      EXPECT_NEAR(rep / emp, 1.0, tol) << n << " " << to_string(models[j]);
+    }
+  }
+}
+
 TEST(StochasticMonteCarlo, VceRecoversTheComponents) {
   const int n = 30, runs = 300;
   const double rho = 0.6, s1 = 2.0, s2 = 5.0;

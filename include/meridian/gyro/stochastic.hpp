@@ -58,8 +58,10 @@
 /// of one reading (StochasticInput::booked_sigma) by the global test of gyro reduce
 /// (reversal.hpp, α = kReadingSigmaTestAlpha; above kBookingErrorRatio × the booked σ the
 /// warning asks "booking error?"); and the length of the series against the
-/// linearisation of (R1) in (R2): with κ̂ = 2ĉ/Â′ and Â′ of the white-noise fit, the neglected
-/// term q_i = (−1)^i·Â′·(e^{−iκ̂} − 1 + iκ̂) ≈ (−1)^i·Â′·κ̂²·i²/2, less its least-squares
+/// linearisation of (R1) in (R2): with κ̂, Â of an unweighted least-squares fit of (R1) itself
+/// (M, A linear; κ by golden section on [0, 3·2ĉ/Â′] of the white-noise fit, whose own κ is
+/// biased by the misfit), the neglected term q_i = (−1)^i·Â·(e^{−iκ̂} − 1 + iκ̂) ≈
+/// (−1)^i·Â·κ̂²·i²/2, less its least-squares
 /// projection on G, has an rms (r2_misfit_rms) that is compared with the white-noise σ_1
 /// (warning above kR2MisfitRatio × σ_1: the Markov and C-type models then model the misfit).
 ///
