@@ -368,10 +368,12 @@ TEST(StochasticDegenerate, StationarityEdgeAndAbsurdAmplitude) {
   // No model borrows the degenerate signal: the influence on A′ of white noise is either not
   // stated or that of a non-degenerate Markov model's signal, which moves A′ by far less than
   // the trial's −2625″.
-  for (const auto& f : res.models)
-    if (f.rho.empty() && std::isfinite(f.signal_influence(1)))
+  for (const auto& f : res.models) {
+    if (f.rho.empty() && std::isfinite(f.signal_influence(1))) {
       EXPECT_LT(std::fabs(f.signal_influence(1)), kDegenerateShift * w.sigma1.value)
           << to_string(f.model);
+    }
+  }
 }
 
 TEST(StochasticDegenerate, LargestRootModulus) {
@@ -504,8 +506,9 @@ TEST(StochasticChecks, LongSeriesMisfitOfR2IsWarned) {
   const VectorXd l = Eigen::Map<const VectorXd>(r.data(), n);
   const VectorXd y = (G.transpose() * G).inverse() * G.transpose() * l;
   const double rms = std::sqrt((l - G * y).squaredNorm() / n);
-  // Continuous approximation: A·κ²/2·n²·√(1/180) ≈ 7.16″.
-  EXPECT_NEAR(rms, 4800.0 * 0.002 * 0.002 / 2.0 * n * n * std::sqrt(1.0 / 180.0), 0.3);
+  // Leading order (the quadratic term, continuous): A·κ²/2·n²·√(1/180) ≈ 7.16″; the cubic
+  // term (A·κ³·n³/6 = 6.4″ at i = n) lowers it, so only to 15 %.
+  EXPECT_NEAR(rms, 4800.0 * 0.002 * 0.002 / 2.0 * n * n * std::sqrt(1.0 / 180.0), 0.15 * rms);
   // Add white noise of 5″ (fixed seed) so the series has the trial's scatter.
   std::mt19937_64 rng(6);
   std::normal_distribution<double> N(0.0, 5.0);
