@@ -20,7 +20,8 @@
 ///   R_ij = f(|i − j|); the amplitude a is then the REML estimate at that shape,
 ///   a = v_Rᵀ·R⁻¹·v_R/(n − 3) with v_R the GLS residuals under R (the spec leaves the amplitude
 ///   open; the LS fit of a·f to ĉ_k carries the 1/n of ĉ_k and no allowance for the 3
-///   unknowns, so its σ are optimistic by √((n−3)/n)); D = a·R;
+///   unknowns, so its σ are optimistic by √((n−3)/n)); D = a·R. Lags k < n/2 are used; the
+///   damped cosine (3 parameters) is left out with a note below 5 lags (n < 10);
 /// * Markov-1 and Markov-2 (markov_covariance.hpp), D = σ_1²·C·Cᵀ + σ_2²·B·Bᵀ, with ρ chosen
 ///   on the classical grid (ρ = 0.1 … 0.9; ρ_1, ρ_2 ∈ {−0.9, −0.8, …, 0.9} inside the AR(2)
 ///   triangle) and by maximising the restricted likelihood (profile over the variance
