@@ -126,3 +126,25 @@ TEST_F(CliStochastic, CampaignFilesAreRead) {
 }
 
 }  // namespace
+
+namespace {
+
+using meridian_test::CmdResult;
+
+TEST_F(CliStochastic, SimulatorTruthLineRecordsMarkovNoise) {
+  const CmdResult m = run(
+      "gyro simulate --mode tracking --noise markov2 --rho1 0.5 --rho2 0.3 --tracking-reversals 12 "
+      "--sigma-tracking-arcsec 5 --seed 21");
+  ASSERT_EQ(m.code, 0) << m.err;
+  const auto truth = m.out.substr(m.out.find("# Truth:"), m.out.find('\n', m.out.find("# Truth:")) -
+                                                                 m.out.find("# Truth:"));
+  EXPECT_NE(truth.find("noise markov2 (rho1 = 0.5, rho2 = 0.3)"), std::string::npos) << truth;
+  // White noise: the Truth line as before (no noise clause).
+  const CmdResult w = run("gyro simulate --mode tracking --tracking-reversals 12 --seed 21");
+  ASSERT_EQ(w.code, 0) << w.err;
+  const auto wt = w.out.substr(w.out.find("# Truth:"), w.out.find('\n', w.out.find("# Truth:")) -
+                                                            w.out.find("# Truth:"));
+  EXPECT_EQ(wt.find("noise"), std::string::npos) << wt;
+}
+
+}  // namespace
