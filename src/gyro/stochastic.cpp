@@ -389,9 +389,11 @@ void series_checks(StochasticResult& res, const StochasticInput& in, const Model
   const int dof = n - 3;
   const std::string u = in.unit.empty() ? "" : " " + in.unit;
   const double s1 = white.sigma1.value;
+  bool gross = false;  // a booking error: the decay fitted to such readings means nothing
   if (std::isfinite(in.booked_sigma) && in.booked_sigma > 0.0) {
     const double ratio = s1 / in.booked_sigma;
     const auto t = adjust::global_test(dof * ratio * ratio, dof, kReadingSigmaTestAlpha);
+    gross = t.rejected && ratio > kBookingErrorRatio;
     if (t.rejected)
       res.warnings.push_back(fmt::format(
           "sigma1 {:.3g}{} of white noise is {:.1f} times the booked sigma of one reading "
@@ -419,7 +421,7 @@ void series_checks(StochasticResult& res, const StochasticInput& in, const Model
   };
   const double k2 = white.amplitude.value != 0.0 ? 2.0 * white.damping.value / white.amplitude.value : 0.0;
   double kappa = 0.0, a = 0.0;
-  if (k2 > 0.0 && std::isfinite(k2)) {
+  if (k2 > 0.0 && std::isfinite(k2) && !gross) {
     kappa = golden_max([&](double k) { return r1_fit(k, nullptr); }, 0.0, 3.0 * k2, 1e-4 * k2).first;
     Eigen::Vector2d ma;
     r1_fit(kappa, &ma);

@@ -478,6 +478,9 @@ TEST(StochasticChecks, BookedSigmaExcessIsABookingWarning) {
   const double s1 = res.fit(StochasticModel::WhiteNoise).sigma1.value;
   ASSERT_GT(s1, 1000.0);
   EXPECT_THAT(res.warnings, ::testing::Contains(HasSubstr("booking error?")));
+  // Nor a decay fitted to such readings: no (R2) length warning (it gave κ = 1.28 here).
+  EXPECT_EQ(res.warnings.size(), 1u);
+  EXPECT_EQ(res.r2_misfit_rms, 0.0);
   // Borderline: σ1 at the booked σ is no warning; the test rejects at α = 1 % when
   // (n − 3)·(σ1/σ)² > χ²_0.99(4) = 13.2767 (tables), i.e. σ/σ1 < √(4/13.2767) = 0.54889.
   in.readings = example_tracking();

@@ -65,6 +65,7 @@
 /// (−1)^i·Â·κ̂²·i²/2, less its least-squares
 /// projection on G, has an rms (r2_misfit_rms) that is compared with the white-noise σ_1
 /// (warning above kR2MisfitRatio × σ_1: the Markov and C-type models then model the misfit).
+/// The (R2) check is skipped (r2_misfit_rms = 0) after a "booking error?" warning.
 ///
 /// Standard deviations: D_Ŷ = (GᵀD⁻¹G)⁻¹ with D at the estimated components (not rescaled).
 /// σ of ρ and of the components of the ML models from the inverse REML Fisher information over
