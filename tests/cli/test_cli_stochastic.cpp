@@ -148,3 +148,25 @@ TEST_F(CliStochastic, SimulatorTruthLineRecordsMarkovNoise) {
 }
 
 }  // namespace
+
+namespace {
+
+using meridian_test::CmdResult;
+
+TEST_F(CliStochastic, HtmlReportHasASectionPerSeries) {
+  const auto f = write("book.yaml", kBook);
+  const CmdResult r = run("gyro stochastic " + f.string() + " -q -o out.txt --report r.html");
+  if (r.code != 0 && r.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = slurp(dir_ / "r.html");
+  EXPECT_NE(html.find("id=\"series-1\""), std::string::npos);
+  EXPECT_EQ(html.find("id=\"series-2\""), std::string::npos);
+  EXPECT_NE(html.find("Model comparison"), std::string::npos);
+  EXPECT_NE(html.find("implied autocorrelation"), std::string::npos);
+  EXPECT_NE(html.find("Markov-2: profile restricted likelihood"), std::string::npos);
+  // The report does not change the text result.
+  ASSERT_EQ(run("gyro stochastic " + f.string() + " -q -o plain.txt").code, 0);
+  EXPECT_EQ(slurp(dir_ / "out.txt"), slurp(dir_ / "plain.txt"));
+}
+
+}  // namespace
