@@ -50,15 +50,19 @@ int run_reduce(const ReduceArgs& a) {
 }
 
 struct StochasticArgs {
-  std::string file, output;
+  std::string file, output, report;
   bool json = false, quiet = false;
 };
 
 int run_stochastic(const StochasticArgs& a) {
+  require_html_reports_for(a.report);
   TerminalProgress progress(a.quiet);
   const io::StochasticJob job = io::run_stochastic_file(a.file, &progress);
   progress.finish();
+  const std::string html =
+      a.report.empty() ? std::string() : report::render_html(report::stochastic_document(job.file, job.result));
   emit(a.output, a.json ? report::stochastic_to_json(job.file, job.result).dump(2) + "\n" : report::stochastic_text(job.file, job.result));
+  if (!a.report.empty()) emit(a.report, html);
   return kOk;
 }
 
@@ -326,10 +330,12 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   auto sto = std::make_shared<StochasticArgs>();
   CLI::App* stoch = gyro->add_subcommand(
       "stochastic", "Compare stochastic models (white noise, covariance functions, Markov-1/-2) of each reversal series");
-  stoch->add_option("FILE", sto->file, "Field book as for gyro reduce (YAML or JSON)")->required();
+  stoch->add_option("FILE", sto->file, "Field book as for gyro reduce, or a campaign file (YAML or JSON)")->required();
   stoch->add_flag("--json", sto->json, "Print JSON instead of text");
   stoch->add_option("-o,--output", sto->output, "Write to this file (atomically) instead of stdout");
   stoch->add_flag("-q,--quiet", sto->quiet, "No progress bar");
+  stoch->add_option("--report", sto->report,
+                    "Also write a self-contained HTML report (comparison table, autocorrelation, Markov-2 likelihood surface)");
   stoch->callback([sto, &exit_code] { exit_code = guarded([&] { return run_stochastic(*sto); }); });
 }
 

@@ -18,6 +18,20 @@ NoiseModel noise_model(const StationSimulation& s, double sigma) {
   return NoiseModel::white(sigma);
 }
 
+// The noise model for the Truth line (empty for white noise, so white-noise headers are as
+// before): the kind, ρ, and that the initial states X have the σ of Δ.
+std::string noise_clause(const StationSimulation& s) {
+  switch (s.noise) {
+    case NoiseModel::Markov1:
+      return fmt::format("; noise markov1 (rho1 = {}), sigma of the initial state X0 = sigma of Delta", s.rho1);
+    case NoiseModel::Markov2:
+      return fmt::format("; noise markov2 (rho1 = {}, rho2 = {}), sigma of the initial states X1, X2 = sigma of Delta",
+                         s.rho1, s.rho2);
+    case NoiseModel::White: break;
+  }
+  return {};
+}
+
 std::string dms3(double rad) { return format_direction_dms(Angle::radians(rad), {3, true, false}); }
 
 }  // namespace
@@ -72,7 +86,7 @@ SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed
         out.truth.push_back(fmt::format(
             "Truth: beta = {} div, N_G = {} (delta N = {:+.3f}\"), B = {} div, T_B = {} s, t0 = {} s, k = {} 1/s",
             s.beta_div, dms3(north.north_rad), north.delta_n_rad / kArcsec, s.amplitude_div, period, s.t0_s,
-            s.damping_per_s));
+            s.damping_per_s) + noise_clause(s));
         if (clamps.size() > 1) {
           std::string list;
           for (double c : clamps)
@@ -92,7 +106,8 @@ SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed
       if (s.sigma_tracking_rad > 0) d.tracking.sigma_reading_rad = s.sigma_tracking_rad;
       if (i == 0)
         out.truth.push_back(fmt::format("Truth: M = {} (= N_G without zero-position correction), A = {} div, kappa = {}",
-                                        dms3(t.centre_rad), s.tracking_amplitude_div, s.kappa));
+                                        dms3(t.centre_rad), s.tracking_amplitude_div, s.kappa) +
+                                noise_clause(s));
     }
     out.input.determinations.push_back(std::move(d));
   }

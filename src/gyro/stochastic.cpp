@@ -14,6 +14,7 @@
 #include "meridian/adjust/statistics.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gyro/markov_covariance.hpp"
+#include "meridian/gyro/reversal.hpp"
 
 namespace meridian::gyro {
 namespace {
@@ -277,8 +278,13 @@ std::pair<Eigen::Vector2d, double> nelder_mead_max(
 struct CovFunction {
   StochasticModel model;
   std::vector<double> params;  // b or (b, ω)
-  double a = 0.0;
+  double a = 0.0;              // LS amplitude of the autocovariance fit (not used for D)
+  int ib = 0, iw = 0;          // grid indices of b and ω
 };
+
+constexpr int kShapeGridB = 120;  // b from 0.1 to 100 lags, logarithmically
+constexpr int kShapeGridW = 60;   // ω = π/60 … π
+constexpr std::size_t kMinLagsDampedCosine = 5;
 
 double cov_shape(StochasticModel m, const std::vector<double>& p, double k) {
   switch (m) {
@@ -295,8 +301,8 @@ std::optional<CovFunction> fit_cov_function(StochasticModel m, const std::vector
   const auto K = chat.size();
   std::optional<CovFunction> best;
   double best_ss = std::numeric_limits<double>::infinity();
-  const int nb = 120;
-  const int nw = m == StochasticModel::DampedCosine ? 60 : 1;
+  const int nb = kShapeGridB;
+  const int nw = m == StochasticModel::DampedCosine ? kShapeGridW : 1;
   for (int ib = 0; ib < nb; ++ib) {
     // b from 0.1 to 100 lags, logarithmically
     const double b = 0.1 * std::pow(1000.0, static_cast<double>(ib) / (nb - 1));
@@ -318,11 +324,130 @@ std::optional<CovFunction> fit_cov_function(StochasticModel m, const std::vector
       }
       if (ss < best_ss) {
         best_ss = ss;
-        best = CovFunction{m, p, a};
+        best = CovFunction{m, p, a, ib, iw};
       }
     }
   }
   return best;
+}
+
+// Largest modulus of the roots of the AR characteristic polynomial z² − ρ_1·z − ρ_2 (Markov-1:
+// |ρ|); the process is stationary when it is < 1.
+double largest_root_modulus(const std::vector<double>& rho) {
+  if (rho.size() == 1) return std::fabs(rho[0]);
+  const double disc = rho[0] * rho[0] + 4.0 * rho[1];
+  if (disc < 0.0) return std::sqrt(-rho[1]);
+  const double sq = std::sqrt(disc);
+  return std::max(std::fabs(rho[0] + sq), std::fabs(rho[0] - sq)) / 2.0;
+}
+
+// Why a fit is degenerate (empty: it is not). White noise is the yardstick.
+std::string degeneracy_reason(const ModelFit& f, const ModelFit& white, double booked) {
+  if (f.model == StochasticModel::WhiteNoise) return {};
+  std::vector<std::string> why;
+  const double sw = white.sigma1.value;
+  if (!f.rho.empty()) {
+    if (!(f.sigma1.value >= kDegenerateSigma1Ratio * sw))
+      why.push_back(fmt::format(
+          "sigma1 -> 0 ({:.3g} against {:.3g} for white noise): the signal term fits the "
+          "readings almost exactly and the restricted likelihood has no upper bound there",
+          f.sigma1.value, sw));
+    else if (std::isfinite(booked) && booked > 0.0 && f.sigma1.value < kDegenerateBookedRatio * booked)
+      why.push_back(fmt::format(
+          "sigma1 {:.3g} is below {} of the booked sigma of one reading {:.3g}: the signal term "
+          "fits the readings better than they can be read",
+          f.sigma1.value, kDegenerateBookedRatio, booked));
+    const double root = largest_root_modulus(f.rho);
+    if (root >= kStationarityEdge)
+      why.push_back(f.rho.size() == 1
+                        ? fmt::format("rho = {:.3f} at the edge of the stationary region "
+                                      "(|rho| >= {})",
+                                      f.rho[0], kStationarityEdge)
+                        : fmt::format("(rho1, rho2) = ({:.3f}, {:.3f}) at the edge of the "
+                                      "stationary region (a root of modulus {:.3f} >= {})",
+                                      f.rho[0], f.rho[1], root, kStationarityEdge));
+  }
+  const double dm = std::fabs(f.north.value - white.north.value);
+  const double da = std::fabs(f.amplitude.value - white.amplitude.value);
+  if (da > kDegenerateShift * sw)
+    why.push_back(fmt::format("amplitude {:.2f} against {:.2f} for white noise (more than {} "
+                              "times its sigma1 {:.3g} apart)",
+                              f.amplitude.value, white.amplitude.value, kDegenerateShift, sw));
+  if (dm > kDegenerateShift * sw)
+    why.push_back(fmt::format("centre {:.2f} against {:.2f} for white noise (more than {} times "
+                              "its sigma1 {:.3g} apart)",
+                              f.north.value, white.north.value, kDegenerateShift, sw));
+  std::string out;
+  for (const auto& w : why) out += (out.empty() ? "" : "; ") + w;
+  return out;
+}
+
+// The checks of the series itself: σ_1 against the booked σ, and (R2) against the length.
+void series_checks(StochasticResult& res, const StochasticInput& in, const ModelFit& white,
+                   const MatrixXd& G) {
+  const int n = res.readings;
+  const int dof = n - 3;
+  const std::string u = in.unit.empty() ? "" : " " + in.unit;
+  const double s1 = white.sigma1.value;
+  bool gross = false;  // a booking error: the decay fitted to such readings means nothing
+  if (std::isfinite(in.booked_sigma) && in.booked_sigma > 0.0) {
+    const double ratio = s1 / in.booked_sigma;
+    const auto t = adjust::global_test(dof * ratio * ratio, dof, kReadingSigmaTestAlpha);
+    gross = t.rejected && ratio > kBookingErrorRatio;
+    if (t.rejected)
+      res.warnings.push_back(fmt::format(
+          "sigma1 {:.3g}{} of white noise is {:.1f} times the booked sigma of one reading "
+          "{:.3g}{} (global test T = {:.1f} > {:.1f}, {} dof, alpha = {}): {}",
+          s1, u, ratio, in.booked_sigma, u, t.vtpv, t.critical_value, dof, kReadingSigmaTestAlpha,
+          ratio > kBookingErrorRatio
+              ? "booking error? Check the readings (order, sign, degrees and minutes) before "
+                "using any model"
+              : "the readings scatter more than booked: the booked sigma is optimistic, or the "
+                "errors are correlated (compare sigma1 of the Markov models)"));
+  }
+  // (R2) is (R1) with e^{−iκ} ≈ 1 − iκ; the rest, at the fitted decay, less what G absorbs.
+  // κ from (R1) itself, r_i = M + (−1)^i·A·e^{−iκ}, by least squares (M, A linear, κ by golden
+  // section from (R2)'s start κ = 2c/A′): (R2)'s own κ is biased by the misfit it has to report.
+  const VectorXd l = Eigen::Map<const VectorXd>(in.readings.data(), n);
+  const auto r1_fit = [&](double k, Eigen::Vector2d* ma) {
+    MatrixXd H(n, 2);
+    for (int i = 1; i <= n; ++i) {
+      H(i - 1, 0) = 1.0;
+      H(i - 1, 1) = (i % 2 == 0 ? 1.0 : -1.0) * std::exp(-i * k);
+    }
+    const Eigen::Vector2d x = H.colPivHouseholderQr().solve(l);
+    if (ma) *ma = x;
+    return -(H * x - l).squaredNorm();
+  };
+  const double k2 = white.amplitude.value != 0.0 ? 2.0 * white.damping.value / white.amplitude.value : 0.0;
+  double kappa = 0.0, a = 0.0;
+  if (k2 > 0.0 && std::isfinite(k2) && !gross) {
+    kappa = golden_max([&](double k) { return r1_fit(k, nullptr); }, 0.0, 3.0 * k2, 1e-4 * k2).first;
+    Eigen::Vector2d ma;
+    r1_fit(kappa, &ma);
+    a = ma(1);
+  }
+  if (kappa > 0.0 && std::isfinite(kappa)) {
+    VectorXd q(n);
+    for (int i = 1; i <= n; ++i) {
+      const double x = i * kappa;
+      // e^{−x} − 1 + x without cancellation for small x.
+      const double rest = x < 1e-3 ? x * x / 2.0 - x * x * x / 6.0 : std::expm1(-x) + x;
+      q(i - 1) = (i % 2 == 0 ? 1.0 : -1.0) * a * rest;
+    }
+    const VectorXd fitted = G * G.colPivHouseholderQr().solve(q);
+    res.r2_misfit_rms = std::sqrt((q - fitted).squaredNorm() / n);
+    if (res.r2_misfit_rms > kR2MisfitRatio * s1)
+      res.warnings.push_back(fmt::format(
+          "the series is long for the linearised model (R2): at the fitted decay kappa = "
+          "{:.4g} per half period and amplitude {:.4g}{} the neglected term A·κ²i²/2 reaches "
+          "{:.3g}{} at i = {} and leaves an rms misfit of {:.3g}{} ({:.0f} % of the white-noise "
+          "sigma1 {:.3g}{}): the correlated-error models partly model this misfit; analyse "
+          "shorter series (the first ~{} readings)",
+          kappa, std::fabs(a), u, std::fabs(q(n - 1)), u, n, res.r2_misfit_rms, u,
+          100.0 * res.r2_misfit_rms / s1, s1, u,
+          std::max(6, static_cast<int>(n * std::sqrt(kR2MisfitRatio * s1 / res.r2_misfit_rms)))));
+  }
 }
 
 }  // namespace
@@ -455,23 +580,51 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
       const std::vector<double> head(chat.begin(), chat.begin() + std::max(2, n / 2));
       for (StochasticModel m : {StochasticModel::Exponential, StochasticModel::Gaussian,
                                 StochasticModel::DampedCosine}) {
+        // The damped cosine has 3 parameters (a, b, ω): with fewer than 5 lags it fits the
+        // noise of ĉ_k (n = 7, 3 lags: its m was 0.57 of the scatter of M in a Monte Carlo run).
+        if (m == StochasticModel::DampedCosine && head.size() < kMinLagsDampedCosine) {
+          res.notes.push_back(fmt::format(
+              "{}: left out, its 3 parameters need at least {} lags of the autocovariance "
+              "(n >= {}), the series gives {}",
+              to_string(m), kMinLagsDampedCosine, 2 * kMinLagsDampedCosine, head.size()));
+          continue;
+        }
         const auto cf = fit_cov_function(m, head);
         if (!cf) {
           res.notes.push_back(
               fmt::format("{}: no positive fit to the autocovariance", to_string(m)));
           continue;
         }
-        MatrixXd Dc(n, n);
+        // Shape from the autocovariance, amplitude by REML at that shape (dof-corrected).
+        MatrixXd R(n, n);
         for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j) Dc(i, j) = cf->a * cov_shape(m, cf->params, std::abs(i - j));
+          for (int j = 0; j < n; ++j) R(i, j) = cov_shape(m, cf->params, std::abs(i - j));
         try {
+          const GlsFit gr = reversal_gls(r, R, opt.route);
+          VectorXd vw = gr.residuals;
+          adjust::CovarianceFactor(R).whiten(vw);
+          const double a = vw.squaredNorm() / (n - 3);
           ModelFit f;
           f.model = m;
-          f.rho = cf->params;
-          f.rho_sigma.assign(cf->params.size(), kNaN);
-          finish_fit(f, r, Dc, opt.route, static_cast<int>(cf->params.size()) + 1);
-          f.sigma1 = {std::sqrt(cf->a), kNaN};
+          f.shape = cf->params;
+          finish_fit(f, r, a * R, opt.route, static_cast<int>(cf->params.size()) + 1);
+          f.sigma1 = {std::sqrt(a), std::sqrt(a) / std::sqrt(2.0 * (n - 3))};
           f.sigma2 = {kNaN, kNaN};
+          if (cf->ib == 0)
+            f.notes.push_back(fmt::format(
+                "shape b = {:.3g} lags is at the lower end of its search grid (0.1 … 100 lags): "
+                "the fitted function is effectively white noise",
+                cf->params[0]));
+          else if (cf->ib == kShapeGridB - 1)
+            f.notes.push_back(fmt::format(
+                "shape b = {:.3g} lags is at the upper end of its search grid (0.1 … 100 lags): "
+                "a correlation that does not decay over the series (a drift) is not identified",
+                cf->params[0]));
+          if (m == StochasticModel::DampedCosine && cf->iw == 0)
+            f.notes.push_back(fmt::format(
+                "shape omega = {:.3g} rad per lag is at the lower end of its search grid "
+                "(pi/60 … pi)",
+                cf->params[1]));
           res.models.push_back(f);
         } catch (const NumericalError& e) {
           res.notes.push_back(
@@ -599,44 +752,72 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
         "stochastic models: no Markov model could be fitted (variance-component "
         "estimation failed at every rho)");
 
-  // Signal influence for the models without a signal term: the signal predicted by the ML
-  // Markov model of smaller BIC.
   report_progress(progress, 4, 5, "comparison");
+  const ModelFit& white = res.fit(StochasticModel::WhiteNoise);
+  for (auto& f : res.models) {
+    f.degenerate_reason = degeneracy_reason(f, white, input.booked_sigma);
+    f.degenerate = !f.degenerate_reason.empty();
+    if (f.degenerate)
+      res.notes.push_back(fmt::format(
+          "{} is degenerate ({}): it is shown but not recommended, not used in the "
+          "likelihood-ratio tests and not used as the signal for the other models' influence",
+          to_string(f.model), f.degenerate_reason));
+  }
+  const auto usable = [&](StochasticModel m) { return has(m) && !res.fit(m).degenerate; };
+
+  // Signal influence for the models without a signal term: the signal predicted by the
+  // non-degenerate ML Markov model of smaller BIC (else the grid model of smaller BIC).
   {
     const ModelFit* ref = nullptr;
-    for (StochasticModel m : {StochasticModel::Markov1Ml, StochasticModel::Markov2Ml})
-      if (has(m) && (!ref || res.fit(m).bic < ref->bic)) ref = &res.fit(m);
-    if (!ref) ref = &res.fit(StochasticModel::Markov1Grid);
-    const MarkovFactors fac = factors_for(ref->rho, n);
-    const double s1 = ref->sigma1.value, s2 = ref->sigma2.value;
-    const MatrixXd Dref = fac.covariance(s1 * s1, s2 * s2);
-    const adjust::CovarianceFactor cref(Dref);
-    VectorXd rw =
-        l - G * Eigen::Vector3d(ref->north.value, ref->amplitude.value, ref->damping.value);
-    cref.whiten(rw);
-    MatrixXd bw = fac.B;
-    cref.whiten(bw);
-    const VectorXd signal = fac.B * (s2 * s2 * (bw.transpose() * rw));
+    for (const auto& group : {std::array{StochasticModel::Markov1Ml, StochasticModel::Markov2Ml},
+                              std::array{StochasticModel::Markov1Grid, StochasticModel::Markov2Grid}}) {
+      for (StochasticModel m : group)
+        if (usable(m) && (!ref || res.fit(m).bic < ref->bic)) ref = &res.fit(m);
+      if (ref) break;
+    }
+    std::optional<VectorXd> signal;
+    if (ref) {
+      const MarkovFactors fac = factors_for(ref->rho, n);
+      const double s1 = ref->sigma1.value, s2 = ref->sigma2.value;
+      const MatrixXd Dref = fac.covariance(s1 * s1, s2 * s2);
+      const adjust::CovarianceFactor cref(Dref);
+      VectorXd rw =
+          l - G * Eigen::Vector3d(ref->north.value, ref->amplitude.value, ref->damping.value);
+      cref.whiten(rw);
+      MatrixXd bw = fac.B;
+      cref.whiten(bw);
+      signal = VectorXd(fac.B * (s2 * s2 * (bw.transpose() * rw)));
+    } else {
+      res.notes.push_back(
+          "every Markov model is degenerate: the signal influence of white noise and the "
+          "covariance-function models is not stated");
+    }
     for (auto& f : res.models) {
-      if (f.model == StochasticModel::WhiteNoise) {
+      const bool own_signal = !f.rho.empty();
+      if (own_signal) continue;
+      if (!signal) {
+        f.signal_influence = Eigen::Vector3d::Constant(kNaN);
+      } else if (f.model == StochasticModel::WhiteNoise) {
         f.signal_influence =
-            estimator_applied(G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), signal);
-      } else if (f.model == StochasticModel::Exponential || f.model == StochasticModel::Gaussian ||
-                 f.model == StochasticModel::DampedCosine) {
+            estimator_applied(G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), *signal);
+      } else {
         MatrixXd Dc(n, n);
         for (int i = 0; i < n; ++i)
           for (int j = 0; j < n; ++j)
-            Dc(i, j) = f.sigma1.value * f.sigma1.value * cov_shape(f.model, f.rho, std::abs(i - j));
-        f.signal_influence = estimator_applied(G, adjust::CovarianceFactor(Dc), signal);
+            Dc(i, j) =
+                f.sigma1.value * f.sigma1.value * cov_shape(f.model, f.shape, std::abs(i - j));
+        f.signal_influence = estimator_applied(G, adjust::CovarianceFactor(Dc), *signal);
       }
     }
   }
 
-  // Recommendation: smallest BIC, fewer parameters on a tie.
+  // Recommendation: smallest BIC among the non-degenerate models (white noise never is),
+  // fewer parameters on a tie.
   std::size_t best = 0;
   for (std::size_t i = 1; i < res.models.size(); ++i) {
     const auto& a = res.models[i];
     const auto& b = res.models[best];
+    if (a.degenerate) continue;
     if (a.bic < b.bic - 1e-9 ||
         (std::fabs(a.bic - b.bic) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
       best = i;
@@ -644,9 +825,15 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
   res.models[best].recommended = true;
   res.recommended = static_cast<int>(best);
 
-  // Likelihood-ratio tests.
+  // Likelihood-ratio tests between non-degenerate models.
   const auto lrt = [&](StochasticModel null_m, StochasticModel alt, int dof) {
     if (!has(null_m) || !has(alt)) return;
+    if (!usable(null_m) || !usable(alt)) {
+      res.notes.push_back(fmt::format("likelihood-ratio test {} against {} not made: {} is degenerate",
+                                      to_string(null_m), to_string(alt),
+                                      to_string(usable(null_m) ? alt : null_m)));
+      return;
+    }
     LikelihoodRatioTest t;
     t.null_model = null_m;
     t.alternative = alt;
@@ -659,6 +846,7 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
   };
   lrt(StochasticModel::WhiteNoise, StochasticModel::Markov1Ml, 2);
   lrt(StochasticModel::Markov1Ml, StochasticModel::Markov2Ml, 1);
+  series_checks(res, input, white, G);
   report_progress(progress, 5, 5, "done");
   return res;
 }

@@ -1,6 +1,9 @@
 // `meridian gyro stochastic`: the binary on a field book — the JSON contract of the issue,
 // the truth of the simulated series within the stated σ, and bad input.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -41,7 +44,8 @@ TEST_F(CliStochastic, StochasticJsonContract) {
     for (const char* k : {"name", "north_reading_deg", "sigma_north_arcsec", "amplitude_arcsec",
                           "sigma_amplitude_arcsec", "rho", "rho_sigma", "sigma1_arcsec",
                           "sigma1_sigma_arcsec", "sigma2_arcsec", "sigma2_sigma_arcsec",
-                          "signal_influence_arcsec", "log_likelihood", "aic", "bic", "recommended"})
+                          "signal_influence_arcsec", "log_likelihood", "aic", "bic", "recommended",
+                          "shape", "degenerate", "degenerate_reason", "north_reading_dms"})
       EXPECT_TRUE(m.contains(k)) << k;
     recommended += m.at("recommended").get<bool>() ? 1 : 0;
     // The truth within 3σ (white noise of 3" per reading).
@@ -51,6 +55,19 @@ TEST_F(CliStochastic, StochasticJsonContract) {
         << m.at("name");
   }
   EXPECT_EQ(recommended, 1);
+  // Shape parameters of the covariance functions under `shape`, not `rho`.
+  for (const auto& m : s.at("models")) {
+    const std::string name = m.at("name");
+    if (name.rfind("c-", 0) == 0) {
+      EXPECT_TRUE(m.at("rho").empty()) << name;
+      EXPECT_TRUE(m.at("shape").contains("b_lags")) << name;
+      EXPECT_EQ(m.at("shape").contains("omega_rad_per_lag"), name == "c-damped-cosine");
+    } else {
+      EXPECT_TRUE(m.at("shape").is_null()) << name;
+    }
+  }
+  EXPECT_TRUE(s.contains("warnings"));
+  EXPECT_EQ(s.at("booked_sigma_reading_arcsec"), 3.0);
   EXPECT_EQ(s.at("models").size(), 8u);
   EXPECT_EQ(s.at("tests").size(), 2u);
 }
@@ -71,7 +88,85 @@ TEST_F(CliStochastic, StochasticTextAndBadInput) {
   const CmdResult r = run("gyro stochastic " + g.string() + " -q");
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("at least 6 readings"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("5 reversals per run"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
+  // The text shows the north reading in DMS (0°12'34" ± a few arcsec).
+  EXPECT_NE(t.out.find("0°12'3"), std::string::npos) << t.out;
+}
+
+std::string example_campaign() {
+  std::ifstream in(std::filesystem::path(MERIDIAN_SOURCE_DIR) / "examples" / "campaign.yaml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST_F(CliStochastic, CampaignFilesAreRead) {
+  std::string text = example_campaign();
+  ASSERT_FALSE(text.empty());
+  // As shipped: every series has 5 readings — said as such, not "unknown field campaign".
+  const CmdResult r = run("gyro stochastic " + write("campaign.yaml", text).string() + " -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("this is a campaign file"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("unknown field"), std::string::npos) << r.err;
+  // One zero-position run lengthened to 8 readings: analysed, with its campaign field path.
+  const std::string five = "before: {reversals_div: [-5.08, 5.69, -5.06, 5.6, -4.97]}";
+  const auto at = text.find(five);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, five.size(),
+               "before: {reversals_div: [-5.08, 5.69, -5.06, 5.6, -4.97, 5.55, -4.93, 5.48]}");
+  const CmdResult ok = run("gyro stochastic " + write("c8.yaml", text).string() + " --json -q");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const auto j = nlohmann::json::parse(ok.out);
+  ASSERT_EQ(j.at("series").size(), 1u);
+  EXPECT_EQ(j.at("series")[0].at("kind"), "zero-position");
+  EXPECT_EQ(j.at("series")[0].at("readings"), 8);
+  EXPECT_NE(j.at("series")[0].at("label").get<std::string>().find("known_line.before[0].zero_before"),
+            std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+using meridian_test::CmdResult;
+
+TEST_F(CliStochastic, SimulatorTruthLineRecordsMarkovNoise) {
+  const CmdResult m = run(
+      "gyro simulate --mode tracking --noise markov2 --rho1 0.5 --rho2 0.3 --tracking-reversals 12 "
+      "--sigma-tracking-arcsec 5 --seed 21");
+  ASSERT_EQ(m.code, 0) << m.err;
+  const auto truth = m.out.substr(m.out.find("# Truth:"), m.out.find('\n', m.out.find("# Truth:")) -
+                                                                 m.out.find("# Truth:"));
+  EXPECT_NE(truth.find("noise markov2 (rho1 = 0.5, rho2 = 0.3)"), std::string::npos) << truth;
+  // White noise: the Truth line as before (no noise clause).
+  const CmdResult w = run("gyro simulate --mode tracking --tracking-reversals 12 --seed 21");
+  ASSERT_EQ(w.code, 0) << w.err;
+  const auto wt = w.out.substr(w.out.find("# Truth:"), w.out.find('\n', w.out.find("# Truth:")) -
+                                                            w.out.find("# Truth:"));
+  EXPECT_EQ(wt.find("noise"), std::string::npos) << wt;
+}
+
+}  // namespace
+
+namespace {
+
+using meridian_test::CmdResult;
+
+TEST_F(CliStochastic, HtmlReportHasASectionPerSeries) {
+  const auto f = write("book.yaml", kBook);
+  const CmdResult r = run("gyro stochastic " + f.string() + " -q -o out.txt --report r.html");
+  if (r.code != 0 && r.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = slurp(dir_ / "r.html");
+  EXPECT_NE(html.find("id=\"series-1\""), std::string::npos);
+  EXPECT_EQ(html.find("id=\"series-2\""), std::string::npos);
+  EXPECT_NE(html.find("Model comparison"), std::string::npos);
+  EXPECT_NE(html.find("implied autocorrelation"), std::string::npos);
+  EXPECT_NE(html.find("Markov-2: profile restricted likelihood"), std::string::npos);
+  // The report does not change the text result.
+  ASSERT_EQ(run("gyro stochastic " + f.string() + " -q -o plain.txt").code, 0);
+  EXPECT_EQ(slurp(dir_ / "out.txt"), slurp(dir_ / "plain.txt"));
 }
 
 }  // namespace

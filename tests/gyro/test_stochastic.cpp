@@ -279,4 +279,261 @@ TEST(Stochastic, BadInput) {
   EXPECT_THAT(res.notes, ::testing::Contains(HasSubstr("Markov-2 models need at least 8")));
 }
 
+// The tracking readings of examples/tracking.yaml in arcsec from 358° (7 readings, booked σ 8″).
+std::vector<double> example_tracking() {
+  const auto as = [](int d, int m, double sec) { return (d - 358) * 3600.0 + m * 60.0 + sec; };
+  return {as(358, 52, 32.7236), as(361, 32, 16.9374), as(358, 52, 48.6998),
+          as(361, 32, 3.9849),  as(358, 53, 5.6854),  as(361, 31, 43.6747),
+          as(358, 53, 36.5974)};
+}
+
+bool is_c_type(StochasticModel m) {
+  return m == StochasticModel::Exponential || m == StochasticModel::Gaussian ||
+         m == StochasticModel::DampedCosine;
+}
+
+void expect_recommendation_and_tests_avoid_degenerate(const StochasticResult& res) {
+  int recommended = 0;
+  for (const auto& f : res.models) {
+    SCOPED_TRACE(to_string(f.model));
+    EXPECT_EQ(f.degenerate, !f.degenerate_reason.empty());
+    if (f.recommended) {
+      ++recommended;
+      EXPECT_FALSE(f.degenerate) << f.degenerate_reason;
+    }
+  }
+  EXPECT_EQ(recommended, 1);
+  for (const auto& t : res.tests) {
+    EXPECT_FALSE(res.fit(t.null_model).degenerate);
+    EXPECT_FALSE(res.fit(t.alternative).degenerate);
+  }
+}
+
+TEST(StochasticDegenerate, ZeroPositionRunFittedExactlyBySignal) {
+  // A zero-position run booked to 0.1 div (user trial, finding 2). Readings 2–7 alone fit (R2)
+  // exactly (checked here by a dense OLS), so a Markov model whose signal term absorbs reading 1
+  // drives σ1 → 0 with an unbounded restricted likelihood.
+  const std::vector<double> r{4.2, -3.7, 3.9, -3.5, 3.7, -3.3, 3.5};
+  {
+    const MatrixXd G = reversal_design(7).bottomRows(6);
+    const VectorXd l = Eigen::Map<const VectorXd>(r.data() + 1, 6);
+    const VectorXd y = (G.transpose() * G).inverse() * G.transpose() * l;
+    // G's rows 2…7 of the 7-reading design, l the readings 2…7.
+    ASSERT_LT((G * y - l).norm(), 1e-9);
+  }
+  StochasticInput in;
+  in.readings = r;
+  const auto res = analyse_stochastic(in);
+  const double sw = res.fit(StochasticModel::WhiteNoise).sigma1.value;
+  int flagged = 0;
+  for (const auto& f : res.models) {
+    if (f.rho.empty()) continue;
+    // σ1 far below the white-noise σ1 must be flagged.
+    if (f.sigma1.value < kDegenerateSigma1Ratio * sw) {
+      EXPECT_TRUE(f.degenerate) << to_string(f.model);
+      EXPECT_THAT(f.degenerate_reason, HasSubstr("sigma1 -> 0"));
+      ++flagged;
+    }
+  }
+  EXPECT_GE(flagged, 1);  // the trial's markov1-ml
+  expect_recommendation_and_tests_avoid_degenerate(res);
+  EXPECT_THAT(res.notes, ::testing::Contains(HasSubstr("is degenerate")));
+  // With the booked σ of the book (0.05 div; the readings are booked to 0.1 div, whose rounding
+  // alone is 0.1/√12 = 0.029 div): no Markov model may claim σ1 < 0.2 × 0.05 and be recommended.
+  in.booked_sigma = 0.05;
+  const auto booked = analyse_stochastic(in);
+  for (const auto& f : booked.models)
+    if (!f.rho.empty() && f.sigma1.value < 0.01) {
+      EXPECT_TRUE(f.degenerate) << to_string(f.model);
+    }
+  expect_recommendation_and_tests_avoid_degenerate(booked);
+  const auto& rec = booked.models[static_cast<std::size_t>(booked.recommended)];
+  EXPECT_GT(rec.sigma1.value, 0.01) << to_string(rec.model);
+}
+
+TEST(StochasticDegenerate, StationarityEdgeAndAbsurdAmplitude) {
+  // examples/tracking.yaml (user trial, finding 8): Markov-1 ML runs to ρ ≈ −0.98 with an
+  // amplitude thousands of arcsec from every other model.
+  StochasticInput in;
+  in.readings = example_tracking();
+  const auto res = analyse_stochastic(in);
+  const ModelFit& m1 = res.fit(StochasticModel::Markov1Ml);
+  const ModelFit& w = res.fit(StochasticModel::WhiteNoise);
+  if (std::fabs(m1.rho[0]) >= kStationarityEdge ||
+      std::fabs(m1.amplitude.value - w.amplitude.value) > kDegenerateShift * w.sigma1.value) {
+    EXPECT_TRUE(m1.degenerate);
+  }
+  ASSERT_TRUE(m1.degenerate) << "rho " << m1.rho[0] << " A " << m1.amplitude.value;
+  expect_recommendation_and_tests_avoid_degenerate(res);
+  // No model borrows the degenerate signal: the influence on A′ of white noise is either not
+  // stated or that of a non-degenerate Markov model's signal, which moves A′ by far less than
+  // the trial's −2625″.
+  for (const auto& f : res.models) {
+    if (f.rho.empty() && std::isfinite(f.signal_influence(1))) {
+      EXPECT_LT(std::fabs(f.signal_influence(1)), kDegenerateShift * w.sigma1.value)
+          << to_string(f.model);
+    }
+  }
+}
+
+TEST(StochasticDegenerate, LargestRootModulus) {
+  // Markov-2 (ρ1, ρ2) = (−0.116, 0.883) (user trial, finding 9): z² + 0.116 z − 0.883 has the
+  // root −1.0002, modulus ≥ the edge; (0.5, 0.3) has roots 0.852, −0.352 (inside).
+  const std::vector<double> r = simulated_series(20, 0.5, 2.0, 2.0, 17);
+  StochasticInput in;
+  in.readings = r;
+  const auto res = analyse_stochastic(in);
+  for (const auto& f : res.models) {
+    if (f.rho.size() != 2) continue;
+    const double r1 = f.rho[0], r2 = f.rho[1];
+    // Independent: the companion matrix's eigenvalues.
+    Eigen::Matrix2d comp;
+    comp << r1, r2, 1.0, 0.0;
+    const double root = comp.eigenvalues().cwiseAbs().maxCoeff();
+    if (root >= kStationarityEdge) {
+      EXPECT_TRUE(f.degenerate);
+      EXPECT_THAT(f.degenerate_reason, HasSubstr("edge of the stationary region"));
+    }
+  }
+}
+
+TEST(StochasticCovarianceFunctions, AmplitudeIsRemlAtTheShape) {
+  // a = v_Rᵀ R⁻¹ v_R/(n − 3) (dense inverse as the reference), the REML likelihood is maximal in
+  // a there, and σ(σ1) = σ1/√(2(n − 3)).
+  const auto r = simulated_series(20, 0.6, 2.0, 5.0, 23);
+  StochasticInput in;
+  in.readings = r;
+  const auto res = analyse_stochastic(in);
+  const int n = 20;
+  const MatrixXd G = reversal_design(n);
+  const VectorXd l = Eigen::Map<const VectorXd>(r.data(), n);
+  int seen = 0;
+  for (const auto& f : res.models) {
+    if (!is_c_type(f.model)) continue;
+    SCOPED_TRACE(to_string(f.model));
+    ++seen;
+    EXPECT_TRUE(f.rho.empty());
+    ASSERT_FALSE(f.shape.empty());
+    MatrixXd R(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double k = std::abs(i - j), b = f.shape[0];
+        R(i, j) = f.model == StochasticModel::Exponential ? std::exp(-k / b)
+                  : f.model == StochasticModel::Gaussian  ? std::exp(-(k / b) * (k / b))
+                                                          : std::exp(-k / b) * std::cos(f.shape[1] * k);
+      }
+    const MatrixXd P = R.inverse();
+    const VectorXd y = (G.transpose() * P * G).inverse() * G.transpose() * P * l;
+    const VectorXd v = l - G * y;
+    const double a = v.dot(P * v) / (n - 3);
+    EXPECT_NEAR(f.sigma1.value, std::sqrt(a), 1e-9 * std::sqrt(a));
+    EXPECT_NEAR(f.sigma1.sigma, std::sqrt(a) / std::sqrt(2.0 * (n - 3)), 1e-9 * std::sqrt(a));
+    // m_M from (GᵀD⁻¹G)⁻¹ with D = a·R.
+    EXPECT_NEAR(f.north.sigma, std::sqrt(a * (G.transpose() * P * G).inverse()(0, 0)),
+                1e-9 * f.north.sigma);
+    // REML ℓ(a) = const − ((n−3)/2)·ln a − vᵀR⁻¹v/(2a): maximal at a; the reported ℓ is the
+    // REML log-likelihood of D = a·R (dense formula).
+    const auto reml = [&](double s) {
+      const MatrixXd D = s * R;
+      const MatrixXd Pi = D.inverse();
+      const MatrixXd N = G.transpose() * Pi * G;
+      const VectorXd yy = N.inverse() * G.transpose() * Pi * l;
+      const VectorXd vv = l - G * yy;
+      return -0.5 * ((n - 3) * std::log(2.0 * M_PI) + std::log(D.determinant()) +
+                     std::log(N.determinant()) + vv.dot(Pi * vv));
+    };
+    EXPECT_GT(reml(a), reml(1.01 * a));
+    EXPECT_GT(reml(a), reml(0.99 * a));
+  }
+  EXPECT_EQ(seen, 3);
+}
+
+TEST(StochasticCovarianceFunctions, ShapeAtTheGridEdgeIsSaidAndMatchesWhiteNoise) {
+  // examples/tracking.yaml: c-exponential ends at b = 0.1 lag (user trial, finding 7), where
+  // e^{−10} makes D practically a·I: σ1 and m must then be those of white noise (before the fix
+  // σ1 was √((n−3)/n) of it).
+  StochasticInput in;
+  in.readings = example_tracking();
+  const auto res = analyse_stochastic(in);
+  const ModelFit& w = res.fit(StochasticModel::WhiteNoise);
+  const ModelFit& e = res.fit(StochasticModel::Exponential);
+  ASSERT_NEAR(e.shape[0], 0.1, 1e-12);
+  EXPECT_THAT(e.notes, ::testing::Contains(HasSubstr("lower end of its search grid")));
+  EXPECT_NEAR(e.sigma1.value / w.sigma1.value, 1.0, 1e-3);
+  EXPECT_NEAR(e.north.sigma / w.north.sigma, 1.0, 1e-3);
+}
+
+TEST(StochasticChecks, BookedSigmaExcessIsABookingWarning) {
+  StochasticInput in;
+  in.readings = example_tracking();
+  in.booked_sigma = 8.0;
+  in.unit = "arcsec";
+  {
+    const auto res = analyse_stochastic(in);
+    // White-noise σ1 ≈ 5″ against 8″: consistent, no warning.
+    EXPECT_TRUE(res.warnings.empty()) << res.warnings.front();
+  }
+  std::swap(in.readings[0], in.readings[1]);  // user trial, finding 10
+  const auto res = analyse_stochastic(in);
+  const double s1 = res.fit(StochasticModel::WhiteNoise).sigma1.value;
+  ASSERT_GT(s1, 1000.0);
+  EXPECT_THAT(res.warnings, ::testing::Contains(HasSubstr("booking error?")));
+  // Nor a decay fitted to such readings: no (R2) length warning (it gave κ = 1.28 here).
+  EXPECT_EQ(res.warnings.size(), 1u);
+  EXPECT_EQ(res.r2_misfit_rms, 0.0);
+  // Borderline: σ1 at the booked σ is no warning; the test rejects at α = 1 % when
+  // (n − 3)·(σ1/σ)² > χ²_0.99(4) = 13.2767 (tables), i.e. σ/σ1 < √(4/13.2767) = 0.54889.
+  in.readings = example_tracking();
+  const double s1w = analyse_stochastic(in).fit(StochasticModel::WhiteNoise).sigma1.value;
+  in.booked_sigma = s1w * 0.54889 * 1.001;  // just inside (not rejected)
+  EXPECT_TRUE(analyse_stochastic(in).warnings.empty());
+  in.booked_sigma = s1w * 0.54889 * 0.97;  // T = 4/(0.54889·0.97)² ≈ 14.1 > 13.28
+  const auto moderate = analyse_stochastic(in).warnings;
+  EXPECT_THAT(moderate, ::testing::Contains(HasSubstr("scatter more than booked")));
+  EXPECT_THAT(moderate, ::testing::Not(::testing::Contains(HasSubstr("booking error?"))));
+}
+
+// Noise-free (R1) readings r_i = M + (−1)^i·A·e^{−iκ}.
+std::vector<double> r1_series(int n, double m, double a, double kappa) {
+  std::vector<double> r;
+  for (int i = 1; i <= n; ++i) r.push_back(m + (i % 2 == 0 ? 1.0 : -1.0) * a * std::exp(-i * kappa));
+  return r;
+}
+
+TEST(StochasticChecks, LongSeriesMisfitOfR2IsWarned) {
+  // Noise-free (R1) data: the OLS residuals of (R2) are exactly the misfit of the
+  // linearisation, so the reported rms must match √(vᵀv/n) (up to the use of the fitted κ̂, Â′).
+  const int n = 100;
+  auto r = r1_series(n, 754.0, 4800.0, 0.002);
+  const MatrixXd G = reversal_design(n);
+  const VectorXd l = Eigen::Map<const VectorXd>(r.data(), n);
+  const VectorXd y = (G.transpose() * G).inverse() * G.transpose() * l;
+  const double rms = std::sqrt((l - G * y).squaredNorm() / n);
+  // Leading order (the quadratic term, continuous): A·κ²/2·n²·√(1/180) ≈ 7.16″; the cubic
+  // term (A·κ³·n³/6 = 6.4″ at i = n) lowers it, so only to 15 %.
+  EXPECT_NEAR(rms, 4800.0 * 0.002 * 0.002 / 2.0 * n * n * std::sqrt(1.0 / 180.0), 0.15 * rms);
+  // Add white noise of 5″ (fixed seed) so the series has the trial's scatter.
+  std::mt19937_64 rng(6);
+  std::normal_distribution<double> N(0.0, 5.0);
+  for (double& x : r) x += N(rng);
+  StochasticInput in;
+  in.readings = r;
+  in.options.markov2 = false;  // not needed here; keeps the test fast
+  const auto res = analyse_stochastic(in);
+  EXPECT_NEAR(res.r2_misfit_rms, rms, 0.05 * rms);
+  EXPECT_THAT(res.warnings, ::testing::Contains(HasSubstr("long for the linearised model (R2)")));
+  // The same noise without decay, and a short series with decay: no warning.
+  in.readings = r1_series(n, 754.0, 4800.0, 0.0);
+  std::mt19937_64 rng2(6);
+  for (double& x : in.readings) x += N(rng2);
+  EXPECT_TRUE(analyse_stochastic(in).warnings.empty());
+  in.readings = r1_series(20, 754.0, 4800.0, 0.002);
+  std::mt19937_64 rng3(6);
+  for (double& x : in.readings) x += N(rng3);
+  const auto short_res = analyse_stochastic(in);
+  EXPECT_TRUE(short_res.warnings.empty());
+  // A·κ²/2·20²·√(1/180) ≈ 0.29″, far below 0.25 × 5″.
+  EXPECT_LT(short_res.r2_misfit_rms, 0.4);
+}
+
 }  // namespace

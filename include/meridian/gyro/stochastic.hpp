@@ -14,9 +14,14 @@
 ///
 /// Stochastic models compared (D = D(L)):
 /// * white noise (ordinary least squares): D = σ_1²·I;
-/// * C-type covariance functions fitted to the empirical autocovariance of the OLS residuals
-///   ĉ_k = Σ_i v_i·v_{i+k}/n: exponential a·e^{−k/b}, Gaussian a·e^{−(k/b)²}, damped cosine
-///   (second-order Markov) a·e^{−k/b}·cos(ω·k); D_ij = c(|i − j|);
+/// * C-type covariance functions: the shape fitted to the empirical autocovariance of the OLS
+///   residuals ĉ_k = Σ_i v_i·v_{i+k}/n: exponential e^{−k/b}, Gaussian e^{−(k/b)²}, damped
+///   cosine (second-order Markov) e^{−k/b}·cos(ω·k), giving the correlation matrix
+///   R_ij = f(|i − j|); the amplitude a is then the REML estimate at that shape,
+///   a = v_Rᵀ·R⁻¹·v_R/(n − 3) with v_R the GLS residuals under R (the spec leaves the amplitude
+///   open; the LS fit of a·f to ĉ_k carries the 1/n of ĉ_k and no allowance for the 3
+///   unknowns, so its σ are optimistic by √((n−3)/n)); D = a·R. Lags k < n/2 are used; the
+///   damped cosine (3 parameters) is left out with a note below 5 lags (n < 10);
 /// * Markov-1 and Markov-2 (markov_covariance.hpp), D = σ_1²·C·Cᵀ + σ_2²·B·Bᵀ, with ρ chosen
 ///   on the classical grid (ρ = 0.1 … 0.9; ρ_1, ρ_2 ∈ {−0.9, −0.8, …, 0.9} inside the AR(2)
 ///   triangle) and by maximising the restricted likelihood (profile over the variance
@@ -24,10 +29,21 @@
 /// For every Markov model σ_1², σ_2² are estimated by variance-component estimation
 /// (adjust::estimate_variance_components; a negative estimate is clipped to 0 and said).
 ///
+/// Degenerate fits: a model (other than white noise) is marked degenerate, with the reason, when
+/// σ_1 is clipped to 0 or below kDegenerateSigma1Ratio × the white-noise σ_1 (the readings are
+/// fitted almost exactly through the signal term; the restricted likelihood is unbounded
+/// there) or below kDegenerateBookedRatio × the booked σ of one reading (when one is booked:
+/// the signal term then fits the readings better than they can be read), when its ρ lies at the stationarity edge (Markov-1 |ρ| ≥ kStationarityEdge;
+/// Markov-2 a root of z² − ρ_1·z − ρ_2 of modulus ≥ kStationarityEdge: a random walk that the
+/// short series cannot tell from the functional model), or when its M or A′ differs from the
+/// white-noise estimate by more than kDegenerateShift × the white-noise σ_1. A degenerate model
+/// is reported but never recommended, never used in a likelihood-ratio test and never the
+/// source of the signal used for the other models' influence.
+///
 /// Comparison: the REML log-likelihood ℓ (all models share G, so REML likelihoods compare);
 /// AIC = −2ℓ + 2k, BIC = −2ℓ + k·ln(n − 3), k the number of covariance parameters (white 1;
 /// exponential, Gaussian 2; damped cosine 3; Markov-1 3; Markov-2 4). The recommended model
-/// is the one of smallest BIC (on a tie the one with fewer parameters). Likelihood-ratio
+/// is the non-degenerate one of smallest BIC (on a tie the one with fewer parameters). Likelihood-ratio
 /// tests: white noise against Markov-1 (ML; 2 degrees of freedom — σ_2 is not identified at
 /// ρ = 0, so the χ² reference is approximate) and Markov-1 against Markov-2 (ML; 1 degree of
 /// freedom, ρ_2 = 0), at α = 5 %.
@@ -35,8 +51,21 @@
 /// Signal influence (spec §4): for a Markov model X̂ = σ_2²·Bᵀ·D⁻¹·(L − G·Ŷ) and
 /// ΔŶ = (GᵀD⁻¹G)⁻¹·GᵀD⁻¹·B·X̂. For white noise and the covariance-function models, which have
 /// no signal term of their own, ΔŶ is their estimator applied to the signal B·X̂ predicted by
-/// the Markov model of maximum likelihood with the smaller BIC — how much of that signal each
-/// model lets into M and A′.
+/// the non-degenerate Markov model of maximum likelihood with the smaller BIC (else the
+/// non-degenerate grid model with the smaller BIC; else not stated, NaN) — how much of that
+/// signal each model lets into M and A′.
+///
+/// Checks of the series (StochasticResult::warnings): the white-noise σ_1 against the booked σ
+/// of one reading (StochasticInput::booked_sigma) by the global test of gyro reduce
+/// (reversal.hpp, α = kReadingSigmaTestAlpha; above kBookingErrorRatio × the booked σ the
+/// warning asks "booking error?"); and the length of the series against the
+/// linearisation of (R1) in (R2): with κ̂, Â of an unweighted least-squares fit of (R1) itself
+/// (M, A linear; κ by golden section on [0, 3·2ĉ/Â′] of the white-noise fit, whose own κ is
+/// biased by the misfit), the neglected term q_i = (−1)^i·Â·(e^{−iκ̂} − 1 + iκ̂) ≈
+/// (−1)^i·Â·κ̂²·i²/2, less its least-squares
+/// projection on G, has an rms (r2_misfit_rms) that is compared with the white-noise σ_1
+/// (warning above kR2MisfitRatio × σ_1: the Markov and C-type models then model the misfit).
+/// The (R2) check is skipped (r2_misfit_rms = 0) after a "booking error?" warning.
 ///
 /// Standard deviations: D_Ŷ = (GᵀD⁻¹G)⁻¹ with D at the estimated components (not rescaled).
 /// σ of ρ and of the components of the ML models from the inverse REML Fisher information over
@@ -46,6 +75,7 @@
 /// Sources: Grafarend & Kleusberg (gyro VCE); Teunissen & Amiri-Simkooei (2008) J Geod
 /// 82:65–82; Harville (1977) JASA 72:320–338; Akaike (1974), Schwarz (1978).
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -88,8 +118,21 @@ struct StochasticOptions {
 /// One reversal-point series.
 struct StochasticInput {
   std::vector<double> readings;  ///< r_1 … r_n in one unit (n ≥ 6: 3 unknowns, 2 components, +1)
+  /// The booked a-priori σ of one reading in the readings' unit (NaN or ≤ 0: none booked).
+  double booked_sigma = std::numeric_limits<double>::quiet_NaN();
+  std::string unit;  ///< the readings' unit, for messages only ("arcsec", "div"; may be empty)
   StochasticOptions options;
 };
+
+/// Thresholds of the degeneracy checks and the series checks (see the file comment).
+inline constexpr double kDegenerateSigma1Ratio = 1e-2;
+inline constexpr double kDegenerateBookedRatio = 0.2;
+inline constexpr double kStationarityEdge = 0.97;
+inline constexpr double kDegenerateShift = 10.0;
+inline constexpr double kR2MisfitRatio = 0.25;
+/// σ_1 of white noise more than this times the booked σ: the warning asks "booking error?"
+/// (below it, a rejected test says the readings scatter more than booked).
+inline constexpr double kBookingErrorRatio = 10.0;
 
 /// One model's fit. Values in the readings' unit; NaN where a quantity does not apply.
 struct ModelFit {
@@ -97,20 +140,27 @@ struct ModelFit {
   Uncertain north;      ///< M (α_N or zero position) and m_M
   Uncertain amplitude;  ///< A′ (α_0) and its σ
   Uncertain damping;    ///< c and its σ
-  /// Markov-1: (ρ); Markov-2: (ρ_1, ρ_2); exponential, Gaussian: (b) in lags; damped cosine:
-  /// (b, ω) with ω in rad per lag. Empty for white noise.
+  /// Markov-1: (ρ); Markov-2: (ρ_1, ρ_2). Empty for white noise and the C-type models.
   std::vector<double> rho;
   std::vector<double> rho_sigma;  ///< σ of rho (ML models; NaN otherwise)
-  /// σ_1 (noise; for white noise the σ of one reading; for C-type sqrt(a)) and its σ.
+  /// C-type shape parameters: exponential, Gaussian (b) in lags; damped cosine (b, ω) with ω in
+  /// rad per lag. Empty for the other models.
+  std::vector<double> shape;
+  /// σ_1 (noise; for white noise the σ of one reading; for C-type √a) and its σ (white noise
+  /// and C-type: σ_1/√(2(n − 3)), the REML σ at fixed shape).
   Uncertain sigma1;
   Uncertain sigma2;  ///< σ_2 (signal; Markov models) and its σ; NaN otherwise
-  Eigen::Vector3d signal_influence = Eigen::Vector3d::Zero();  ///< ΔŶ = (ΔM, ΔA′, Δc)
+  /// ΔŶ = (ΔM, ΔA′, Δc); NaN when no non-degenerate Markov model supplies the signal.
+  Eigen::Vector3d signal_influence = Eigen::Vector3d::Zero();
   double log_likelihood = 0.0;                                 ///< REML ℓ
   double aic = 0.0;
   double bic = 0.0;
   int covariance_parameters = 0;  ///< k
   int vce_iterations = 0;         ///< at the chosen ρ (0 for models without VCE)
   bool recommended = false;
+  /// The fit is at the edge of its parameter space (see the file comment); reason says how.
+  bool degenerate = false;
+  std::string degenerate_reason;
   /// D_{i,i+k}/sqrt(D_ii·D_{i+k,i+k}) averaged over i, k = 0 … n−1.
   std::vector<double> implied_autocorrelation;
   std::vector<std::string> notes;
@@ -138,7 +188,12 @@ struct StochasticResult {
   /// where VCE failed.
   std::vector<double> rho1_grid, rho2_grid;
   Eigen::MatrixXd markov2_surface;
+  /// rms of the part of (R1) that (R2) cannot represent, at the fitted decay (readings' unit;
+  /// 0 when the fitted decay is not positive).
+  double r2_misfit_rms = 0.0;
   std::vector<std::string> notes;
+  /// Findings about the series itself: σ_1 far above the booked σ, (R2) too short-sighted.
+  std::vector<std::string> warnings;
 
   /// The fit of model m; throws InputError when it is not in models.
   const ModelFit& fit(StochasticModel m) const;

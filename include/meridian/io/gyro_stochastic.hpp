@@ -21,13 +21,19 @@ namespace meridian::io {
 /// A field book and the analysis of its series.
 struct StochasticJob {
   std::string file;
+  bool campaign = false;  ///< the file is a campaign file (`campaign:` at the top level)
   gyro::StochasticBookResult result;
 };
 
-/// Read a reduce field book and analyse every series. Throws the reader's
+/// Read a reduce field book, or a campaign file (recognised by its top-level `campaign:`;
+/// series from known_line.before, known_line.after and line.determinations), and analyse
+/// every series of at least 6 readings. The booked σ of one reading (tracking:
+/// sigma_reading_arcsec of the determination; zero position: the instrument's
+/// sigma_reading_div) goes with each series for the booking check. Throws the reader's
 /// ParseError/InputError (file, line, field) and, for a series that cannot be analysed, its
 /// InputError/NumericalError with the file and the series' field ("determinations[2].reversals").
-/// A file without any series of at least 6 readings is an InputError.
+/// A file without any series of at least 6 readings is an InputError that says how many series
+/// it has and the longest (a standard programme of 5 reversals per run is below the minimum).
 StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* progress = nullptr);
 
 }  // namespace meridian::io

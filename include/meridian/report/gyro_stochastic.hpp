@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meridian/gyro/stochastic_book.hpp"
+#include "meridian/report/html.hpp"
 
 namespace meridian::report {
 
@@ -25,5 +26,11 @@ nlohmann::json stochastic_to_json(const std::string& file, const gyro::Stochasti
 
 /// The comparison table per series (fixed-width text; σ in arcsec or div).
 std::string stochastic_text(const std::string& file, const gyro::StochasticBookResult& book);
+
+/// `--report FILE.html`: per series a section (id "series-<i>", i from 1) with the
+/// model-comparison table, the warnings and notes, the likelihood-ratio tests, the residual
+/// autocorrelation of the OLS fit with each model's implied autocorrelation (lags 0 … n/2), and
+/// the profile REML of Markov-2 over the (ρ_1, ρ_2) grid (when fitted).
+Document stochastic_document(const std::string& file, const gyro::StochasticBookResult& book);
 
 }  // namespace meridian::report
