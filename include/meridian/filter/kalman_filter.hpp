@@ -193,15 +193,26 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
   const Eigen::Index next = epoch_ + 1;
   detail::check_shape(q.rows(), q.cols(), size(), size(), "process noise Q_d", next);
   detail::check_input_covariance(q, "process noise Q_d", next);
+  Matrix<N, N>& p = predicted_.P;  // written only after the checks above
   Matrix<N, N> phi_p;
-  phi_p.noalias() = detail::product(phi, estimate_.P);
-  Matrix<N, N> p = q;
-  p.noalias() += detail::product(phi_p, phi.transpose());
-  p = (0.5 * (p + p.transpose())).eval();
-  detail::check_covariance_diagonal(p, "predicted covariance P⁻", next);
+  if constexpr (N != Eigen::Dynamic) {
+    // Φ·P, then only the upper triangle of Q + (Φ·P)·Φᵀ, mirrored (small_matrix.hpp).
+    detail::mul_ab(phi, estimate_.P, phi_p);
+    Matrix<N, N> p_new = 0.5 * (q + q.transpose());
+    detail::add_abt_symmetric(phi_p, phi, p_new);
+    detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
+    p = p_new;
+  } else {
+    phi_p.noalias() = phi * estimate_.P;
+    Matrix<N, N> p_new = q;
+    p_new.noalias() += phi_p * phi.transpose();
+    p_new = (0.5 * (p_new + p_new.transpose())).eval();
+    detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
+    p = std::move(p_new);
+  }
   predicted_.x = x;
-  predicted_.P = p;
-  estimate_ = predicted_;
+  estimate_.x = x;
+  estimate_.P = p;
   phi_ = phi;
   epoch_ = next;
 }
