@@ -55,7 +55,7 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
       detail::throw_not_positive_definite("predicted covariance P⁻", k + 1, next_pred.P);
     dx = s.x - next_pred.x;
     s.x = filtered.x;
-    s.x.noalias() += c * dx;
+    s.x.noalias() += detail::product(c, dx);
     t = s.P - next_pred.P;
     s.P = filtered.P;
     if constexpr (N != Eigen::Dynamic) {
