@@ -26,6 +26,7 @@
 /// 1e-9 of its largest entry), a negative variance; NumericalError when S is not positive
 /// definite, NIS is not finite, or P loses its positive finite diagonal.
 
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -130,6 +131,9 @@ class KalmanFilter {
   Matrix<N, N> phi_;
   InnovationGate gate_;
   Eigen::Index epoch_ = 0;
+  // Fixed N: the last Q_d that passed the input checks (NaN: none yet).
+  Matrix<N == Eigen::Dynamic ? 0 : N, N == Eigen::Dynamic ? 0 : N> checked_q_ =
+      decltype(checked_q_)::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 namespace detail {
@@ -193,7 +197,16 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
                                         const Matrix<N, N>& q) {
   const Eigen::Index next = epoch_ + 1;
   detail::check_shape(q.rows(), q.cols(), size(), size(), "process noise Q_d", next);
-  detail::check_input_covariance(q, "process noise Q_d", next);
+  if constexpr (N != Eigen::Dynamic) {
+    // A constant model passes the same Q_d every epoch: check it once (the cache starts as NaN,
+    // which equals nothing, and holds only a Q_d that passed).
+    if (!(q.array() == checked_q_.array()).all()) {
+      detail::check_input_covariance(q, "process noise Q_d", next);
+      checked_q_ = q;
+    }
+  } else {
+    detail::check_input_covariance(q, "process noise Q_d", next);
+  }
   Matrix<N, N>& p = predicted_.P;  // written only after the checks above
   Matrix<N, N> phi_p;
   if constexpr (N != Eigen::Dynamic) {
