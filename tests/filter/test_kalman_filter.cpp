@@ -257,6 +257,11 @@ TEST(KalmanFilter, ErrorsNameTheEpoch) {
   c = catch_error<InputError>([&] { kf.predict(d.phi, q); });
   EXPECT_EQ(c.field, "epoch 6");
   EXPECT_THAT(c.what, HasSubstr("not symmetric"));
+  q = d.q;  // the constant Q_d passed five times (cached as checked): a changed one is checked
+  q(2, 2) = kNaN;
+  c = catch_error<InputError>([&] { kf.predict(d.phi, q); });
+  EXPECT_EQ(c.field, "epoch 6");
+  EXPECT_THAT(c.what, HasSubstr("process noise Q_d has a non-finite value"));
 
   c = catch_error<NumericalError>(
       [&] { kf.predict(1e200 * Matrix<CvState::size, CvState::size>::Identity(), d.q); });

@@ -10,7 +10,8 @@
 /// Conventions of the whole module (docs/filter.md):
 /// * x is a column vector of N states in the units the model chooses (radians, metres,
 ///   rad/s, …); P = E[(x − x̂)(x − x̂)ᵀ] in the products of those units. P is kept exactly
-///   symmetric (every step that changes it ends with P ← ½(P + Pᵀ)).
+///   symmetric (every step that changes it ends with P ← ½(P + Pᵀ), or for fixed sizes computes
+///   only the upper triangle of the symmetric result and mirrors it).
 /// * States are addressed by name, never by number: a model declares its indices once, e.g.
 ///   `struct DovState { static constexpr int phi_e = 0, …, size = 8; };` (docs/filter.md).
 /// * Epochs are counted from 0 (the epoch of the initial estimate) and every numerical error

@@ -14,7 +14,8 @@
 ///             P = (I − K·H)·P⁻·(I − K·H)ᵀ + K·R·Kᵀ (Joseph), then P ← ½(P + Pᵀ).
 /// The Joseph products use the rank-m structure of K·H: (I − KH)·P⁻ = P⁻ − K·(P⁻Hᵀ)ᵀ and
 /// B·(I − KH)ᵀ = B − (B·Hᵀ)·Kᵀ, O(N²m) instead of O(N³), the same products as the textbook
-/// form.
+/// form. For fixed sizes the last two terms are one product, B + (K·R − B·Hᵀ)·Kᵀ, of which only
+/// the upper triangle is computed and mirrored (the result is symmetric); likewise Φ·P·Φᵀ.
 ///
 /// Epochs: the filter starts at epoch 0 with the initial estimate; each predict moves to the
 /// next epoch; updates belong to the current epoch. Every error names the epoch
@@ -25,6 +26,7 @@
 /// 1e-9 of its largest entry), a negative variance; NumericalError when S is not positive
 /// definite, NIS is not finite, or P loses its positive finite diagonal.
 
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -129,6 +131,9 @@ class KalmanFilter {
   Matrix<N, N> phi_;
   InnovationGate gate_;
   Eigen::Index epoch_ = 0;
+  // Fixed N: the last Q_d that passed the input checks (NaN: none yet).
+  Matrix<N == Eigen::Dynamic ? 0 : N, N == Eigen::Dynamic ? 0 : N> checked_q_ =
+      decltype(checked_q_)::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 namespace detail {
@@ -172,7 +177,7 @@ void KalmanFilter<N>::predict(const Matrix<N, N>& phi, const Matrix<N, N>& q) {
   detail::check_shape(phi.rows(), phi.cols(), size(), size(), "transition Φ", next);
   detail::check_finite(phi, "transition Φ", next);
   Vector<N> x;
-  x.noalias() = phi * estimate_.x;
+  x.noalias() = detail::product(phi, estimate_.x);
   commit_prediction(x, phi, q);
 }
 
@@ -192,16 +197,36 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
                                         const Matrix<N, N>& q) {
   const Eigen::Index next = epoch_ + 1;
   detail::check_shape(q.rows(), q.cols(), size(), size(), "process noise Q_d", next);
-  detail::check_input_covariance(q, "process noise Q_d", next);
+  if constexpr (N != Eigen::Dynamic) {
+    // A constant model passes the same Q_d every epoch: check it once (the cache starts as NaN,
+    // which equals nothing, and holds only a Q_d that passed).
+    if (!(q.array() == checked_q_.array()).all()) {
+      detail::check_input_covariance(q, "process noise Q_d", next);
+      checked_q_ = q;
+    }
+  } else {
+    detail::check_input_covariance(q, "process noise Q_d", next);
+  }
+  Matrix<N, N>& p = predicted_.P;  // written only after the checks above
   Matrix<N, N> phi_p;
-  phi_p.noalias() = detail::product(phi, estimate_.P);
-  Matrix<N, N> p = q;
-  p.noalias() += detail::product(phi_p, phi.transpose());
-  p = (0.5 * (p + p.transpose())).eval();
-  detail::check_covariance_diagonal(p, "predicted covariance P⁻", next);
+  if constexpr (N != Eigen::Dynamic) {
+    // Φ·P, then only the upper triangle of Q + (Φ·P)·Φᵀ, mirrored (small_matrix.hpp).
+    detail::mul_ab(phi, estimate_.P, phi_p);
+    Matrix<N, N> p_new = 0.5 * (q + q.transpose());
+    detail::add_abt_symmetric(phi_p, phi, p_new);
+    detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
+    p = p_new;
+  } else {
+    phi_p.noalias() = phi * estimate_.P;
+    Matrix<N, N> p_new = q;
+    p_new.noalias() += phi_p * phi.transpose();
+    p_new = (0.5 * (p_new + p_new.transpose())).eval();
+    detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
+    p = std::move(p_new);
+  }
   predicted_.x = x;
-  predicted_.P = p;
-  estimate_ = predicted_;
+  estimate_.x = x;
+  estimate_.P = p;
   phi_ = phi;
   epoch_ = next;
 }
@@ -214,7 +239,7 @@ Innovation<M> KalmanFilter<N>::update_linear(const Vector<M>& z, const Matrix<M,
   detail::check_finite(z, "observation z", epoch_);
   detail::check_finite(H, "observation matrix H", epoch_);
   Vector<M> nu = z;
-  nu.noalias() -= H * estimate_.x;
+  nu.noalias() -= detail::product(H, estimate_.x);
   return apply_update<M>(nu, H, R);
 }
 
@@ -241,8 +266,12 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
   in.epoch = epoch_;
   in.nu = nu;
   const Matrix<N, N>& P = estimate_.P;
+  constexpr bool fixed = N != Eigen::Dynamic && M != Eigen::Dynamic;
   Matrix<N, M> U;  // P⁻·Hᵀ
-  U.noalias() = P * H.transpose();
+  if constexpr (fixed)
+    detail::mul_abt(P, H, U);
+  else
+    U.noalias() = P * H.transpose();
   in.S = R;
   in.S.noalias() += H * U;
   in.S = (0.5 * (in.S + in.S.transpose())).eval();
@@ -263,16 +292,28 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
   Matrix<N, M> K = U;  // K = (P⁻Hᵀ)·S⁻¹ (S was factored above: positive definite)
   detail::cholesky_right_solve_in_place(in.S, K);
   Vector<N> x = estimate_.x;
-  x.noalias() += K * nu;
+  x.noalias() += detail::product(K, nu);
   Matrix<N, N> b = P;  // (I − KH)·P⁻
-  b.noalias() -= detail::product(K, U.transpose());
-  Matrix<N, M> bht;
-  bht.noalias() = detail::product(b, H.transpose());
-  b.noalias() -= detail::product(bht, K.transpose());  // (I − KH)·P⁻·(I − KH)ᵀ
-  Matrix<N, M> kr;
-  kr.noalias() = K * R;
-  b.noalias() += detail::product(kr, K.transpose());  // + K·R·Kᵀ
-  b = (0.5 * (b + b.transpose())).eval();
+  if constexpr (fixed) {
+    for (int j = 0; j < N; ++j)
+      for (int k = 0; k < M; ++k) b.col(j) -= K.col(k) * U(j, k);
+    Matrix<N, M> g;  // K·R − (I − KH)·P⁻·Hᵀ
+    detail::mul_ab(K, R, g);
+    Matrix<N, M> bht;
+    detail::mul_abt(b, H, bht);
+    g -= bht;
+    // (I − KH)·P⁻·(I − KH)ᵀ + K·R·Kᵀ = b + g·Kᵀ, symmetric: upper triangle, mirrored.
+    detail::add_abt_symmetric(g, K, b);
+  } else {
+    b.noalias() -= K * U.transpose();
+    Matrix<N, M> bht;
+    bht.noalias() = b * H.transpose();
+    b.noalias() -= bht * K.transpose();  // (I − KH)·P⁻·(I − KH)ᵀ
+    Matrix<N, M> kr;
+    kr.noalias() = K * R;
+    b.noalias() += kr * K.transpose();  // + K·R·Kᵀ
+    b = (0.5 * (b + b.transpose())).eval();
+  }
   detail::check_covariance_diagonal(b, "covariance P after the update", epoch_);
   if (!x.allFinite()) [[unlikely]]
     detail::throw_numerical(epoch_, "state x̂ after the update is not finite");

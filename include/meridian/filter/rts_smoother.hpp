@@ -8,13 +8,14 @@
 /// k = K−2 … 0, starting from x̂ˢ_{K−1} = x̂_{K−1}, Pˢ_{K−1} = P_{K−1}:
 ///   C_k = P_k·Φ_{k+1}ᵀ·(P⁻_{k+1})⁻¹   (by a Cholesky solve with P⁻_{k+1}; no inverse),
 ///   x̂ˢ_k = x̂_k + C_k·(x̂ˢ_{k+1} − x̂⁻_{k+1}),
-///   Pˢ_k = P_k + C_k·(Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ, then Pˢ ← ½(Pˢ + Pˢᵀ).
+///   Pˢ_k = P_k + C_k·(Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ, then Pˢ ← ½(Pˢ + Pˢᵀ) (fixed N: only the
+///   upper triangle of the symmetric product is computed and mirrored, small_matrix.hpp).
 /// For an extended filter the stored Φ is the Jacobian and x̂⁻ = f(x̂): the extended RTS smoother.
 ///
 /// Errors: NumericalError naming the epoch when P⁻_{k+1} is not positive definite ("epoch
 /// k+1") or Pˢ_k loses its positive finite diagonal ("epoch k"); IoError from the storage.
 
-#include <utility>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -31,33 +32,50 @@ namespace meridian::filter {
 template <int N, typename Sink>
 void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
   auto reader = storage.read_reverse();
-  EpochRecord<N> next;  // epoch k+1
-  EpochRecord<N> cur;   // epoch k
-  if (!reader.next(next)) return;
-  Estimate<N> s = next.filtered;
+  Estimate<N> s;         // smoothed estimate of epoch k+1, then k
+  Estimate<N> pred[2];   // predicted estimates of epochs k+1 and k, alternating
+  Estimate<N> filtered;  // filtered estimate of epoch k
+  int nx = 0;            // pred[nx] is epoch k+1
+  if (!reader.next(pred[nx], s)) return;
+  Matrix<N, N> phi = reader.transition();  // Φ_{k+1}, copied only when it changes
+  std::uint64_t phi_index = reader.transition_index();
   sink(reader.index(), static_cast<const Estimate<N>&>(s));
-  Matrix<N, N> a;
   Matrix<N, N> c;
+  Matrix<N, N> d;
   Matrix<N, N> t;
   Vector<N> dx;
-  while (reader.next(cur)) {
+  while (reader.next(pred[1 - nx], filtered)) {
     const Eigen::Index k = reader.index();
-    c.noalias() = detail::product(cur.filtered.P, next.phi.transpose());  // P_k·Φ_{k+1}ᵀ
-    if (!detail::cholesky_right_solve_in_place(next.predicted.P, c)) [[unlikely]]  // C_k
-      detail::throw_not_positive_definite("predicted covariance P⁻", k + 1, next.predicted.P);
-    dx = s.x - next.predicted.x;
-    s.x = cur.filtered.x;
-    s.x.noalias() += c * dx;
-    t = s.P - next.predicted.P;
-    a.noalias() = detail::product(t, c.transpose());  // (Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ
-    s.P = cur.filtered.P;
-    s.P.noalias() += detail::product(c, a);
-    s.P = (0.5 * (s.P + s.P.transpose())).eval();
+    const Estimate<N>& next_pred = pred[nx];
+    if constexpr (N != Eigen::Dynamic)
+      detail::mul_abt(filtered.P, phi, c);  // P_k·Φ_{k+1}ᵀ
+    else
+      c.noalias() = filtered.P * phi.transpose();
+    if (!detail::cholesky_right_solve_in_place(next_pred.P, c)) [[unlikely]]  // C_k
+      detail::throw_not_positive_definite("predicted covariance P⁻", k + 1, next_pred.P);
+    dx = s.x - next_pred.x;
+    s.x = filtered.x;
+    s.x.noalias() += detail::product(c, dx);
+    t = s.P - next_pred.P;
+    s.P = filtered.P;
+    if constexpr (N != Eigen::Dynamic) {
+      // C·T·Cᵀ is symmetric: D = C·T, then the upper triangle of P_k + D·Cᵀ, mirrored.
+      detail::mul_ab(c, t, d);
+      detail::add_abt_symmetric(d, c, s.P);
+    } else {
+      d.noalias() = t * c.transpose();  // (Pˢ_{k+1} − P⁻_{k+1})·C_kᵀ
+      s.P.noalias() += c * d;
+      s.P = (0.5 * (s.P + s.P.transpose())).eval();
+    }
     detail::check_covariance_diagonal(s.P, "smoothed covariance", k);
     if (!s.x.allFinite()) [[unlikely]]
       detail::throw_numerical(k, "smoothed state is not finite");
     sink(k, static_cast<const Estimate<N>&>(s));
-    std::swap(next, cur);
+    nx = 1 - nx;
+    if (reader.transition_index() != phi_index) {
+      phi = reader.transition();
+      phi_index = reader.transition_index();
+    }
   }
 }
 

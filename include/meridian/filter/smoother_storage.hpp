@@ -111,6 +111,13 @@ class SmootherStorage {
   class ReverseReader {
    public:
     bool next(EpochRecord<N>& record) {
+      if (!next(record.predicted, record.filtered)) return false;
+      record.phi = phi_;
+      return true;
+    }
+    /// As next(record) without copying Φ: fills the predicted and filtered estimates of epoch
+    /// index(); its Φ is transition() until the next call.
+    bool next(Estimate<N>& predicted, Estimate<N>& filtered) {
       const double* p = reader_.next();
       if (p == nullptr) return false;
       const Eigen::Index n = n_;
@@ -126,13 +133,16 @@ class SmootherStorage {
         }
         have_phi_ = true;
       }
-      record.phi = phi_;
-      p = unpack(p, record.predicted, n);
-      unpack(p, record.filtered, n);
+      p = unpack(p, predicted, n);
+      unpack(p, filtered, n);
       return true;
     }
     /// Epoch of the record the last next() filled.
     Eigen::Index index() const { return static_cast<Eigen::Index>(reader_.index()); }
+    /// Φ of that epoch (from epoch index() − 1 to index()).
+    const Matrix<N, N>& transition() const { return phi_; }
+    /// Index of transition() in the store of transitions: it changes only when Φ does.
+    std::uint64_t transition_index() const { return phi_reader_.index(); }
 
    private:
     friend class SmootherStorage;
