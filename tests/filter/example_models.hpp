@@ -163,15 +163,17 @@ inline Matrix<2, CvState::size> cv_position_matrix() {
 // Simulation.
 
 /// A draw from N(0, C) for a symmetric positive semi-definite C (eigen-decomposition, so a
-/// singular C — a process noise with few inputs — is fine).
+/// singular C — a process noise with few inputs — is fine). The decomposition runs on a
+/// dynamic-size copy: one Eigen solver instantiation for every N instead of one per size, which
+/// took several seconds of compile time per size in each test file (the draw's cost is not measured).
 template <int N>
 Vector<N> draw(const Matrix<N, N>& C, std::mt19937_64& rng) {
-  const Eigen::SelfAdjointEigenSolver<Matrix<N, N>> es(C);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es{Eigen::MatrixXd(C)};
   std::normal_distribution<double> nd;
-  Vector<N> u(C.rows());
+  Eigen::VectorXd u(C.rows());
   for (Eigen::Index i = 0; i < u.size(); ++i)
     u(i) = nd(rng) * std::sqrt(std::max(0.0, es.eigenvalues()(i)));
-  return es.eigenvectors() * u;
+  return Vector<N>(es.eigenvectors() * u);
 }
 
 }  // namespace meridian::filter::examples
