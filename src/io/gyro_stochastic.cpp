@@ -73,6 +73,18 @@ struct SeriesCollector {
   }
 };
 
+// A book without any series long enough: how many it has and the longest, and why 6.
+InputError no_series_error(const std::string& lead, const SeriesCollector& c,
+                           const std::string& file, const std::string& field) {
+  return InputError(
+      fmt::format("{} {} reversal-point series (tracking reversals, zero-position runs) has at "
+                  "least {} readings (the longest has {}): the stochastic models need 3 unknowns "
+                  "(M, A', c), 2 variance components and 1 more, and a standard programme of 5 "
+                  "reversals per run is below that",
+                  lead, c.seen, kMinSeries, c.longest),
+      ErrorContext{file, std::nullopt, field});
+}
+
 }  // namespace
 
 StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* progress) {
@@ -92,14 +104,7 @@ StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* p
     }
     c.determinations(f.campaign.line.determinations, "line.determinations");
     if (job.result.series.empty())
-      throw InputError(
-          fmt::format("this is a campaign file; none of its {} reversal-point series (tracking "
-                      "reversals, zero-position runs) has at least {} readings (the longest has "
-                      "{}): the stochastic models need 3 unknowns (M, A', c), 2 variance "
-                      "components and 1 more, and a standard programme of 5 reversals per run "
-                      "is below that",
-                      c.seen, kMinSeries, c.longest),
-          ErrorContext{f.file, std::nullopt, "line.determinations"});
+      throw no_series_error("this is a campaign file; none of its", c, f.file, "line.determinations");
     return job;
   }
   const GyroReduceFile f = read_gyro_reduce_file(path);
@@ -107,13 +112,7 @@ StochasticJob run_stochastic_file(const std::filesystem::path& path, Progress* p
   SeriesCollector c{job, f.file, f.lines, progress, f.input.instrument.sigma_reading_div};
   c.determinations(f.input.determinations, "determinations");
   if (job.result.series.empty())
-    throw InputError(
-        fmt::format("none of the {} reversal-point series (tracking reversals, zero-position "
-                    "runs) has at least {} readings (the longest has {}): the stochastic models "
-                    "need 3 unknowns (M, A', c), 2 variance components and 1 more, and a "
-                    "standard programme of 5 reversals per run is below that",
-                    c.seen, kMinSeries, c.longest),
-        ErrorContext{f.file, std::nullopt, "determinations"});
+    throw no_series_error("none of the", c, f.file, "determinations");
   return job;
 }
 
