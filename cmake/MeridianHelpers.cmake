@@ -27,11 +27,15 @@ endfunction()
 # meridian_add_test(name SOURCES ... LIBS ... [LABEL label]): one GoogleTest
 # executable, each test case registered with CTest under the CTest label
 # `label` (default `unit`; e.g. `reference` for cross-checks that run an
-# external reference tool, selectable with ctest -L / -LE).
+# external reference tool, selectable with ctest -L / -LE). Executables labelled
+# `montecarlo` are not built when MERIDIAN_MONTECARLO_TESTS is OFF.
 function(meridian_add_test name)
   cmake_parse_arguments(T "" "LABEL" "SOURCES;LIBS" ${ARGN})
   if(NOT T_LABEL)
     set(T_LABEL unit)
+  endif()
+  if(T_LABEL STREQUAL "montecarlo" AND NOT MERIDIAN_MONTECARLO_TESTS)
+    return()  # the sanitizer pass does not run them, so it does not build them either
   endif()
   add_executable(${name} ${T_SOURCES})
   target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main GTest::gmock)
