@@ -8,6 +8,9 @@
 #include <random>
 #include <vector>
 
+#include "meridian/adjust/two_component_reml.hpp"
+#include "meridian/adjust/variance_components.hpp"
+#include "meridian/core/error.hpp"
 #include "meridian/gyro/markov_covariance.hpp"
 #include "meridian/gyro/stochastic.hpp"
 
@@ -42,6 +45,53 @@ void Markov1Only(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(analyse_stochastic(in));
 }
 BENCHMARK(Markov1Only)->Arg(20)->Unit(benchmark::kMillisecond);
+
+// The inner step of the ρ searches, side by side: the maximum of the restricted likelihood over
+// (σ_1², σ_2²) at each stationary point of the 19×19 Markov-2 grid, by the iterated VCE from the
+// OLS variance (the reference; what the search did before) and in closed form (what it does).
+template <bool kClosedForm>
+void Markov2GridStep(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const auto r = series(n, 3);
+  const Eigen::VectorXd l = Eigen::Map<const Eigen::VectorXd>(r.data(), n);
+  const Eigen::MatrixXd G = reversal_design(n);
+  std::vector<MarkovFactors> grid;
+  for (int a = -9; a <= 9; ++a)
+    for (int b = -9; b <= 9; ++b)
+      if (ar2_stationary(0.1 * a, 0.1 * b)) grid.push_back(markov2_factors(n, 0.1 * a, 0.1 * b));
+  const double s0sq =
+      meridian::adjust::solve_linear(
+          G, l, meridian::adjust::CovarianceFactor::diagonal(Eigen::VectorXd::Ones(n)))
+          .vtpv /
+      (n - 3);
+  for (auto _ : state) {
+    double sum = 0.0;
+    for (const auto& f : grid) {
+      const meridian::adjust::VarianceComponent c1{"sigma1^2", f.C}, c2{"sigma2^2", f.B};
+      try {
+        if constexpr (kClosedForm) {
+          sum += meridian::adjust::maximise_two_component_reml(G, l, c1, c2).reml;
+        } else {
+          meridian::adjust::VceOptions o;
+          o.details = false;
+          o.initial = Eigen::Vector2d(s0sq, s0sq);
+          sum += meridian::adjust::estimate_variance_components(G, l, {c1, c2}, o).likelihood.reml;
+        }
+      } catch (const meridian::Error&) {
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["points"] = static_cast<double>(grid.size());
+}
+BENCHMARK_TEMPLATE(Markov2GridStep, false)
+    ->Name("Markov2Grid/IteratedVce")
+    ->Arg(20)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(Markov2GridStep, true)
+    ->Name("Markov2Grid/ClosedForm")
+    ->Arg(20)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

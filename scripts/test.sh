@@ -36,13 +36,8 @@ if [ "${MERIDIAN_SKIP_SANITIZERS:-0}" != 1 ]; then
   # -E MonteCarlo: the same for the Monte Carlo cases inside unit-test binaries
   # (VarianceComponents.MonteCarloSigmaMatchesScatter alone took 141 s here, 2.7 s in
   # Release); browser: headless Chromium rendering a report, not our memory.
-  # The gyro-stochastic cases that take 0.2-8.5 s each in Release are left to the Release
-  # pass too: here they took 40-218 s each and more (measured 2026-12-01; the analysis became
-  # slow, see docs/gyro-stochastic.md). The other Stochastic cases and the CLI's run the same
-  # code under the sanitizers.
-  slow='^Stochastic(Degenerate|CovarianceFunctions|Checks)\.|^Stochastic\.(BadInput|RoutesAgree|ComparisonTableIsComplete)$'
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    ctest --test-dir build-asan -j"$jobs" --output-on-failure -LE "montecarlo|browser" -E "MonteCarlo|$slow"
+    ctest --test-dir build-asan -j"$jobs" --output-on-failure -LE "montecarlo|browser" -E "MonteCarlo"
 fi
 if [ "${MERIDIAN_FUZZ:-0}" = 1 ]; then
   # Every reader's libFuzzer harness for a bounded time (docs/reliability.md):

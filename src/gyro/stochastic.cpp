@@ -9,9 +9,11 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "meridian/adjust/likelihood.hpp"
 #include "meridian/adjust/statistics.hpp"
+#include "meridian/adjust/two_component_reml.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gyro/markov_covariance.hpp"
 #include "meridian/gyro/reversal.hpp"
@@ -37,12 +39,13 @@ VectorXd to_vector(const std::vector<double>& r) {
   return l;
 }
 
-// A Markov model fitted at fixed ρ: the VCE and what follows from it.
+// A Markov model at fixed ρ: the maximum of the restricted likelihood over the variance
+// components (closed-form profile, adjust::maximise_two_component_reml) — what the searches over
+// ρ need. The chosen ρ is then fitted by VCE (markov_fit).
 struct MarkovEval {
   std::vector<double> rho;
-  Eigen::Vector2d start;  // the VCE's start, so the evaluation can be repeated with details
-  MarkovFactors factors;
-  adjust::VceResult vce;
+  Eigen::Vector2d theta;  // σ̂_1², σ̂_2² at the maximum
+  bool sigma2_zero = false;  // σ̂_2² = 0: the maximum is on that boundary
   double reml = kMinusInf;
 };
 
@@ -55,18 +58,13 @@ MarkovFactors factors_for(const std::vector<double>& rho, int n) {
 }
 
 std::optional<MarkovEval> eval_markov(const MatrixXd& G, const VectorXd& l,
-                                      const std::vector<double>& rho, const Eigen::Vector2d& start,
-                                      adjust::VceMethod method, bool details = false) {
+                                      const std::vector<double>& rho) {
   try {
-    MarkovEval e{rho, start, factors_for(rho, static_cast<int>(l.size())), {}, kMinusInf};
-    adjust::VceOptions o;
-    o.method = method;
-    o.details = details;
-    o.initial = start;
-    e.vce = adjust::estimate_variance_components(G, l, markov_components(e.factors), o);
-    e.reml = e.vce.likelihood.reml;
-    if (!std::isfinite(e.reml)) return std::nullopt;
-    return e;
+    const MarkovFactors f = factors_for(rho, static_cast<int>(l.size()));
+    const auto c = markov_components(f);
+    const auto m = adjust::maximise_two_component_reml(G, l, c[0], c[1]);
+    if (!std::isfinite(m.reml) || m.at_zero[0]) return std::nullopt;  // D = σ_2²·B·Bᵀ singular
+    return MarkovEval{rho, m.components, m.at_zero[1], m.reml};
   } catch (const Error&) {
     return std::nullopt;
   }
@@ -121,12 +119,51 @@ Uncertain sigma_from_variance(double var, double sd_var) {
 ModelFit markov_fit(StochasticModel model, const MarkovEval& scan,
                     const std::vector<double>& readings, const MatrixXd& G, const VectorXd& l,
                     GlsRoute route, adjust::VceMethod method, bool ml) {
-  // The scan kept only the likelihood: repeat the same VCE with its covariance.
-  const auto full = eval_markov(G, l, scan.rho, scan.start, method, true);
-  if (!full)
-    throw NumericalError(
-        fmt::format("{}: variance-component estimation failed on repetition", to_string(model)));
-  const MarkovEval& e = *full;
+  // The search kept only the maximum of the likelihood: VCE at that ρ, started at the maximum
+  // (so it confirms it in an iteration or two), gives the components with their covariance.
+  struct Fitted {
+    std::vector<double> rho;
+    MarkovFactors factors;
+    adjust::VceResult vce;
+  };
+  const Fitted e = [&] {
+    Fitted x{scan.rho, factors_for(scan.rho, static_cast<int>(l.size())), {}};
+    adjust::VceOptions o;
+    o.method = method;
+    o.initial = scan.theta.cwiseMax(1e-6 * scan.theta.maxCoeff());
+    // Started at the maximum it confirms in a few iterations (a boundary component takes ~5 to
+    // be clipped); more than 100 means the likelihood is too flat for scoring (see below).
+    o.max_iterations = 100;
+    try {
+      x.vce = adjust::estimate_variance_components(G, l, markov_components(x.factors), o);
+    } catch (const NumericalError& err) {
+      // Near the edge of the stationary region the likelihood can be so flat along σ_2² that
+      // scoring does not settle: keep the maximum of the closed-form profile, with the inverse
+      // Fisher information as the covariance of the components.
+      x.vce = adjust::VceResult{};
+      x.vce.method = method;
+      x.vce.components = scan.theta;
+      x.vce.clipped = {false, scan.sigma2_zero};
+      x.vce.iterations = 0;
+      x.vce.covariance = Eigen::Matrix2d::Constant(kNaN);
+      const MatrixXd D = x.factors.covariance(scan.theta(0), scan.theta(1));
+      std::vector<MatrixXd> deriv{x.factors.q1()};
+      if (!scan.sigma2_zero) deriv.push_back(x.factors.q2());
+      const MatrixXd info = adjust::reml_fisher_information(G, adjust::CovarianceFactor(D), deriv);
+      const Eigen::LDLT<MatrixXd> ldlt(info);
+      if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+        const MatrixXd inv = ldlt.solve(MatrixXd::Identity(info.rows(), info.cols()));
+        x.vce.covariance.setZero();
+        x.vce.covariance.topLeftCorner(inv.rows(), inv.cols()) = inv;
+      }
+      x.vce.notes.push_back(fmt::format(
+          "variance-component estimation did not settle at rho = {:.6g} ({}): the components "
+          "are the maximum of the restricted likelihood found in closed form, their sigma from "
+          "its Fisher information",
+          fmt::join(scan.rho, ", "), err.message()));
+    }
+    return x;
+  }();
   ModelFit f;
   f.model = model;
   f.rho = e.rho;
@@ -636,56 +673,51 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
     }
   }
 
-  // VCE starts: the OLS variance for both components, or (warm start, much faster on the
-  // grids) the components of a neighbouring ρ, kept away from 0.
-  const Eigen::Vector2d cold(s0sq, s0sq);
-  const auto warm = [&](const std::optional<MarkovEval>& e) -> Eigen::Vector2d {
-    if (!e) return cold;
-    return e->vce.components.cwiseMax(1e-3 * s0sq);
+  // The fitted Markov models; one whose VCE fails at its chosen ρ is left out with a note.
+  const auto add_markov = [&](StochasticModel m, const std::optional<MarkovEval>& e, bool ml,
+                              const char* none) {
+    if (!e) {
+      res.notes.push_back(fmt::format("{}: {}", to_string(m), none));
+      return;
+    }
+    try {
+      res.models.push_back(markov_fit(m, *e, r, G, l, opt.route, opt.vce_method, ml));
+    } catch (const NumericalError& err) {
+      res.notes.push_back(fmt::format("{}: left out ({})", to_string(m), err.message()));
+    }
   };
   // Markov-1: grid and ML.
   report_progress(progress, 1, 5, "Markov-1");
-  std::optional<MarkovEval> m1_grid, last;
+  std::optional<MarkovEval> m1_grid;
   for (int k = 1; k <= 9; ++k) {
-    auto e = eval_markov(G, l, {0.1 * k}, warm(last), opt.vce_method);
-    last = e;
+    auto e = eval_markov(G, l, {0.1 * k});
     if (e && (!m1_grid || e->reml > m1_grid->reml)) m1_grid = std::move(e);
   }
   std::optional<MarkovEval> m1_ml;
   {
     // Scan (−1, 1) in steps of 0.05 for the bracket, then golden section.
     double best_rho = 0.0, best = kMinusInf;
-    last.reset();
-    Eigen::Vector2d start = cold;
     for (int k = -19; k <= 19; ++k) {
-      auto e = eval_markov(G, l, {0.05 * k}, warm(last), opt.vce_method);
+      const auto e = eval_markov(G, l, {0.05 * k});
       if (e && e->reml > best) {
         best = e->reml;
         best_rho = 0.05 * k;
-        start = warm(e);
       }
-      last = std::move(e);
     }
     if (std::isfinite(best)) {
       const auto fn = [&](double rho) {
-        const auto e = eval_markov(G, l, {rho}, start, opt.vce_method);
+        const auto e = eval_markov(G, l, {rho});
         return e ? e->reml : kMinusInf;
       };
       const auto [rho, v] = golden_max(fn, std::max(-1.0 + kEdge, best_rho - 0.05),
                                        std::min(1.0 - kEdge, best_rho + 0.05), 1e-6);
-      m1_ml = eval_markov(G, l, {v >= best ? rho : best_rho}, start, opt.vce_method);
+      m1_ml = eval_markov(G, l, {v >= best ? rho : best_rho});
     }
   }
-  if (m1_grid)
-    res.models.push_back(markov_fit(StochasticModel::Markov1Grid, *m1_grid, r, G, l, opt.route,
-                                    opt.vce_method, false));
-  else
-    res.notes.push_back("markov1-grid: VCE failed at every rho of the grid");
-  if (m1_ml)
-    res.models.push_back(
-        markov_fit(StochasticModel::Markov1Ml, *m1_ml, r, G, l, opt.route, opt.vce_method, true));
-  else
-    res.notes.push_back("markov1-ml: the restricted likelihood could not be maximised");
+  add_markov(StochasticModel::Markov1Grid, m1_grid, false,
+             "the restricted likelihood has no maximum at any rho of the grid");
+  add_markov(StochasticModel::Markov1Ml, m1_ml, true,
+             "the restricted likelihood could not be maximised");
 
   // Markov-2: grid (also the likelihood surface) and ML.
   report_progress(progress, 2, 5, "Markov-2");
@@ -699,43 +731,34 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
     res.markov2_surface = MatrixXd::Constant(19, 19, kNaN);
     std::optional<MarkovEval> m2_grid;
     for (int a = 0; a < 19; ++a) {
-      last.reset();
       for (int b = 0; b < 19; ++b) {
         const double r1 = res.rho1_grid[static_cast<std::size_t>(a)];
         const double r2 = res.rho2_grid[static_cast<std::size_t>(b)];
         if (!ar2_stationary(r1, r2)) continue;
-        auto e = eval_markov(G, l, {r1, r2}, warm(last), opt.vce_method);
-        last = e;
+        auto e = eval_markov(G, l, {r1, r2});
         if (!e) continue;
         res.markov2_surface(a, b) = e->reml;
         if (!m2_grid || e->reml > m2_grid->reml) m2_grid = std::move(e);
       }
     }
+    add_markov(StochasticModel::Markov2Grid, m2_grid, false,
+               "the restricted likelihood has no maximum at any (rho1, rho2) of the grid");
     if (m2_grid) {
-      res.models.push_back(markov_fit(StochasticModel::Markov2Grid, *m2_grid, r, G, l, opt.route,
-                                      opt.vce_method, false));
       report_progress(progress, 3, 5, "Markov-2 ML");
-      const Eigen::Vector2d start2 = warm(m2_grid);
       const auto fn = [&](const Eigen::Vector2d& p) {
         // Strictly inside the triangle, kEdge from its sides.
         if (!(p(0) + p(1) < 1.0 - kEdge && p(1) - p(0) < 1.0 - kEdge &&
               std::fabs(p(1)) < 1.0 - kEdge))
           return kMinusInf;
-        const auto e = eval_markov(G, l, {p(0), p(1)}, start2, opt.vce_method);
+        const auto e = eval_markov(G, l, {p(0), p(1)});
         return e ? e->reml : kMinusInf;
       };
       const Eigen::Vector2d x0(m2_grid->rho[0], m2_grid->rho[1]);
       // Start inside the triangle (the grid point may sit on its edge region).
       const auto [p, v] = nelder_mead_max(fn, x0, -0.05, 1e-6, 400);
       const Eigen::Vector2d best = v >= m2_grid->reml ? p : x0;
-      auto e = eval_markov(G, l, {best(0), best(1)}, start2, opt.vce_method);
-      if (e)
-        res.models.push_back(
-            markov_fit(StochasticModel::Markov2Ml, *e, r, G, l, opt.route, opt.vce_method, true));
-      else
-        res.notes.push_back("markov2-ml: the restricted likelihood could not be maximised");
-    } else {
-      res.notes.push_back("markov2-grid: VCE failed at every (rho1, rho2) of the grid");
+      add_markov(StochasticModel::Markov2Ml, eval_markov(G, l, {best(0), best(1)}), true,
+                 "the restricted likelihood could not be maximised");
     }
   } else {
     res.notes.push_back(

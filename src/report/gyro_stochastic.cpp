@@ -281,9 +281,9 @@ Document stochastic_document(const std::string& file, const gyro::StochasticBook
             {"tooltip", json::array({{{"field", "rho1"}}, {{"field", "rho2"}},
                                      {{"field", "lnL"}, {"format", ".2f"}}})}}}};
       sec.blocks.push_back(Plot{"Markov-2: profile restricted likelihood over (rho1, rho2)", surf,
-                                "The variance components are estimated at every grid point; "
-                                "cells outside the stationarity triangle or where VCE failed "
-                                "are empty."});
+                                "The likelihood is maximised over the variance components at "
+                                "every grid point; cells outside the stationarity triangle or "
+                                "where it has no maximum with sigma1 > 0 are empty."});
     }
     doc.sections.push_back(std::move(sec));
   }

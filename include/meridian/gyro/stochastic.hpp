@@ -25,9 +25,13 @@
 /// * Markov-1 and Markov-2 (markov_covariance.hpp), D = σ_1²·C·Cᵀ + σ_2²·B·Bᵀ, with ρ chosen
 ///   on the classical grid (ρ = 0.1 … 0.9; ρ_1, ρ_2 ∈ {−0.9, −0.8, …, 0.9} inside the AR(2)
 ///   triangle) and by maximising the restricted likelihood (profile over the variance
-///   components, which are estimated by VCE at every ρ).
-/// For every Markov model σ_1², σ_2² are estimated by variance-component estimation
-/// (adjust::estimate_variance_components; a negative estimate is clipped to 0 and said).
+///   components: at every trial ρ their maximum is found in closed form,
+///   adjust::maximise_two_component_reml).
+/// At the chosen ρ of every Markov model σ_1², σ_2² are then estimated by variance-component
+/// estimation started at that maximum (adjust::estimate_variance_components; a negative
+/// estimate is clipped to 0 and said); where scoring does not settle in 100 iterations the
+/// closed-form maximum is kept, its covariance from the inverse REML Fisher information, with a
+/// note.
 ///
 /// Degenerate fits: a model (other than white noise) is marked degenerate, with the reason, when
 /// σ_1 is clipped to 0 or below kDegenerateSigma1Ratio × the white-noise σ_1 (the readings are
@@ -156,7 +160,9 @@ struct ModelFit {
   double aic = 0.0;
   double bic = 0.0;
   int covariance_parameters = 0;  ///< k
-  int vce_iterations = 0;         ///< at the chosen ρ (0 for models without VCE)
+  /// VCE iterations at the chosen ρ (0 for models without VCE, and for a Markov model whose
+  /// VCE did not settle and whose components are the closed-form maximum: see notes).
+  int vce_iterations = 0;
   bool recommended = false;
   /// The fit is at the edge of its parameter space (see the file comment); reason says how.
   bool degenerate = false;
@@ -184,8 +190,9 @@ struct StochasticResult {
   Eigen::VectorXd ols_residuals;  ///< v of the white-noise fit
   /// Empirical autocorrelation ĉ_k/ĉ_0 of the OLS residuals, k = 0 … n−1.
   std::vector<double> residual_autocorrelation;
-  /// Profile REML of Markov-2 on the grid: rho1_grid × rho2_grid, NaN outside the triangle or
-  /// where VCE failed.
+  /// Profile REML of Markov-2 on the grid (maximised over σ_1², σ_2² at each point):
+  /// rho1_grid × rho2_grid, NaN outside the triangle or where the likelihood has no maximum with
+  /// σ_1² > 0 (the covariance would be singular).
   std::vector<double> rho1_grid, rho2_grid;
   Eigen::MatrixXd markov2_surface;
   /// rms of the part of (R1) that (R2) cannot represent, at the fitted decay (readings' unit;
