@@ -1,8 +1,10 @@
 // meridian gyro reduce | campaign | orientations | simulate | transit-factor | template | stochastic
 
+#include <cmath>
 #include <iostream>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -163,6 +165,7 @@ struct SimulateArgs {
   std::vector<std::string> clamps{"0"};
   std::string centre = "0 12 34", noise = "white";
   double sigma_tracking_arcsec = 0;
+  std::optional<double> sigma_initial_arcsec;  // σ_2 of Markov tracking noise; default σ_1
   bool quiet = false;
 };
 
@@ -217,6 +220,15 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
   }
   s.centre_rad = parse_angle(a.centre).rad();
   s.sigma_tracking_rad = units::arcsec_to_rad(a.sigma_tracking_arcsec);
+  if (a.sigma_initial_arcsec) {
+    if (s.mode != gyro::Mode::Tracking || s.noise == gyro::NoiseModel::White)
+      throw InputError("only Markov tracking noise has initial states: give it with --mode tracking and "
+                       "--noise markov1 or markov2",
+                       {"", std::nullopt, "--sigma-initial-arcsec"});
+    if (!(*a.sigma_initial_arcsec >= 0) || !std::isfinite(*a.sigma_initial_arcsec))
+      throw InputError("must be a finite value >= 0", {"", std::nullopt, "--sigma-initial-arcsec"});
+    s.sigma_initial_tracking_rad = units::arcsec_to_rad(*a.sigma_initial_arcsec);
+  }
   TerminalProgress progress(a.quiet);
   const gyro::SimulatedStation sim = gyro::simulate_station(s, a.seed, &progress);
   progress.finish();
@@ -308,6 +320,8 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--tracking-reversals", sa->sim.tracking_reversals, "Tracking: number of reversals")->capture_default_str();
   sim->add_option("--sigma-tracking-arcsec", sa->sigma_tracking_arcsec, "Tracking: reading noise sigma (arcsec)")->capture_default_str();
   sim->add_option("--noise", sa->noise, "white | markov1 | markov2")->capture_default_str();
+  sim->add_option("--sigma-initial-arcsec", sa->sigma_initial_arcsec,
+                  "Tracking, Markov noise: sigma_2 of the initial state(s) X (arcsec; default: --sigma-tracking-arcsec)");
   sim->add_option("--rho1", sa->sim.rho1, "Markov coefficient rho1")->capture_default_str();
   sim->add_option("--rho2", sa->sim.rho2, "Markov-2 coefficient rho2")->capture_default_str();
   sim->add_flag("-q,--quiet", sa->quiet, "No progress bar");

@@ -1,5 +1,8 @@
 #include "meridian/gyro/station_simulator.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "meridian/core/dms.hpp"
@@ -9,24 +12,31 @@ namespace {
 
 constexpr double kArcsec = units::kArcsecond;
 
-NoiseModel noise_model(const StationSimulation& s, double sigma) {
+// sigma_initial: σ of the initial states X (σ_2); σ of Δ (σ_1) when not given.
+NoiseModel noise_model(const StationSimulation& s, double sigma,
+                       double sigma_initial = std::numeric_limits<double>::quiet_NaN()) {
+  const double s2 = std::isnan(sigma_initial) ? sigma : sigma_initial;
   switch (s.noise) {
-    case NoiseModel::Markov1: return NoiseModel::markov1(sigma, s.rho1, sigma);
-    case NoiseModel::Markov2: return NoiseModel::markov2(sigma, s.rho1, s.rho2, sigma);
+    case NoiseModel::Markov1: return NoiseModel::markov1(sigma, s.rho1, s2);
+    case NoiseModel::Markov2: return NoiseModel::markov2(sigma, s.rho1, s.rho2, s2);
     case NoiseModel::White: break;
   }
   return NoiseModel::white(sigma);
 }
 
 // The noise model for the Truth line (empty for white noise, so white-noise headers are as
-// before): the kind, ρ, and that the initial states X have the σ of Δ.
-std::string noise_clause(const StationSimulation& s) {
+// before): the kind, ρ, and the σ of the initial states X (that of Δ unless one is given, in
+// arcsec: only tracking noise takes one).
+std::string noise_clause(const StationSimulation& s, bool tracking) {
+  const bool own = tracking && !std::isnan(s.sigma_initial_tracking_rad);
+  const std::string x =
+      own ? fmt::format("{:g} arcsec", s.sigma_initial_tracking_rad / kArcsec) : "sigma of Delta";
   switch (s.noise) {
     case NoiseModel::Markov1:
-      return fmt::format("; noise markov1 (rho1 = {}), sigma of the initial state X0 = sigma of Delta", s.rho1);
+      return fmt::format("; noise markov1 (rho1 = {}), sigma of the initial state X0 = {}", s.rho1, x);
     case NoiseModel::Markov2:
-      return fmt::format("; noise markov2 (rho1 = {}, rho2 = {}), sigma of the initial states X1, X2 = sigma of Delta",
-                         s.rho1, s.rho2);
+      return fmt::format("; noise markov2 (rho1 = {}, rho2 = {}), sigma of the initial states X1, X2 = {}",
+                         s.rho1, s.rho2, x);
     case NoiseModel::White: break;
   }
   return {};
@@ -86,7 +96,7 @@ SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed
         out.truth.push_back(fmt::format(
             "Truth: beta = {} div, N_G = {} (delta N = {:+.3f}\"), B = {} div, T_B = {} s, t0 = {} s, k = {} 1/s",
             s.beta_div, dms3(north.north_rad), north.delta_n_rad / kArcsec, s.amplitude_div, period, s.t0_s,
-            s.damping_per_s) + noise_clause(s));
+            s.damping_per_s) + noise_clause(s, false));
         if (clamps.size() > 1) {
           std::string list;
           for (double c : clamps)
@@ -101,13 +111,13 @@ SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed
       t.amplitude_rad = s.tracking_amplitude_div * inst.scale_value_rad;
       t.kappa = s.kappa;
       t.reversals = s.tracking_reversals;
-      t.reading_noise = noise_model(s, s.sigma_tracking_rad);
+      t.reading_noise = noise_model(s, s.sigma_tracking_rad, s.sigma_initial_tracking_rad);
       d.tracking.reversals_rad = simulate_tracking(t, det_seed);
       if (s.sigma_tracking_rad > 0) d.tracking.sigma_reading_rad = s.sigma_tracking_rad;
       if (i == 0)
         out.truth.push_back(fmt::format("Truth: M = {} (= N_G without zero-position correction), A = {} div, kappa = {}",
                                         dms3(t.centre_rad), s.tracking_amplitude_div, s.kappa) +
-                                noise_clause(s));
+                                noise_clause(s, true));
     }
     out.input.determinations.push_back(std::move(d));
   }

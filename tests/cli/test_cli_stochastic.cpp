@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -167,6 +168,64 @@ TEST_F(CliStochastic, HtmlReportHasASectionPerSeries) {
   // The report does not change the text result.
   ASSERT_EQ(run("gyro stochastic " + f.string() + " -q -o plain.txt").code, 0);
   EXPECT_EQ(slurp(dir_ / "out.txt"), slurp(dir_ / "plain.txt"));
+}
+
+}  // namespace
+
+namespace {
+
+using meridian_test::CmdResult;
+
+// The readings (arcsec, unwrapped near 0°) of the first `reversals: [...]` list of a simulated
+// book.
+std::vector<double> simulated_readings_arcsec(const std::string& book) {
+  const auto b = book.find("reversals: [");
+  const auto e = book.find(']', b);
+  std::vector<double> out;
+  std::string list = book.substr(b + 12, e - b - 12);
+  std::size_t p = 0;
+  while ((p = list.find('"', p)) != std::string::npos) {
+    const auto q = list.find('"', p + 1);
+    std::istringstream in(list.substr(p + 1, q - p - 1));
+    double d = 0, m = 0, s = 0;
+    in >> d >> m >> s;
+    double v = (d * 60.0 + m) * 60.0 + s;
+    if (v > 180.0 * 3600.0) v -= 360.0 * 3600.0;
+    out.push_back(v);
+    p = q + 1;
+  }
+  return out;
+}
+
+TEST_F(CliStochastic, SimulatorSigmaOfTheInitialStateScalesBTimesX0Only) {
+  // Spec §2: ε = B·X_0 + C·Δ with B_i = ρ^i. The same seed draws the same standard deviates, so
+  // two books that differ only in σ_2 differ by B·(σ_2' − σ_2)·z_0: the differences of
+  // consecutive readings' changes are in the ratio ρ, whatever σ_1 and the signal are.
+  const std::string common =
+      "gyro simulate --mode tracking --noise markov1 --rho1 0.6 --tracking-reversals 10 "
+      "--sigma-tracking-arcsec 2 --seed 8";
+  const CmdResult a = run(common);
+  const CmdResult b = run(common + " --sigma-initial-arcsec 50");
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  const auto ra = simulated_readings_arcsec(a.out), rb = simulated_readings_arcsec(b.out);
+  ASSERT_EQ(ra.size(), 10u);
+  ASSERT_EQ(rb.size(), 10u);
+  // The books are written to 1e-4"; a change of 48" × z_0 in X_0 is far above that.
+  const double d1 = rb[0] - ra[0];
+  ASSERT_GT(std::fabs(d1), 1.0) << "the initial state did not change the readings";
+  for (std::size_t i = 1; i < 6; ++i)
+    EXPECT_NEAR((rb[i] - ra[i]) / (rb[i - 1] - ra[i - 1]), 0.6, 2e-3 / std::fabs(rb[i] - ra[i]))
+        << i;
+  const auto t = b.out.substr(b.out.find("# Truth:"), 400);
+  EXPECT_NE(t.find("sigma of the initial state X0 = 50 arcsec"), std::string::npos) << t;
+  // Only Markov tracking noise has initial states.
+  const CmdResult w = run("gyro simulate --mode tracking --sigma-initial-arcsec 5");
+  EXPECT_NE(w.code, 0);
+  EXPECT_NE(w.err.find("--sigma-initial-arcsec"), std::string::npos) << w.err;
+  const CmdResult neg = run(common + " --sigma-initial-arcsec -1");
+  EXPECT_NE(neg.code, 0);
+  EXPECT_NE(neg.err.find("--sigma-initial-arcsec"), std::string::npos) << neg.err;
 }
 
 }  // namespace

@@ -44,11 +44,14 @@ double sd(const std::vector<double>& v) {
 }
 
 TEST(StochasticMonteCarlo, MlRhoAndReportedSigmaOfNorth) {
-  const int n = 30, runs = 100;
+  const int n = 30, runs = 300;
   const double rho = 0.6, s1 = 2.0, s2 = 5.0;
   std::mt19937_64 rng(2026);
   const Eigen::MatrixXd D_true = markov1_factors(n, rho).covariance(s1 * s1, s2 * s2);
-  std::vector<double> rho_hat, rho_sd, m_gls, m_ols, sd_gls, m_true, sd_true;
+  // m_gls, var_gls: the ML fits a user would use (not marked degenerate); the others over all
+  // runs.
+  std::vector<double> rho_hat, rho_sd, m_gls, m_ols, sd_gls, var_gls, m_true, sd_true;
+  int degenerate = 0;
   for (int k = 0; k < runs; ++k) {
     StochasticInput in;
     in.readings = series(n, rho, s1, s2, rng);
@@ -58,8 +61,13 @@ TEST(StochasticMonteCarlo, MlRhoAndReportedSigmaOfNorth) {
     const ModelFit& ml = res.fit(StochasticModel::Markov1Ml);
     rho_hat.push_back(ml.rho[0]);
     if (std::isfinite(ml.rho_sigma[0])) rho_sd.push_back(ml.rho_sigma[0]);
-    m_gls.push_back(ml.north.value);
-    sd_gls.push_back(ml.north.sigma);
+    if (ml.degenerate) {
+      ++degenerate;
+    } else {
+      m_gls.push_back(ml.north.value);
+      sd_gls.push_back(ml.north.sigma);
+      var_gls.push_back(ml.north.sigma * ml.north.sigma);
+    }
     m_ols.push_back(res.fit(StochasticModel::WhiteNoise).north.value);
     const GlsFit t = reversal_gls(in.readings, D_true);
     m_true.push_back(t.y(0));
@@ -68,10 +76,13 @@ TEST(StochasticMonteCarlo, MlRhoAndReportedSigmaOfNorth) {
   const double bias = mean(rho_hat) - rho;
   std::printf("ML rho: mean %.4f (bias %.4f), scatter %.4f, mean reported sigma %.4f\n",
               mean(rho_hat), bias, sd(rho_hat), mean(rho_sd));
+  const double rms_gls = std::sqrt(mean(var_gls));
   std::printf(
-      "north: GLS (ML rho) scatter %.4f, mean reported m %.4f; GLS (true D) scatter "
-      "%.4f, reported m %.4f; OLS scatter %.4f\n",
-      sd(m_gls), mean(sd_gls), sd(m_true), mean(sd_true), sd(m_ols));
+      "north: GLS (ML rho, %zu non-degenerate of %d) scatter %.4f, rms reported m %.4f "
+      "(ratio %.3f; mean reported m %.4f); GLS (true D) scatter %.4f, reported m %.4f; OLS "
+      "scatter %.4f\n",
+      m_gls.size(), runs, sd(m_gls), rms_gls, rms_gls / sd(m_gls), mean(sd_gls), sd(m_true),
+      mean(sd_true), sd(m_ols));
   // Unbiased to within its standard error: the bias is below the σ of one estimate.
   EXPECT_LT(std::fabs(bias), mean(rho_sd));
   // The GLS with the Markov-1 covariance: its reported m_αN matches the empirical scatter
@@ -83,10 +94,12 @@ TEST(StochasticMonteCarlo, MlRhoAndReportedSigmaOfNorth) {
   const double sd_ols_true = std::sqrt((Ni * G.transpose() * D_true * G * Ni)(0, 0));
   std::printf("true sigma of the OLS north under D: %.4f\n", sd_ols_true);
   EXPECT_LE(mean(sd_true), sd_ols_true);
-  // With ρ and the components estimated from the same 30 readings (EGLS) the reported m_αN is
-  // optimistic (measured: about 0.82 of the scatter with this seed; docs/gyro-stochastic.md):
-  // the plug-in σ ignores the uncertainty of ρ̂. Guard against it getting worse.
-  EXPECT_GT(mean(sd_gls) / sd(m_gls), 0.75);
+  // With ρ and the components estimated from the same 30 readings (EGLS, plug-in σ): the spec's
+  // criterion, reported m_αN within 10 % of the empirical scatter, as the rms of the reported
+  // σ (the σ a user would read, i.e. of the fits not marked degenerate) against the scatter of
+  // those estimates. With 300 runs the scatter itself is uncertain by about 4 %.
+  EXPECT_LE(degenerate, runs / 20);
+  EXPECT_NEAR(rms_gls / sd(m_gls), 1.0, 0.10);
 }
 
 // The C-type models' m of M against the empirical scatter (user trial, finding 7: with the

@@ -7,6 +7,7 @@
 /// directly, plus the truth in words for the file's header.
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,11 @@ struct StationSimulation {
   double tracking_amplitude_div = 8.0, kappa = 0.002;
   int tracking_reversals = 5;
   double sigma_tracking_rad = 0.0;              ///< circle reading noise σ (rad)
+  /// σ_2 of the initial state(s) X of Markov tracking noise (gyro-stochastic spec §2–§3:
+  /// ε = C·Δ + B·X, D(Δ_i) = σ_1² = sigma_tracking_rad², D(X) = σ_2²), rad, finite, ≥ 0.
+  /// NaN (the default): σ_2 = σ_1. Ignored for white noise. The timing and scale-reading noise
+  /// of non-tracking runs always have σ_2 = σ_1.
+  double sigma_initial_tracking_rad = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SimulatedStation {
