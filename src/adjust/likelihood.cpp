@@ -14,7 +14,7 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kLog2Pi = 1.8378770664093454836;  // ln 2π
+using detail::kLog2Pi;
 
 void check_sizes(const MatrixXd& A, Index n_cov, const char* what) {
   if (A.cols() < 1) throw InputError("design matrix A has no columns (no parameters)");

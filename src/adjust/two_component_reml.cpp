@@ -17,7 +17,7 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kLog2Pi = 1.8378770664093454836;  // ln 2π
+using detail::kLog2Pi;
 constexpr double kMinusInf = -std::numeric_limits<double>::infinity();
 // The grid in v = ln τ reaches this far beyond 1/λ_max and 1/λ_min, where the profile is within
 // e^−14 ≈ 1e-6 (relative) of its limits τ → 0 and τ → ∞.

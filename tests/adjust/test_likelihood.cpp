@@ -9,6 +9,8 @@
 #include "meridian/adjust/likelihood.hpp"
 #include "meridian/core/error.hpp"
 
+#include "random_matrix.hpp"
+
 namespace {
 
 using Eigen::Index;
@@ -29,13 +31,7 @@ MatrixXd random_spd(Index n, std::mt19937_64& rng) {
   return B * B.transpose() + 0.5 * MatrixXd::Identity(n, n);
 }
 
-MatrixXd random_matrix(Index r, Index c, std::mt19937_64& rng) {
-  std::normal_distribution<double> N(0.0, 1.0);
-  MatrixXd m(r, c);
-  for (Index i = 0; i < r; ++i)
-    for (Index j = 0; j < c; ++j) m(i, j) = N(rng);
-  return m;
-}
+using meridian_test::random_matrix;
 
 struct Dense {
   double ml, reml;

@@ -14,6 +14,8 @@
 #include "meridian/adjust/variance_components.hpp"
 #include "meridian/core/error.hpp"
 
+#include "random_matrix.hpp"
+
 namespace {
 
 using Eigen::Index;
@@ -31,13 +33,7 @@ using meridian::adjust::VceMethod;
 using meridian::adjust::VceOptions;
 using ::testing::HasSubstr;
 
-MatrixXd random_matrix(Index r, Index c, std::mt19937_64& rng) {
-  std::normal_distribution<double> N(0.0, 1.0);
-  MatrixXd m(r, c);
-  for (Index i = 0; i < r; ++i)
-    for (Index j = 0; j < c; ++j) m(i, j) = N(rng);
-  return m;
-}
+using meridian_test::random_matrix;
 
 // A Markov-like pair: Q_1 = C·Cᵀ (C unit lower-triangular, full rank), Q_2 = B·Bᵀ of rank 2.
 struct Problem {

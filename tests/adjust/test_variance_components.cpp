@@ -12,6 +12,8 @@
 #include "meridian/adjust/variance_components.hpp"
 #include "meridian/core/error.hpp"
 
+#include "random_matrix.hpp"
+
 namespace {
 
 using Eigen::Index;
@@ -38,13 +40,7 @@ std::string message_of(F&& f) {
   return "";
 }
 
-MatrixXd random_matrix(Index r, Index c, std::mt19937_64& rng) {
-  std::normal_distribution<double> N(0.0, 1.0);
-  MatrixXd m(r, c);
-  for (Index i = 0; i < r; ++i)
-    for (Index j = 0; j < c; ++j) m(i, j) = N(rng);
-  return m;
-}
+using meridian_test::random_matrix;
 
 TEST(VarianceComponents, OneComponentIsTheAposterioriVariance) {
   // D = θ·I: the REML estimate is σ̂0² = vᵀv/(n − u) of ordinary least squares, in one step.
