@@ -40,7 +40,10 @@ if [ "${MERIDIAN_SKIP_SANITIZERS:-0}" != 1 ]; then
   # pass too: here they took 40-218 s each and more (measured 2026-12-01; the analysis became
   # slow, see docs/gyro-stochastic.md). The other Stochastic cases and the CLI's run the same
   # code under the sanitizers.
-  slow='^Stochastic(Degenerate|CovarianceFunctions|Checks)\.|^Stochastic\.(BadInput|RoutesAgree|ComparisonTableIsComplete)$'
+  # DovScenario: the deflection-of-the-vertical spec scenarios (hours of 1-10 Hz data, 0.1-2.5 s
+  # each in Release) took 30-160 s each here (measured 2026-12-01); DovProcess runs the same
+  # workflow code on short lines under the sanitizers.
+  slow='^Stochastic(Degenerate|CovarianceFunctions|Checks)\.|^Stochastic\.(BadInput|RoutesAgree|ComparisonTableIsComplete)$|^DovScenario\.'
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan -j"$jobs" --output-on-failure -LE "montecarlo|browser" -E "MonteCarlo|$slow"
 fi

@@ -16,7 +16,7 @@
 namespace meridian::dov {
 namespace {
 
-constexpr Eigen::Index kProgressStride = 4096;
+constexpr std::size_t kProgressStride = 1024;  // epochs between progress reports
 
 std::string sample_field(std::size_t k, const char* member) {
   return fmt::format("samples[{}].{}", k, member);
