@@ -27,6 +27,10 @@
 ///   s = vee(Cᵀ − C) = (C(2,3) − C(3,2), C(3,1) − C(1,3), C(1,2) − C(2,1)), ΔΦ = θ/(2 sin θ)·s
 ///   (θ/(2 sin θ) by its Taylor series 1/2 + θ²/12 + 7θ⁴/720 for θ < 1e-4).
 ///
+/// Sources: shared/spec/deflection.md §2 and §4 (observation and its signs); the log map and
+/// Rodrigues' formula of SO(3): T. D. Barfoot, State Estimation for Robotics (CUP 2017), ch. 7
+/// (matrix Lie groups); the psi-angle error convention: P. G. Savage, Strapdown Analytics (2000).
+///
 /// Units: radians. Errors: InputError (field as given by the caller, e.g. "samples[12].lgu")
 /// for a non-finite matrix, one that is not orthogonal within the tolerance, or one with
 /// determinant −1 (a reflection).

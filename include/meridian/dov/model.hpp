@@ -41,6 +41,11 @@
 /// Q_d = Δt²·G·Q·Gᵀ with Q = diag(q, q), i.e. the spectral density q taken as the variance of a
 /// noise sample held over the step. At Δt = 1 s that Q_d equals q·Δt numerically; at 10 Hz it
 /// is 10× too small. Only for comparisons.
+///
+/// Sources: shared/spec/deflection.md §3–5 (states, dynamics, q = σ²·4ζω₀, H, P₀); the
+/// stationary covariance of the second-order Gauss–Markov process, diag(q/(4ζω₀³), q/(4ζω₀)):
+/// the closed forms docs/filter.md verifies Van Loan against (A. Gelb (ed.), Applied Optimal
+/// Estimation, MIT Press 1974, ch. 3, for the process); Van Loan: filter/discretisation.hpp.
 
 #include <optional>
 

@@ -31,6 +31,10 @@
 /// * LGU/GNSS C_b^n = exp(−[φ×])·C_b^n; INS/GNSS C_b^{n′} = exp(−[v×])·(C_{n′}^n)ᵀ·C_b^n with
 ///   v = (v_E, v_N, v_U) white, N(0, sigma_ins_rad²) each.
 ///
+/// Sources: spec §7; the damped oscillator's transition matrix and Q_d = P∞ − ΦP∞Φᵀ of a
+/// stationary process (the discrete Lyapunov equation; Gelb 1974, ch. 3 and 4); Rodrigues'
+/// formula: Barfoot (2017), ch. 7.
+///
 /// Deterministic for a seed (std::mt19937_64 and std::normal_distribution: the same series on
 /// one standard library). Units SI and radians.
 /// Errors: InputError (field "simulation.<name>") for a non-finite or out-of-range option:
