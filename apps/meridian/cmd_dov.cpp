@@ -1,0 +1,139 @@
+// meridian dov simulate | process
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cli_support.hpp"
+#include "commands.hpp"
+#include "meridian/core/dms.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/dov/simulator.hpp"
+#include "meridian/io/dov_files.hpp"
+#include "meridian/report/dov_outputs.hpp"
+
+namespace meridian::cli {
+namespace {
+
+double angle_option(const std::string& text, const char* name) {
+  try {
+    return parse_angle(text).rad();
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, name);
+    throw;
+  }
+}
+
+struct SimulateArgs {
+  std::string latitude = "30", longitude = "114", heading = "60";
+  double speed_m_s = 5.0, rate_hz = 1.0, hours = 4.0, height_m = 0.0;
+  double sigma_model_arcsec = 3.0, sigma_ins_arcsec = 0.5, eps_u_deg_per_h = 0.003;
+  double phi_e_arcsec = 0.0, phi_n_arcsec = 0.0, phi_u_arcsec = 0.0;
+  std::uint64_t seed = 1;
+  std::string out = "dov-line.csv";
+  std::string config;
+};
+
+int run_simulate(const SimulateArgs& a) {
+  dov::SimulationOptions so;
+  so.start_lat_rad = angle_option(a.latitude, "--latitude");
+  so.start_lon_rad = angle_option(a.longitude, "--longitude");
+  so.heading_rad = angle_option(a.heading, "--heading");
+  so.height_m = a.height_m;
+  so.speed_m_s = a.speed_m_s;
+  so.rate_hz = a.rate_hz;
+  so.duration_s = a.hours * 3600.0;
+  so.truth_model.sigma_model_rad = a.sigma_model_arcsec * units::kArcsecond;
+  so.sigma_ins_rad = a.sigma_ins_arcsec * units::kArcsecond;
+  so.eps_u_rad_s = a.eps_u_deg_per_h * units::kDegree / 3600.0;
+  so.initial_attitude_error_rad =
+      Eigen::Vector3d(a.phi_e_arcsec, a.phi_n_arcsec, a.phi_u_arcsec) * units::kArcsecond;
+  so.seed = a.seed;
+  const dov::Input in = dov::simulate(so);
+  emit(a.out, io::dov_line_csv(in));
+  if (!a.config.empty()) {
+    // The configuration names the line relative to its own directory.
+    const auto config_dir = std::filesystem::absolute(a.config).parent_path();
+    const auto line = std::filesystem::relative(std::filesystem::absolute(a.out), config_dir);
+    emit(a.config, fmt::format("# meridian dov process configuration (spec defaults)\n"
+                               "line: {}\n"
+                               "sigma_model_arcsec: {}\n"
+                               "sigma_obs_arcsec: {}\n",
+                               line.string(), a.sigma_model_arcsec,
+                               a.sigma_ins_arcsec > 0.0 ? a.sigma_ins_arcsec : 0.5));
+  }
+  return kOk;
+}
+
+struct ProcessArgs {
+  std::string config, output;
+  bool json = false, quiet = false;
+};
+
+int run_process(const ProcessArgs& a) {
+  const io::DovConfig c = io::read_dov_config(a.config);
+  TerminalProgress progress(a.quiet);
+  const dov::Result r = io::run_dov(c, &progress);
+  // Everything is computed before anything is written (atomic outputs).
+  const std::string text = a.json ? report::dov_summary_to_json(r, c.options).dump(2) + "\n"
+                                  : report::dov_summary_text(r);
+  if (!a.output.empty()) emit(a.output, report::dov_profile_csv(r));
+  emit("", text);
+  return kOk;
+}
+
+}  // namespace
+
+void add_dov_commands(CLI::App& app, int& exit_code) {
+  CLI::App* dv = app.add_subcommand(
+      "dov", "Dynamic deflection of the vertical from INS/GNSS attitude differences");
+  dv->require_subcommand(1);
+
+  auto sa = std::make_shared<SimulateArgs>();
+  CLI::App* sim = dv->add_subcommand(
+      "simulate", "Simulate a line (spec section 7): both attitude solutions, model and truth");
+  sim->add_option("--latitude", sa->latitude, "Start latitude (DMS or deg)")->capture_default_str();
+  sim->add_option("--longitude", sa->longitude, "Start longitude (DMS or deg)")
+      ->capture_default_str();
+  sim->add_option("--heading", sa->heading, "Heading, clockwise from north (DMS or deg)")
+      ->capture_default_str();
+  sim->add_option("--height-m", sa->height_m, "Ellipsoidal height (m)")->capture_default_str();
+  sim->add_option("--speed-m-s", sa->speed_m_s, "Speed V (m/s)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sim->add_option("--rate-hz", sa->rate_hz, "Sample rate (Hz)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sim->add_option("--hours", sa->hours, "Duration (h)")->check(CLI::PositiveNumber)->capture_default_str();
+  sim->add_option("--sigma-model-arcsec", sa->sigma_model_arcsec,
+                  "Sigma of the global model's error (arcsec)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sim->add_option("--sigma-ins-arcsec", sa->sigma_ins_arcsec, "INS/GNSS white noise (arcsec)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sim->add_option("--eps-u-deg-per-h", sa->eps_u_deg_per_h, "Vertical gyro bias (deg/h)")
+      ->capture_default_str();
+  sim->add_option("--phi-e-arcsec", sa->phi_e_arcsec, "Initial LGU error phi_E (arcsec)");
+  sim->add_option("--phi-n-arcsec", sa->phi_n_arcsec, "Initial LGU error phi_N (arcsec)");
+  sim->add_option("--phi-u-arcsec", sa->phi_u_arcsec, "Initial LGU error phi_U (arcsec)");
+  sim->add_option("--seed", sa->seed, "Random seed")->capture_default_str();
+  sim->add_option("--out", sa->out, "Line CSV to write")->capture_default_str();
+  sim->add_option("--config", sa->config, "Also write a configuration naming the line");
+  sim->callback([sa, &exit_code] { exit_code = guarded([&] { return run_simulate(*sa); }); });
+
+  auto pa = std::make_shared<ProcessArgs>();
+  CLI::App* pro = dv->add_subcommand(
+      "process", "Filter and smooth a line: eta, xi with sigma per epoch (config in YAML)");
+  pro->add_option("CONFIG", pa->config, "YAML or JSON configuration (docs/deflection.md)")
+      ->required();
+  pro->add_flag("--json", pa->json, "Print the summary as JSON");
+  pro->add_option("-o,--output", pa->output, "Write the per-epoch profile CSV here");
+  pro->add_flag("-q,--quiet", pa->quiet, "No progress bar");
+  pro->callback([pa, &exit_code] { exit_code = guarded([&] { return run_process(*pa); }); });
+}
+
+}  // namespace meridian::cli

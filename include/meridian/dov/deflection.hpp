@@ -1,0 +1,170 @@
+#pragma once
+/// \file deflection.hpp
+/// The dynamic deflection-of-the-vertical workflow (shared/spec/deflection.md; docs/deflection.md):
+/// per sample the two attitude solutions of a moving carrier and the global model's deflection,
+/// a Kalman filter over the 8-state model (model.hpp) and a Rauch–Tung–Striebel smoother over
+/// the whole line (filter module), giving per epoch η, ξ filtered and smoothed with σ.
+///
+///   Input (samples, optional truth, Options) → process() → Result (epochs, summary)
+///
+/// Per sample k (epoch k of the filter; epoch 0 is the first sample):
+///  1. checks: time finite and strictly increasing, step ≤ Options::max_step_s; position
+///     finite with |lat| ≤ π/2; speed finite and ≥ 0; η_G, ξ_G finite (a missing model value
+///     is an error, never NaN output); both attitude matrices finite, orthogonal within
+///     Options::orthogonality_tolerance and proper (attitude_difference.hpp);
+///  2. C = C_b^n·(C_b^{n′})ᵀ and ΔΦ (Options::extraction), |ΔΦ| ≤ max_attitude_difference_rad;
+///  3. k > 0: predict with the model discretised over t_k − t_{k−1} at the mean latitude and
+///     speed of the step; the model is re-discretised only when the step length changes by
+///     more than step_tolerance (relative), the latitude by more than rediscretise_latitude_rad,
+///     the speed by more than rediscretise_speed_m_s, or the carrier starts or stops
+///     (model.hpp: stationary case); otherwise the last Φ, Q_d are reused;
+///  4. update with y = [ΔΦ_E − ξ_G, ΔΦ_N + η_G]ᵀ, H and R of model.hpp (Joseph form,
+///     filter/kalman_filter.hpp), optional χ² gate;
+///  5. η̂ = η_G + δη̂, ξ̂ = ξ_G + δξ̂ with σ(η̂) = σ(δη̂), σ(ξ̂) = σ(δξ̂) (the model values carry
+///     no σ of their own: their error is the state δ).
+/// Then the RTS smoother (filter/rts_smoother.hpp; its records spill to a temporary file for
+/// long lines, filter::StorageOptions) gives the smoothed values of every epoch.
+///
+/// Summary statistics over the epochs with t − t₀ ≥ Options::statistics_start_s (all by
+/// default): mean NIS with its exact 95 % χ² interval (innovations of a correct model are
+/// white), the quadratic mean of the reported σ, and — when truth is given — the RMS errors of
+/// the model, filtered and smoothed deflections and the mean NEES (8 states) when the full true
+/// state is given.
+///
+/// Memory: the Input and the per-epoch Result are held in memory (≈ 200 bytes per epoch each);
+/// only the smoother's records spill. A streaming form for very long lines is not built yet.
+///
+/// Errors: InputError with field "samples[k].<member>" (time_s, lat_rad, lon_rad, height_m,
+/// speed_m_s, model_eta_rad, model_xi_rad, lgu_body_to_nav, ins_body_to_nav) or
+/// "truth[k].<member>", or "options.<name>" for an option out of range; errors from the filter
+/// (filter/kalman_filter.hpp: NumericalError for a covariance that is no longer positive
+/// definite) name "epoch k", which is samples[k]; IoError when the smoother's spill file fails.
+/// No output is NaN.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meridian/core/progress.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/dov/attitude_difference.hpp"
+#include "meridian/dov/model.hpp"
+#include "meridian/filter/consistency.hpp"
+#include "meridian/filter/detail/record_store.hpp"
+
+namespace meridian::dov {
+
+/// One sample of the line. Units SI and radians; frames attitude_difference.hpp.
+struct Sample {
+  double time_s = 0.0;    ///< strictly increasing along the line (s)
+  double lat_rad = 0.0;   ///< geodetic latitude, |lat| ≤ π/2
+  double lon_rad = 0.0;   ///< longitude, east positive
+  double height_m = 0.0;  ///< ellipsoidal height (m)
+  double speed_m_s = 0.0; ///< carrier speed over ground V ≥ 0 (m/s); sets ω₀ = 2πV/λ
+  Eigen::Matrix3d lgu_body_to_nav = Eigen::Matrix3d::Identity();  ///< C_b^n, LGU/GNSS
+  Eigen::Matrix3d ins_body_to_nav = Eigen::Matrix3d::Identity();  ///< C_b^{n′}, INS/GNSS
+  double model_eta_rad = 0.0;  ///< η_G of the global model at the sample (rad)
+  double model_xi_rad = 0.0;   ///< ξ_G (rad)
+};
+
+/// Known truth of a sample (simulations): the deflection, and optionally the full 8-state.
+struct Truth {
+  double eta_rad = 0.0;  ///< true η (rad)
+  double xi_rad = 0.0;   ///< true ξ (rad)
+  /// True state [φ_E, φ_N, φ_U, ε_U, x_E, x_N, δη, δξ] (model.hpp units) for the NEES.
+  std::optional<StateVector> state;
+};
+
+/// Options, spec defaults. Every angle in radians.
+struct Options {
+  ModelOptions model;
+  InitialSigmas initial;
+  DiscretisationMethod discretisation = DiscretisationMethod::Exact;
+  Extraction extraction = Extraction::Exact;
+  double sigma_obs_east_rad = 0.5 * units::kArcsecond;   ///< √r_E, INS/GNSS noise on ΔΦ_E, > 0
+  double sigma_obs_north_rad = 0.5 * units::kArcsecond;  ///< √r_N, > 0
+  double orthogonality_tolerance = kOrthogonalityTolerance;  ///< check_rotation, > 0
+  double max_attitude_difference_rad = units::kDegree;       ///< |ΔΦ| above this: InputError
+  double max_step_s = 60.0;                 ///< a longer step between samples is an InputError
+  double step_tolerance = 1e-6;             ///< relative change of Δt that re-discretises
+  double rediscretise_latitude_rad = 0.01 * units::kDegree;  ///< ≥ 0
+  double rediscretise_speed_m_s = 0.01;                      ///< ≥ 0
+  double gate_alpha = 0.0;  ///< χ² innovation gate at significance α in (0, 1); 0: no gate
+  double statistics_start_s = 0.0;  ///< summary over t − t₀ ≥ this (s), ≥ 0
+  filter::StorageOptions storage;   ///< where the smoother's records spill
+};
+
+struct Input {
+  std::vector<Sample> samples;  ///< at least 2
+  std::vector<Truth> truth;     ///< empty, or one per sample
+  Options options;
+};
+
+/// A deflection estimate of one epoch (filtered or smoothed).
+struct DeflectionEstimate {
+  double eta_rad = 0.0;          ///< η̂ = η_G + δη̂
+  double xi_rad = 0.0;           ///< ξ̂ = ξ_G + δξ̂
+  double sigma_eta_rad = 0.0;    ///< σ(δη̂)
+  double sigma_xi_rad = 0.0;     ///< σ(δξ̂)
+  double eps_u_rad_s = 0.0;      ///< ε̂_U (rad/s)
+  double sigma_eps_u_rad_s = 0.0;
+};
+
+struct EpochResult {
+  double time_s = 0.0;
+  double model_eta_rad = 0.0;  ///< η_G
+  double model_xi_rad = 0.0;   ///< ξ_G
+  AttitudeDifference observed;  ///< ΔΦ of the sample
+  DeflectionEstimate filtered;  ///< observations 0…k
+  DeflectionEstimate smoothed;  ///< the whole line
+  double innovation_east_rad = 0.0;   ///< ν_E = y_E − (H·x̂⁻)_E
+  double innovation_north_rad = 0.0;  ///< ν_N
+  double sigma_innovation_east_rad = 0.0;   ///< √S_EE
+  double sigma_innovation_north_rad = 0.0;  ///< √S_NN
+  double nis = 0.0;                   ///< νᵀS⁻¹ν (2 degrees of freedom)
+  bool accepted = true;               ///< false: rejected by the gate (no update)
+  std::optional<double> nees_filtered;  ///< with a true state
+  std::optional<double> nees_smoothed;
+};
+
+/// η and ξ of one statistic (rad).
+struct EtaXi {
+  double eta_rad = 0.0;
+  double xi_rad = 0.0;
+};
+
+struct Summary {
+  std::size_t epochs = 0;             ///< samples processed
+  std::size_t statistics_epochs = 0;  ///< epochs in the statistics (t − t₀ ≥ statistics_start_s)
+  std::size_t rejected = 0;           ///< updates rejected by the gate (all epochs)
+  std::size_t discretisations = 0;    ///< times the model was discretised
+  double mean_nis = 0.0;              ///< over the accepted statistics epochs
+  filter::ChiSquaredInterval nis_interval;  ///< 95 % interval of mean_nis for a correct model
+  EtaXi rms_sigma_filtered;  ///< √(mean σ²) of the filtered η̂, ξ̂
+  EtaXi rms_sigma_smoothed;  ///< √(mean σ²) of the smoothed
+  std::optional<EtaXi> rms_model;     ///< RMS(η_G − η), RMS(ξ_G − ξ), with truth
+  std::optional<EtaXi> rms_filtered;  ///< RMS(η̂ − η), … filtered, with truth
+  std::optional<EtaXi> rms_smoothed;  ///< smoothed, with truth
+  std::optional<double> mean_nees_filtered;  ///< with true states (8 degrees of freedom)
+  std::optional<double> mean_nees_smoothed;
+  double eps_u_rad_s = 0.0;        ///< smoothed ε̂_U (a constant: the value at epoch 0)
+  double sigma_eps_u_rad_s = 0.0;  ///< its σ
+};
+
+struct Result {
+  std::vector<EpochResult> epochs;  ///< one per sample, in time order
+  Summary summary;
+  std::vector<std::string> notes;     ///< defaults used, stationary epochs
+  std::vector<std::string> warnings;  ///< e.g. NIS outside its interval
+};
+
+/// Throws InputError (field "options.<name>") unless every option is in range.
+void validate(const Options& options);
+
+/// Run filter and smoother over the line (file comment).
+Result process(const Input& input, Progress* progress = nullptr);
+
+}  // namespace meridian::dov

@@ -1,0 +1,86 @@
+#pragma once
+/// \file dov_files.hpp
+/// Files of the dynamic deflection-of-the-vertical workflow (docs/deflection.md, "Files"):
+/// the line CSV (reader and writer), the YAML/JSON configuration, and the runner that reads
+/// both, calls dov::process and names the file and line of an error.
+///
+/// Line CSV (record_reader.hpp: comma, semicolon or whitespace, `#` comments, CRLF): a header
+/// line naming the columns (any order; ASCII case ignored), one sample per line:
+///
+///   time_s                     time (s), strictly increasing
+///   lat_deg, lon_deg           geodetic latitude, longitude: decimal degrees or DMS
+///   height_m                   ellipsoidal height (m)
+///   speed_m_s                  speed over ground (m/s)
+///   lgu_11 … lgu_33            C_b^n of LGU/GNSS, element (row, column), 1-based, E-N-U rows
+///   ins_11 … ins_33            C_b^{n′} of INS/GNSS, likewise
+///   model_eta_arcsec, model_xi_arcsec   η_G, ξ_G of the global model (″)
+///   truth_eta_arcsec, truth_xi_arcsec   optional (simulations): the true η, ξ (″), both or none
+///
+/// Frames and signs: attitude_difference.hpp and geodesy/frames.hpp. Euler angles and the
+/// binary format are not read yet. The whole line is read into memory (about 300 bytes per
+/// sample). Errors: ParseError/InputError with the source, the line and the column
+/// ("line.csv:17: lgu_23: \"x\" is not a number"), InputError naming the header line for a
+/// missing column, IoError when the file cannot be opened.
+
+#include <istream>
+#include <string>
+#include <vector>
+
+#include "meridian/core/progress.hpp"
+#include "meridian/dov/deflection.hpp"
+#include "meridian/io/document.hpp"
+
+namespace meridian::io {
+
+/// A line file: its samples, the truth (empty, or one per sample) and the 1-based file line of
+/// each sample.
+struct DovLine {
+  std::string source;
+  std::vector<dov::Sample> samples;
+  std::vector<dov::Truth> truth;
+  std::vector<int> lines;
+};
+
+/// Read a line CSV from `in`; `source` names it in errors. Throws as the file comment says.
+DovLine read_dov_line(std::istream& in, const std::string& source);
+/// Read the line CSV at `path`. IoError when it cannot be opened.
+DovLine read_dov_line_file(const std::string& path);
+
+/// The line CSV of `input` (the columns above, truth columns when input.truth is not empty,
+/// every number with 17 significant digits so that a read gives the same doubles back).
+std::string dov_line_csv(const dov::Input& input);
+
+/// A configuration: the line file and the options (spec defaults where a key is absent).
+///
+///   line: survey.csv                # relative to the configuration's directory
+///   zeta: 0.05
+///   sigma_model_arcsec: 3           # σ of the global model's error
+///   correlation_length_m: 10000     # λ in ω₀ = 2πV/λ
+///   stationary_speed_m_s: 0.01
+///   sigma_obs_arcsec: 0.5           # or sigma_obs_east_arcsec, sigma_obs_north_arcsec
+///   initial: {phi_e_arcsec: 2, phi_n_arcsec: 2, phi_u_arcsec: 5, eps_u_deg_per_h: 0.003,
+///             delta_arcsec: 3, x_arcsec_s: 955}   # the last two default to the model's
+///   discretisation: exact           # or published_first_order
+///   extraction: exact               # or skew_symmetric
+///   max_step_s: 60
+///   gate_alpha: 0                   # χ² gate significance; 0: none
+///   statistics_start_s: 0
+///
+/// Unknown keys are errors (typos). Errors carry the file, line and key.
+struct DovConfig {
+  std::string file;       ///< the configuration's path
+  std::string line_path;  ///< resolved against the configuration's directory
+  dov::Options options;
+  FieldLines lines;  ///< lines of the configuration's keys
+};
+
+/// Read a configuration (YAML or JSON). Throws ParseError/InputError with file, line and key,
+/// IoError when the file cannot be read.
+DovConfig read_dov_config(const std::string& path);
+
+/// Read config.line_path, run dov::process with config.options and return the result. Errors
+/// about a sample ("samples[k].member") get the line file's name and the sample's line,
+/// errors about options the configuration's.
+dov::Result run_dov(const DovConfig& config, Progress* progress = nullptr);
+
+}  // namespace meridian::io

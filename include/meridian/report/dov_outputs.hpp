@@ -1,0 +1,35 @@
+#pragma once
+/// \file dov_outputs.hpp
+/// Outputs of the dynamic deflection-of-the-vertical workflow (docs/deflection.md, "Outputs"):
+/// the JSON summary, a short text summary and the per-epoch profile CSV. Angles in arcseconds
+/// (keys and columns carry the unit), ε_U in °/h; signs of η, ξ as geodesy/frames.hpp.
+///
+/// JSON summary keys: epochs, statistics_epochs, discretisations, rejected;
+/// rms_arcsec {model, filtered, smoothed: {eta, xi}} (only with truth); mean_sigma_arcsec
+/// {filtered, smoothed: {eta, xi}} — the quadratic mean √(mean σ²), the figure to compare with
+/// an RMS error; nis {mean, lower_95, upper_95}; nees {filtered, smoothed} (only with true
+/// states); eps_u_deg_per_h {value, sigma} (smoothed); discretisation, extraction; notes,
+/// warnings.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "meridian/dov/deflection.hpp"
+
+namespace meridian::report {
+
+/// The JSON summary of `result`, computed with `options`.
+nlohmann::json dov_summary_to_json(const dov::Result& result, const dov::Options& options);
+
+/// A few lines of text: RMS and σ figures, NIS, ε̂_U, notes and warnings.
+std::string dov_summary_text(const dov::Result& result);
+
+/// The profile CSV, one line per epoch: time_s, model_eta_arcsec, model_xi_arcsec,
+/// filtered_eta_arcsec, filtered_xi_arcsec, filtered_sigma_eta_arcsec, filtered_sigma_xi_arcsec,
+/// smoothed_eta_arcsec, smoothed_xi_arcsec, smoothed_sigma_eta_arcsec, smoothed_sigma_xi_arcsec,
+/// filtered_eps_u_deg_per_h, innovation_east_arcsec, innovation_north_arcsec, nis, accepted
+/// (1 or 0); 10 significant digits.
+std::string dov_profile_csv(const dov::Result& result);
+
+}  // namespace meridian::report

@@ -1,0 +1,201 @@
+#include "meridian/dov/simulator.hpp"
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/geodesy/ellipsoid.hpp"
+#include "meridian/geodesy/frames.hpp"
+
+namespace meridian::dov {
+namespace {
+
+void require(bool ok, const char* name, const char* what, double value) {
+  if (!ok)
+    throw InputError(fmt::format("simulation.{} must be {}, is {}", name, what, value),
+                     ErrorContext{{}, {}, std::string("simulation.") + name});
+}
+
+/// One second-order Gauss–Markov process (x, δ) with its exact discrete step (file comment).
+class GaussMarkov2 {
+ public:
+  GaussMarkov2(double omega0, double zeta, double sigma, double dt) {
+    if (omega0 <= 0.0) {  // stationary: δ constant, x frozen
+      phi_ = Eigen::Matrix2d::Identity();
+      chol_.setZero();
+      p_inf_ = Eigen::Vector2d(sigma * 1.0, sigma).cwiseAbs2().asDiagonal();
+      return;
+    }
+    const double a = zeta * omega0;
+    const double wd = omega0 * std::sqrt(1.0 - zeta * zeta);
+    const double e = std::exp(-a * dt);
+    const double c = std::cos(wd * dt);
+    const double s = std::sin(wd * dt);
+    phi_ << e * (c + (a / wd) * s), e * s / wd, -e * (omega0 * omega0 / wd) * s,
+        e * (c - (a / wd) * s);
+    p_inf_ = Eigen::Vector2d(sigma / omega0, sigma).cwiseAbs2().asDiagonal();
+    const Eigen::Matrix2d q = p_inf_ - phi_ * p_inf_ * phi_.transpose();
+    // 2×2 Cholesky, q symmetric positive (semi-)definite.
+    const double l00 = std::sqrt(std::max(0.0, q(0, 0)));
+    const double l10 = l00 > 0.0 ? q(1, 0) / l00 : 0.0;
+    const double l11 = std::sqrt(std::max(0.0, q(1, 1) - l10 * l10));
+    chol_ << l00, 0.0, l10, l11;
+  }
+  Eigen::Vector2d draw_stationary(std::mt19937_64& rng, std::normal_distribution<double>& nd) const {
+    return Eigen::Vector2d(std::sqrt(p_inf_(0, 0)) * nd(rng), std::sqrt(p_inf_(1, 1)) * nd(rng));
+  }
+  Eigen::Vector2d step(const Eigen::Vector2d& x, std::mt19937_64& rng,
+                       std::normal_distribution<double>& nd) const {
+    const Eigen::Vector2d u(nd(rng), nd(rng));
+    return phi_ * x + chol_ * u;
+  }
+
+ private:
+  Eigen::Matrix2d phi_, chol_, p_inf_;
+};
+
+/// The exact step of φ̇ = −Ω×φ − ε·e_U over dt (file comment).
+Eigen::Vector3d attitude_step(const Eigen::Vector3d& phi, double lat_rad, double omega_ie,
+                              double eps_u, double dt) {
+  if (omega_ie == 0.0) return phi - Eigen::Vector3d(0.0, 0.0, eps_u * dt);
+  const Eigen::Vector3d u(0.0, std::cos(lat_rad), std::sin(lat_rad));
+  const Eigen::Matrix3d k = cross_matrix(u);
+  const double w = omega_ie;
+  const double wt = w * dt;
+  const Eigen::Matrix3d e =
+      Eigen::Matrix3d::Identity() - std::sin(wt) * k + (1.0 - std::cos(wt)) * (k * k);
+  const Eigen::Matrix3d j = dt * Eigen::Matrix3d::Identity() - ((1.0 - std::cos(wt)) / w) * k +
+                            (dt - std::sin(wt) / w) * (k * k);
+  return e * phi - j * Eigen::Vector3d(0.0, 0.0, eps_u);
+}
+
+}  // namespace
+
+EtaXi synthetic_model_deflection(double lat_rad, double lon_rad, double /*height_m*/) {
+  const double as = units::kArcsecond;
+  EtaXi d;
+  d.xi_rad = 6.0 * as * std::sin(lat_rad / 0.004) + 2.0 * as * std::cos(lon_rad / 0.006);
+  d.eta_rad = 5.0 * as * std::cos(lon_rad / 0.005) - 3.0 * as * std::sin(lat_rad / 0.007);
+  return d;
+}
+
+Input simulate(const SimulationOptions& o) {
+  const double max_lat = 89.0 * units::kDegree;
+  require(std::isfinite(o.start_lat_rad) && std::abs(o.start_lat_rad) < max_lat, "start_lat_rad",
+          "finite and within ±89°", o.start_lat_rad);
+  require(std::isfinite(o.start_lon_rad), "start_lon_rad", "finite", o.start_lon_rad);
+  require(std::isfinite(o.height_m), "height_m", "finite", o.height_m);
+  require(std::isfinite(o.heading_rad), "heading_rad", "finite", o.heading_rad);
+  require(std::isfinite(o.speed_m_s) && o.speed_m_s >= 0.0, "speed_m_s", "finite and ≥ 0",
+          o.speed_m_s);
+  require(std::isfinite(o.rate_hz) && o.rate_hz > 0.0, "rate_hz", "finite and > 0", o.rate_hz);
+  require(std::isfinite(o.duration_s) && o.duration_s * o.rate_hz >= 1.0, "duration_s",
+          "finite and ≥ 1/rate_hz", o.duration_s);
+  require(std::isfinite(o.start_time_s), "start_time_s", "finite", o.start_time_s);
+  require(std::isfinite(o.eps_u_rad_s), "eps_u_rad_s", "finite", o.eps_u_rad_s);
+  require(o.initial_attitude_error_rad.allFinite(), "initial_attitude_error_rad", "finite",
+          o.initial_attitude_error_rad.norm());
+  require(std::isfinite(o.sigma_ins_rad) && o.sigma_ins_rad >= 0.0, "sigma_ins_rad",
+          "finite and ≥ 0", o.sigma_ins_rad);
+  const ModelOptions& tm = o.truth_model;
+  require(std::isfinite(tm.zeta) && tm.zeta > 0.0 && tm.zeta < 1.0, "truth_model.zeta",
+          "in (0, 1)", tm.zeta);
+  require(std::isfinite(tm.sigma_model_rad) && tm.sigma_model_rad >= 0.0,
+          "truth_model.sigma_model_rad", "finite and ≥ 0", tm.sigma_model_rad);
+  require(std::isfinite(tm.correlation_length_m) && tm.correlation_length_m > 0.0,
+          "truth_model.correlation_length_m", "finite and > 0", tm.correlation_length_m);
+  require(std::isfinite(tm.omega_ie_rad_s) && tm.omega_ie_rad_s >= 0.0,
+          "truth_model.omega_ie_rad_s", "finite and ≥ 0", tm.omega_ie_rad_s);
+  require(std::isfinite(tm.stationary_speed_m_s) && tm.stationary_speed_m_s >= 0.0,
+          "truth_model.stationary_speed_m_s", "finite and ≥ 0", tm.stationary_speed_m_s);
+
+  const ModelField field = o.model_field ? o.model_field : ModelField(synthetic_model_deflection);
+  const auto samples = static_cast<std::size_t>(std::floor(o.duration_s * o.rate_hz + 1e-9)) + 1;
+  const double dt = 1.0 / o.rate_hz;
+  const geodesy::Ellipsoid ell = geodesy::wgs84();
+  const double e2 = ell.f * (2.0 - ell.f);
+
+  std::mt19937_64 rng(o.seed);
+  std::normal_distribution<double> nd;
+  const bool stationary = is_stationary(o.speed_m_s, tm);
+  const double w0 = stationary ? 0.0 : 2.0 * units::kPi * o.speed_m_s / tm.correlation_length_m;
+  const GaussMarkov2 gm(w0, tm.zeta, tm.sigma_model_rad, dt);
+  Eigen::Vector2d east = gm.draw_stationary(rng, nd);   // (x_E, δη)
+  Eigen::Vector2d north = gm.draw_stationary(rng, nd);  // (x_N, δξ)
+  Eigen::Vector3d phi = o.initial_attitude_error_rad;
+
+  Input in;
+  in.samples.resize(samples);
+  in.truth.resize(samples);
+  double lat = o.start_lat_rad;
+  double lon = o.start_lon_rad;
+  const Eigen::Vector3d e_up(0.0, 0.0, 1.0);
+  for (std::size_t k = 0; k < samples; ++k) {
+    const double t = o.start_time_s + static_cast<double>(k) * dt;
+    if (k > 0) {
+      // Advance the track, then the processes, from sample k−1 to k.
+      const double sl = std::sin(lat);
+      const double w = std::sqrt(1.0 - e2 * sl * sl);
+      const double n_radius = ell.a_m / w + o.height_m;
+      const double m_radius = ell.a_m * (1.0 - e2) / (w * w * w) + o.height_m;
+      const double lat_prev = lat;
+      lat += o.speed_m_s * std::cos(o.heading_rad) * dt / m_radius;
+      lon += o.speed_m_s * std::sin(o.heading_rad) * dt / (n_radius * std::cos(lat_prev));
+      if (!(std::abs(lat) < max_lat))
+        throw InputError(fmt::format("the track reaches latitude {} rad at sample {}", lat, k),
+                         ErrorContext{{}, {}, "simulation.duration_s"});
+      phi = attitude_step(phi, 0.5 * (lat + lat_prev), tm.omega_ie_rad_s, o.eps_u_rad_s, dt);
+      east = gm.step(east, rng, nd);
+      north = gm.step(north, rng, nd);
+    }
+    const EtaXi model = field(lat, lon, o.height_m);
+    if (!std::isfinite(model.eta_rad) || !std::isfinite(model.xi_rad))
+      throw InputError(fmt::format("the model field is not finite at sample {}", k),
+                       ErrorContext{{}, {}, "simulation.model_field"});
+    Truth& tr = in.truth[k];
+    tr.eta_rad = model.eta_rad + east(1);
+    tr.xi_rad = model.xi_rad + north(1);
+    StateVector x;
+    x(State::phi_e) = phi(0);
+    x(State::phi_n) = phi(1);
+    x(State::phi_u) = phi(2);
+    x(State::eps_u) = o.eps_u_rad_s;
+    x(State::x_e) = east(0);
+    x(State::x_n) = north(0);
+    x(State::delta_eta) = east(1);
+    x(State::delta_xi) = north(1);
+    tr.state = x;
+
+    // Body attitude, the plumb-line frame n′ and the two solutions.
+    const double pitch = units::kDegree * std::sin(2.0 * units::kPi * t / 37.0);
+    const double roll = 2.0 * units::kDegree * std::sin(2.0 * units::kPi * t / 11.0);
+    const Eigen::Matrix3d body_to_nav =
+        (Eigen::AngleAxisd(-o.heading_rad, Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
+         Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitY()))
+            .toRotationMatrix();
+    const Eigen::Vector3d zenith =
+        geodesy::astronomic_zenith_enu(geodesy::Deflection{tr.xi_rad, tr.eta_rad}, lat);
+    const Eigen::Matrix3d plumb_to_nav =
+        Eigen::Quaterniond::FromTwoVectors(e_up, zenith).toRotationMatrix();  // C_{n′}^n
+    const AttitudeDifference v{o.sigma_ins_rad * nd(rng), o.sigma_ins_rad * nd(rng),
+                               o.sigma_ins_rad * nd(rng)};
+    Sample& s = in.samples[k];
+    s.time_s = t;
+    s.lat_rad = lat;
+    s.lon_rad = lon;
+    s.height_m = o.height_m;
+    s.speed_m_s = o.speed_m_s;
+    s.lgu_body_to_nav = rotation_from_difference({phi(0), phi(1), phi(2)}) * body_to_nav;
+    s.ins_body_to_nav = rotation_from_difference(v) * plumb_to_nav.transpose() * body_to_nav;
+    s.model_eta_rad = model.eta_rad;
+    s.model_xi_rad = model.xi_rad;
+  }
+  return in;
+}
+
+}  // namespace meridian::dov

@@ -1,0 +1,234 @@
+#include "meridian/io/dov_files.hpp"
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/io/record_reader.hpp"
+
+namespace meridian::io {
+namespace {
+
+constexpr double kAs = units::kArcsecond;
+
+std::string element_name(const char* prefix, int i, int j) {
+  return fmt::format("{}_{}{}", prefix, i + 1, j + 1);
+}
+
+struct LineColumns {
+  std::size_t time = 0, lat = 0, lon = 0, height = 0, speed = 0, eta = 0, xi = 0;
+  std::array<std::size_t, 9> lgu{}, ins{};
+  std::array<std::string, 9> lgu_names, ins_names;
+  std::optional<std::size_t> truth_eta, truth_xi;
+};
+
+LineColumns find_columns(RecordReader& rr) {
+  if (rr.header().empty())
+    throw InputError("a line file needs a header line naming its columns (time_s, lat_deg, …)",
+                     ErrorContext{rr.source(), std::nullopt, {}});
+  LineColumns c;
+  c.time = rr.require_column("time_s");
+  c.lat = rr.require_column("lat_deg");
+  c.lon = rr.require_column("lon_deg");
+  c.height = rr.require_column("height_m");
+  c.speed = rr.require_column("speed_m_s");
+  c.eta = rr.require_column("model_eta_arcsec");
+  c.xi = rr.require_column("model_xi_arcsec");
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      c.lgu_names[3 * i + j] = element_name("lgu", i, j);
+      c.ins_names[3 * i + j] = element_name("ins", i, j);
+      c.lgu[3 * i + j] = rr.require_column(c.lgu_names[3 * i + j]);
+      c.ins[3 * i + j] = rr.require_column(c.ins_names[3 * i + j]);
+    }
+  c.truth_eta = rr.find_column("truth_eta_arcsec");
+  c.truth_xi = rr.find_column("truth_xi_arcsec");
+  if (c.truth_eta.has_value() != c.truth_xi.has_value())
+    throw InputError("give both truth_eta_arcsec and truth_xi_arcsec, or neither",
+                     ErrorContext{rr.source(), rr.header_line(), {}});
+  return c;
+}
+
+/// "samples[12].time_s" → 12; the filter's "epoch 12" (= samples[12]) → 12.
+std::optional<std::size_t> sample_index(const std::string& field) {
+  std::string digits;
+  for (const std::string prefix : {"samples[", "epoch "}) {
+    if (field.rfind(prefix, 0) != 0) continue;
+    for (std::size_t i = prefix.size(); i < field.size() && field[i] >= '0' && field[i] <= '9'; ++i)
+      digits += field[i];
+  }
+  if (digits.empty() || digits.size() > 18) return std::nullopt;
+  return static_cast<std::size_t>(std::stoull(digits));
+}
+
+}  // namespace
+
+DovLine read_dov_line(std::istream& in, const std::string& source) {
+  RecordReader rr(in, source);
+  const LineColumns c = find_columns(rr);
+  DovLine out;
+  out.source = source;
+  RecordChunk chunk;
+  while (rr.next(chunk, 16384)) {
+    for (std::size_t k = 0; k < chunk.size(); ++k) {
+      const Record r = chunk[k];
+      dov::Sample s;
+      s.time_s = r.number(c.time);
+      s.lat_rad = r.angle(c.lat).rad();
+      s.lon_rad = r.angle(c.lon).rad();
+      s.height_m = r.number(c.height);
+      s.speed_m_s = r.number(c.speed);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          s.lgu_body_to_nav(i, j) = r.number(c.lgu[3 * i + j]);
+          s.ins_body_to_nav(i, j) = r.number(c.ins[3 * i + j]);
+        }
+      s.model_eta_rad = r.number(c.eta) * kAs;
+      s.model_xi_rad = r.number(c.xi) * kAs;
+      out.samples.push_back(s);
+      out.lines.push_back(r.line());
+      if (c.truth_eta) {
+        dov::Truth t;
+        t.eta_rad = r.number(*c.truth_eta) * kAs;
+        t.xi_rad = r.number(*c.truth_xi) * kAs;
+        out.truth.push_back(t);
+      }
+    }
+  }
+  return out;
+}
+
+DovLine read_dov_line_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw IoError(fmt::format("cannot open line file {}", path), ErrorContext{path, {}, {}});
+  return read_dov_line(f, path);
+}
+
+std::string dov_line_csv(const dov::Input& input) {
+  std::string out = "# meridian dov line: C_b^n (lgu_ij) and C_b^n' (ins_ij), rows E, N, U\n";
+  out += "time_s,lat_deg,lon_deg,height_m,speed_m_s";
+  for (const char* p : {"lgu", "ins"})
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) out += "," + element_name(p, i, j);
+  out += ",model_eta_arcsec,model_xi_arcsec";
+  const bool truth = !input.truth.empty();
+  if (truth) out += ",truth_eta_arcsec,truth_xi_arcsec";
+  out += "\n";
+  for (std::size_t k = 0; k < input.samples.size(); ++k) {
+    const dov::Sample& s = input.samples[k];
+    out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", s.time_s,
+                       s.lat_rad / units::kDegree, s.lon_rad / units::kDegree, s.height_m,
+                       s.speed_m_s);
+    for (const Eigen::Matrix3d* m : {&s.lgu_body_to_nav, &s.ins_body_to_nav})
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) out += fmt::format(",{:.17g}", (*m)(i, j));
+    out += fmt::format(",{:.17g},{:.17g}", s.model_eta_rad / kAs, s.model_xi_rad / kAs);
+    if (truth)
+      out += fmt::format(",{:.17g},{:.17g}", input.truth[k].eta_rad / kAs,
+                         input.truth[k].xi_rad / kAs);
+    out += "\n";
+  }
+  return out;
+}
+
+DovConfig read_dov_config(const std::string& path) {
+  const Node root = Node::load_file(path);
+  root.allow_only({"line", "zeta", "sigma_model_arcsec", "correlation_length_m",
+                   "stationary_speed_m_s", "sigma_obs_arcsec", "sigma_obs_east_arcsec",
+                   "sigma_obs_north_arcsec", "initial", "discretisation", "extraction",
+                   "max_step_s", "gate_alpha", "statistics_start_s"});
+  DovConfig c;
+  c.file = path;
+  dov::Options& o = c.options;
+  const std::filesystem::path line = root.require("line").string();
+  c.line_path = (line.is_absolute() ? line : std::filesystem::path(path).parent_path() / line)
+                    .string();
+  if (auto n = root.get("zeta")) o.model.zeta = n->positive_number();
+  if (auto n = root.get("sigma_model_arcsec")) o.model.sigma_model_rad = n->positive_number() * kAs;
+  if (auto n = root.get("correlation_length_m")) o.model.correlation_length_m = n->positive_number();
+  if (auto n = root.get("stationary_speed_m_s"))
+    o.model.stationary_speed_m_s = n->non_negative_number();
+  if (auto n = root.get("sigma_obs_arcsec")) {
+    if (root.has("sigma_obs_east_arcsec") || root.has("sigma_obs_north_arcsec"))
+      n->fail("give sigma_obs_arcsec or sigma_obs_east_arcsec/sigma_obs_north_arcsec, not both");
+    o.sigma_obs_east_rad = o.sigma_obs_north_rad = n->positive_number() * kAs;
+  }
+  if (auto n = root.get("sigma_obs_east_arcsec")) o.sigma_obs_east_rad = n->positive_number() * kAs;
+  if (auto n = root.get("sigma_obs_north_arcsec")) o.sigma_obs_north_rad = n->positive_number() * kAs;
+  if (auto init = root.get("initial")) {
+    init->allow_only({"phi_e_arcsec", "phi_n_arcsec", "phi_u_arcsec", "eps_u_deg_per_h",
+                      "delta_arcsec", "x_arcsec_s"});
+    dov::InitialSigmas& s = o.initial;
+    if (auto n = init->get("phi_e_arcsec")) s.phi_e_rad = n->positive_number() * kAs;
+    if (auto n = init->get("phi_n_arcsec")) s.phi_n_rad = n->positive_number() * kAs;
+    if (auto n = init->get("phi_u_arcsec")) s.phi_u_rad = n->positive_number() * kAs;
+    if (auto n = init->get("eps_u_deg_per_h"))
+      s.eps_u_rad_s = n->positive_number() * units::kDegree / 3600.0;
+    if (auto n = init->get("delta_arcsec")) s.delta_rad = n->positive_number() * kAs;
+    if (auto n = init->get("x_arcsec_s")) s.x_rad_s = n->positive_number() * kAs;
+  }
+  if (auto n = root.get("discretisation")) {
+    const std::string v = n->string();
+    if (v == "exact")
+      o.discretisation = dov::DiscretisationMethod::Exact;
+    else if (v == "published_first_order")
+      o.discretisation = dov::DiscretisationMethod::PublishedFirstOrder;
+    else
+      n->fail(fmt::format("\"{}\" is not a discretisation (exact, published_first_order)", v));
+  }
+  if (auto n = root.get("extraction")) {
+    const std::string v = n->string();
+    if (v == "exact")
+      o.extraction = dov::Extraction::Exact;
+    else if (v == "skew_symmetric")
+      o.extraction = dov::Extraction::SkewSymmetric;
+    else
+      n->fail(fmt::format("\"{}\" is not an extraction (exact, skew_symmetric)", v));
+  }
+  if (auto n = root.get("max_step_s")) o.max_step_s = n->positive_number();
+  if (auto n = root.get("gate_alpha")) {
+    const double a = n->non_negative_number();
+    if (!(a == 0.0 || a < 1.0)) n->fail("gate_alpha must be 0 (no gate) or in (0, 1)");
+    o.gate_alpha = a;
+  }
+  if (auto n = root.get("statistics_start_s")) o.statistics_start_s = n->non_negative_number();
+  c.lines = root.visited_lines();
+  return c;
+}
+
+dov::Result run_dov(const DovConfig& config, Progress* progress) {
+  const DovLine line = read_dov_line_file(config.line_path);
+  dov::Input in;
+  in.samples = line.samples;
+  in.truth = line.truth;
+  in.options = config.options;
+  try {
+    return dov::process(in, progress);
+  } catch (Error& e) {
+    if (progress) progress->finish();
+    const auto k = sample_index(e.context().field);
+    if (k && *k < line.lines.size()) {
+      // "samples[k].member" → "line.csv:LINE: member"
+      const std::string& f = e.context().field;
+      const auto dot = f.find("].");
+      ErrorContext c{line.source, line.lines[*k],
+                     dot == std::string::npos ? std::string() : f.substr(dot + 2)};
+      const std::string msg = e.message();
+      if (dynamic_cast<ParseError*>(&e)) throw ParseError(msg, c);
+      if (dynamic_cast<InputError*>(&e)) throw InputError(msg, c);
+      if (dynamic_cast<NumericalError*>(&e)) throw NumericalError(msg, c);
+      if (dynamic_cast<IoError*>(&e)) throw IoError(msg, c);
+      throw Error(msg, c);
+    }
+    locate_error(e, config.file, config.lines);
+    throw;
+  }
+}
+
+}  // namespace meridian::io

@@ -1,0 +1,82 @@
+#include "meridian/report/dov_outputs.hpp"
+
+#include <fmt/format.h>
+
+#include "meridian/core/units.hpp"
+
+namespace meridian::report {
+namespace {
+
+using nlohmann::json;
+double as(double rad) { return units::rad_to_arcsec(rad); }
+double deg_h(double rad_s) { return rad_s / units::kDegree * 3600.0; }
+json eta_xi(const dov::EtaXi& v) { return {{"eta", as(v.eta_rad)}, {"xi", as(v.xi_rad)}}; }
+
+}  // namespace
+
+json dov_summary_to_json(const dov::Result& r, const dov::Options& o) {
+  const dov::Summary& s = r.summary;
+  json j = {{"epochs", s.epochs},
+            {"statistics_epochs", s.statistics_epochs},
+            {"discretisations", s.discretisations},
+            {"rejected", s.rejected},
+            {"mean_sigma_arcsec",
+             {{"filtered", eta_xi(s.rms_sigma_filtered)}, {"smoothed", eta_xi(s.rms_sigma_smoothed)}}},
+            {"nis",
+             {{"mean", s.mean_nis}, {"lower_95", s.nis_interval.lower}, {"upper_95", s.nis_interval.upper}}},
+            {"eps_u_deg_per_h", {{"value", deg_h(s.eps_u_rad_s)}, {"sigma", deg_h(s.sigma_eps_u_rad_s)}}},
+            {"discretisation", o.discretisation == dov::DiscretisationMethod::Exact
+                                   ? "exact"
+                                   : "published_first_order"},
+            {"extraction", o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric"},
+            {"notes", r.notes},
+            {"warnings", r.warnings}};
+  if (s.rms_model)
+    j["rms_arcsec"] = {{"model", eta_xi(*s.rms_model)},
+                       {"filtered", eta_xi(*s.rms_filtered)},
+                       {"smoothed", eta_xi(*s.rms_smoothed)}};
+  if (s.mean_nees_filtered)
+    j["nees"] = {{"filtered", *s.mean_nees_filtered}, {"smoothed", *s.mean_nees_smoothed}};
+  return j;
+}
+
+std::string dov_summary_text(const dov::Result& r) {
+  const dov::Summary& s = r.summary;
+  std::string t = fmt::format("epochs: {} (statistics over {})\n", s.epochs, s.statistics_epochs);
+  if (s.rms_model)
+    t += fmt::format(
+        "RMS error (″)       eta      xi\n  model     {:9.4f} {:7.4f}\n  filtered  {:9.4f} "
+        "{:7.4f}\n  smoothed  {:9.4f} {:7.4f}\n",
+        as(s.rms_model->eta_rad), as(s.rms_model->xi_rad), as(s.rms_filtered->eta_rad),
+        as(s.rms_filtered->xi_rad), as(s.rms_smoothed->eta_rad), as(s.rms_smoothed->xi_rad));
+  t += fmt::format("quadratic-mean σ (″): filtered eta {:.4f} xi {:.4f}; smoothed eta {:.4f} xi {:.4f}\n",
+                   as(s.rms_sigma_filtered.eta_rad), as(s.rms_sigma_filtered.xi_rad),
+                   as(s.rms_sigma_smoothed.eta_rad), as(s.rms_sigma_smoothed.xi_rad));
+  t += fmt::format("mean NIS {:.3f} (95 % interval [{:.3f}, {:.3f}]), {} rejected\n", s.mean_nis,
+                   s.nis_interval.lower, s.nis_interval.upper, s.rejected);
+  t += fmt::format("eps_U = {:.5f} ± {:.5f} °/h (smoothed)\n", deg_h(s.eps_u_rad_s),
+                   deg_h(s.sigma_eps_u_rad_s));
+  for (const std::string& n : r.notes) t += "note: " + n + "\n";
+  for (const std::string& w : r.warnings) t += "warning: " + w + "\n";
+  return t;
+}
+
+std::string dov_profile_csv(const dov::Result& r) {
+  std::string out =
+      "time_s,model_eta_arcsec,model_xi_arcsec,filtered_eta_arcsec,filtered_xi_arcsec,"
+      "filtered_sigma_eta_arcsec,filtered_sigma_xi_arcsec,smoothed_eta_arcsec,smoothed_xi_arcsec,"
+      "smoothed_sigma_eta_arcsec,smoothed_sigma_xi_arcsec,filtered_eps_u_deg_per_h,"
+      "innovation_east_arcsec,innovation_north_arcsec,nis,accepted\n";
+  for (const dov::EpochResult& e : r.epochs)
+    out += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
+                       "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}\n",
+                       e.time_s, as(e.model_eta_rad), as(e.model_xi_rad), as(e.filtered.eta_rad),
+                       as(e.filtered.xi_rad), as(e.filtered.sigma_eta_rad),
+                       as(e.filtered.sigma_xi_rad), as(e.smoothed.eta_rad), as(e.smoothed.xi_rad),
+                       as(e.smoothed.sigma_eta_rad), as(e.smoothed.sigma_xi_rad),
+                       deg_h(e.filtered.eps_u_rad_s), as(e.innovation_east_rad),
+                       as(e.innovation_north_rad), e.nis, e.accepted ? 1 : 0);
+  return out;
+}
+
+}  // namespace meridian::report

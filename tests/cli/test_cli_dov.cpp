@@ -1,0 +1,83 @@
+// Runs `meridian dov ...` as a user would: simulate a line with its configuration, process it
+// (JSON summary, profile CSV), and the errors for bad input (exit codes, file:line:column).
+
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.hpp"
+
+namespace {
+
+using meridian_test::CmdResult;
+class DovCli : public meridian_test::CliTest {};
+
+}  // namespace
+
+TEST_F(DovCli, SimulateAndProcessAHalfHourLine) {
+  const CmdResult s = run(
+      "dov simulate --hours 0.5 --seed 3 --phi-e-arcsec 1.5 --phi-n-arcsec -2 --phi-u-arcsec 4 "
+      "--out line.csv --config dov.yaml");
+  ASSERT_EQ(s.code, 0) << s.err;
+  const CmdResult r = run("dov process dov.yaml --json -q -o profile.csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["epochs"], 1801);
+  // the JSON contract of issue 10: rms_arcsec.{model,filtered,smoothed}.{eta,xi} with truth
+  const double model = j["rms_arcsec"]["model"]["xi"].get<double>();
+  const double filtered = j["rms_arcsec"]["filtered"]["xi"].get<double>();
+  const double smoothed = j["rms_arcsec"]["smoothed"]["xi"].get<double>();
+  // (the accuracy itself is the scenario tests' business, tests/dov/test_scenarios.cpp)
+  EXPECT_GT(model, 1.0);
+  EXPECT_LT(filtered, model);
+  EXPECT_LT(smoothed, filtered);
+  EXPECT_GT(j["mean_sigma_arcsec"]["smoothed"]["eta"].get<double>(), 0.0);
+  EXPECT_TRUE(j["nis"]["mean"].get<double>() > 1.5 && j["nis"]["mean"].get<double>() < 2.5);
+  EXPECT_TRUE(j["eps_u_deg_per_h"].contains("sigma"));
+  EXPECT_EQ(j["discretisation"], "exact");
+  // the profile: a header and one line per epoch
+  const std::string profile = slurp(dir_ / "profile.csv");
+  std::size_t lines = 0;
+  for (char c : profile) lines += c == '\n';
+  EXPECT_EQ(lines, 1802u);
+  EXPECT_EQ(profile.rfind("time_s,model_eta_arcsec,", 0), 0u);
+  // the text summary
+  const CmdResult t = run("dov process dov.yaml -q");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("smoothed"), std::string::npos) << t.out;
+}
+
+TEST_F(DovCli, BadSampleNamesFileLineAndColumn) {
+  ASSERT_EQ(run("dov simulate --hours 0.05 --out line.csv --config dov.yaml").code, 0);
+  // line 3 is the first sample (comment, header): make its lgu_11 unreadable
+  std::string csv = slurp(dir_ / "line.csv");
+  std::size_t pos = csv.find('\n', csv.find('\n') + 1) + 1;  // start of line 3
+  for (int comma = 0; comma < 5; ++comma) pos = csv.find(',', pos) + 1;  // field 6: lgu_11
+  csv.insert(pos, "q");
+  write("line.csv", csv);
+  const CmdResult r = run("dov process dov.yaml -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("line.csv:3: lgu_11"), std::string::npos) << r.err;
+}
+
+TEST_F(DovCli, NonOrthogonalMatrixAndConfigTypo) {
+  ASSERT_EQ(run("dov simulate --hours 0.05 --out line.csv --config dov.yaml").code, 0);
+  std::string csv = slurp(dir_ / "line.csv");
+  // sample 4 (line 7): scale its ins_11 by replacing the field with 2
+  std::size_t pos = 0;
+  for (int l = 0; l < 6; ++l) pos = csv.find('\n', pos) + 1;
+  for (int comma = 0; comma < 14; ++comma) pos = csv.find(',', pos) + 1;  // field 15: ins_11
+  csv.replace(pos, csv.find(',', pos) - pos, "2");
+  write("line.csv", csv);
+  const CmdResult r = run("dov process dov.yaml -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("line.csv:7: ins_body_to_nav"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not orthogonal"), std::string::npos) << r.err;
+  write("typo.yaml", "line: line.csv\nsigma_modle_arcsec: 3\n");
+  const CmdResult t = run("dov process typo.yaml -q");
+  EXPECT_EQ(t.code, 1);
+  EXPECT_NE(t.err.find("typo.yaml:2"), std::string::npos) << t.err;
+  EXPECT_FALSE(std::ifstream(dir_ / "profile.csv").good());
+}

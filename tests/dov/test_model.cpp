@@ -1,0 +1,201 @@
+// The 8-state model (dov/model.hpp) against closed forms: the Earth-rate attitude dynamics
+// against Eigen's AngleAxis (the exact rotation about Ω), the Gauss–Markov block against the
+// damped oscillator and the Lyapunov equation, H against the spec's printed matrix, the
+// stationary case and its unobservable direction, the published first-order form.
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/dov/model.hpp"
+
+namespace {
+
+using meridian::InputError;
+using namespace meridian::dov;
+namespace units = meridian::units;
+constexpr double kAs = units::kArcsecond;
+
+TEST(DovModel, ObservationMatrixIsTheSpecs) {
+  // spec §4: H = [[1,0,0,0,0,0,0,1], [0,1,0,0,0,0,−1,0]], in the state order of §3.
+  Eigen::Matrix<double, 2, 8> spec;
+  spec << 1, 0, 0, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, -1, 0;
+  EXPECT_EQ(Eigen::MatrixXd(observation_matrix()), Eigen::MatrixXd(spec));
+  // and the names are the spec's order
+  EXPECT_EQ(State::phi_e, 0);
+  EXPECT_EQ(State::eps_u, 3);
+  EXPECT_EQ(State::delta_eta, 6);
+  EXPECT_EQ(State::delta_xi, 7);
+  EXPECT_EQ(State::size, 8);
+}
+
+TEST(DovModel, AttitudeBlockIsTheRotationAboutTheEarthRate) {
+  // φ̇ = −Ω×φ with ε = 0: φ(t) = R(Ω, −|Ω|t)·φ(0), Ω = ω_ie(0, cos L, sin L) (ENU).
+  ModelOptions o;
+  const double lat = 37.0 * units::kDegree;
+  const double dt = 3600.0;  // a long step, so the rotation is visible (15°)
+  const auto d = discrete_model(lat, 5.0, dt, o);
+  const Eigen::Vector3d axis(0.0, std::cos(lat), std::sin(lat));
+  const Eigen::Matrix3d rot =
+      Eigen::AngleAxisd(-o.omega_ie_rad_s * dt, axis).toRotationMatrix();
+  const Eigen::Matrix3d block = d.phi.topLeftCorner<3, 3>();
+  EXPECT_LT((block - rot).cwiseAbs().maxCoeff(), 1e-12);
+  // ε_U column: −∫₀^Δt R(Ω, −ωs) ds·e_U by numerical quadrature (Simpson, 2000 intervals)
+  Eigen::Vector3d integral = Eigen::Vector3d::Zero();
+  const int m = 2000;
+  for (int i = 0; i <= m; ++i) {
+    const double s = dt * i / m;
+    const double w = (i == 0 || i == m) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+    integral += w * (Eigen::AngleAxisd(-o.omega_ie_rad_s * s, axis).toRotationMatrix() *
+                     Eigen::Vector3d::UnitZ());
+  }
+  integral *= dt / (3.0 * m);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(d.phi(i, State::eps_u), -integral(i), 1e-9 * dt) << i;
+  // spec §3 signs, entry by entry
+  const auto c = continuous_model(lat, 5.0, o);
+  const double w = o.omega_ie_rad_s;
+  EXPECT_DOUBLE_EQ(c.F(State::phi_e, State::phi_n), w * std::sin(lat));
+  EXPECT_DOUBLE_EQ(c.F(State::phi_e, State::phi_u), -w * std::cos(lat));
+  EXPECT_DOUBLE_EQ(c.F(State::phi_n, State::phi_e), -w * std::sin(lat));
+  EXPECT_DOUBLE_EQ(c.F(State::phi_u, State::phi_e), w * std::cos(lat));
+  EXPECT_DOUBLE_EQ(c.F(State::phi_u, State::eps_u), -1.0);
+}
+
+TEST(DovModel, GaussMarkovBlockAgainstTheDampedOscillator) {
+  ModelOptions o;
+  const double v = 5.0, dt = 1.0;
+  const double w0 = 2.0 * units::kPi * v / 10000.0;
+  EXPECT_DOUBLE_EQ(omega0_rad_s(v, o), w0);
+  EXPECT_DOUBLE_EQ(process_noise_density(v, o), std::pow(3.0 * kAs, 2) * 4.0 * 0.05 * w0);
+  for (double step : {dt, 100.0, 5000.0}) {
+    const auto d = discrete_model(0.5, v, step, o);
+    const double a = 0.05 * w0, wd = w0 * std::sqrt(1.0 - 0.05 * 0.05);
+    const double e = std::exp(-a * step), cs = std::cos(wd * step), sn = std::sin(wd * step);
+    Eigen::Matrix2d phi;
+    phi << e * (cs + a / wd * sn), e * sn / wd, -e * w0 * w0 / wd * sn, e * (cs - a / wd * sn);
+    const Eigen::Matrix2d p_inf =
+        Eigen::Vector2d(std::pow(3.0 * kAs / w0, 2), std::pow(3.0 * kAs, 2)).asDiagonal();
+    const Eigen::Matrix2d q = p_inf - phi * p_inf * phi.transpose();
+    for (int pair = 0; pair < 2; ++pair) {
+      const int x = pair == 0 ? State::x_e : State::x_n;
+      const int dl = pair == 0 ? State::delta_eta : State::delta_xi;
+      Eigen::Matrix2d got_phi, got_q;
+      got_phi << d.phi(x, x), d.phi(x, dl), d.phi(dl, x), d.phi(dl, dl);
+      got_q << d.q(x, x), d.q(x, dl), d.q(dl, x), d.q(dl, dl);
+      EXPECT_LT((got_phi - phi).cwiseAbs().maxCoeff(), 1e-12 * std::max(1.0, step)) << step;
+      // relative to σ_i σ_j of P∞
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+          EXPECT_NEAR(got_q(i, j) / std::sqrt(p_inf(i, i) * p_inf(j, j)),
+                      q(i, j) / std::sqrt(p_inf(i, i) * p_inf(j, j)), 1e-9)
+              << step << " " << i << j;
+    }
+    // no coupling between the attitude and Gauss–Markov blocks
+    EXPECT_EQ(d.phi(State::phi_e, State::delta_xi), 0.0);
+    EXPECT_EQ(d.q(State::phi_e, State::phi_e), 0.0);
+  }
+  // After a very long step Q_d is the stationary covariance: σ(δ) = σ_model (q = σ²·4ζω₀).
+  const auto d = discrete_model(0.5, v, 2.0e6, o);
+  EXPECT_NEAR(std::sqrt(d.q(State::delta_xi, State::delta_xi)) / kAs, 3.0, 1e-6);
+  EXPECT_NEAR(std::sqrt(d.q(State::x_n, State::x_n)) * w0 / kAs, 3.0, 1e-6);
+}
+
+TEST(DovModel, StationaryCase) {
+  ModelOptions o;
+  for (double v : {0.0, 0.005}) {  // V = 0 and below stationary_speed_m_s (0.01 m/s)
+    EXPECT_TRUE(is_stationary(v, o));
+    EXPECT_EQ(omega0_rad_s(v, o), 0.0);
+    const auto d = discrete_model(0.6, v, 10.0, o);
+    for (int i : {static_cast<int>(State::x_e), static_cast<int>(State::x_n),
+                  static_cast<int>(State::delta_eta), static_cast<int>(State::delta_xi)}) {
+      for (int j = 0; j < State::size; ++j) {
+        EXPECT_NEAR(d.phi(i, j), i == j ? 1.0 : 0.0, 1e-15) << i << " " << j;
+        EXPECT_EQ(d.q(i, j), 0.0);
+      }
+    }
+    EXPECT_TRUE(d.phi.allFinite() && d.q.allFinite());
+  }
+  o.stationary_speed_m_s = 0.0;
+  EXPECT_TRUE(is_stationary(0.0, o));  // V = 0 is stationary even with a zero threshold
+  EXPECT_FALSE(is_stationary(1e-6, o));
+}
+
+TEST(DovModel, StationaryCaseHasTheUnobservableEastDirection) {
+  // Standing still, d = (φ_N, φ_U, δη) += c·(1, tan L, 1) leaves y unchanged for ever:
+  // H·d = 0 and F·d = 0. Moving, F·d ≠ 0 (δη has no constant part), so η becomes observable.
+  ModelOptions o;
+  const double lat = 0.6;
+  StateVector d = StateVector::Zero();
+  d(State::phi_n) = 1.0;
+  d(State::phi_u) = std::tan(lat);
+  d(State::delta_eta) = 1.0;
+  EXPECT_LT((observation_matrix() * d).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LT((continuous_model(lat, 0.0, o).F * d).cwiseAbs().maxCoeff(), 1e-20);
+  EXPECT_GT((continuous_model(lat, 5.0, o).F * d).cwiseAbs().maxCoeff(), 1e-4);
+}
+
+TEST(DovModel, PublishedFirstOrder) {
+  ModelOptions o;
+  const double v = 5.0;
+  const auto c = continuous_model(0.5, v, o);
+  const double q = process_noise_density(v, o);
+  for (double dt : {1.0, 0.1}) {
+    const auto d = discrete_model(0.5, v, dt, o, DiscretisationMethod::PublishedFirstOrder);
+    EXPECT_LT((d.phi - (StateMatrix::Identity() + c.F * dt)).cwiseAbs().maxCoeff(), 1e-18);
+    EXPECT_DOUBLE_EQ(d.q(State::delta_eta, State::delta_eta), dt * dt * q);
+    EXPECT_EQ(d.q(State::x_e, State::x_e), 0.0);
+    // against the exact model: Q_d of δ is q·Δt to first order, so the published value is a
+    // factor Δt smaller (equal at 1 Hz, 10× too small at 10 Hz)
+    const auto exact = discrete_model(0.5, v, dt, o);
+    EXPECT_NEAR(exact.q(State::delta_eta, State::delta_eta) / (q * dt), 1.0, 0.01);
+  }
+}
+
+TEST(DovModel, InitialEstimate) {
+  ModelOptions o;
+  InitialSigmas s;
+  const auto e = initial_estimate(s, o, 5.0);
+  EXPECT_TRUE(e.x.isZero());
+  EXPECT_DOUBLE_EQ(e.sigma(State::phi_e) / kAs, 2.0);
+  EXPECT_DOUBLE_EQ(e.sigma(State::phi_u) / kAs, 5.0);
+  EXPECT_NEAR(e.sigma(State::eps_u) * 3600.0 / units::kDegree, 0.003, 1e-15);
+  EXPECT_NEAR(e.sigma(State::x_e), 3.0 * kAs / (2.0 * units::kPi * 5.0 / 10000.0), 1e-18);
+  EXPECT_DOUBLE_EQ(e.sigma(State::delta_xi) / kAs, 3.0);
+  EXPECT_TRUE((e.P - StateMatrix(e.P.diagonal().asDiagonal())).isZero());
+  s.delta_rad = 1.0 * kAs;
+  s.x_rad_s = 2.0;
+  const auto f = initial_estimate(s, o, 0.0);
+  EXPECT_DOUBLE_EQ(f.sigma(State::delta_eta) / kAs, 1.0);
+  EXPECT_DOUBLE_EQ(f.sigma(State::x_n), 2.0);
+  EXPECT_DOUBLE_EQ(initial_estimate(InitialSigmas{}, o, 0.0).sigma(State::x_n), 3.0 * kAs);
+}
+
+TEST(DovModel, Errors) {
+  ModelOptions o;
+  EXPECT_THROW(continuous_model(2.0, 5.0, o), InputError);
+  EXPECT_THROW(continuous_model(0.5, -1.0, o), InputError);
+  EXPECT_THROW(continuous_model(0.5, std::nan(""), o), InputError);
+  EXPECT_THROW(discrete_model(0.5, 5.0, 0.0, o), InputError);
+  EXPECT_THROW(discrete_model(0.5, 5.0, -1.0, o), InputError);
+  EXPECT_THROW(observation_covariance(0.0, 1e-6), InputError);
+  ModelOptions bad = o;
+  bad.zeta = 0.0;
+  try {
+    validate(bad);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().field, "options.zeta");
+  }
+  InitialSigmas s;
+  s.phi_u_rad = -1.0;
+  try {
+    validate(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().field, "options.initial.phi_u_rad");
+  }
+}
+
+}  // namespace
