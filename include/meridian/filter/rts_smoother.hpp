@@ -16,6 +16,7 @@
 /// k+1") or Pˢ_k loses its positive finite diagonal ("epoch k"); IoError from the storage.
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -39,6 +40,11 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
   if (!reader.next(pred[nx], s)) return;
   Matrix<N, N> phi = reader.transition();  // Φ_{k+1}, copied only when it changes
   std::uint64_t phi_index = reader.transition_index();
+  // Fixed N: the exact nonzeros of Φ, skipped in P_k·Φᵀ (small_matrix.hpp).
+  std::conditional_t<N == Eigen::Dynamic, detail::NoPattern,
+                     detail::RowPattern<N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>
+      pattern{};
+  if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
   sink(reader.index(), static_cast<const Estimate<N>&>(s));
   Matrix<N, N> c;
   Matrix<N, N> d;
@@ -48,7 +54,7 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
     const Eigen::Index k = reader.index();
     const Estimate<N>& next_pred = pred[nx];
     if constexpr (N != Eigen::Dynamic)
-      detail::mul_abt(filtered.P, phi, c);  // P_k·Φ_{k+1}ᵀ
+      detail::mul_abt_sparse(filtered.P, phi, pattern, c);  // P_k·Φ_{k+1}ᵀ
     else
       c.noalias() = filtered.P * phi.transpose();
     if (!detail::cholesky_right_solve_in_place(next_pred.P, c)) [[unlikely]]  // C_k
@@ -75,6 +81,7 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
     if (reader.transition_index() != phi_index) {
       phi = reader.transition();
       phi_index = reader.transition_index();
+      if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
     }
   }
 }

@@ -43,6 +43,7 @@
 #include "meridian/core/error.hpp"
 #include "meridian/filter/detail/checks.hpp"
 #include "meridian/filter/detail/record_store.hpp"
+#include "meridian/filter/detail/small_matrix.hpp"
 #include "meridian/filter/estimate.hpp"
 
 namespace meridian::filter {
@@ -77,7 +78,7 @@ class SmootherStorage {
     detail::check_shape(predicted.P.rows(), predicted.x.rows(), n_, n_, "predicted estimate",
                         epoch);
     detail::check_shape(filtered.P.rows(), filtered.x.rows(), n_, n_, "filtered estimate", epoch);
-    if (transitions_.size() == 0 || !(phi.array() == last_phi_.array()).all()) {
+    if (transitions_.size() == 0 || !detail::same_bits(phi, last_phi_)) {  // bit for bit
       double* t = transitions_.append(static_cast<std::uint64_t>(epoch));
       for (Eigen::Index j = 0; j < n_ * n_; ++j) t[j] = phi.data()[j];
       last_phi_ = phi;

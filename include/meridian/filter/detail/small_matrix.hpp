@@ -7,6 +7,8 @@
 /// blocked path. Dynamic sizes keep Eigen's defaults (large states gain from blocking).
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <Eigen/Dense>
 
@@ -53,6 +55,60 @@ inline void mul_abt(const Eigen::Matrix<double, R, K>& A, const Eigen::Matrix<do
   }
 }
 
+/// True when a and b (of the same size) hold the same bits: the cheap test, one memcmp, that a
+/// model's Φ or Q_d is the one already checked at the last epoch (an element-wise == is a chain
+/// of scalar compares and branches).
+template <typename A>
+inline bool same_bits(const Eigen::PlainObjectBase<A>& a, const Eigen::PlainObjectBase<A>& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(typename A::Scalar) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+/// The exact nonzeros of each row of a fixed-size R×C matrix B: row j has count[j] nonzero
+/// entries, in the columns cols[j][0 … count[j] − 1] (ascending). Taken from B's values (an
+/// entry is skipped only when it is exactly ±0; a NaN is kept), so a product with B that skips
+/// the other entries gives the dense product's result: each skipped term is an exact ±0 that
+/// would only have been added (the filter checks every covariance for finiteness, so no
+/// 0·∞ is lost). The deflection model's Φ (an attitude block and two 2×2 Gauss–Markov blocks,
+/// whatever the order of the states) has 21 nonzeros of 64; its H 4 of 16.
+template <int R, int C>
+struct RowPattern {
+  static_assert(R != Eigen::Dynamic && C != Eigen::Dynamic && C <= 255);
+  std::uint8_t count[R];
+  std::uint8_t cols[R][C];
+
+  RowPattern() = default;
+  explicit RowPattern(const Eigen::Matrix<double, R, C>& b) { assign(b); }
+  void assign(const Eigen::Matrix<double, R, C>& b) {
+    for (int j = 0; j < R; ++j) {
+      int n = 0;
+      for (int k = 0; k < C; ++k)
+        if (b(j, k) != 0.0) cols[j][n++] = static_cast<std::uint8_t>(k);
+      count[j] = static_cast<std::uint8_t>(n);
+    }
+  }
+};
+
+/// C = A·Bᵀ for fixed sizes skipping the exact zeros of B (pattern of B's rows); C must not
+/// alias A or B. Column j of C is Σ over the nonzeros B(j, k) of A.col(k)·B(j, k), in the
+/// order of mul_abt, so for a finite A the result equals mul_abt's (up to the sign of a zero).
+template <int R, int K, int C>
+inline void mul_abt_sparse(const Eigen::Matrix<double, R, K>& A,
+                           const Eigen::Matrix<double, C, K>& B, const RowPattern<C, K>& pattern,
+                           Eigen::Matrix<double, R, C>& out) {
+  for (int j = 0; j < C; ++j) {
+    const int n = pattern.count[j];
+    if (n == 0) {
+      out.col(j).setZero();
+      continue;
+    }
+    const std::uint8_t* cols = pattern.cols[j];
+    Eigen::Matrix<double, R, 1> s = A.col(cols[0]) * B(j, cols[0]);
+    for (int i = 1; i < n; ++i) s += A.col(cols[i]) * B(j, cols[i]);
+    out.col(j) = s;
+  }
+}
+
 namespace sym {
 // Column J of the upper triangle of out += A·Bᵀ: rows 0…J rounded up to an even count (whole
 // SSE2 packets; the extra entry below the diagonal is overwritten by the mirror).
@@ -68,6 +124,22 @@ inline void add_abt_upper_columns(const Eigen::Matrix<double, N, K>& A,
     add_abt_upper_columns<N, K, J + 1>(A, B, out);
   }
 }
+// As add_abt_upper_columns, skipping the exact zeros of B's rows.
+template <int N, int K, int J>
+inline void add_abt_upper_columns_sparse(const Eigen::Matrix<double, N, K>& A,
+                                         const Eigen::Matrix<double, N, K>& B,
+                                         const RowPattern<N, K>& pattern,
+                                         Eigen::Matrix<double, N, N>& out) {
+  if constexpr (J < N) {
+    constexpr int rows = (J + 2) / 2 * 2 < N ? (J + 2) / 2 * 2 : N;
+    Eigen::Matrix<double, rows, 1> s = out.col(J).template head<rows>();
+    const std::uint8_t* cols = pattern.cols[J];
+    for (int i = 0; i < pattern.count[J]; ++i)
+      s += A.col(cols[i]).template head<rows>() * B(J, cols[i]);
+    out.col(J).template head<rows>() = s;
+    add_abt_upper_columns_sparse<N, K, J + 1>(A, B, pattern, out);
+  }
+}
 }  // namespace sym
 
 /// out ← out + A·Bᵀ for a sum known to be symmetric (Φ·P·Φᵀ + Q, C·T·Cᵀ + P): only the upper
@@ -81,6 +153,38 @@ inline void add_abt_symmetric(const Eigen::Matrix<double, N, K>& A,
   sym::add_abt_upper_columns<N, K, 0>(A, B, out);
   for (int j = 0; j < N; ++j)
     for (int i = j + 1; i < N; ++i) out(i, j) = out(j, i);
+}
+
+/// add_abt_symmetric skipping the exact zeros of B (pattern of B's rows): the same result.
+template <int N, int K>
+inline void add_abt_symmetric_sparse(const Eigen::Matrix<double, N, K>& A,
+                                     const Eigen::Matrix<double, N, K>& B,
+                                     const RowPattern<N, K>& pattern,
+                                     Eigen::Matrix<double, N, N>& out) {
+  static_assert(N != Eigen::Dynamic && K != Eigen::Dynamic);
+  sym::add_abt_upper_columns_sparse<N, K, 0>(A, B, pattern, out);
+  for (int j = 0; j < N; ++j)
+    for (int i = j + 1; i < N; ++i) out(i, j) = out(j, i);
+}
+
+/// Stand-in for a RowPattern where sizes are dynamic (no pattern is kept).
+struct NoPattern {};
+
+/// out = Q + Φ·P·Φᵀ for fixed sizes, the predicted covariance of KalmanFilter::predict and of
+/// the smoothers that recompute it: q_sym = ½(Q + Qᵀ), P exactly symmetric, `pattern` the
+/// exact nonzeros of Φ. Φ·P is formed as (P·Φᵀ)ᵀ (the same terms in the same order, P being
+/// symmetric) so that both products skip the zeros of Φ; only the upper triangle of
+/// Q + (Φ·P)·Φᵀ is computed, then mirrored. out must not alias an operand.
+template <int N>
+inline void predict_covariance(const Eigen::Matrix<double, N, N>& phi,
+                               const Eigen::Matrix<double, N, N>& P,
+                               const Eigen::Matrix<double, N, N>& q_sym,
+                               const RowPattern<N, N>& pattern, Eigen::Matrix<double, N, N>& out) {
+  Eigen::Matrix<double, N, N> p_phit;
+  mul_abt_sparse(P, phi, pattern, p_phit);
+  const Eigen::Matrix<double, N, N> phi_p = p_phit.transpose();
+  out = q_sym;
+  add_abt_symmetric_sparse(phi_p, phi, pattern, out);
 }
 
 /// Solve A·X = B in place (B ← A⁻¹·B) for a symmetric positive definite A (only its lower
@@ -157,13 +261,16 @@ bool cholesky_right_solve_in_place(const Eigen::Matrix<double, N, N>& A,
         L(i, j) = s * inv_diag(j);
       }
     }
+    // Each column is accumulated in a local (registers), not re-stored after every term.
     for (int j = 0; j < N; ++j) {  // Y·Lᵀ = B: column j of B is Σ_{k≤j} L(j,k)·Y.col(k)
-      for (int k = 0; k < j; ++k) B.col(j) -= L(j, k) * B.col(k);
-      B.col(j) *= inv_diag(j);
+      Eigen::Matrix<double, R, 1> c = B.col(j);
+      for (int k = 0; k < j; ++k) c -= L(j, k) * B.col(k);
+      B.col(j) = c * inv_diag(j);
     }
     for (int j = N - 1; j >= 0; --j) {  // X·L = Y: column j of Y is Σ_{k≥j} L(k,j)·X.col(k)
-      for (int k = j + 1; k < N; ++k) B.col(j) -= L(k, j) * B.col(k);
-      B.col(j) *= inv_diag(j);
+      Eigen::Matrix<double, R, 1> c = B.col(j);
+      for (int k = j + 1; k < N; ++k) c -= L(k, j) * B.col(k);
+      B.col(j) = c * inv_diag(j);
     }
     return true;
   }
