@@ -356,7 +356,7 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
     b = (0.5 * (b + b.transpose())).eval();
   }
   detail::check_covariance_diagonal(b, "covariance P after the update", epoch_);
-  if (!x.allFinite()) [[unlikely]]
+  if (!detail::all_finite(x)) [[unlikely]]
     detail::throw_numerical(epoch_, "state x̂ after the update is not finite");
   estimate_.x = x;
   estimate_.P = b;

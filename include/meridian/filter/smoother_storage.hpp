@@ -173,19 +173,29 @@ class SmootherStorage {
       detail::throw_input(0, "state size of the smoother storage must be ≥ 1 and equal N");
     return n;
   }
+  // Fixed N: the loops have compile-time bounds and are unrolled.
   static double* pack(const Estimate<N>& e, double* p) {
-    const Eigen::Index n = e.x.size();
+    const Eigen::Index n = N == Eigen::Dynamic ? e.x.size() : N;
+    MERIDIAN_UNROLL
     for (Eigen::Index i = 0; i < n; ++i) *p++ = e.x(i);
-    for (Eigen::Index j = 0; j < n; ++j)
+    MERIDIAN_UNROLL
+    for (Eigen::Index j = 0; j < n; ++j) {
+      MERIDIAN_UNROLL
       for (Eigen::Index i = 0; i <= j; ++i) *p++ = e.P(i, j);
+    }
     return p;
   }
-  static const double* unpack(const double* p, Estimate<N>& e, Eigen::Index n) {
+  static const double* unpack(const double* p, Estimate<N>& e, Eigen::Index n_runtime) {
+    const Eigen::Index n = N == Eigen::Dynamic ? n_runtime : N;
     e.x.resize(n);
     e.P.resize(n, n);
+    MERIDIAN_UNROLL
     for (Eigen::Index i = 0; i < n; ++i) e.x(i) = *p++;
-    for (Eigen::Index j = 0; j < n; ++j)
+    MERIDIAN_UNROLL
+    for (Eigen::Index j = 0; j < n; ++j) {
+      MERIDIAN_UNROLL
       for (Eigen::Index i = 0; i <= j; ++i) e.P(i, j) = e.P(j, i) = *p++;
+    }
     return p;
   }
 
