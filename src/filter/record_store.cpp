@@ -152,11 +152,12 @@ std::uint64_t RecordStore::file_bytes() const {
 
 void RecordStore::add_chunk() {
   std::size_t bytes = chunk_records_ * record_doubles_ * sizeof(double);
-  // With a memory limit of at least 2 MB the chunks are whole multiples of 2 MB, aligned to
-  // 2 MB and offered as transparent huge pages: one page fault (and one kernel zero-fill) per
-  // chunk. Nothing is zero-filled here: every record is written in full by the caller before
-  // it is read.
-  const bool huge = options_.memory_limit_bytes >= kChunkBytes;
+  // With a memory limit of at least 2 MB the chunks after the first are whole multiples of
+  // 2 MB, aligned to 2 MB and offered as transparent huge pages: one page fault (and one kernel
+  // zero-fill) per chunk. The first is not, so a store that stays small (the transitions of a
+  // constant model: two records) keeps ordinary 4 kB pages instead of a resident 2 MB. Nothing
+  // is zero-filled here: every record is written in full by the caller before it is read.
+  const bool huge = options_.memory_limit_bytes >= kChunkBytes && !chunks_.empty();
   if (huge) bytes = (bytes + kChunkBytes - 1) / kChunkBytes * kChunkBytes;
   void* p = huge ? std::aligned_alloc(kChunkBytes, bytes) : std::malloc(bytes);
   if (p == nullptr) throw std::bad_alloc();
