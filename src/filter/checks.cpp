@@ -32,11 +32,10 @@ void throw_not_positive_definite(const char* name, Eigen::Index epoch,
   throw_numerical(epoch, fmt::format("{} is not positive definite", name));
 }
 
-void check_shape(Eigen::Index rows, Eigen::Index cols, Eigen::Index expected_rows,
+void throw_shape(Eigen::Index rows, Eigen::Index cols, Eigen::Index expected_rows,
                  Eigen::Index expected_cols, const char* name, Eigen::Index epoch) {
-  if (rows != expected_rows || cols != expected_cols) [[unlikely]]
-    throw_input(epoch, fmt::format("{} is {}×{}, expected {}×{}", name, rows, cols, expected_rows,
-                                   expected_cols));
+  throw_input(epoch, fmt::format("{} is {}×{}, expected {}×{}", name, rows, cols, expected_rows,
+                                 expected_cols));
 }
 
 }  // namespace meridian::filter::detail

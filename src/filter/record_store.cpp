@@ -1,13 +1,16 @@
 #include "meridian/filter/detail/record_store.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
+#include <new>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -30,6 +33,9 @@ struct Header {
   std::uint32_t byte_order_mark;
 };
 static_assert(sizeof(Header) == kSpillHeaderBytes);
+
+// In-memory chunks: 2 MB, the size of an x86-64 transparent huge page.
+constexpr std::size_t kChunkBytes = std::size_t{2} << 20;
 
 [[noreturn]] void throw_io(std::uint64_t epoch, const std::string& what, int error) {
   throw IoError(fmt::format("{}: {}", what, std::generic_category().message(error)),
@@ -78,6 +84,8 @@ RecordStore::RecordStore(const char* magic, std::uint32_t state_size, std::size_
       options_(std::move(options)) {
   const std::size_t record_bytes = record_doubles_ * sizeof(double);
   buffer_records_ = std::max<std::size_t>(1, options_.buffer_bytes / record_bytes);
+  chunk_records_ =
+      std::max<std::size_t>(1, std::min(kChunkBytes, options_.memory_limit_bytes) / record_bytes);
 }
 
 RecordStore::~RecordStore() { close(); }
@@ -88,13 +96,18 @@ RecordStore::RecordStore(RecordStore&& other) noexcept
       record_doubles_(other.record_doubles_),
       options_(std::move(other.options_)),
       count_(other.count_),
-      memory_(std::move(other.memory_)),
+      chunks_(std::move(other.chunks_)),
+      chunk_records_(other.chunk_records_),
+      chunk_fill_(other.chunk_fill_),
+      buffer_(std::move(other.buffer_)),
       buffered_(other.buffered_),
       buffer_records_(other.buffer_records_),
       fd_(std::exchange(other.fd_, -1)),
       path_(std::move(other.path_)) {
   other.path_.clear();
   other.count_ = 0;
+  other.chunks_.clear();
+  other.chunk_fill_ = 0;
   other.buffered_ = 0;
 }
 
@@ -106,7 +119,11 @@ RecordStore& RecordStore::operator=(RecordStore&& other) noexcept {
     record_doubles_ = other.record_doubles_;
     options_ = std::move(other.options_);
     count_ = std::exchange(other.count_, 0);
-    memory_ = std::move(other.memory_);
+    chunks_ = std::move(other.chunks_);
+    other.chunks_.clear();
+    chunk_records_ = other.chunk_records_;
+    chunk_fill_ = std::exchange(other.chunk_fill_, 0);
+    buffer_ = std::move(other.buffer_);
     buffered_ = std::exchange(other.buffered_, 0);
     buffer_records_ = other.buffer_records_;
     fd_ = std::exchange(other.fd_, -1);
@@ -133,24 +150,38 @@ std::uint64_t RecordStore::file_bytes() const {
   return kSpillHeaderBytes + count_ * record_doubles_ * sizeof(double);
 }
 
+void RecordStore::add_chunk() {
+  std::size_t bytes = chunk_records_ * record_doubles_ * sizeof(double);
+  // With a memory limit of at least 2 MB the chunks after the first are whole multiples of
+  // 2 MB, aligned to 2 MB and offered as transparent huge pages: one page fault (and one kernel
+  // zero-fill) per chunk. The first is not, so a store that stays small (the transitions of a
+  // constant model: two records) keeps ordinary 4 kB pages instead of a resident 2 MB. Nothing
+  // is zero-filled here: every record is written in full by the caller before it is read.
+  const bool huge = options_.memory_limit_bytes >= kChunkBytes && !chunks_.empty();
+  if (huge) bytes = (bytes + kChunkBytes - 1) / kChunkBytes * kChunkBytes;
+  void* p = huge ? std::aligned_alloc(kChunkBytes, bytes) : std::malloc(bytes);
+  if (p == nullptr) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+  if (huge) ::madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure is harmless
+#endif
+  chunks_.emplace_back(static_cast<double*>(p));
+  chunk_fill_ = 0;
+}
+
 double* RecordStore::append(std::uint64_t epoch) {
   if (fd_ < 0) {
-    const std::size_t bytes = (memory_.size() + record_doubles_) * sizeof(double);
-    if (bytes > options_.memory_limit_bytes) {
+    if ((count_ + 1) * record_doubles_ * sizeof(double) > options_.memory_limit_bytes) {
       spill(epoch);
     } else {
-      // Reserve up to the limit (at most 64 MB) at once: no copies while the line grows, and
-      // pages are only touched as records arrive.
-      if (memory_.capacity() == 0)
-        memory_.reserve(std::min<std::size_t>(options_.memory_limit_bytes, std::size_t{64} << 20) /
-                        sizeof(double));
-      memory_.resize(memory_.size() + record_doubles_);
+      if (chunks_.empty() || chunk_fill_ == chunk_records_) add_chunk();
+      double* slot = chunks_.back().get() + chunk_fill_ * record_doubles_;
+      ++chunk_fill_;
       ++count_;
-      return memory_.data() + memory_.size() - record_doubles_;
+      return slot;
     }
   }
   if (buffered_ == buffer_records_) flush(epoch);
-  double* slot = memory_.data() + buffered_ * record_doubles_;
+  double* slot = buffer_.get() + buffered_ * record_doubles_;
   ++buffered_;
   ++count_;
   return slot;
@@ -183,12 +214,18 @@ void RecordStore::spill(std::uint64_t epoch) {
   h.record_bytes = static_cast<std::uint32_t>(record_doubles_ * sizeof(double));
   h.byte_order_mark = kSpillByteOrderMark;
   write_all(fd_, &h, sizeof h, 0, epoch);
-  // The records kept in memory so far go first; memory_ then becomes the write buffer.
-  if (!memory_.empty())
-    write_all(fd_, memory_.data(), memory_.size() * sizeof(double),
-              static_cast<off_t>(kSpillHeaderBytes), epoch);
-  std::vector<double>().swap(memory_);
-  memory_.resize(buffer_records_ * record_doubles_);
+  // The records kept in memory so far go first, chunk by chunk; then the chunks are freed and
+  // the write buffer takes their place.
+  const std::size_t record_bytes = record_doubles_ * sizeof(double);
+  off_t offset = static_cast<off_t>(kSpillHeaderBytes);
+  for (std::size_t i = 0; i < chunks_.size(); ++i) {
+    const std::size_t records = i + 1 < chunks_.size() ? chunk_records_ : chunk_fill_;
+    write_all(fd_, chunks_[i].get(), records * record_bytes, offset, epoch);
+    offset += static_cast<off_t>(records * record_bytes);
+  }
+  std::vector<Chunk>().swap(chunks_);
+  chunk_fill_ = 0;
+  buffer_.reset(new double[buffer_records_ * record_doubles_]);  // not zero-filled
   buffered_ = 0;
 }
 
@@ -196,7 +233,7 @@ void RecordStore::flush(std::uint64_t epoch) {
   if (fd_ < 0 || buffered_ == 0) return;
   const std::uint64_t first = count_ - buffered_;
   const std::size_t record_bytes = record_doubles_ * sizeof(double);
-  write_all(fd_, memory_.data(), buffered_ * record_bytes,
+  write_all(fd_, buffer_.get(), buffered_ * record_bytes,
             static_cast<off_t>(kSpillHeaderBytes + first * record_bytes), epoch);
   buffered_ = 0;
 }
@@ -223,18 +260,30 @@ RecordStore::ReverseReader RecordStore::read_reverse() {
 }
 
 RecordStore::ReverseReader::ReverseReader(const RecordStore& store)
-    : store_(&store), first_(store.count_), remaining_(store.count_) {}
+    : store_(&store), first_(store.count_), remaining_(store.count_) {
+  if (store.fd_ < 0 && !store.chunks_.empty()) {
+    chunk_ = store.chunks_.size() - 1;
+    slot_ = store.chunk_fill_;
+  }
+}
 
 const double* RecordStore::ReverseReader::next() {
   if (remaining_ == 0) return nullptr;
   index_ = --remaining_;
   const std::size_t rd = store_->record_doubles_;
-  if (store_->fd_ < 0) return store_->memory_.data() + index_ * rd;
+  if (store_->fd_ < 0) {
+    if (slot_ == 0) {  // the last record of the chunk before
+      --chunk_;
+      slot_ = store_->chunk_records_;
+    }
+    --slot_;
+    return store_->chunks_[chunk_].get() + slot_ * rd;
+  }
   if (index_ < first_) {
     // Load the block of records that ends with index_.
     const std::uint64_t n = std::min<std::uint64_t>(store_->buffer_records_, index_ + 1);
     first_ = index_ + 1 - n;
-    block_.resize(n * rd);
+    block_.resize(store_->buffer_records_ * rd);  // once per pass
     read_all(store_->fd_, block_.data(), n * rd * sizeof(double),
              static_cast<off_t>(kSpillHeaderBytes + first_ * rd * sizeof(double)), index_);
   }

@@ -28,6 +28,7 @@
 
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -115,7 +116,20 @@ class KalmanFilter {
   const InnovationGate& gate() const { return gate_; }
 
  private:
-  void commit_prediction(const Vector<N>& x, const Matrix<N, N>& phi, const Matrix<N, N>& q);
+  // True when phi is phi_ bit for bit (fixed N; always false for dynamic sizes): the Φ of the
+  // last epoch, already checked.
+  bool same_transition(const Matrix<N, N>& phi) const {
+    if constexpr (N != Eigen::Dynamic)
+      return detail::same_bits(phi, phi_);
+    else
+      return false;
+  }
+  void check_transition(const Matrix<N, N>& phi, Eigen::Index next, bool known) const {
+    detail::check_shape(phi.rows(), phi.cols(), size(), size(), "transition Φ", next);
+    if (!known) detail::check_finite(phi, "transition Φ", next);
+  }
+  void commit_prediction(const Vector<N>& x, const Matrix<N, N>& phi, const Matrix<N, N>& q,
+                         bool known_phi);
   template <int M>
   Innovation<M> update_linear(const Vector<M>& z, const Matrix<M, N>& H, const Matrix<M, M>& R);
   template <int M>
@@ -126,14 +140,22 @@ class KalmanFilter {
   template <int M>
   Innovation<M> apply_update(const Vector<M>& nu, const Matrix<M, N>& H, const Matrix<M, M>& R);
 
+  static constexpr int kCache = N == Eigen::Dynamic ? 0 : N;  // size of the fixed-N caches
+  using PhiPattern = std::conditional_t<N == Eigen::Dynamic, detail::NoPattern,
+                                        detail::RowPattern<kCache, kCache>>;
+
   Estimate<N> estimate_;
   Estimate<N> predicted_;
   Matrix<N, N> phi_;
   InnovationGate gate_;
   Eigen::Index epoch_ = 0;
-  // Fixed N: the last Q_d that passed the input checks (NaN: none yet).
-  Matrix<N == Eigen::Dynamic ? 0 : N, N == Eigen::Dynamic ? 0 : N> checked_q_ =
-      decltype(checked_q_)::Constant(std::numeric_limits<double>::quiet_NaN());
+  // Fixed N: the last Q_d that passed the input checks (when have_checked_q_) and ½(Q_d + Q_dᵀ)
+  // of it.
+  bool have_checked_q_ = false;
+  Matrix<kCache, kCache> checked_q_ = decltype(checked_q_)::Zero();
+  Matrix<kCache, kCache> q_sym_ = decltype(q_sym_)::Zero();
+  // Fixed N: the exact nonzeros of phi_ (small_matrix.hpp), recomputed only when Φ changes.
+  PhiPattern phi_pattern_{};
 };
 
 namespace detail {
@@ -169,16 +191,17 @@ KalmanFilter<N>::KalmanFilter(Estimate<N> initial, InnovationGate gate)
   estimate_.P = (0.5 * (estimate_.P + estimate_.P.transpose())).eval();
   predicted_ = estimate_;
   phi_ = Matrix<N, N>::Identity(n, n);
+  if constexpr (N != Eigen::Dynamic) phi_pattern_.assign(phi_);
 }
 
 template <int N>
 void KalmanFilter<N>::predict(const Matrix<N, N>& phi, const Matrix<N, N>& q) {
   const Eigen::Index next = epoch_ + 1;
-  detail::check_shape(phi.rows(), phi.cols(), size(), size(), "transition Φ", next);
-  detail::check_finite(phi, "transition Φ", next);
+  const bool known = same_transition(phi);  // a constant model's Φ is checked once
+  check_transition(phi, next, known);
   Vector<N> x;
   x.noalias() = detail::product(phi, estimate_.x);
-  commit_prediction(x, phi, q);
+  commit_prediction(x, phi, q, known);
 }
 
 template <int N>
@@ -188,35 +211,46 @@ void KalmanFilter<N>::predict_extended(const Vector<N>& x_predicted, const Matri
   detail::check_shape(x_predicted.rows(), 1, size(), 1, "predicted state f(x)", next);
   detail::check_shape(phi.rows(), phi.cols(), size(), size(), "transition Φ", next);
   detail::check_finite(x_predicted, "predicted state f(x)", next);
-  detail::check_finite(phi, "transition Φ", next);
-  commit_prediction(x_predicted, phi, q);
+  const bool known = same_transition(phi);
+  check_transition(phi, next, known);
+  commit_prediction(x_predicted, phi, q, known);
 }
 
 template <int N>
 void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& phi,
-                                        const Matrix<N, N>& q) {
+                                        const Matrix<N, N>& q, bool known_phi) {
   const Eigen::Index next = epoch_ + 1;
   detail::check_shape(q.rows(), q.cols(), size(), size(), "process noise Q_d", next);
   if constexpr (N != Eigen::Dynamic) {
-    // A constant model passes the same Q_d every epoch: check it once (the cache starts as NaN,
-    // which equals nothing, and holds only a Q_d that passed).
-    if (!(q.array() == checked_q_.array()).all()) {
+    // A constant model passes the same Q_d every epoch: check it once (the cache holds only a
+    // Q_d that passed; compared bit for bit).
+    if (!have_checked_q_ || !detail::same_bits(q, checked_q_)) {
       detail::check_input_covariance(q, "process noise Q_d", next);
       checked_q_ = q;
+      q_sym_ = 0.5 * (q + q.transpose());
+      have_checked_q_ = true;
     }
   } else {
     detail::check_input_covariance(q, "process noise Q_d", next);
   }
   Matrix<N, N>& p = predicted_.P;  // written only after the checks above
-  Matrix<N, N> phi_p;
   if constexpr (N != Eigen::Dynamic) {
-    // Φ·P, then only the upper triangle of Q + (Φ·P)·Φᵀ, mirrored (small_matrix.hpp).
-    detail::mul_ab(phi, estimate_.P, phi_p);
-    Matrix<N, N> p_new = 0.5 * (q + q.transpose());
-    detail::add_abt_symmetric(phi_p, phi, p_new);
+    // Φ·P, then only the upper triangle of Q + (Φ·P)·Φᵀ, mirrored (small_matrix.hpp), both
+    // skipping the exact zeros of Φ. Φ·P = (P·Φᵀ)ᵀ for the exactly symmetric P, term for term.
+    const bool new_phi = !known_phi;
+    PhiPattern pattern;
+    if (new_phi) pattern.assign(phi);
+    const PhiPattern& pat = new_phi ? pattern : phi_pattern_;
+    Matrix<N, N> p_new;
+    detail::predict_covariance(phi, estimate_.P, q_sym_, pat, p_new);
     detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
     p = p_new;
+    if (new_phi) {
+      phi_ = phi;
+      phi_pattern_ = pattern;
+    }
   } else {
+    Matrix<N, N> phi_p;
     phi_p.noalias() = phi * estimate_.P;
     Matrix<N, N> p_new = q;
     p_new.noalias() += phi_p * phi.transpose();
@@ -227,7 +261,7 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
   predicted_.x = x;
   estimate_.x = x;
   estimate_.P = p;
-  phi_ = phi;
+  if constexpr (N == Eigen::Dynamic) phi_ = phi;
   epoch_ = next;
 }
 
@@ -267,10 +301,14 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
   in.nu = nu;
   const Matrix<N, N>& P = estimate_.P;
   constexpr bool fixed = N != Eigen::Dynamic && M != Eigen::Dynamic;
-  Matrix<N, M> U;  // P⁻·Hᵀ
-  if constexpr (fixed)
-    detail::mul_abt(P, H, U);
-  else
+  using HPattern =
+      std::conditional_t<fixed, detail::RowPattern<fixed ? M : 1, fixed ? N : 1>, detail::NoPattern>;
+  HPattern h_pattern{};  // fixed sizes: the exact nonzeros of H, skipped in P⁻·Hᵀ and B·Hᵀ
+  Matrix<N, M> U;        // P⁻·Hᵀ
+  if constexpr (fixed) {
+    h_pattern.assign(H);
+    detail::mul_abt_sparse(P, H, h_pattern, U);
+  } else
     U.noalias() = P * H.transpose();
   in.S = R;
   in.S.noalias() += H * U;
@@ -295,12 +333,15 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
   x.noalias() += detail::product(K, nu);
   Matrix<N, N> b = P;  // (I − KH)·P⁻
   if constexpr (fixed) {
-    for (int j = 0; j < N; ++j)
-      for (int k = 0; k < M; ++k) b.col(j) -= K.col(k) * U(j, k);
+    for (int j = 0; j < N; ++j) {
+      Vector<N> c = b.col(j);
+      for (int k = 0; k < M; ++k) c -= K.col(k) * U(j, k);
+      b.col(j) = c;
+    }
     Matrix<N, M> g;  // K·R − (I − KH)·P⁻·Hᵀ
     detail::mul_ab(K, R, g);
     Matrix<N, M> bht;
-    detail::mul_abt(b, H, bht);
+    detail::mul_abt_sparse(b, H, h_pattern, bht);
     g -= bht;
     // (I − KH)·P⁻·(I − KH)ᵀ + K·R·Kᵀ = b + g·Kᵀ, symmetric: upper triangle, mirrored.
     detail::add_abt_symmetric(g, K, b);
@@ -315,7 +356,7 @@ Innovation<M> KalmanFilter<N>::apply_update(const Vector<M>& nu, const Matrix<M,
     b = (0.5 * (b + b.transpose())).eval();
   }
   detail::check_covariance_diagonal(b, "covariance P after the update", epoch_);
-  if (!x.allFinite()) [[unlikely]]
+  if (!detail::all_finite(x)) [[unlikely]]
     detail::throw_numerical(epoch_, "state x̂ after the update is not finite");
   estimate_.x = x;
   estimate_.P = b;

@@ -16,6 +16,7 @@
 /// k+1") or Pˢ_k loses its positive finite diagonal ("epoch k"); IoError from the storage.
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -32,32 +33,40 @@ namespace meridian::filter {
 template <int N, typename Sink>
 void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
   auto reader = storage.read_reverse();
-  Estimate<N> s;         // smoothed estimate of epoch k+1, then k
-  Estimate<N> pred[2];   // predicted estimates of epochs k+1 and k, alternating
-  Estimate<N> filtered;  // filtered estimate of epoch k
-  int nx = 0;            // pred[nx] is epoch k+1
-  if (!reader.next(pred[nx], s)) return;
+  // est[ns] is the smoothed estimate of epoch k+1; the filtered estimate of epoch k is read
+  // into est[1 − ns] and turned into the smoothed one in place (no copies).
+  Estimate<N> est[2];
+  Estimate<N> pred[2];  // predicted estimates of epochs k+1 and k, alternating
+  int nx = 0;           // pred[nx] is epoch k+1
+  int ns = 0;
+  if (!reader.next(pred[nx], est[ns])) return;
   Matrix<N, N> phi = reader.transition();  // Φ_{k+1}, copied only when it changes
   std::uint64_t phi_index = reader.transition_index();
-  sink(reader.index(), static_cast<const Estimate<N>&>(s));
+  // Fixed N: the exact nonzeros of Φ, skipped in P_k·Φᵀ (small_matrix.hpp).
+  std::conditional_t<N == Eigen::Dynamic, detail::NoPattern,
+                     detail::RowPattern<N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>
+      pattern{};
+  if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
+  sink(reader.index(), static_cast<const Estimate<N>&>(est[ns]));
   Matrix<N, N> c;
   Matrix<N, N> d;
   Matrix<N, N> t;
   Vector<N> dx;
-  while (reader.next(pred[1 - nx], filtered)) {
+  while (reader.next(pred[1 - nx], est[1 - ns])) {
     const Eigen::Index k = reader.index();
     const Estimate<N>& next_pred = pred[nx];
+    const Estimate<N>& next_smoothed = est[ns];
+    Estimate<N>& s = est[1 - ns];  // filtered estimate of epoch k, then smoothed
+    const Matrix<N, N>& filtered_p = s.P;
     if constexpr (N != Eigen::Dynamic)
-      detail::mul_abt(filtered.P, phi, c);  // P_k·Φ_{k+1}ᵀ
+      detail::mul_abt_sparse(filtered_p, phi, pattern, c);  // P_k·Φ_{k+1}ᵀ
     else
-      c.noalias() = filtered.P * phi.transpose();
+      c.noalias() = filtered_p * phi.transpose();
     if (!detail::cholesky_right_solve_in_place(next_pred.P, c)) [[unlikely]]  // C_k
       detail::throw_not_positive_definite("predicted covariance P⁻", k + 1, next_pred.P);
-    dx = s.x - next_pred.x;
-    s.x = filtered.x;
-    s.x.noalias() += detail::product(c, dx);
-    t = s.P - next_pred.P;
-    s.P = filtered.P;
+    dx = next_smoothed.x - next_pred.x;
+    s.x.noalias() += detail::product(c, dx);  // x̂_k + C_k·(x̂ˢ_{k+1} − x̂⁻_{k+1})
+    t = next_smoothed.P - next_pred.P;
     if constexpr (N != Eigen::Dynamic) {
       // C·T·Cᵀ is symmetric: D = C·T, then the upper triangle of P_k + D·Cᵀ, mirrored.
       detail::mul_ab(c, t, d);
@@ -68,13 +77,15 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
       s.P = (0.5 * (s.P + s.P.transpose())).eval();
     }
     detail::check_covariance_diagonal(s.P, "smoothed covariance", k);
-    if (!s.x.allFinite()) [[unlikely]]
+    if (!detail::all_finite(s.x)) [[unlikely]]
       detail::throw_numerical(k, "smoothed state is not finite");
     sink(k, static_cast<const Estimate<N>&>(s));
     nx = 1 - nx;
+    ns = 1 - ns;
     if (reader.transition_index() != phi_index) {
       phi = reader.transition();
       phi_index = reader.transition_index();
+      if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
     }
   }
 }

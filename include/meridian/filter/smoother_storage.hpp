@@ -43,6 +43,7 @@
 #include "meridian/core/error.hpp"
 #include "meridian/filter/detail/checks.hpp"
 #include "meridian/filter/detail/record_store.hpp"
+#include "meridian/filter/detail/small_matrix.hpp"
 #include "meridian/filter/estimate.hpp"
 
 namespace meridian::filter {
@@ -77,7 +78,7 @@ class SmootherStorage {
     detail::check_shape(predicted.P.rows(), predicted.x.rows(), n_, n_, "predicted estimate",
                         epoch);
     detail::check_shape(filtered.P.rows(), filtered.x.rows(), n_, n_, "filtered estimate", epoch);
-    if (transitions_.size() == 0 || !(phi.array() == last_phi_.array()).all()) {
+    if (transitions_.size() == 0 || !detail::same_bits(phi, last_phi_)) {  // bit for bit
       double* t = transitions_.append(static_cast<std::uint64_t>(epoch));
       for (Eigen::Index j = 0; j < n_ * n_; ++j) t[j] = phi.data()[j];
       last_phi_ = phi;
@@ -172,19 +173,29 @@ class SmootherStorage {
       detail::throw_input(0, "state size of the smoother storage must be ≥ 1 and equal N");
     return n;
   }
+  // Fixed N: the loops have compile-time bounds and are unrolled.
   static double* pack(const Estimate<N>& e, double* p) {
-    const Eigen::Index n = e.x.size();
+    const Eigen::Index n = N == Eigen::Dynamic ? e.x.size() : N;
+    MERIDIAN_UNROLL
     for (Eigen::Index i = 0; i < n; ++i) *p++ = e.x(i);
-    for (Eigen::Index j = 0; j < n; ++j)
+    MERIDIAN_UNROLL
+    for (Eigen::Index j = 0; j < n; ++j) {
+      MERIDIAN_UNROLL
       for (Eigen::Index i = 0; i <= j; ++i) *p++ = e.P(i, j);
+    }
     return p;
   }
-  static const double* unpack(const double* p, Estimate<N>& e, Eigen::Index n) {
+  static const double* unpack(const double* p, Estimate<N>& e, Eigen::Index n_runtime) {
+    const Eigen::Index n = N == Eigen::Dynamic ? n_runtime : N;
     e.x.resize(n);
     e.P.resize(n, n);
+    MERIDIAN_UNROLL
     for (Eigen::Index i = 0; i < n; ++i) e.x(i) = *p++;
-    for (Eigen::Index j = 0; j < n; ++j)
+    MERIDIAN_UNROLL
+    for (Eigen::Index j = 0; j < n; ++j) {
+      MERIDIAN_UNROLL
       for (Eigen::Index i = 0; i <= j; ++i) e.P(i, j) = e.P(j, i) = *p++;
+    }
     return p;
   }
 

@@ -7,8 +7,19 @@
 /// blocked path. Dynamic sizes keep Eigen's defaults (large states gain from blocking).
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <Eigen/Dense>
+
+// Full unrolling of the fixed-size loops below (GCC and Clang; both accept the GCC spelling).
+// GCC's own heuristics leave the triangular loops of the Cholesky kernels rolled, with their
+// index arithmetic and branches in the hot path.
+#if defined(__GNUC__)
+#define MERIDIAN_UNROLL _Pragma("GCC unroll 16")
+#else
+#define MERIDIAN_UNROLL
+#endif
 
 namespace meridian::filter::detail {
 
@@ -34,8 +45,10 @@ template <int R, int K, int C>
 inline void mul_ab(const Eigen::Matrix<double, R, K>& A, const Eigen::Matrix<double, K, C>& B,
                    Eigen::Matrix<double, R, C>& out) {
   static_assert(R != Eigen::Dynamic && K != Eigen::Dynamic && C != Eigen::Dynamic);
+  MERIDIAN_UNROLL
   for (int j = 0; j < C; ++j) {
     Eigen::Matrix<double, R, 1> s = A.col(0) * B(0, j);
+    MERIDIAN_UNROLL
     for (int k = 1; k < K; ++k) s += A.col(k) * B(k, j);
     out.col(j) = s;
   }
@@ -46,9 +59,65 @@ template <int R, int K, int C>
 inline void mul_abt(const Eigen::Matrix<double, R, K>& A, const Eigen::Matrix<double, C, K>& B,
                     Eigen::Matrix<double, R, C>& out) {
   static_assert(R != Eigen::Dynamic && K != Eigen::Dynamic && C != Eigen::Dynamic);
+  MERIDIAN_UNROLL
   for (int j = 0; j < C; ++j) {
     Eigen::Matrix<double, R, 1> s = A.col(0) * B(j, 0);
+    MERIDIAN_UNROLL
     for (int k = 1; k < K; ++k) s += A.col(k) * B(j, k);
+    out.col(j) = s;
+  }
+}
+
+/// True when a and b (of the same size) hold the same bits: the cheap test, one memcmp, that a
+/// model's Φ or Q_d is the one already checked at the last epoch (an element-wise == is a chain
+/// of scalar compares and branches).
+template <typename A>
+inline bool same_bits(const Eigen::PlainObjectBase<A>& a, const Eigen::PlainObjectBase<A>& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(typename A::Scalar) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+/// The exact nonzeros of each row of a fixed-size R×C matrix B: row j has count[j] nonzero
+/// entries, in the columns cols[j][0 … count[j] − 1] (ascending). Taken from B's values (an
+/// entry is skipped only when it is exactly ±0; a NaN is kept), so a product with B that skips
+/// the other entries gives the dense product's result: each skipped term is an exact ±0 that
+/// would only have been added (the filter checks every covariance for finiteness, so no
+/// 0·∞ is lost). The deflection model's Φ (an attitude block and two 2×2 Gauss–Markov blocks,
+/// whatever the order of the states) has 21 nonzeros of 64; its H 4 of 16.
+template <int R, int C>
+struct RowPattern {
+  static_assert(R != Eigen::Dynamic && C != Eigen::Dynamic && C <= 255);
+  std::uint8_t count[R];
+  std::uint8_t cols[R][C];
+
+  RowPattern() = default;
+  explicit RowPattern(const Eigen::Matrix<double, R, C>& b) { assign(b); }
+  void assign(const Eigen::Matrix<double, R, C>& b) {
+    for (int j = 0; j < R; ++j) {
+      int n = 0;
+      for (int k = 0; k < C; ++k)
+        if (b(j, k) != 0.0) cols[j][n++] = static_cast<std::uint8_t>(k);
+      count[j] = static_cast<std::uint8_t>(n);
+    }
+  }
+};
+
+/// C = A·Bᵀ for fixed sizes skipping the exact zeros of B (pattern of B's rows); C must not
+/// alias A or B. Column j of C is Σ over the nonzeros B(j, k) of A.col(k)·B(j, k), in the
+/// order of mul_abt, so for a finite A the result equals mul_abt's (up to the sign of a zero).
+template <int R, int K, int C>
+inline void mul_abt_sparse(const Eigen::Matrix<double, R, K>& A,
+                           const Eigen::Matrix<double, C, K>& B, const RowPattern<C, K>& pattern,
+                           Eigen::Matrix<double, R, C>& out) {
+  for (int j = 0; j < C; ++j) {
+    const int n = pattern.count[j];
+    if (n == 0) {
+      out.col(j).setZero();
+      continue;
+    }
+    const std::uint8_t* cols = pattern.cols[j];
+    Eigen::Matrix<double, R, 1> s = A.col(cols[0]) * B(j, cols[0]);
+    for (int i = 1; i < n; ++i) s += A.col(cols[i]) * B(j, cols[i]);
     out.col(j) = s;
   }
 }
@@ -63,9 +132,26 @@ inline void add_abt_upper_columns(const Eigen::Matrix<double, N, K>& A,
   if constexpr (J < N) {
     constexpr int rows = (J + 2) / 2 * 2 < N ? (J + 2) / 2 * 2 : N;
     Eigen::Matrix<double, rows, 1> s = out.col(J).template head<rows>();
+    MERIDIAN_UNROLL
     for (int k = 0; k < K; ++k) s += A.col(k).template head<rows>() * B(J, k);
     out.col(J).template head<rows>() = s;
     add_abt_upper_columns<N, K, J + 1>(A, B, out);
+  }
+}
+// As add_abt_upper_columns, skipping the exact zeros of B's rows.
+template <int N, int K, int J>
+inline void add_abt_upper_columns_sparse(const Eigen::Matrix<double, N, K>& A,
+                                         const Eigen::Matrix<double, N, K>& B,
+                                         const RowPattern<N, K>& pattern,
+                                         Eigen::Matrix<double, N, N>& out) {
+  if constexpr (J < N) {
+    constexpr int rows = (J + 2) / 2 * 2 < N ? (J + 2) / 2 * 2 : N;
+    Eigen::Matrix<double, rows, 1> s = out.col(J).template head<rows>();
+    const std::uint8_t* cols = pattern.cols[J];
+    for (int i = 0; i < pattern.count[J]; ++i)
+      s += A.col(cols[i]).template head<rows>() * B(J, cols[i]);
+    out.col(J).template head<rows>() = s;
+    add_abt_upper_columns_sparse<N, K, J + 1>(A, B, pattern, out);
   }
 }
 }  // namespace sym
@@ -81,6 +167,38 @@ inline void add_abt_symmetric(const Eigen::Matrix<double, N, K>& A,
   sym::add_abt_upper_columns<N, K, 0>(A, B, out);
   for (int j = 0; j < N; ++j)
     for (int i = j + 1; i < N; ++i) out(i, j) = out(j, i);
+}
+
+/// add_abt_symmetric skipping the exact zeros of B (pattern of B's rows): the same result.
+template <int N, int K>
+inline void add_abt_symmetric_sparse(const Eigen::Matrix<double, N, K>& A,
+                                     const Eigen::Matrix<double, N, K>& B,
+                                     const RowPattern<N, K>& pattern,
+                                     Eigen::Matrix<double, N, N>& out) {
+  static_assert(N != Eigen::Dynamic && K != Eigen::Dynamic);
+  sym::add_abt_upper_columns_sparse<N, K, 0>(A, B, pattern, out);
+  for (int j = 0; j < N; ++j)
+    for (int i = j + 1; i < N; ++i) out(i, j) = out(j, i);
+}
+
+/// Stand-in for a RowPattern where sizes are dynamic (no pattern is kept).
+struct NoPattern {};
+
+/// out = Q + Φ·P·Φᵀ for fixed sizes, the predicted covariance of KalmanFilter::predict and of
+/// the smoothers that recompute it: q_sym = ½(Q + Qᵀ), P exactly symmetric, `pattern` the
+/// exact nonzeros of Φ. Φ·P is formed as (P·Φᵀ)ᵀ (the same terms in the same order, P being
+/// symmetric) so that both products skip the zeros of Φ; only the upper triangle of
+/// Q + (Φ·P)·Φᵀ is computed, then mirrored. out must not alias an operand.
+template <int N>
+inline void predict_covariance(const Eigen::Matrix<double, N, N>& phi,
+                               const Eigen::Matrix<double, N, N>& P,
+                               const Eigen::Matrix<double, N, N>& q_sym,
+                               const RowPattern<N, N>& pattern, Eigen::Matrix<double, N, N>& out) {
+  Eigen::Matrix<double, N, N> p_phit;
+  mul_abt_sparse(P, phi, pattern, p_phit);
+  const Eigen::Matrix<double, N, N> phi_p = p_phit.transpose();
+  out = q_sym;
+  add_abt_symmetric_sparse(phi_p, phi, pattern, out);
 }
 
 /// Solve A·X = B in place (B ← A⁻¹·B) for a symmetric positive definite A (only its lower
@@ -144,26 +262,37 @@ bool cholesky_right_solve_in_place(const Eigen::Matrix<double, N, N>& A,
   } else {
     Eigen::Matrix<double, N, N> L;
     Eigen::Matrix<double, N, 1> inv_diag;
+    MERIDIAN_UNROLL
     for (int j = 0; j < N; ++j) {
       double d = A(j, j);
+      MERIDIAN_UNROLL
       for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
       if (!(d > 0.0 && std::isfinite(d))) return false;
       d = std::sqrt(d);
       L(j, j) = d;
       inv_diag(j) = 1.0 / d;
+      MERIDIAN_UNROLL
       for (int i = j + 1; i < N; ++i) {
         double s = A(i, j);
+        MERIDIAN_UNROLL
         for (int k = 0; k < j; ++k) s -= L(i, k) * L(j, k);
         L(i, j) = s * inv_diag(j);
       }
     }
+    // Each column is accumulated in a local (registers), not re-stored after every term.
+    MERIDIAN_UNROLL
     for (int j = 0; j < N; ++j) {  // Y·Lᵀ = B: column j of B is Σ_{k≤j} L(j,k)·Y.col(k)
-      for (int k = 0; k < j; ++k) B.col(j) -= L(j, k) * B.col(k);
-      B.col(j) *= inv_diag(j);
+      Eigen::Matrix<double, R, 1> c = B.col(j);
+      MERIDIAN_UNROLL
+      for (int k = 0; k < j; ++k) c -= L(j, k) * B.col(k);
+      B.col(j) = c * inv_diag(j);
     }
+    MERIDIAN_UNROLL
     for (int j = N - 1; j >= 0; --j) {  // X·L = Y: column j of Y is Σ_{k≥j} L(k,j)·X.col(k)
-      for (int k = j + 1; k < N; ++k) B.col(j) -= L(k, j) * B.col(k);
-      B.col(j) *= inv_diag(j);
+      Eigen::Matrix<double, R, 1> c = B.col(j);
+      MERIDIAN_UNROLL
+      for (int k = j + 1; k < N; ++k) c -= L(k, j) * B.col(k);
+      B.col(j) = c * inv_diag(j);
     }
     return true;
   }
