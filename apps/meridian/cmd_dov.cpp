@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 
 #include <fmt/format.h>
 
@@ -75,6 +76,14 @@ struct ProcessArgs {
 
 int run_process(const ProcessArgs& a) {
   const io::DovConfig c = io::read_dov_config(a.config);
+  // The profile must not replace the line it is computed from (or the configuration).
+  if (!a.output.empty()) {
+    std::error_code ec;
+    for (const std::string& in : {c.line_path, a.config})
+      if (std::filesystem::equivalent(a.output, in, ec))
+        throw InputError(fmt::format("the profile would overwrite the input {}", in),
+                         {"", std::nullopt, "--output"});
+  }
   TerminalProgress progress(a.quiet);
   const dov::Result r = io::run_dov(c, &progress);
   // Everything is computed before anything is written (atomic outputs).

@@ -184,7 +184,17 @@ std::string header_text(const std::string& command_line, const std::vector<std::
 }
 
 int run_simulate(const SimulateArgs& a, const std::string& command_line) {
+  const gyro::NoiseModel::Kind noise = noise_kind(a.noise);
   if (a.mode == "campaign") {
+    // The campaign simulator draws white timing and reading noise only: refuse what it would
+    // ignore (a user trial found --noise markov1 silently dropped).
+    if (noise != gyro::NoiseModel::White)
+      throw InputError("campaign mode simulates white noise only (--sigma-time-s, --sigma-reading-div)",
+                       {"", std::nullopt, "--noise"});
+    if (a.sigma_initial_arcsec)
+      throw InputError("only Markov tracking noise has initial states: give it with --mode tracking and "
+                       "--noise markov1 or markov2",
+                       {"", std::nullopt, "--sigma-initial-arcsec"});
     gyro::CampaignTruth truth = gyro::example_campaign_truth();
     truth.sigma_time_s = a.sim.sigma_time_s;
     truth.sigma_reading_div = a.sim.sigma_reading_div;
@@ -202,7 +212,7 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
   s.latitude_rad = units::deg_to_rad(a.latitude_deg);
   if (a.spin_momentum_Nms > 0 || a.inertia_kgm2 > 0 || a.torsion_Nm_per_rad > 0)
     s.physics = gyro::PhysicalGyro{a.spin_momentum_Nms, a.inertia_kgm2, a.torsion_Nm_per_rad};
-  s.noise = noise_kind(a.noise);
+  s.noise = noise;
   if (a.clamps.empty()) throw InputError("give at least one clamp reading", {"", std::nullopt, "--clamp"});
   if (a.clamps.size() > 1 && s.mode != gyro::Mode::NonTracking)
     throw InputError("several clamp readings are for non-tracking runs", {"", std::nullopt, "--clamp"});

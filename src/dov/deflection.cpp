@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "meridian/geodesy/frames.hpp"
 #include "meridian/filter/consistency.hpp"
 #include "meridian/filter/innovation.hpp"
 #include "meridian/filter/kalman_filter.hpp"
@@ -47,12 +49,26 @@ void check_sample(const Sample& s, std::size_t k, const Options& o) {
   check_finite(s.speed_m_s, k, "speed_m_s", "speed");
   if (s.speed_m_s < 0.0)
     bad_sample(k, "speed_m_s", fmt::format("speed must be ≥ 0, is {} m/s", s.speed_m_s));
+  if (s.speed_m_s > kMaxSpeed_m_s)
+    bad_sample(k, "speed_m_s",
+               fmt::format("speed {} m/s is above {} m/s (a unit error?)", s.speed_m_s,
+                           kMaxSpeed_m_s));
   if (!std::isfinite(s.model_eta_rad))
     bad_sample(k, "model_eta_rad",
                fmt::format("model value η_G is missing or not finite ({})", s.model_eta_rad));
   if (!std::isfinite(s.model_xi_rad))
     bad_sample(k, "model_xi_rad",
                fmt::format("model value ξ_G is missing or not finite ({})", s.model_xi_rad));
+  // A model deflection beyond geodesy's bound (34′; the largest on Earth are about 1′) is a unit
+  // or column error, not a value to filter.
+  for (const auto& [v, member, name] :
+       {std::tuple{s.model_eta_rad, "model_eta_rad", "η_G"},
+        std::tuple{s.model_xi_rad, "model_xi_rad", "ξ_G"}})
+    if (std::abs(v) > geodesy::kMaxDeflection_rad)
+      bad_sample(k, member,
+                 fmt::format("model value {} = {:.1f}″ is beyond ±{:.0f}″ (a unit error?)", name,
+                             v / units::kArcsecond,
+                             geodesy::kMaxDeflection_rad / units::kArcsecond));
   check_rotation(s.lgu_body_to_nav, sample_field(k, "lgu_body_to_nav"), o.orthogonality_tolerance);
   check_rotation(s.ins_body_to_nav, sample_field(k, "ins_body_to_nav"), o.orthogonality_tolerance);
 }
@@ -290,6 +306,18 @@ Result process(const Input& input, Progress* progress) {
           "mean NIS {:.3f} is outside its 95 % interval [{:.3f}, {:.3f}]: the noise model "
           "(σ_model, r, P₀) does not fit the data",
           sum.mean_nis, sum.nis_interval.lower, sum.nis_interval.upper));
+  }
+  // The mean NIS is over the accepted updates only, so a gate that rejects far more than its
+  // α·N can hide a misfit there: say so (α·N plus 3 binomial σ plus 2).
+  if (o.gate_alpha > 0.0) {
+    const double expected = o.gate_alpha * static_cast<double>(n);
+    const double limit = expected + 3.0 * std::sqrt(expected * (1.0 - o.gate_alpha)) + 2.0;
+    if (static_cast<double>(sum.rejected) > limit)
+      result.warnings.push_back(fmt::format(
+          "the innovation gate rejected {} of {} updates, about {:.0f} expected at alpha = {:g}: "
+          "the noise model (sigma_model, r, P0) does not fit the data or the line has blunders; "
+          "the mean NIS above is over the accepted updates only",
+          sum.rejected, n, expected, o.gate_alpha));
   }
   sum.rms_sigma_filtered = {sf_eta.rms(), sf_xi.rms()};
   sum.rms_sigma_smoothed = {ss_eta.rms(), ss_xi.rms()};

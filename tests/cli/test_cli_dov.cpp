@@ -43,6 +43,14 @@ TEST_F(DovCli, SimulateAndProcessAHalfHourLine) {
   for (char c : profile) lines += c == '\n';
   EXPECT_EQ(lines, 1802u);
   EXPECT_EQ(profile.rfind("time_s,model_eta_arcsec,", 0), 0u);
+  // the profile never replaces its input (a user trial lost the line this way)
+  const std::string line_before = slurp(dir_ / "line.csv");
+  for (const char* target : {"line.csv", "dov.yaml"}) {
+    const CmdResult o = run(std::string("dov process dov.yaml -q -o ") + target);
+    EXPECT_NE(o.code, 0) << target;
+    EXPECT_NE(o.err.find("would overwrite the input"), std::string::npos) << o.err;
+  }
+  EXPECT_EQ(slurp(dir_ / "line.csv"), line_before);
   // the text summary
   const CmdResult t = run("dov process dov.yaml -q");
   ASSERT_EQ(t.code, 0) << t.err;

@@ -223,6 +223,12 @@ TEST_F(CliStochastic, SimulatorSigmaOfTheInitialStateScalesBTimesX0Only) {
   const CmdResult w = run("gyro simulate --mode tracking --sigma-initial-arcsec 5");
   EXPECT_NE(w.code, 0);
   EXPECT_NE(w.err.find("--sigma-initial-arcsec"), std::string::npos) << w.err;
+  // Campaign mode draws white noise only: it refuses the Markov options instead of ignoring them.
+  for (const char* opt : {"--noise markov1", "--sigma-initial-arcsec 5", "--noise bogus"}) {
+    const CmdResult c = run(std::string("gyro simulate -q --mode campaign ") + opt);
+    EXPECT_NE(c.code, 0) << opt;
+    EXPECT_NE(c.err.find("--"), std::string::npos) << c.err;
+  }
   const CmdResult neg = run(common + " --sigma-initial-arcsec -1");
   EXPECT_NE(neg.code, 0);
   EXPECT_NE(neg.err.find("--sigma-initial-arcsec"), std::string::npos) << neg.err;

@@ -127,6 +127,16 @@ TEST(DovProcess, MissingModelValuesAndBadSamples) {
          "samples[2].model_eta_rad");
   expect([](Sample& s) { s.lat_rad = 1.6; }, "samples[2].lat_rad");
   expect([](Sample& s) { s.speed_m_s = -0.1; }, "samples[2].speed_m_s");
+  // Beyond any carrier, or a model deflection beyond 34′ (the largest on Earth are ~1′): a unit
+  // or column error, refused instead of filtered (a user trial printed η RMS 6722″ with exit 0).
+  expect([](Sample& s) { s.speed_m_s = 1e4; }, "samples[2].speed_m_s");
+  expect([](Sample& s) { s.model_eta_rad = 1e5 * kAs; }, "samples[2].model_eta_rad");
+  expect([](Sample& s) { s.model_xi_rad = -2100.0 * kAs; }, "samples[2].model_xi_rad");
+  {
+    Input ok = short_line();
+    ok.samples[2].model_eta_rad = 1900.0 * kAs;  // inside the bound: accepted
+    EXPECT_EQ(error_field(ok), "");
+  }
   expect([](Sample& s) { s.height_m = std::numeric_limits<double>::quiet_NaN(); },
          "samples[2].height_m");
   Input in = short_line();
@@ -231,6 +241,25 @@ TEST(DovProcess, GateRejectsAPlantedOutlier) {
   EXPECT_EQ(r.summary.rejected, 1u);
   EXPECT_FALSE(r.epochs[150].accepted);
   EXPECT_GT(r.epochs[150].nis, 100.0);
+  EXPECT_TRUE(r.warnings.empty());  // one rejection is within what α·N allows
+}
+
+TEST(DovProcess, GateRejectingFarMoreThanAlphaIsWarned) {
+  // The mean NIS is over the accepted updates, so a gate that throws many away can leave it
+  // inside its interval (a user trial: 712 of 14 401 rejected at α = 0.001, no warning, σ
+  // 100× too small). Here every 10th update carries a 30″ blunder: 20 rejections where
+  // α·N = 0.02 are expected.
+  Input in = short_line();
+  in.options.gate_alpha = 1e-4;
+  for (std::size_t k = 5; k < in.samples.size(); k += 10)
+    in.samples[k].ins_body_to_nav =
+        rotation_from_difference({30.0 * kAs, 0.0, 0.0}) * in.samples[k].ins_body_to_nav;
+  const Result r = process(in);
+  EXPECT_GE(r.summary.rejected, 15u);
+  ASSERT_FALSE(r.warnings.empty());
+  bool said = false;
+  for (const auto& w : r.warnings) said = said || w.find("gate rejected") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(DovProcess, SkewAndExactExtractionAgree) {

@@ -63,12 +63,17 @@ struct Sample {
   double lat_rad = 0.0;   ///< geodetic latitude, |lat| ≤ π/2
   double lon_rad = 0.0;   ///< longitude, east positive
   double height_m = 0.0;  ///< ellipsoidal height (m)
-  double speed_m_s = 0.0; ///< carrier speed over ground V ≥ 0 (m/s); sets ω₀ = 2πV/λ
+  double speed_m_s = 0.0; ///< carrier speed over ground 0 ≤ V ≤ kMaxSpeed_m_s (m/s); sets ω₀ = 2πV/λ
   Eigen::Matrix3d lgu_body_to_nav = Eigen::Matrix3d::Identity();  ///< C_b^n, LGU/GNSS
   Eigen::Matrix3d ins_body_to_nav = Eigen::Matrix3d::Identity();  ///< C_b^{n′}, INS/GNSS
-  double model_eta_rad = 0.0;  ///< η_G of the global model at the sample (rad)
-  double model_xi_rad = 0.0;   ///< ξ_G (rad)
+  /// η_G of the global model at the sample (rad), |η_G| ≤ geodesy::kMaxDeflection_rad (34′).
+  double model_eta_rad = 0.0;
+  double model_xi_rad = 0.0;   ///< ξ_G (rad), |ξ_G| ≤ geodesy::kMaxDeflection_rad
 };
+
+/// Largest accepted carrier speed (m/s): above any ship, vehicle or aircraft that carries the
+/// method; larger values are a unit error.
+inline constexpr double kMaxSpeed_m_s = 1000.0;
 
 /// Known truth of a sample (simulations): the deflection, and optionally the full 8-state.
 struct Truth {
@@ -141,7 +146,9 @@ struct Summary {
   std::size_t statistics_epochs = 0;  ///< epochs in the statistics (t − t₀ ≥ statistics_start_s)
   std::size_t rejected = 0;           ///< updates rejected by the gate (all epochs)
   std::size_t discretisations = 0;    ///< times the model was discretised
-  double mean_nis = 0.0;              ///< over the accepted statistics epochs
+  /// Over the accepted statistics epochs; a warning says when the gate rejected far more
+  /// than α·N (3 binomial σ + 2 above it), which this mean then cannot show.
+  double mean_nis = 0.0;
   filter::ChiSquaredInterval nis_interval;  ///< 95 % interval of mean_nis for a correct model
   EtaXi rms_sigma_filtered;  ///< √(mean σ²) of the filtered η̂, ξ̂
   EtaXi rms_sigma_smoothed;  ///< √(mean σ²) of the smoothed
