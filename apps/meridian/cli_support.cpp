@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/atomic_file.hpp"
+#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/report/html.hpp"
 
@@ -85,6 +86,15 @@ void TerminalProgress::finish() {
   std::fputs("\r\033[K", stderr);  // clear the bar's line
   std::fflush(stderr);
   drawn_ = false;
+}
+
+double angle_option(const std::string& text, const char* name) {
+  try {
+    return parse_angle(text).rad();
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, name);
+    throw;
+  }
 }
 
 }  // namespace meridian::cli

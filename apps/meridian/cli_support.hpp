@@ -31,6 +31,10 @@ void emit(const std::string& path, const std::string& text);
 /// an Error saying how to enable them, before any work is done.
 void require_html_reports_for(const std::string& report_path);
 
+/// An angle option as typed (DMS or decimal degrees, core/dms.hpp) in radians; a parse error
+/// names the option (`name`, e.g. "--latitude").
+double angle_option(const std::string& text, const char* name);
+
 /// A progress bar on stderr for runs longer than a second: drawn only when
 /// stderr is a terminal and not `quiet`, at most ten times a second, and
 /// cleared by finish(). MERIDIAN_PROGRESS_DELAY_S overrides the one-second

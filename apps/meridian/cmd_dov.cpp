@@ -19,15 +19,6 @@
 namespace meridian::cli {
 namespace {
 
-double angle_option(const std::string& text, const char* name) {
-  try {
-    return parse_angle(text).rad();
-  } catch (Error& e) {
-    e.add_context("", std::nullopt, name);
-    throw;
-  }
-}
-
 struct SimulateArgs {
   std::string latitude = "30", longitude = "114", heading = "60";
   double speed_m_s = 5.0, rate_hz = 1.0, hours = 4.0, height_m = 0.0;

@@ -31,15 +31,6 @@ namespace {
 
 ErrorContext option(const char* name) { return ErrorContext{"", std::nullopt, name}; }
 
-double angle_option(const std::string& text, const char* name) {
-  try {
-    return parse_angle(text).rad();
-  } catch (Error& e) {
-    e.add_context("", std::nullopt, name);
-    throw;
-  }
-}
-
 struct DenoiseArgs {
   std::string wavelet = "db4", mode = "symmetric", threshold = "soft", rule = "universal";
   int level = 6;
