@@ -111,6 +111,17 @@ void finish_fit(ModelFit& f, const std::vector<double>& readings, const MatrixXd
   f.implied_autocorrelation = implied_autocorrelation(D);
 }
 
+// The inverse of a Fisher information (the covariance of the estimates it is the information
+// of); none when it is singular or not positive definite.
+std::optional<MatrixXd> inverse_information(const MatrixXd& info) {
+  const Eigen::LDLT<MatrixXd> ldlt(info);
+  const MatrixXd inv = ldlt.solve(MatrixXd::Identity(info.rows(), info.cols()));
+  if (ldlt.info() == Eigen::Success && inv.allFinite() && (inv.diagonal().array() > 0.0).all() &&
+      ldlt.isPositive())
+    return inv;
+  return std::nullopt;
+}
+
 Uncertain sigma_from_variance(double var, double sd_var) {
   const double s = std::sqrt(std::max(var, 0.0));
   return {s, s > 0.0 && std::isfinite(sd_var) ? sd_var / (2.0 * s) : kNaN};
@@ -149,12 +160,10 @@ ModelFit markov_fit(StochasticModel model, const MarkovEval& scan,
       const MatrixXd D = x.factors.covariance(scan.theta(0), scan.theta(1));
       std::vector<MatrixXd> deriv{x.factors.q1()};
       if (!scan.sigma2_zero) deriv.push_back(x.factors.q2());
-      const MatrixXd info = adjust::reml_fisher_information(G, adjust::CovarianceFactor(D), deriv);
-      const Eigen::LDLT<MatrixXd> ldlt(info);
-      if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
-        const MatrixXd inv = ldlt.solve(MatrixXd::Identity(info.rows(), info.cols()));
+      if (const auto inv = inverse_information(
+              adjust::reml_fisher_information(G, adjust::CovarianceFactor(D), deriv))) {
         x.vce.covariance.setZero();
-        x.vce.covariance.topLeftCorner(inv.rows(), inv.cols()) = inv;
+        x.vce.covariance.topLeftCorner(inv->rows(), inv->cols()) = *inv;
       }
       x.vce.notes.push_back(fmt::format(
           "variance-component estimation did not settle at rho = {:.6g} ({}): the components "
@@ -201,17 +210,12 @@ ModelFit markov_fit(StochasticModel model, const MarkovEval& scan,
           deriv.push_back(k == 0 ? e.factors.q1() : e.factors.q2());
           comp_index.push_back(k);
         }
-      const MatrixXd info = adjust::reml_fisher_information(G, cov, deriv);
-      const Eigen::LDLT<MatrixXd> ldlt(info);
-      const MatrixXd inv = ldlt.solve(MatrixXd::Identity(info.rows(), info.cols()));
-      const bool ok = ldlt.info() == Eigen::Success && inv.allFinite() &&
-                      (inv.diagonal().array() > 0.0).all() && ldlt.isPositive();
-      if (ok) {
+      if (const auto inv = inverse_information(adjust::reml_fisher_information(G, cov, deriv))) {
         for (std::size_t a = 0; a < e.rho.size(); ++a)
-          f.rho_sigma[a] = std::sqrt(inv(static_cast<Index>(a), static_cast<Index>(a)));
+          f.rho_sigma[a] = std::sqrt((*inv)(static_cast<Index>(a), static_cast<Index>(a)));
         for (std::size_t j = 0; j < comp_index.size(); ++j) {
           const auto idx = static_cast<Index>(e.rho.size() + j);
-          sd_theta(comp_index[j]) = std::sqrt(inv(idx, idx));
+          sd_theta(comp_index[j]) = std::sqrt((*inv)(idx, idx));
         }
       } else {
         f.notes.push_back("the Fisher information of rho is singular: sigma of rho not stated");
