@@ -1,9 +1,12 @@
 # meridian_warnings(target): the project's warning set, private to the target.
 # -Wno-restrict: GCC 12 reports false positives inside std::string's
 # operator+ at -O2 (GCC bug 105329).
+# -Wno-subobject-linkage in unity builds: the sources are #included into the batch file, so
+# GCC takes them for headers and warns about every test fixture in an anonymous namespace.
 function(meridian_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
     -Wno-sign-conversion $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>
+    $<$<AND:$<CXX_COMPILER_ID:GNU>,$<BOOL:${CMAKE_UNITY_BUILD}>>:-Wno-subobject-linkage>
     $<$<BOOL:${MERIDIAN_WERROR}>:-Werror>)
 endfunction()
 

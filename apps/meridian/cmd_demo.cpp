@@ -16,6 +16,7 @@
 #include "meridian/report/html.hpp"
 
 namespace meridian::cli {
+namespace demo_cmd {
 namespace {
 
 namespace fs = std::filesystem;
@@ -71,8 +72,10 @@ int run_demo(const DemoArgs& a) {
 }
 
 }  // namespace
+}  // namespace demo_cmd
 
 void add_demo_command(CLI::App& app, int& exit_code) {
+  using namespace demo_cmd;  // the command's option structs and run functions
   auto a = std::make_shared<DemoArgs>();
   CLI::App* demo = app.add_subcommand("demo", "Run the gyro campaign on the bundled example data");
   demo->add_option("--examples", a->examples_dir, "Directory of the example files");

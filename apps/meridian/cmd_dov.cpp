@@ -17,6 +17,7 @@
 #include "meridian/report/dov_outputs.hpp"
 
 namespace meridian::cli {
+namespace dov_cmd {
 namespace {
 
 struct SimulateArgs {
@@ -86,8 +87,10 @@ int run_process(const ProcessArgs& a) {
 }
 
 }  // namespace
+}  // namespace dov_cmd
 
 void add_dov_commands(CLI::App& app, int& exit_code) {
+  using namespace dov_cmd;  // the command's option structs and run functions
   CLI::App* dv = app.add_subcommand(
       "dov", "Dynamic deflection of the vertical from INS/GNSS attitude differences");
   dv->require_subcommand(1);

@@ -27,6 +27,7 @@
 #include "meridian/report/html.hpp"
 
 namespace meridian::cli {
+namespace gravity_cmd {
 namespace {
 
 struct ModelArgs {
@@ -145,8 +146,10 @@ void add_model_options(CLI::App* c, ModelArgs& a) {
 }
 
 }  // namespace
+}  // namespace gravity_cmd
 
 void add_gravity_commands(CLI::App& app, int& exit_code) {
+  using namespace gravity_cmd;  // the command's option structs and run functions
   CLI::App* g = app.add_subcommand("gravity", "Global gravity field models: deflection of the vertical, geoid");
   g->require_subcommand(1);
 

@@ -28,6 +28,7 @@
 #include "meridian/report/html.hpp"
 
 namespace meridian::cli {
+namespace gyro_cmd {
 namespace {
 
 struct ReduceArgs {
@@ -247,8 +248,10 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
 }
 
 }  // namespace
+}  // namespace gyro_cmd
 
 void add_gyro_commands(CLI::App& app, int& exit_code) {
+  using namespace gyro_cmd;  // the command's option structs and run functions
   CLI::App* gyro = app.add_subcommand("gyro", "Gyro-theodolite orientation");
   gyro->require_subcommand(1);
 

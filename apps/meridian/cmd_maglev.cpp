@@ -27,6 +27,7 @@
 #include "meridian/report/maglev_text.hpp"
 
 namespace meridian::cli {
+namespace maglev_cmd {
 namespace {
 
 ErrorContext option(const char* name) { return ErrorContext{"", std::nullopt, name}; }
@@ -325,8 +326,10 @@ int run_calibrate(const CalibrateArgs& a) {
 }
 
 }  // namespace
+}  // namespace maglev_cmd
 
 void add_maglev_commands(CLI::App& app, int& exit_code) {
+  using namespace maglev_cmd;  // the command's option structs and run functions
   CLI::App* mg =
       app.add_subcommand("maglev", "Magnetically suspended gyro: two-position north seeking");
   mg->require_subcommand(1);

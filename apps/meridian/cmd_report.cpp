@@ -21,6 +21,7 @@
 extern char** environ;
 
 namespace meridian::cli {
+namespace report_cmd {
 namespace {
 
 namespace fs = std::filesystem;
@@ -96,8 +97,10 @@ void print_atomically(const PrintArgs& a, const char* ext, const std::string& fl
 }
 
 }  // namespace
+}  // namespace report_cmd
 
 void add_report_commands(CLI::App& app, int& exit_code) {
+  using namespace report_cmd;  // the command's option structs and run functions
   CLI::App* rep = app.add_subcommand("report", "Print HTML reports (needs Debian's chromium)");
   rep->require_subcommand(1);
   auto pa = std::make_shared<PrintArgs>();

@@ -10,6 +10,7 @@
 namespace meridian::adjust::detail {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kLog2Pi = 1.8378770664093454836;  ///< ln 2π (likelihoods)
 
 /// Index of the first non-finite entry of v, −1 when all are finite.

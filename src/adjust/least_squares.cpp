@@ -16,7 +16,7 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 
 // (Q_vv)_ii = Σ_ii − ‖(L·Q1)_i‖² loses about ε·Σ_ii to cancellation; below this fraction
 // of Σ_ii the observation is uncontrolled and w_i is undefined (likewise (P·Q_vv·P)_ii

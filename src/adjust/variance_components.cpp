@@ -17,7 +17,7 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 // A component driven below this fraction of the largest one by a step that would make it
 // negative has reached the boundary θ_k = 0: it is clipped.
 constexpr double kClipFraction = 1e-9;

@@ -8,8 +8,7 @@
 
 namespace meridian::gravity {
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-bool wants(Quantities what, Quantities q) { return (static_cast<unsigned>(what) & static_cast<unsigned>(q)) != 0; }
+using detail::kNaN;
 }  // namespace
 
 // Column sums at the point's height (gradient) and, for the geoid, at h = 0.
@@ -37,13 +36,13 @@ GravityCircle::GravityCircle(const GravityField& field, double lat_rad, double h
     q = field.model_radius_m() / r;
     return e;
   };
-  if (wants(what, Quantities::Deflection)) {
+  if (includes(what, Quantities::Deflection)) {
     const EcefPosition e = spherical(height_m, s.t, s.u, s.q, s.r);
     s.gamma_at_lon0 = normal.gravity_vector_m_s2(e);  // |γ| does not depend on λ
     s.gamma = std::hypot(std::hypot(s.gamma_at_lon0.x_m, s.gamma_at_lon0.y_m), s.gamma_at_lon0.z_m);
     s.sums = field.disturbing_table().column_sums(s.t, s.q, true);
   }
-  if (wants(what, Quantities::Geoid)) {
+  if (includes(what, Quantities::Geoid)) {
     spherical(0.0, s.t0, s.u0, s.q0, s.r0);
     s.gamma0 = normal.surface_gravity_m_s2(lat_rad);
     s.sums0 = field.disturbing_table().column_sums(s.t0, s.q0, false);
@@ -61,7 +60,7 @@ FieldValues GravityCircle::evaluate(double lon_rad) const {
   FieldValues o{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
   const double k = f.model_gm_m3_s2() / f.model_radius_m(), cl = std::cos(lon_rad), sl = std::sin(lon_rad);
   const double dgm = f.include_degree_zero() ? f.degree_zero_gm_m3_s2() : 0.0;
-  if (wants(s.what, Quantities::Deflection)) {
+  if (includes(s.what, Quantities::Deflection)) {
     const detail::LaneSums v = f.disturbing_table().horner(s.sums, true, {s.t, s.u, s.q, cl, sl});
     const double t = k * v.v + dgm / s.r, dup = -k / s.r * v.dr - dgm / (s.r * s.r);
     o.disturbing_potential_m2_s2 = t;
@@ -78,7 +77,7 @@ FieldValues GravityCircle::evaluate(double lon_rad) const {
     detail::astronomic_deflection(g, o.dT_east_m_s2, o.dT_north_m_s2, dup_all, s.t, s.u, lat_rad_, lon_rad, o.xi_astro_rad,
                                   o.eta_astro_rad);
   }
-  if (wants(s.what, Quantities::Geoid)) {
+  if (includes(s.what, Quantities::Geoid)) {
     const detail::LaneSums v = f.disturbing_table().horner(s.sums0, false, {s.t0, s.u0, s.q0, cl, sl});
     double n = (k * v.v + dgm / s.r0) / s.gamma0;
     if (f.correction_table())

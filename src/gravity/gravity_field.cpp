@@ -17,9 +17,7 @@
 namespace meridian::gravity {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-bool wants(Quantities what, Quantities q) { return (static_cast<unsigned>(what) & static_cast<unsigned>(q)) != 0; }
+using detail::kNaN;
 
 // The disturbing potential's coefficients: the model minus the normal
 // field's even zonal terms C̄_n0 = −(GM_ref/GM)(a_ref/a)^n J_n/√(2n+1), with
@@ -99,7 +97,7 @@ void GravityField::evaluate_block(const GeodeticPoint* p, std::size_t count, Qua
     all_on_ellipsoid = all_on_ellipsoid && p[i].height_m == 0;
   }
   const double k = gm_ / radius_m_;
-  if (wants(what, Quantities::Deflection)) {
+  if (includes(what, Quantities::Deflection)) {
     for (int i = 0; i < n; ++i) lane(i, p[i].height_m);
     table_->evaluate(lanes, n, true, sums);
     for (int i = 0; i < n; ++i) {
@@ -124,8 +122,8 @@ void GravityField::evaluate_block(const GeodeticPoint* p, std::size_t count, Qua
       o.eta_rad = -o.dT_east_m_s2 / o.normal_gravity_m_s2;
     }
   }
-  if (wants(what, Quantities::Geoid)) {
-    const bool reuse = wants(what, Quantities::Deflection) && all_on_ellipsoid;
+  if (includes(what, Quantities::Geoid)) {
+    const bool reuse = includes(what, Quantities::Deflection) && all_on_ellipsoid;
     if (!reuse) {
       for (int i = 0; i < n; ++i) lane(i, 0.0);
       table_->evaluate(lanes, n, false, sums);
@@ -149,7 +147,8 @@ namespace {
 // Values a model gives are finite or the evaluation is a NumericalError
 // (coefficients, GM or radius out of range), never NaN in an output.
 void check_finite_values(const FieldValues& v, Quantities what, std::size_t index) {
-  const bool defl = wants(what, Quantities::Deflection), geoid = wants(what, Quantities::Geoid);
+  const bool defl = includes(what, Quantities::Deflection),
+             geoid = includes(what, Quantities::Geoid);
   const bool ok = (!defl || (std::isfinite(v.disturbing_potential_m2_s2) && std::isfinite(v.xi_rad) &&
                              std::isfinite(v.eta_rad) && std::isfinite(v.anomaly_m_s2) && std::isfinite(v.dT_east_m_s2) &&
                              std::isfinite(v.dT_north_m_s2) && std::isfinite(v.dT_up_m_s2) &&

@@ -3,11 +3,15 @@
 // and GravityCircle. See docs/gravity-field.md §3 for the formulas.
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "meridian/gravity/coefficients.hpp"
 
 namespace meridian::gravity::detail {
+
+/// The "not requested" value of FieldValues.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Points evaluated together (one AVX-512 vector; two AVX2 vectors).
 inline constexpr int kLanes = 8;

@@ -27,8 +27,6 @@ FieldValues lerp(const FieldValues& a, const FieldValues& b, double w) {
   return r;
 }
 
-bool wants(Quantities what, Quantities q) { return (static_cast<unsigned>(what) & static_cast<unsigned>(q)) != 0; }
-
 }  // namespace
 
 TrackResult evaluate_track(const GravityField& field, std::span<const GeodeticPoint> track, Quantities what,
@@ -78,7 +76,8 @@ TrackResult evaluate_track(const GravityField& field, std::span<const GeodeticPo
   std::vector<std::pair<std::size_t, std::size_t>> open, next;
   for (std::size_t k = 0; k + 1 < nodes.size(); ++k)
     if (nodes[k + 1] > nodes[k] + 1) open.emplace_back(nodes[k], nodes[k + 1]);
-  const bool defl = wants(what, Quantities::Deflection), geoid = wants(what, Quantities::Geoid);
+  const bool defl = includes(what, Quantities::Deflection),
+             geoid = includes(what, Quantities::Geoid);
   while (!open.empty()) {
     std::vector<std::size_t> mids;
     for (const auto& [i, j] : open) {

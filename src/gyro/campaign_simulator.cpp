@@ -16,7 +16,6 @@
 namespace meridian::gyro {
 namespace {
 
-constexpr double kArcsec = units::kArcsecond;
 constexpr double kArcmin = units::kArcminute;
 
 struct Station {
@@ -63,10 +62,10 @@ DeterminationInput simulate_determination(const CampaignTruth& t, const Station&
   // The surveyor points at the target with some arbitrary circle orientation.
   const double r_target_true = wrap_positive_rad((180.0 + 170.0 * uni(rng)) * units::kDegree);
   const double north = wrap_positive_rad(r_target_true - gyro_az);
-  const double pointing_noise = t.sigma_pointing_arcsec * kArcsec * normal(rng);
-  d.target_reading_rad = Uncertain{
-      wrap_positive_rad(rnd(r_target_true + pointing_noise, 0.1 * kArcsec)),
-      (t.sigma_pointing_arcsec > 0 ? t.sigma_pointing_arcsec : 1.0) * kArcsec};
+  const double pointing_noise = t.sigma_pointing_arcsec * units::kArcsecond * normal(rng);
+  d.target_reading_rad =
+      Uncertain{wrap_positive_rad(rnd(r_target_true + pointing_noise, 0.1 * units::kArcsecond)),
+                (t.sigma_pointing_arcsec > 0 ? t.sigma_pointing_arcsec : 1.0) * units::kArcsecond};
 
   // Zero position before and after (motor off), drifting slightly.
   const double zp_before = t.alpha_p_div;
@@ -89,10 +88,11 @@ DeterminationInput simulate_determination(const CampaignTruth& t, const Station&
     s.amplitude_rad = 8.0 * st.inst.scale_value_rad;
     s.kappa = 0.002;
     s.reversals = 5;
-    s.reading_noise = NoiseModel::white(t.sigma_tracking_arcsec * kArcsec);
+    s.reading_noise = NoiseModel::white(t.sigma_tracking_arcsec * units::kArcsecond);
     for (double v : simulate_tracking(s, rng()))
-      d.tracking.reversals_rad.push_back(wrap_positive_rad(rnd(v, 0.1 * kArcsec)));
-    if (t.sigma_tracking_arcsec > 0) d.tracking.sigma_reading_rad = t.sigma_tracking_arcsec * kArcsec;
+      d.tracking.reversals_rad.push_back(wrap_positive_rad(rnd(v, 0.1 * units::kArcsecond)));
+    if (t.sigma_tracking_arcsec > 0)
+      d.tracking.sigma_reading_rad = t.sigma_tracking_arcsec * units::kArcsecond;
     return d;
   }
   d.mode = Mode::NonTracking;
@@ -177,11 +177,13 @@ SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) 
   KnownLineInput kl;
   kl.from = t.known_station;
   kl.to = t.known_target;
-  if (t.give_eta) kl.from.eta_rad = Uncertain{t.eta_known_rad, 0.5 * kArcsec};
-  if (t.give_eta && t.xi_known_rad) kl.from.xi_rad = Uncertain{*t.xi_known_rad, 0.5 * kArcsec};
+  if (t.give_eta) kl.from.eta_rad = Uncertain{t.eta_known_rad, 0.5 * units::kArcsecond};
+  if (t.give_eta && t.xi_known_rad)
+    kl.from.xi_rad = Uncertain{*t.xi_known_rad, 0.5 * units::kArcsecond};
   kl.azimuth.kind = KnownAzimuth::Kind::Grid;
-  kl.azimuth.value_rad = {Rounder{t.round_to_field_precision}(out.true_known_grid_azimuth_rad, 0.01 * kArcsec),
-                          t.known_azimuth_sigma_arcsec * kArcsec};
+  kl.azimuth.value_rad = {Rounder{t.round_to_field_precision}(out.true_known_grid_azimuth_rad,
+                                                              0.01 * units::kArcsecond),
+                          t.known_azimuth_sigma_arcsec * units::kArcsecond};
   for (int i = 0; i < t.known_before; ++i)
     kl.before.push_back(simulate_determination(t, a, ag_known, false, fmt::format("known line, before, #{}", i + 1), rng));
   for (int i = 0; i < t.known_after; ++i)
@@ -190,17 +192,19 @@ SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) 
 
   in.line.from = t.station;
   in.line.to = t.target;
-  if (t.give_eta) in.line.from.eta_rad = Uncertain{t.eta_station_rad, 0.5 * kArcsec};
-  if (t.give_eta && t.xi_station_rad) in.line.from.xi_rad = Uncertain{*t.xi_station_rad, 0.5 * kArcsec};
+  if (t.give_eta) in.line.from.eta_rad = Uncertain{t.eta_station_rad, 0.5 * units::kArcsecond};
+  if (t.give_eta && t.xi_station_rad)
+    in.line.from.xi_rad = Uncertain{*t.xi_station_rad, 0.5 * units::kArcsecond};
   int k = 0;
   for (int i = 0; i < t.line_nontracking; ++i)
     in.line.determinations.push_back(simulate_determination(t, c, ag_line, false, fmt::format("line, non-tracking #{}", ++k), rng));
   for (int i = 0; i < t.line_tracking; ++i)
     in.line.determinations.push_back(simulate_determination(t, c, ag_line, true, fmt::format("line, tracking #{}", ++k), rng));
-  out.truth.push_back(fmt::format("Truth: grid azimuth C-D {} ; known line A-B grid azimuth {} ; E = {:+.1f}\"",
-                                  format_direction_dms(Angle::radians(out.true_grid_azimuth_rad), {3, true, false}),
-                                  format_direction_dms(Angle::radians(out.true_known_grid_azimuth_rad), {3, true, false}),
-                                  t.instrument_constant_rad / kArcsec));
+  out.truth.push_back(fmt::format(
+      "Truth: grid azimuth C-D {} ; known line A-B grid azimuth {} ; E = {:+.1f}\"",
+      format_direction_dms(Angle::radians(out.true_grid_azimuth_rad), {3, true, false}),
+      format_direction_dms(Angle::radians(out.true_known_grid_azimuth_rad), {3, true, false}),
+      t.instrument_constant_rad / units::kArcsecond));
   return out;
 }
 
@@ -208,7 +212,7 @@ CampaignTruth example_campaign_truth() {
   CampaignTruth t;
   t.name = "Shaft No. 3 - underground base line C-D";
   t.instrument.name = "simulated 15\"-class gyro-theodolite";
-  t.instrument.scale_value_rad = 600.0 * kArcsec;
+  t.instrument.scale_value_rad = 600.0 * units::kArcsecond;
   t.instrument.torsion_ratio = Uncertain{0.30, 0.003};
   t.instrument.constants_latitude_rad = 34.2 * units::kDegree;
   t.instrument.accuracy_class_arcsec = 15.0;
@@ -219,9 +223,9 @@ CampaignTruth example_campaign_truth() {
   t.known_target = {"B (surface)", {}, {}, 4192655.870, 373118.440, {}, 871.9};
   t.station = {"C (shaft bottom)", {}, {}, 4190912.410, 372887.660, {}, 341.7};
   t.target = {"D (main drift)", {}, {}, 4190104.030, 373652.350, {}, 338.2};
-  t.eta_station_rad = -4.2 * kArcsec;
-  t.eta_known_rad = -4.0 * kArcsec;
-  t.instrument_constant_rad = 25.4 * kArcsec;
+  t.eta_station_rad = -4.2 * units::kArcsecond;
+  t.eta_known_rad = -4.0 * units::kArcsecond;
+  t.instrument_constant_rad = 25.4 * units::kArcsecond;
   return t;
 }
 

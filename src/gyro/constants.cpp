@@ -10,7 +10,7 @@
 namespace meridian::gyro {
 namespace {
 
-constexpr double kTwoPi = 2.0 * units::kPi;
+using units::kTwoPi;
 
 void require_positive(double v, std::string_view what, std::string_view unit) {
   if (!std::isfinite(v) || v <= 0.0)

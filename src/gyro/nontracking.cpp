@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "format.hpp"
 #include "meridian/adjust/least_squares.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
@@ -31,7 +32,7 @@ using Vec = std::vector<double>;
   throw NumericalError(message, ErrorContext{"", std::nullopt, field});
 }
 
-std::string num(double x) { return fmt::format("{:.6g}", x); }
+using detail::num;
 
 std::string times_field(std::size_t c) { return fmt::format("crossings[{}].times_s", c); }
 

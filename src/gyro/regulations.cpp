@@ -10,8 +10,6 @@
 namespace meridian::gyro {
 namespace {
 
-constexpr double kArcsec = units::kArcsecond;
-
 struct ClassRow {
   double class_arcsec;
   double runs, constants, means, orientations, mean_sigma;  // arcsec
@@ -40,12 +38,12 @@ RegulationLimits regulation_limits(double accuracy_class_arcsec) {
   if (accuracy_class_arcsec > kRows[2].class_arcsec) scale = accuracy_class_arcsec / kRows[2].class_arcsec;
   RegulationLimits l;
   l.accuracy_class_arcsec = accuracy_class_arcsec;
-  l.run_difference_rad = scale * row->runs * kArcsec;
-  l.constant_difference_rad = scale * row->constants * kArcsec;
-  l.constant_means_rad = scale * row->means * kArcsec;
-  l.orientation_difference_rad = scale * row->orientations * kArcsec;
-  l.orientation_mean_sigma_rad = scale * row->mean_sigma * kArcsec;
-  l.instrument_constant_max_rad = 600.0 * kArcsec;
+  l.run_difference_rad = scale * row->runs * units::kArcsecond;
+  l.constant_difference_rad = scale * row->constants * units::kArcsecond;
+  l.constant_means_rad = scale * row->means * units::kArcsecond;
+  l.orientation_difference_rad = scale * row->orientations * units::kArcsecond;
+  l.orientation_mean_sigma_rad = scale * row->mean_sigma * units::kArcsecond;
+  l.instrument_constant_max_rad = 600.0 * units::kArcsecond;
   if (row->class_arcsec == 5.0)
     l.source = fmt::format("project limits for a {}\"-class instrument (gyro total station; spec 7.1)",
                            accuracy_class_arcsec);

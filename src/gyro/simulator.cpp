@@ -14,7 +14,7 @@
 namespace meridian::gyro {
 namespace {
 
-constexpr double kTwoPi = 2.0 * units::kPi;
+using units::kTwoPi;
 
 void require_finite(double v, std::string_view what) {
   if (!std::isfinite(v)) throw InputError(fmt::format("{} is not a finite number", what));

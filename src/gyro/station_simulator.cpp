@@ -10,8 +10,6 @@
 namespace meridian::gyro {
 namespace {
 
-constexpr double kArcsec = units::kArcsecond;
-
 // sigma_initial: σ of the initial states X (σ_2); σ of Δ (σ_1) when not given.
 NoiseModel noise_model(const StationSimulation& s, double sigma,
                        double sigma_initial = std::numeric_limits<double>::quiet_NaN()) {
@@ -30,7 +28,8 @@ NoiseModel noise_model(const StationSimulation& s, double sigma,
 std::string noise_clause(const StationSimulation& s, bool tracking) {
   const bool own = tracking && !std::isnan(s.sigma_initial_tracking_rad);
   const std::string x =
-      own ? fmt::format("{:g} arcsec", s.sigma_initial_tracking_rad / kArcsec) : "sigma of Delta";
+      own ? fmt::format("{:g} arcsec", s.sigma_initial_tracking_rad / units::kArcsecond)
+          : "sigma of Delta";
   switch (s.noise) {
     case NoiseModel::Markov1:
       return fmt::format("; noise markov1 (rho1 = {}), sigma of the initial state X0 = {}", s.rho1, x);
@@ -93,10 +92,12 @@ SimulatedStation simulate_station(const StationSimulation& s, std::uint64_t seed
       d.nontracking = simulate_nontracking(n, det_seed);
       if (i == 0) {
         const NorthReading north = north_from_nontracking(d.clamp_reading_rad, Uncertain{s.beta_div, 0.0}, inst);
-        out.truth.push_back(fmt::format(
-            "Truth: beta = {} div, N_G = {} (delta N = {:+.3f}\"), B = {} div, T_B = {} s, t0 = {} s, k = {} 1/s",
-            s.beta_div, dms3(north.north_rad), north.delta_n_rad / kArcsec, s.amplitude_div, period, s.t0_s,
-            s.damping_per_s) + noise_clause(s, false));
+        out.truth.push_back(fmt::format("Truth: beta = {} div, N_G = {} (delta N = {:+.3f}\"), B = "
+                                        "{} div, T_B = {} s, t0 = {} s, k = {} 1/s",
+                                        s.beta_div, dms3(north.north_rad),
+                                        north.delta_n_rad / units::kArcsecond, s.amplitude_div,
+                                        period, s.t0_s, s.damping_per_s) +
+                            noise_clause(s, false));
         if (clamps.size() > 1) {
           std::string list;
           for (double c : clamps)

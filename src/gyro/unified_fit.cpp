@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "format.hpp"
 #include "meridian/adjust/statistics.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
@@ -20,7 +21,7 @@ namespace meridian::gyro {
 namespace {
 
 using units::kPi;
-constexpr double kTwoPi = 2.0 * kPi;
+using units::kTwoPi;
 
 // Parameter order of the full vector and of the reported covariance.
 enum Param : int { kBeta = 0, kAmp = 1, kT0 = 2, kPeriod = 3, kDamping = 4 };
@@ -30,7 +31,7 @@ enum Param : int { kBeta = 0, kAmp = 1, kT0 = 2, kPeriod = 3, kDamping = 4 };
 // Levenberg–Marquardt step control rejects.
 constexpr double kMaxSine = 1.0 - 1e-12;
 
-std::string num(double x) { return fmt::format("{:.6g}", x); }
+using detail::num;
 
 // One crossing time with its phase branch: east θ = asin(q) + 2πm, west
 // θ = π − asin(q) + 2πm, q = (a − β)/B, t = t0 + T_B·θ/(2π).

@@ -17,8 +17,6 @@ namespace {
 
 using gyro::Uncertain;
 
-constexpr double kArcsec = units::kArcsecond;
-
 // A duration booked with a stopwatch (seconds or m:ss.s), > 0.
 double positive_time_s(const Node& n) {
   const double v = n.time_s();
@@ -65,8 +63,8 @@ gyro::InstrumentSpec read_instrument(const Node& n) {
   gyro::InstrumentSpec s;
   if (auto v = n.get("name")) s.name = v->string();
   if (auto v = n.get("serial")) s.serial = v->string();
-  s.scale_value_rad = n.require("scale_value_arcsec").positive_number() * kArcsec;
-  s.sigma_scale_value_rad = sigma_or(n, "scale_value_sigma_arcsec", 0.0) * kArcsec;
+  s.scale_value_rad = n.require("scale_value_arcsec").positive_number() * units::kArcsecond;
+  s.sigma_scale_value_rad = sigma_or(n, "scale_value_sigma_arcsec", 0.0) * units::kArcsecond;
   if (auto v = n.get("torsion_ratio")) {
     const double lam = v->non_negative_number();
     s.torsion_ratio = Uncertain{lam, sigma_or(n, "torsion_ratio_sigma", 0.0)};
@@ -84,8 +82,8 @@ gyro::InstrumentSpec read_instrument(const Node& n) {
   if (auto v = n.get("constants_latitude_deg")) s.constants_latitude_rad = v->angle().rad();
   if (auto v = n.get("transit_factor_arcsec_per_div_s"))
     s.transit_factor_rad_per_div_s =
-        Uncertain{v->positive_number() * kArcsec,
-                  sigma_or(n, "transit_factor_sigma_arcsec_per_div_s", 0.0) * kArcsec};
+        Uncertain{v->positive_number() * units::kArcsecond,
+                  sigma_or(n, "transit_factor_sigma_arcsec_per_div_s", 0.0) * units::kArcsecond};
   if (auto v = n.get("sigma_time_s")) s.sigma_time_s = v->positive_number();
   if (auto v = n.get("sigma_reading_div")) s.sigma_reading_div = v->positive_number();
   if (auto v = n.get("latitude_limit_deg")) {
@@ -149,7 +147,8 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
       if (auto v = n.get(k)) v->fail("field of a non-tracking determination given for mode tracking");
     const Node rev = n.require("reversals");
     for (const auto& e : rev.elements()) d.tracking.reversals_rad.push_back(e.angle(unit).rad());
-    if (auto v = n.get("sigma_reading_arcsec")) d.tracking.sigma_reading_rad = v->positive_number() * kArcsec;
+    if (auto v = n.get("sigma_reading_arcsec"))
+      d.tracking.sigma_reading_rad = v->positive_number() * units::kArcsecond;
   } else {
     for (const char* k : tracking_only)
       if (auto v = n.get(k)) v->fail("field of a tracking determination given for mode non-tracking");
@@ -195,7 +194,7 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
   }
   if (auto v = n.get("target_reading"))
     d.target_reading_rad = Uncertain{v->angle(unit).normalized_positive().rad(),
-                                     sigma_or(n, "target_sigma_arcsec", 0.0) * kArcsec};
+                                     sigma_or(n, "target_sigma_arcsec", 0.0) * units::kArcsecond};
   if (auto rounds = n.get("target_rounds")) {
     for (const Node& r : rounds->elements()) {
       r.allow_only({"when", "left", "right"});
@@ -210,7 +209,7 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
       d.target_rounds.push_back(t);
     }
     if (d.target_rounds.empty()) rounds->fail("give at least one round");
-    d.target_round_sigma_rad = sigma_or(n, "target_sigma_arcsec", 0.0) * kArcsec;
+    d.target_round_sigma_rad = sigma_or(n, "target_sigma_arcsec", 0.0) * units::kArcsecond;
   }
   return d;
 }
@@ -268,13 +267,14 @@ gyro::PointInput read_point(const Node& n) {
   if (p.x_north_m.has_value() != p.y_east_m.has_value()) n.fail("give both x_m and y_m");
   if (!p.lat_rad && !p.x_north_m) n.fail("a point needs latitude_deg/longitude_deg or x_m/y_m");
   if (auto v = n.get("eta_arcsec"))
-    p.eta_rad = Uncertain{v->number() * kArcsec, sigma_or(n, "eta_sigma_arcsec", 0.0) * kArcsec};
+    p.eta_rad = Uncertain{v->number() * units::kArcsecond,
+                          sigma_or(n, "eta_sigma_arcsec", 0.0) * units::kArcsecond};
   if (auto v = n.get("height_m")) p.height_m = v->number();
   if (auto v = n.get("xi_arcsec")) {
-    const double xi = v->number() * kArcsec;
+    const double xi = v->number() * units::kArcsecond;
     if (std::fabs(xi) > geodesy::kMaxDeflection_rad)
       v->fail("xi must be within +-0.01 rad (2062.6 arcsec); is it in arc-seconds?");
-    p.xi_rad = Uncertain{xi, sigma_or(n, "xi_sigma_arcsec", 0.0) * kArcsec};
+    p.xi_rad = Uncertain{xi, sigma_or(n, "xi_sigma_arcsec", 0.0) * units::kArcsecond};
   } else if (auto s = n.get("xi_sigma_arcsec")) {
     s->fail("xi_sigma_arcsec given without xi_arcsec");
   }
@@ -353,8 +353,9 @@ gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesyste
   const std::filesystem::path beside = campaign_path.parent_path() / r.source;
   r.lookup = std::filesystem::exists(beside) ? beside.string() : r.source;
   if (auto v = n.get("max_degree")) r.max_degree = v->integer();
-  if (auto v = n.get("eta_sigma_arcsec")) r.sigma_eta_rad = v->positive_number() * kArcsec;
-  if (auto v = n.get("xi_sigma_arcsec")) r.sigma_xi_rad = v->positive_number() * kArcsec;
+  if (auto v = n.get("eta_sigma_arcsec"))
+    r.sigma_eta_rad = v->positive_number() * units::kArcsecond;
+  if (auto v = n.get("xi_sigma_arcsec")) r.sigma_xi_rad = v->positive_number() * units::kArcsecond;
   return r;
 }
 
@@ -436,7 +437,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     else if (ks == "grid") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Grid;
     else kind.fail(fmt::format("unknown azimuth kind \"{}\" (expected astronomic, geodetic or grid)", ks));
     kl.azimuth.value_rad = {az.require("value").angle(c.angle_unit).normalized_positive().rad(),
-                            sigma_or(az, "sigma_arcsec", 0.0) * kArcsec};
+                            sigma_or(az, "sigma_arcsec", 0.0) * units::kArcsecond};
     if (auto b = k->get("before")) kl.before = read_determinations(*b, c.instrument, c.angle_unit);
     if (auto a = k->get("after")) kl.after = read_determinations(*a, c.instrument, c.angle_unit);
     if (kl.before.empty() && kl.after.empty()) k->fail("give determinations before and/or after");
@@ -451,7 +452,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
     e->allow_only({"value", "sigma_arcsec"});
     c.instrument_constant_rad =
         Uncertain{e->require("value").angle(c.angle_unit).normalized_signed().rad(),
-                  sigma_or(*e, "sigma_arcsec", 0.0) * kArcsec};
+                  sigma_or(*e, "sigma_arcsec", 0.0) * units::kArcsecond};
   }
   if (!c.known_line && !c.instrument_constant_rad)
     root.fail("give known_line (calibration on a known line) or instrument_constant");

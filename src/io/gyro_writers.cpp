@@ -12,8 +12,6 @@
 namespace meridian::io {
 namespace {
 
-constexpr double kArcsec = units::kArcsecond;
-
 std::string q(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -63,8 +61,9 @@ void instrument_yaml(std::string& o, const gyro::InstrumentSpec& s) {
   o += "instrument:\n";
   if (!s.name.empty()) o += "  name: " + q(s.name) + "\n";
   if (!s.serial.empty()) o += "  serial: " + q(s.serial) + "\n";
-  o += "  scale_value_arcsec: " + num(s.scale_value_rad / kArcsec) + "\n";
-  if (s.sigma_scale_value_rad > 0) o += "  scale_value_sigma_arcsec: " + num(s.sigma_scale_value_rad / kArcsec) + "\n";
+  o += "  scale_value_arcsec: " + num(s.scale_value_rad / units::kArcsecond) + "\n";
+  if (s.sigma_scale_value_rad > 0)
+    o += "  scale_value_sigma_arcsec: " + num(s.sigma_scale_value_rad / units::kArcsecond) + "\n";
   if (s.torsion_ratio) {
     o += "  torsion_ratio: " + num(s.torsion_ratio->value) + "\n";
     if (s.torsion_ratio->sigma > 0) o += "  torsion_ratio_sigma: " + num(s.torsion_ratio->sigma) + "\n";
@@ -79,9 +78,11 @@ void instrument_yaml(std::string& o, const gyro::InstrumentSpec& s) {
   }
   if (s.constants_latitude_rad) o += "  constants_latitude_deg: " + num(*s.constants_latitude_rad / units::kDegree) + "\n";
   if (s.transit_factor_rad_per_div_s) {
-    o += "  transit_factor_arcsec_per_div_s: " + num(s.transit_factor_rad_per_div_s->value / kArcsec) + "\n";
+    o += "  transit_factor_arcsec_per_div_s: " +
+         num(s.transit_factor_rad_per_div_s->value / units::kArcsecond) + "\n";
     if (s.transit_factor_rad_per_div_s->sigma > 0)
-      o += "  transit_factor_sigma_arcsec_per_div_s: " + num(s.transit_factor_rad_per_div_s->sigma / kArcsec) + "\n";
+      o += "  transit_factor_sigma_arcsec_per_div_s: " +
+           num(s.transit_factor_rad_per_div_s->sigma / units::kArcsecond) + "\n";
   }
   o += "  sigma_time_s: " + num(s.sigma_time_s) + "\n";
   o += "  sigma_reading_div: " + num(s.sigma_reading_div) + "\n";
@@ -103,7 +104,8 @@ void determination_yaml(std::string& o, const gyro::DeterminationInput& d, const
       o += (i ? ", " : "") + circle(d.tracking.reversals_rad[i], unit);
     o += "]\n";
     if (std::isfinite(d.tracking.sigma_reading_rad))
-      o += in + "sigma_reading_arcsec: " + num(d.tracking.sigma_reading_rad / kArcsec) + "\n";
+      o += in + "sigma_reading_arcsec: " + num(d.tracking.sigma_reading_rad / units::kArcsecond) +
+           "\n";
   } else {
     const auto& n = d.nontracking;
     o += in + "clamp_reading: " + circle(d.clamp_reading_rad, unit) + "\n";
@@ -139,7 +141,8 @@ void determination_yaml(std::string& o, const gyro::DeterminationInput& d, const
   if (d.target_reading_rad) {
     o += in + "target_reading: " + circle(d.target_reading_rad->value, unit) + "\n";
     if (d.target_reading_rad->sigma > 0)
-      o += in + "target_sigma_arcsec: " + num(d.target_reading_rad->sigma / kArcsec) + "\n";
+      o += in + "target_sigma_arcsec: " + num(d.target_reading_rad->sigma / units::kArcsecond) +
+           "\n";
   }
   if (!d.target_rounds.empty()) {
     o += in + "target_rounds:\n";
@@ -147,7 +150,7 @@ void determination_yaml(std::string& o, const gyro::DeterminationInput& d, const
       o += in + "  - {when: " + (r.when == gyro::TargetRound::When::Before ? "before" : "after") +
            ", left: " + circle(r.face_left_rad, unit) + ", right: " + circle(r.face_right_rad, unit) + "}\n";
     if (!d.target_reading_rad && d.target_round_sigma_rad > 0)
-      o += in + "target_sigma_arcsec: " + num(d.target_round_sigma_rad / kArcsec) + "\n";
+      o += in + "target_sigma_arcsec: " + num(d.target_round_sigma_rad / units::kArcsecond) + "\n";
   }
 }
 
@@ -167,13 +170,15 @@ void point_yaml(std::string& o, const char* key, const gyro::PointInput& p, cons
   if (p.lat_rad) o += in + "latitude_deg: " + dms(*p.lat_rad) + "\n";
   if (p.lon_rad) o += in + "longitude_deg: " + dms(*p.lon_rad) + "\n";
   if (p.eta_rad) {
-    o += in + "eta_arcsec: " + num(p.eta_rad->value / kArcsec) + "\n";
-    if (p.eta_rad->sigma > 0) o += in + "eta_sigma_arcsec: " + num(p.eta_rad->sigma / kArcsec) + "\n";
+    o += in + "eta_arcsec: " + num(p.eta_rad->value / units::kArcsecond) + "\n";
+    if (p.eta_rad->sigma > 0)
+      o += in + "eta_sigma_arcsec: " + num(p.eta_rad->sigma / units::kArcsecond) + "\n";
   }
   if (p.height_m) o += in + "height_m: " + num(*p.height_m) + "\n";
   if (p.xi_rad) {
-    o += in + "xi_arcsec: " + num(p.xi_rad->value / kArcsec) + "\n";
-    if (p.xi_rad->sigma > 0) o += in + "xi_sigma_arcsec: " + num(p.xi_rad->sigma / kArcsec) + "\n";
+    o += in + "xi_arcsec: " + num(p.xi_rad->value / units::kArcsecond) + "\n";
+    if (p.xi_rad->sigma > 0)
+      o += in + "xi_sigma_arcsec: " + num(p.xi_rad->sigma / units::kArcsecond) + "\n";
   }
 }
 
@@ -226,7 +231,7 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
     if (k.zenith_angle_rad) o += "  zenith_angle: " + circle(*k.zenith_angle_rad, c.angle_unit) + "\n";
     o += "  azimuth: {kind: " + geodesy::to_string(k.azimuth.kind) +
          ", value: " + circle(k.azimuth.value_rad.value, c.angle_unit) +
-         ", sigma_arcsec: " + num(k.azimuth.value_rad.sigma / kArcsec) + "}\n";
+         ", sigma_arcsec: " + num(k.azimuth.value_rad.sigma / units::kArcsecond) + "}\n";
     if (!k.before.empty()) {
       o += "  before:\n";
       for (const auto& d : k.before) determination_yaml(o, d, "    ", c.angle_unit);
@@ -238,7 +243,7 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
   }
   if (c.instrument_constant_rad)
     o += "instrument_constant: {value: " + circle(c.instrument_constant_rad->value, c.angle_unit) +
-         ", sigma_arcsec: " + num(c.instrument_constant_rad->sigma / kArcsec) + "}\n";
+         ", sigma_arcsec: " + num(c.instrument_constant_rad->sigma / units::kArcsecond) + "}\n";
   o += "line:\n";
   point_yaml(o, "from", c.line.from, "  ");
   if (c.line.to) point_yaml(o, "to", *c.line.to, "  ");
@@ -251,9 +256,11 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
   if (!tol.empty()) o += "tolerances:\n" + tol;
   if (c.gravity_model)
     o += "gravity_model: {model: " + q(c.gravity_model->source) +
-         (c.gravity_model->max_degree >= 0 ? ", max_degree: " + std::to_string(c.gravity_model->max_degree) : "") +
-         ", eta_sigma_arcsec: " + num(c.gravity_model->sigma_eta_rad / kArcsec) +
-         ", xi_sigma_arcsec: " + num(c.gravity_model->sigma_xi_rad / kArcsec) + "}\n";
+         (c.gravity_model->max_degree >= 0
+              ? ", max_degree: " + std::to_string(c.gravity_model->max_degree)
+              : "") +
+         ", eta_sigma_arcsec: " + num(c.gravity_model->sigma_eta_rad / units::kArcsecond) +
+         ", xi_sigma_arcsec: " + num(c.gravity_model->sigma_xi_rad / units::kArcsecond) + "}\n";
   return o;
 }
 

@@ -5,13 +5,14 @@
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
+#include "context.hpp"
 #include "meridian/adjust/least_squares.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
 namespace meridian::maglev {
 namespace {
-ErrorContext at(const std::string& f) { return ErrorContext{{}, std::nullopt, f}; }
+using detail::at;
 
 LineFit fit_line(const std::vector<double>& az, const std::vector<Uncertain>& y, double alpha) {
   const auto n = static_cast<Eigen::Index>(az.size());

@@ -5,13 +5,14 @@
 
 #include <fmt/format.h>
 
+#include "context.hpp"
 #include "meridian/adjust/statistics.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
 namespace meridian::maglev {
 namespace {
-ErrorContext at(const std::string& f) { return ErrorContext{{}, std::nullopt, f}; }
+using detail::at;
 
 PositionResult process_position(const PositionSeries& s, const ReduceOptions& o,
                                 std::vector<std::string>& notes, std::vector<std::string>& warnings,

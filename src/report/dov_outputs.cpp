@@ -8,9 +8,10 @@ namespace meridian::report {
 namespace {
 
 using nlohmann::json;
-double as(double rad) { return units::rad_to_arcsec(rad); }
 double deg_h(double rad_s) { return rad_s / units::kDegree * 3600.0; }
-json eta_xi(const dov::EtaXi& v) { return {{"eta", as(v.eta_rad)}, {"xi", as(v.xi_rad)}}; }
+json eta_xi(const dov::EtaXi& v) {
+  return {{"eta", units::rad_to_arcsec(v.eta_rad)}, {"xi", units::rad_to_arcsec(v.xi_rad)}};
+}
 
 }  // namespace
 
@@ -47,11 +48,16 @@ std::string dov_summary_text(const dov::Result& r) {
     t += fmt::format(
         "RMS error (″)       eta      xi\n  model     {:9.4f} {:7.4f}\n  filtered  {:9.4f} "
         "{:7.4f}\n  smoothed  {:9.4f} {:7.4f}\n",
-        as(s.rms_model->eta_rad), as(s.rms_model->xi_rad), as(s.rms_filtered->eta_rad),
-        as(s.rms_filtered->xi_rad), as(s.rms_smoothed->eta_rad), as(s.rms_smoothed->xi_rad));
-  t += fmt::format("quadratic-mean σ (″): filtered eta {:.4f} xi {:.4f}; smoothed eta {:.4f} xi {:.4f}\n",
-                   as(s.rms_sigma_filtered.eta_rad), as(s.rms_sigma_filtered.xi_rad),
-                   as(s.rms_sigma_smoothed.eta_rad), as(s.rms_sigma_smoothed.xi_rad));
+        units::rad_to_arcsec(s.rms_model->eta_rad), units::rad_to_arcsec(s.rms_model->xi_rad),
+        units::rad_to_arcsec(s.rms_filtered->eta_rad), units::rad_to_arcsec(s.rms_filtered->xi_rad),
+        units::rad_to_arcsec(s.rms_smoothed->eta_rad),
+        units::rad_to_arcsec(s.rms_smoothed->xi_rad));
+  t += fmt::format(
+      "quadratic-mean σ (″): filtered eta {:.4f} xi {:.4f}; smoothed eta {:.4f} xi {:.4f}\n",
+      units::rad_to_arcsec(s.rms_sigma_filtered.eta_rad),
+      units::rad_to_arcsec(s.rms_sigma_filtered.xi_rad),
+      units::rad_to_arcsec(s.rms_sigma_smoothed.eta_rad),
+      units::rad_to_arcsec(s.rms_sigma_smoothed.xi_rad));
   t += fmt::format("mean NIS {:.3f} (95 % interval [{:.3f}, {:.3f}]), {} rejected\n", s.mean_nis,
                    s.nis_interval.lower, s.nis_interval.upper, s.rejected);
   t += fmt::format("eps_U = {:.5f} ± {:.5f} °/h (smoothed)\n", deg_h(s.eps_u_rad_s),
@@ -68,14 +74,17 @@ std::string dov_profile_csv(const dov::Result& r) {
       "smoothed_sigma_eta_arcsec,smoothed_sigma_xi_arcsec,filtered_eps_u_deg_per_h,"
       "innovation_east_arcsec,innovation_north_arcsec,nis,accepted\n";
   for (const dov::EpochResult& e : r.epochs)
-    out += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
-                       "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}\n",
-                       e.time_s, as(e.model_eta_rad), as(e.model_xi_rad), as(e.filtered.eta_rad),
-                       as(e.filtered.xi_rad), as(e.filtered.sigma_eta_rad),
-                       as(e.filtered.sigma_xi_rad), as(e.smoothed.eta_rad), as(e.smoothed.xi_rad),
-                       as(e.smoothed.sigma_eta_rad), as(e.smoothed.sigma_xi_rad),
-                       deg_h(e.filtered.eps_u_rad_s), as(e.innovation_east_rad),
-                       as(e.innovation_north_rad), e.nis, e.accepted ? 1 : 0);
+    out += fmt::format(
+        "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
+        "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}\n",
+        e.time_s, units::rad_to_arcsec(e.model_eta_rad), units::rad_to_arcsec(e.model_xi_rad),
+        units::rad_to_arcsec(e.filtered.eta_rad), units::rad_to_arcsec(e.filtered.xi_rad),
+        units::rad_to_arcsec(e.filtered.sigma_eta_rad),
+        units::rad_to_arcsec(e.filtered.sigma_xi_rad), units::rad_to_arcsec(e.smoothed.eta_rad),
+        units::rad_to_arcsec(e.smoothed.xi_rad), units::rad_to_arcsec(e.smoothed.sigma_eta_rad),
+        units::rad_to_arcsec(e.smoothed.sigma_xi_rad), deg_h(e.filtered.eps_u_rad_s),
+        units::rad_to_arcsec(e.innovation_east_rad), units::rad_to_arcsec(e.innovation_north_rad),
+        e.nis, e.accepted ? 1 : 0);
   return out;
 }
 

@@ -16,10 +16,8 @@
 namespace meridian::report {
 namespace {
 
-using nlohmann::json;
 using fmtx::num;
-constexpr double kArcsec = units::kArcsecond;
-constexpr double kDeg = units::kDegree;
+using nlohmann::json;
 using namespace gyro_plots;
 
 // ---------------------------------------------------------------- tables
@@ -51,11 +49,11 @@ Table methods_table(const gyro::DeterminationResult& r, const AngleFormat& f) {
     t.numeric = {false, true, true, true, true, false};
     for (const auto& m : ms) {
       const auto& fit = *m.reversal;
-      t.rows.push_back({name(m),
-                        f.dir(m.north.north_rad, 2), f.sig(m.north.sigma_rad, 2), std::to_string(fit.dof),
-                        num(fit.sigma0 / kArcsec, 2),
-                        std::isfinite(fit.centre.sigma) ? (fit.sigma_is_aposteriori ? "a posteriori" : "a priori")
-                                                        : "n/a"});
+      t.rows.push_back({name(m), f.dir(m.north.north_rad, 2), f.sig(m.north.sigma_rad, 2),
+                        std::to_string(fit.dof), num(fit.sigma0 / units::kArcsecond, 2),
+                        std::isfinite(fit.centre.sigma)
+                            ? (fit.sigma_is_aposteriori ? "a posteriori" : "a priori")
+                            : "n/a"});
     }
   }
   return t;
@@ -120,11 +118,14 @@ std::vector<Block> nontracking_observation_blocks(const gyro::DeterminationInput
     if (r.primary.method == gyro::Method{gyro::NonTrackingMethod::Transit}) {
       if (inst.transit_factor_rad_per_div_s)
         kv.push_back({"transit factor c used (calibrated)",
-                      fmt::format("{:.4f}\"/(div s)", inst.transit_factor_rad_per_div_s->value / kArcsec)});
+                      fmt::format("{:.4f}\"/(div s)",
+                                  inst.transit_factor_rad_per_div_s->value / units::kArcsecond)});
       else if (beta->period_s)
-        kv.push_back({"transit factor c used (computed (1+lambda) tau pi/(2 T_B))",
-                      fmt::format("{:.4f}\"/(div s)", (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad *
-                                                        units::kPi / (2.0 * beta->period_s->value) / kArcsec)});
+        kv.push_back(
+            {"transit factor c used (computed (1+lambda) tau pi/(2 T_B))",
+             fmt::format("{:.4f}\"/(div s)",
+                         (1.0 + inst.torsion_ratio.value) * inst.scale_value_rad * units::kPi /
+                             (2.0 * beta->period_s->value) / units::kArcsecond)});
     }
   }
   if (!kv.empty()) b.push_back(KeyValueList{"Quantities of the reduction", kv});
@@ -239,16 +240,22 @@ std::vector<Block> determination_blocks(const gyro::DeterminationInput& in, cons
 std::vector<KeyValue> instrument_header(const gyro::InstrumentSpec& s, const gyro::Instrument& at_station) {
   std::vector<KeyValue> h;
   if (!s.name.empty()) h.push_back({"instrument", s.name});
-  h.push_back({"scale value tau", fmt::format("{:.2f}\"/div", s.scale_value_rad / kArcsec)});
+  h.push_back(
+      {"scale value tau", fmt::format("{:.2f}\"/div", s.scale_value_rad / units::kArcsecond)});
   if (s.torsion_ratio)
-    h.push_back({"torsion ratio lambda (given)",
-                 fmt::format("{:.5f} (sigma {:.5f}){}", s.torsion_ratio->value, s.torsion_ratio->sigma,
-                             s.constants_latitude_rad ? fmt::format(" at latitude {:.4f} deg", *s.constants_latitude_rad / kDeg) : "")});
+    h.push_back(
+        {"torsion ratio lambda (given)",
+         fmt::format("{:.5f} (sigma {:.5f}){}", s.torsion_ratio->value, s.torsion_ratio->sigma,
+                     s.constants_latitude_rad
+                         ? fmt::format(" at latitude {:.4f} deg",
+                                       *s.constants_latitude_rad / units::kDegree)
+                         : "")});
   h.push_back({"torsion ratio lambda at the station",
                fmt::format("{:.5f} (sigma {:.5f})", at_station.torsion_ratio.value, at_station.torsion_ratio.sigma)});
   if (at_station.transit_factor_rad_per_div_s)
     h.push_back({"calibrated transit factor c",
-                 fmt::format("{:.4f}\"/(div s)", at_station.transit_factor_rad_per_div_s->value / kArcsec)});
+                 fmt::format("{:.4f}\"/(div s)",
+                             at_station.transit_factor_rad_per_div_s->value / units::kArcsecond)});
   h.push_back({"observation sigma", fmt::format("time {} s, scale reading {} div", s.sigma_time_s, s.sigma_reading_div)});
   h.push_back({"accuracy class", fmt::format("{}\"", s.accuracy_class_arcsec)});
   return h;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "json_number.hpp"
 #include "meridian/core/dms.hpp"
 #include "meridian/core/units.hpp"
 
@@ -9,36 +10,36 @@ namespace meridian::report {
 namespace {
 
 using nlohmann::json;
-constexpr double kArcsec = units::kArcsecond;
-constexpr double kDeg = units::kDegree;
 
-json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-json arcsec(double rad) { return num(rad / kArcsec); }
+using detail::json_number;
+json arcsec(double rad) { return json_number(rad / units::kArcsecond); }
 json uncertain(const gyro::Uncertain& u, double scale = 1.0) {
-  return {{"value", num(u.value / scale)}, {"sigma", num(u.sigma / scale)}};
+  return {{"value", json_number(u.value / scale)}, {"sigma", json_number(u.sigma / scale)}};
 }
 json strings(const std::vector<std::string>& v) { return json(v); }
 
 json reversal_json(const gyro::ReversalResult& r, bool radians) {
-  const double s = radians ? kArcsec : 1.0;
+  const double s = radians ? units::kArcsecond : 1.0;
   json j;
   j["unit"] = radians ? "arcsec" : "div";
-  j["centre"] = radians ? json{{"value_deg", num(r.centre.value / kDeg)}, {"sigma_arcsec", num(r.centre.sigma / kArcsec)}}
+  j["centre"] = radians ? json{{"value_deg", json_number(r.centre.value / units::kDegree)},
+                               {"sigma_arcsec", json_number(r.centre.sigma / units::kArcsecond)}}
                         : uncertain(r.centre);
   if (r.amplitude) j["amplitude"] = uncertain(*r.amplitude, s);
   if (r.damping) j["damping"] = r.method == gyro::ReversalMethod::NonlinearLsq
                                     ? uncertain(*r.damping)
                                     : uncertain(*r.damping, s);
-  j["cofactor_centre"] = num(r.cofactor_centre);
+  j["cofactor_centre"] = json_number(r.cofactor_centre);
   j["dof"] = r.dof;
-  j["sigma0"] = num(r.sigma0 / s);
+  j["sigma0"] = json_number(r.sigma0 / s);
   j["sigma_is_aposteriori"] = r.sigma_is_aposteriori;
   json res = json::array();
-  for (double v : r.residuals) res.push_back(num(v / s));
+  for (double v : r.residuals) res.push_back(json_number(v / s));
   j["residuals"] = res;
   if (!r.partial_means.empty()) {
     json pm = json::array();
-    for (double v : r.partial_means) pm.push_back(radians ? num(v / kDeg) : num(v));
+    for (double v : r.partial_means)
+      pm.push_back(radians ? json_number(v / units::kDegree) : json_number(v));
     j["partial_means"] = pm;
   }
   j["notes"] = strings(r.notes);
@@ -46,17 +47,22 @@ json reversal_json(const gyro::ReversalResult& r, bool radians) {
 }
 
 json az(const gyro::Uncertain& u) {
-  return json{{"deg", num(u.value / kDeg)},
+  return json{{"deg", json_number(u.value / units::kDegree)},
               {"dms", format_direction_dms(Angle::radians(u.value), {2, true, false})},
-              {"sigma_arcsec", num(u.sigma / kArcsec)}};
+              {"sigma_arcsec", json_number(u.sigma / units::kArcsecond)}};
 }
 
 json checks_json(const std::vector<gyro::Check>& checks) {
   json a = json::array();
   for (const auto& k : checks)
-    a.push_back({{"name", k.name},           {"value", num(k.value)}, {"tolerance", num(k.tolerance)},
-                 {"unit", gyro::to_string(k.unit)}, {"pass", k.pass},          {"minimum", k.minimum},
-                 {"signed_value", k.signed_value}, {"source", k.source}});
+    a.push_back({{"name", k.name},
+                 {"value", json_number(k.value)},
+                 {"tolerance", json_number(k.tolerance)},
+                 {"unit", gyro::to_string(k.unit)},
+                 {"pass", k.pass},
+                 {"minimum", k.minimum},
+                 {"signed_value", k.signed_value},
+                 {"source", k.source}});
   return a;
 }
 
@@ -65,7 +71,7 @@ json checks_json(const std::vector<gyro::Check>& checks) {
 json method_to_json(const gyro::MethodResult& r, gyro::Mode mode) {
   json j;
   j["method"] = gyro::to_string(r.method);
-  j["north_reading_deg"] = num(r.north.north_rad / kDeg);
+  j["north_reading_deg"] = json_number(r.north.north_rad / units::kDegree);
   j["north_reading_dms"] = format_direction_dms(Angle::radians(r.north.north_rad), {2, true, false});
   j["sigma_arcsec"] = arcsec(r.north.sigma_rad);
   j["zero_position_correction_arcsec"] = arcsec(r.north.zero_correction_rad);
@@ -73,13 +79,14 @@ json method_to_json(const gyro::MethodResult& r, gyro::Mode mode) {
     j["delta_n_arcsec"] = arcsec(r.north.delta_n_rad);
     if (r.beta) {
       const auto& b = *r.beta;
-      j["beta_div"] = num(b.beta_div.value);
-      j["beta_sigma_div"] = num(b.beta_div.sigma);
-      j["approximation_error_div"] = num(b.approximation_error_div);
+      j["beta_div"] = json_number(b.beta_div.value);
+      j["beta_sigma_div"] = json_number(b.beta_div.sigma);
+      j["approximation_error_div"] = json_number(b.approximation_error_div);
       j["approximation_error_arcsec"] = arcsec(r.approximation_error_rad);
       if (b.amplitude_div) j["amplitude_div"] = uncertain(*b.amplitude_div);
       if (b.period_s) j["period_s"] = uncertain(*b.period_s);
-      if (b.transit_delta_n_rad) j["transit_delta_n_arcsec"] = uncertain(*b.transit_delta_n_rad, kArcsec);
+      if (b.transit_delta_n_rad)
+        j["transit_delta_n_arcsec"] = uncertain(*b.transit_delta_n_rad, units::kArcsecond);
       j["warnings"] = strings(b.warnings);
       j["assumptions"] = strings(b.assumptions);
     }
@@ -88,19 +95,20 @@ json method_to_json(const gyro::MethodResult& r, gyro::Mode mode) {
       json fit;
       fit["t0_s"] = uncertain(f.t0_s);
       fit["damping_per_s"] = uncertain(f.damping_per_s);
-      fit["sigma0"] = num(f.sigma0);
+      fit["sigma0"] = json_number(f.sigma0);
       fit["dof"] = f.dof;
       fit["iterations"] = f.iterations;
       json res = json::array();
       for (const auto& v : f.residuals)
-        res.push_back({{"kind", v.kind == gyro::UnifiedFitResidual::Kind::CrossingTime ? "crossing_time_s"
-                                                                                      : "reversal_div"},
-                       {"group", v.group},
-                       {"index", v.index},
-                       {"observed", num(v.observed)},
-                       {"residual", num(v.residual)},
-                       {"standardized", num(v.standardized)},
-                       {"redundancy", num(v.redundancy)}});
+        res.push_back(
+            {{"kind", v.kind == gyro::UnifiedFitResidual::Kind::CrossingTime ? "crossing_time_s"
+                                                                             : "reversal_div"},
+             {"group", v.group},
+             {"index", v.index},
+             {"observed", json_number(v.observed)},
+             {"residual", json_number(v.residual)},
+             {"standardized", json_number(v.standardized)},
+             {"redundancy", json_number(v.redundancy)}});
       fit["residuals"] = res;
       j["fit"] = fit;
     }
@@ -132,7 +140,7 @@ json determination_to_json(const gyro::DeterminationResult& r) {
     if (z.before) zj["before"] = reversal_json(z.before->fit, false);
     if (z.after) zj["after"] = reversal_json(z.after->fit, false);
     zj["mean_div"] = uncertain(z.mean_div);
-    zj["difference_div"] = z.difference_div ? num(*z.difference_div) : json(nullptr);
+    zj["difference_div"] = z.difference_div ? json_number(*z.difference_div) : json(nullptr);
     zj["tolerance_div"] = z.tolerance_div;
     zj["within_tolerance"] = z.within_tolerance;
     j["zero_position_runs"] = zj;
@@ -170,24 +178,24 @@ json orientations_to_json(const gyro::OrientationsResult& r) {
 }
 
 json transit_factor_to_json(const gyro::TransitFactorCalibration& c) {
-  return {{"transit_factor_arcsec_per_div_s", c.factor_rad_per_div_s.value / kArcsec},
-          {"sigma_arcsec_per_div_s", c.factor_rad_per_div_s.sigma / kArcsec},
-          {"computed_arcsec_per_div_s", c.computed_rad_per_div_s / kArcsec},
+  return {{"transit_factor_arcsec_per_div_s", c.factor_rad_per_div_s.value / units::kArcsecond},
+          {"sigma_arcsec_per_div_s", c.factor_rad_per_div_s.sigma / units::kArcsecond},
+          {"computed_arcsec_per_div_s", c.computed_rad_per_div_s / units::kArcsecond},
           {"amplitudes_div", {c.amplitude1_div.value, c.amplitude2_div.value}},
           {"time_differences_s", {c.dt1_s.value, c.dt2_s.value}},
-          {"north_reading_deg", c.north_rad / kDeg},
+          {"north_reading_deg", c.north_rad / units::kDegree},
           {"notes", c.notes}};
 }
 
 json campaign_to_json(const gyro::CampaignResult& r) {
   auto point = [](const gyro::PointResult& p) {
     return json{{"name", p.name},
-                {"latitude_deg", num(p.lat_rad / kDeg)},
-                {"longitude_deg", num(p.lon_rad / kDeg)},
-                {"x_m", num(p.grid.x_north_m)},
-                {"y_m", num(p.grid.y_east_m)},
-                {"convergence_arcsec", num(p.grid.convergence_rad / kArcsec)},
-                {"scale", num(p.grid.scale)}};
+                {"latitude_deg", json_number(p.lat_rad / units::kDegree)},
+                {"longitude_deg", json_number(p.lon_rad / units::kDegree)},
+                {"x_m", json_number(p.grid.x_north_m)},
+                {"y_m", json_number(p.grid.y_east_m)},
+                {"convergence_arcsec", json_number(p.grid.convergence_rad / units::kArcsecond)},
+                {"scale", json_number(p.grid.scale)}};
   };
   json j;
   j["campaign"] = r.name;
@@ -216,14 +224,14 @@ json campaign_to_json(const gyro::CampaignResult& r) {
     k["before"] = dets(r.known_before, r.known_gyro_azimuths_before);
     k["after"] = dets(r.known_after, r.known_gyro_azimuths_after);
     json eb = json::array(), ea = json::array();
-    for (const auto& x : e.before) eb.push_back(uncertain(x, kArcsec));
-    for (const auto& x : e.after) ea.push_back(uncertain(x, kArcsec));
+    for (const auto& x : e.before) eb.push_back(uncertain(x, units::kArcsecond));
+    for (const auto& x : e.after) ea.push_back(uncertain(x, units::kArcsecond));
     k["instrument_constants_before_arcsec"] = eb;
     k["instrument_constants_after_arcsec"] = ea;
     k["difference_arcsec"] = e.difference_rad ? arcsec(*e.difference_rad) : json(nullptr);
     j["calibration"] = k;
   }
-  j["instrument_constant_arcsec"] = uncertain(r.instrument_constant_used_rad, kArcsec);
+  j["instrument_constant_arcsec"] = uncertain(r.instrument_constant_used_rad, units::kArcsecond);
   j["determinations"] = dets(r.determinations, r.gyro_azimuths);
   j["gyro_azimuth_mean"] = az(r.gyro_azimuth_mean.mean);
   j["gyro_azimuth_mean"]["sigma_propagated_arcsec"] = arcsec(r.gyro_azimuth_mean.sigma_propagated);
@@ -232,7 +240,8 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   j["astronomic_azimuth"] = az(c.astronomic_azimuth_rad);
   j["laplace_correction_arcsec"] = c.laplace_applied ? arcsec(c.laplace_correction_rad) : json(nullptr);
   j["zenith_distance_term_arcsec"] = c.zenith_term_applied ? arcsec(c.zenith_correction_rad) : json(nullptr);
-  j["zenith_distance_deg"] = c.zenith_distance_rad ? num(*c.zenith_distance_rad / kDeg) : json(nullptr);
+  j["zenith_distance_deg"] =
+      c.zenith_distance_rad ? json_number(*c.zenith_distance_rad / units::kDegree) : json(nullptr);
   j["geodetic_azimuth"] = az(c.geodetic_azimuth_rad);
   j["convergence_arcsec"] = arcsec(c.convergence_rad);
   j["arc_to_chord_arcsec"] = c.arc_to_chord_applied ? arcsec(c.arc_to_chord_rad) : json(nullptr);

@@ -14,9 +14,8 @@
 namespace meridian::report::gyro_plots {
 namespace {
 
-using nlohmann::json;
 using fmtx::num;
-constexpr double kArcsec = units::kArcsecond;
+using nlohmann::json;
 constexpr int kPlotWidth = 620;
 
 json axis(const char* field, const char* title, bool zero = false) {
@@ -186,8 +185,9 @@ Plot fit_residual_plot(const gyro::UnifiedFitResult& f) {
 Plot methods_plot(const gyro::DeterminationResult& r) {
   json v = json::array();
   for (const auto& m : r.all) {
-    const double d = wrap_signed_rad(m.north.north_rad - r.primary.north.north_rad) / kArcsec;
-    const double s = std::isfinite(m.north.sigma_rad) ? m.north.sigma_rad / kArcsec : 0.0;
+    const double d =
+        wrap_signed_rad(m.north.north_rad - r.primary.north.north_rad) / units::kArcsecond;
+    const double s = std::isfinite(m.north.sigma_rad) ? m.north.sigma_rad / units::kArcsecond : 0.0;
     v.push_back({{"method", gyro::to_string(m.method)}, {"d", d}, {"lo", d - s}, {"hi", d + s}});
   }
   json spec = {{"width", kPlotWidth},
@@ -212,8 +212,8 @@ Plot tracking_plot(const gyro::DeterminationInput& in, const gyro::ReversalResul
   const double m = fit.centre.value;
   json v = json::array();
   for (std::size_t i = 0; i < r.size(); ++i) {
-    const double obs = wrap_signed_rad(r[i] - m) / kArcsec;
-    const double res = i < fit.residuals.size() ? fit.residuals[i] / kArcsec : 0.0;
+    const double obs = wrap_signed_rad(r[i] - m) / units::kArcsecond;
+    const double res = i < fit.residuals.size() ? fit.residuals[i] / units::kArcsecond : 0.0;
     v.push_back({{"i", static_cast<int>(i + 1)}, {"obs", obs}, {"fitted", obs + res}, {"v", res}});
   }
   json spec = {{"width", kPlotWidth},
@@ -239,7 +239,7 @@ Plot tracking_plot(const gyro::DeterminationInput& in, const gyro::ReversalResul
 Plot tracking_residual_plot(const gyro::ReversalResult& fit) {
   json v = json::array();
   for (std::size_t i = 0; i < fit.residuals.size(); ++i)
-    v.push_back({{"i", static_cast<int>(i + 1)}, {"v", fit.residuals[i] / kArcsec}});
+    v.push_back({{"i", static_cast<int>(i + 1)}, {"v", fit.residuals[i] / units::kArcsecond}});
   json spec = {{"width", kPlotWidth},
                {"height", 150},
                {"layer",
@@ -251,9 +251,11 @@ Plot tracking_residual_plot(const gyro::ReversalResult& fit) {
                               {"encoding", {{"x", index_axis("i", "reversal")},
                                             {"y", axis("v", "residual v (arcsec)", true)},
                                             {"tooltip", json::array({{{"field", "i"}}, {{"field", "v"}}})}}}}})}};
-  return {"Tracking: residuals", spec,
-          fmt::format("v = fitted - observed for the {} fit; sigma0 = {} arcsec with {} degrees of freedom.",
-                      gyro::to_string(fit.method), num(fit.sigma0 / kArcsec, 2), fit.dof)};
+  return {
+      "Tracking: residuals", spec,
+      fmt::format(
+          "v = fitted - observed for the {} fit; sigma0 = {} arcsec with {} degrees of freedom.",
+          gyro::to_string(fit.method), num(fit.sigma0 / units::kArcsecond, 2), fit.dof)};
 }
 
 Plot zero_position_plot(const gyro::DeterminationInput& in, const gyro::ZeroPositionSummary& z) {
@@ -291,11 +293,11 @@ Plot spread_plot(const std::string& title, const std::vector<std::string>& label
                  const std::string& x_title, const std::string& caption) {
   json v = json::array();
   for (std::size_t i = 0; i < values.size(); ++i) {
-    const double d = wrap_signed_rad(values[i].value - mean) / kArcsec;
-    const double s = values[i].sigma / kArcsec;
+    const double d = wrap_signed_rad(values[i].value - mean) / units::kArcsecond;
+    const double s = values[i].sigma / units::kArcsecond;
     v.push_back({{"label", labels[i]}, {"d", d}, {"lo", d - s}, {"hi", d + s}});
   }
-  const double ms = mean_sigma / kArcsec;
+  const double ms = mean_sigma / units::kArcsecond;
   json band = json::array({{{"lo", -ms}, {"hi", ms}}});
   json spec = {{"width", kPlotWidth},
                {"height", 28 * static_cast<int>(values.size()) + 20},

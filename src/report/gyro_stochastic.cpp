@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "json_number.hpp"
 #include "meridian/core/angle.hpp"
 #include "meridian/core/dms.hpp"
 #include "meridian/core/units.hpp"
@@ -12,11 +13,11 @@
 namespace meridian::report {
 namespace {
 
-nlohmann::json num(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
+using detail::json_number;
 
 nlohmann::json nums(const std::vector<double>& v) {
   nlohmann::json a = nlohmann::json::array();
-  for (double x : v) a.push_back(num(x));
+  for (double x : v) a.push_back(json_number(x));
   return a;
 }
 
@@ -53,38 +54,38 @@ nlohmann::json stochastic_to_json(const std::string& file, const gyro::Stochasti
         {"tests", nlohmann::json::array()},
         {"notes", s.result.notes},
         {"warnings", s.result.warnings},
-        {"booked_sigma_reading_" + u, num(s.input.booked_sigma)},
-        {"r2_misfit_rms_" + u, num(s.result.r2_misfit_rms)}};
+        {"booked_sigma_reading_" + u, json_number(s.input.booked_sigma)},
+        {"r2_misfit_rms_" + u, json_number(s.result.r2_misfit_rms)}};
     for (const auto& m : s.result.models) {
       nlohmann::json jm{{"name", gyro::to_string(m.model)}};
       if (s.tracking) {
         jm["north_reading_deg"] = north_deg(s, m.north.value);
         jm["north_reading_dms"] = north_dms(s, m.north.value);
-        jm["sigma_north_arcsec"] = num(m.north.sigma);
+        jm["sigma_north_arcsec"] = json_number(m.north.sigma);
       } else {
-        jm["zero_position_div"] = num(m.north.value);
-        jm["sigma_zero_position_div"] = num(m.north.sigma);
+        jm["zero_position_div"] = json_number(m.north.value);
+        jm["sigma_zero_position_div"] = json_number(m.north.sigma);
       }
-      jm["amplitude_" + u] = num(m.amplitude.value);
-      jm["sigma_amplitude_" + u] = num(m.amplitude.sigma);
+      jm["amplitude_" + u] = json_number(m.amplitude.value);
+      jm["sigma_amplitude_" + u] = json_number(m.amplitude.sigma);
       jm["rho"] = nums(m.rho);
       jm["rho_sigma"] = nums(m.rho_sigma);
       if (m.shape.empty()) {
         jm["shape"] = nullptr;
       } else {
-        nlohmann::json sh{{"b_lags", num(m.shape[0])}};
-        if (m.shape.size() > 1) sh["omega_rad_per_lag"] = num(m.shape[1]);
+        nlohmann::json sh{{"b_lags", json_number(m.shape[0])}};
+        if (m.shape.size() > 1) sh["omega_rad_per_lag"] = json_number(m.shape[1]);
         jm["shape"] = sh;
       }
-      jm["sigma1_" + u] = num(m.sigma1.value);
-      jm["sigma1_sigma_" + u] = num(m.sigma1.sigma);
-      jm["sigma2_" + u] = num(m.sigma2.value);
-      jm["sigma2_sigma_" + u] = num(m.sigma2.sigma);
-      jm["signal_influence_" + u] = num(m.signal_influence(0));
-      jm["signal_influence_amplitude_" + u] = num(m.signal_influence(1));
-      jm["log_likelihood"] = num(m.log_likelihood);
-      jm["aic"] = num(m.aic);
-      jm["bic"] = num(m.bic);
+      jm["sigma1_" + u] = json_number(m.sigma1.value);
+      jm["sigma1_sigma_" + u] = json_number(m.sigma1.sigma);
+      jm["sigma2_" + u] = json_number(m.sigma2.value);
+      jm["sigma2_sigma_" + u] = json_number(m.sigma2.sigma);
+      jm["signal_influence_" + u] = json_number(m.signal_influence(0));
+      jm["signal_influence_amplitude_" + u] = json_number(m.signal_influence(1));
+      jm["log_likelihood"] = json_number(m.log_likelihood);
+      jm["aic"] = json_number(m.aic);
+      jm["bic"] = json_number(m.bic);
       jm["covariance_parameters"] = m.covariance_parameters;
       jm["vce_iterations"] = m.vce_iterations;
       jm["recommended"] = m.recommended;
@@ -97,9 +98,9 @@ nlohmann::json stochastic_to_json(const std::string& file, const gyro::Stochasti
     for (const auto& t : s.result.tests)
       js["tests"].push_back({{"null", gyro::to_string(t.null_model)},
                              {"alternative", gyro::to_string(t.alternative)},
-                             {"statistic", num(t.statistic)},
+                             {"statistic", json_number(t.statistic)},
                              {"dof", t.dof},
-                             {"p_value", num(t.p_value)},
+                             {"p_value", json_number(t.p_value)},
                              {"rejected", t.rejected}});
     out["series"].push_back(js);
   }
@@ -239,11 +240,13 @@ Document stochastic_document(const std::string& file, const gyro::StochasticBook
     const std::size_t lags = static_cast<std::size_t>(std::max(2, res.readings / 2)) + 1;
     json values = json::array();
     for (std::size_t k = 0; k < lags && k < res.residual_autocorrelation.size(); ++k)
-      values.push_back({{"lag", k}, {"r", num(res.residual_autocorrelation[k])},
+      values.push_back({{"lag", k},
+                        {"r", json_number(res.residual_autocorrelation[k])},
                         {"model", "OLS residuals"}});
     for (const auto& m : res.models)
       for (std::size_t k = 0; k < lags && k < m.implied_autocorrelation.size(); ++k)
-        values.push_back({{"lag", k}, {"r", num(m.implied_autocorrelation[k])},
+        values.push_back({{"lag", k},
+                          {"r", json_number(m.implied_autocorrelation[k])},
                           {"model", gyro::to_string(m.model)}});
     json acf = {
         {"width", 600},

@@ -11,9 +11,6 @@
 namespace meridian::report {
 namespace {
 
-constexpr double kArcsec = units::kArcsecond;
-
-
 void method_line(std::string& out, const gyro::MethodResult& m, const AngleFormat& f) {
   out += fmt::format("  {:<18} N_G {:>15}  sigma {:>7}\n", gyro::to_string(m.method), f.dir(m.north.north_rad),
                      f.sig(m.north.sigma_rad));
@@ -31,7 +28,8 @@ std::string determination_text(const gyro::DeterminationResult& r, int index, co
                          m.beta->beta_div.value, f.sec(m.north.delta_n_rad, 3), f.dir(m.north.north_rad, 2),
                          f.sig(m.north.sigma_rad));
       if (m.approximation_error_rad != 0.0)
-        out += fmt::format("  approximation error {:+.3f}\"", m.approximation_error_rad / kArcsec);
+        out += fmt::format("  approximation error {:+.3f}\"",
+                           m.approximation_error_rad / units::kArcsecond);
       out += "\n";
     } else {
       method_line(out, m, f);
@@ -66,8 +64,9 @@ std::string check_text(const gyro::Check& k) {
 
 std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, const AngleFormat& f) {
   const gyro::Instrument& inst = r.instrument.instrument;
-  std::string out = fmt::format("{}: {} determination(s), lambda = {:.5f}, tau = {:.1f}\"/div\n", file,
-                                r.determinations.size(), inst.torsion_ratio.value, inst.scale_value_rad / kArcsec);
+  std::string out = fmt::format("{}: {} determination(s), lambda = {:.5f}, tau = {:.1f}\"/div\n",
+                                file, r.determinations.size(), inst.torsion_ratio.value,
+                                inst.scale_value_rad / units::kArcsecond);
   for (const auto& n : r.instrument.notes) out += "  note: " + n + "\n";
   for (std::size_t i = 0; i < r.determinations.size(); ++i)
     out += determination_text(r.determinations[i], static_cast<int>(i), f);
@@ -89,9 +88,11 @@ std::string orientations_text(const std::vector<std::string>& files, const gyro:
 
 std::string transit_factor_text(const gyro::TransitFactorCalibration& c) {
   std::string out = fmt::format("transit factor c = {:.4f} \"/(div s)  sigma {:.4f}\n",
-                                c.factor_rad_per_div_s.value / kArcsec, c.factor_rad_per_div_s.sigma / kArcsec);
+                                c.factor_rad_per_div_s.value / units::kArcsecond,
+                                c.factor_rad_per_div_s.sigma / units::kArcsecond);
   if (c.computed_rad_per_div_s > 0)
-    out += fmt::format("computed (1+lambda) tau pi/(2 T_B) = {:.4f} \"/(div s)\n", c.computed_rad_per_div_s / kArcsec);
+    out += fmt::format("computed (1+lambda) tau pi/(2 T_B) = {:.4f} \"/(div s)\n",
+                       c.computed_rad_per_div_s / units::kArcsecond);
   out += fmt::format("B1 = {:.3f} div, dt1 = {:+.3f} s; B2 = {:.3f} div, dt2 = {:+.3f} s\n", c.amplitude1_div.value,
                      c.dt1_s.value, c.amplitude2_div.value, c.dt2_s.value);
   out += "gyro north N = " + format_direction_dms(Angle::radians(c.north_rad)) + "\n";

@@ -12,16 +12,15 @@
 namespace meridian::report {
 namespace {
 using nlohmann::json;
-double as(double rad) { return units::rad_to_arcsec(rad); }
 
 constexpr std::size_t kMaxPoints = 2000;
 
 std::string solution_text(const maglev::TwoPositionSolution& s) {
   return fmt::format("α1 {} ± {:.3f}\", N_G {} ± {:.3f}\", b {:.9g} A",
                      format_dms(Angle::radians(s.alpha1_rad.value), {3, true, true}),
-                     as(s.alpha1_rad.sigma),
+                     units::rad_to_arcsec(s.alpha1_rad.sigma),
                      format_direction_dms(Angle::radians(s.north_rad.value), {3, true, false}),
-                     as(s.north_rad.sigma), s.bias_A.value);
+                     units::rad_to_arcsec(s.north_rad.sigma), s.bias_A.value);
 }
 
 Plot series_plot(const char* name, const maglev::PositionResult& p,
@@ -95,23 +94,23 @@ Document maglev_reduce_document(const maglev::ReduceResult& r, const maglev::Red
       "α1 (processed)",
       fmt::format("{} ± {:.3f}\"",
                   format_dms(Angle::radians(r.processed.alpha1_rad.value), {3, true, true}),
-                  as(r.processed.alpha1_rad.sigma)),
+                  units::rad_to_arcsec(r.processed.alpha1_rad.sigma)),
       "spin axis east of north at position 1", false});
   res.blocks.push_back(Highlight{
       "gyro north N_G",
       fmt::format(
           "{} ± {:.3f}\"",
           format_direction_dms(Angle::radians(r.processed.north_rad.value), {3, true, false}),
-          as(r.processed.north_rad.sigma)),
+          units::rad_to_arcsec(r.processed.north_rad.sigma)),
       "N_G = r1 − α1", false});
   KeyValueList kv{"Estimators side by side", {}};
   kv.items.push_back({"processed (cleaned kept means)", solution_text(r.processed)});
   kv.items.push_back({"plain means of all samples", solution_text(r.plain)});
   if (r.median) kv.items.push_back({"medians of kept samples", solution_text(*r.median)});
   if (r.huber) kv.items.push_back({"Huber means of kept samples", solution_text(*r.huber)});
-  kv.items.push_back(
-      {"processed − plain",
-       fmt::format("{:+.3f}\"", as(r.processed.alpha1_rad.value - r.plain.alpha1_rad.value))});
+  kv.items.push_back({"processed − plain",
+                      fmt::format("{:+.3f}\"", units::rad_to_arcsec(r.processed.alpha1_rad.value -
+                                                                    r.plain.alpha1_rad.value))});
   res.blocks.push_back(kv);
   if (!r.notes.empty()) res.blocks.push_back(Notes{"Notes", r.notes, false});
   if (!r.warnings.empty()) res.blocks.push_back(Notes{"Warnings", r.warnings, true});
@@ -165,7 +164,7 @@ Document maglev_calibration_document(const maglev::CalibrationResult& r,
        {"best set-up azimuth α*",
         fmt::format("{} ± {:.3f}\"",
                     format_dms(Angle::radians(r.best_azimuth_rad.value), {3, true, true}),
-                    as(r.best_azimuth_rad.sigma))},
+                    units::rad_to_arcsec(r.best_azimuth_rad.sigma))},
        {"constant deviation I*", fmt::format("{:.6e} ± {:.3g} A", r.constant_deviation_A.value,
                                              r.constant_deviation_A.sigma)},
        {"K from the slopes", fmt::format("{:.6f} ± {:.4f} A·s/rad", r.scale_A_s_per_rad.value,

@@ -5,13 +5,12 @@
 namespace meridian::report {
 namespace {
 using nlohmann::json;
-double as(double rad) { return units::rad_to_arcsec(rad); }
 
 json solution(const maglev::TwoPositionSolution& s) {
-  return {{"alpha1_arcsec", as(s.alpha1_rad.value)},
-          {"alpha1_sigma_arcsec", as(s.alpha1_rad.sigma)},
+  return {{"alpha1_arcsec", units::rad_to_arcsec(s.alpha1_rad.value)},
+          {"alpha1_sigma_arcsec", units::rad_to_arcsec(s.alpha1_rad.sigma)},
           {"north_deg", units::rad_to_deg(s.north_rad.value)},
-          {"north_sigma_arcsec", as(s.north_rad.sigma)},
+          {"north_sigma_arcsec", units::rad_to_arcsec(s.north_rad.sigma)},
           {"bias_A", s.bias_A.value},
           {"bias_sigma_A", s.bias_A.sigma}};
 }
@@ -77,15 +76,16 @@ json maglev_reduce_to_json(const maglev::ReduceResult& r, const maglev::ReduceIn
     j["symmetry"] = {{"z", r.symmetry->z}, {"p", r.symmetry->p}, {"passed", r.symmetry->passed}};
   if (r.chain) {
     const auto& c = *r.chain;
-    j["azimuth"] = {{"gyro_deg", units::rad_to_deg(c.gyro_azimuth_rad.value)},
-                    {"gyro_sigma_arcsec", as(c.gyro_azimuth_rad.sigma)},
-                    {"astronomic_deg", units::rad_to_deg(c.astronomic_azimuth_rad.value)},
-                    {"astronomic_sigma_arcsec", as(c.astronomic_azimuth_rad.sigma)},
-                    {"geodetic_deg", units::rad_to_deg(c.geodetic_azimuth_rad.value)},
-                    {"geodetic_sigma_arcsec", as(c.geodetic_azimuth_rad.sigma)},
-                    {"grid_deg", units::rad_to_deg(c.grid_azimuth_rad.value)},
-                    {"grid_sigma_arcsec", as(c.grid_azimuth_rad.sigma)},
-                    {"notes", c.notes}};
+    j["azimuth"] = {
+        {"gyro_deg", units::rad_to_deg(c.gyro_azimuth_rad.value)},
+        {"gyro_sigma_arcsec", units::rad_to_arcsec(c.gyro_azimuth_rad.sigma)},
+        {"astronomic_deg", units::rad_to_deg(c.astronomic_azimuth_rad.value)},
+        {"astronomic_sigma_arcsec", units::rad_to_arcsec(c.astronomic_azimuth_rad.sigma)},
+        {"geodetic_deg", units::rad_to_deg(c.geodetic_azimuth_rad.value)},
+        {"geodetic_sigma_arcsec", units::rad_to_arcsec(c.geodetic_azimuth_rad.sigma)},
+        {"grid_deg", units::rad_to_deg(c.grid_azimuth_rad.value)},
+        {"grid_sigma_arcsec", units::rad_to_arcsec(c.grid_azimuth_rad.sigma)},
+        {"notes", c.notes}};
   }
   if (in.options.process && in.options.denoise) {
     const auto& d = in.options.denoising;
@@ -111,8 +111,8 @@ json maglev_calibration_to_json(const maglev::CalibrationResult& r) {
           {"trend_deviation_A", r.trend_deviation_A_per_rad.value},
           {"trend_deviation_sigma_A", r.trend_deviation_A_per_rad.sigma},
           {"trend_significant", r.trend_significant},
-          {"best_azimuth_arcsec", as(r.best_azimuth_rad.value)},
-          {"best_azimuth_sigma_arcsec", as(r.best_azimuth_rad.sigma)},
+          {"best_azimuth_arcsec", units::rad_to_arcsec(r.best_azimuth_rad.value)},
+          {"best_azimuth_sigma_arcsec", units::rad_to_arcsec(r.best_azimuth_rad.sigma)},
           {"constant_deviation_A", r.constant_deviation_A.value},
           {"constant_deviation_sigma_A", r.constant_deviation_A.sigma},
           {"scale_A_s_per_rad", r.scale_A_s_per_rad.value},

@@ -10,14 +10,13 @@
 
 namespace meridian::report {
 namespace {
-double as(double rad) { return units::rad_to_arcsec(rad); }
 
 std::string solution_line(const char* name, const maglev::TwoPositionSolution& s) {
   return fmt::format("  {:<22} α1 = {:>14} ± {:.3f}\"   N_G = {} ± {:.3f}\"   b = {:.9g} A\n", name,
                      format_dms(Angle::radians(s.alpha1_rad.value), {3, true, true}),
-                     as(s.alpha1_rad.sigma),
+                     units::rad_to_arcsec(s.alpha1_rad.sigma),
                      format_direction_dms(Angle::radians(s.north_rad.value), {3, true, false}),
-                     as(s.north_rad.sigma), s.bias_A.value);
+                     units::rad_to_arcsec(s.north_rad.sigma), s.bias_A.value);
 }
 
 std::string position_block(const char* name, const maglev::PositionResult& p) {
@@ -59,7 +58,7 @@ std::string maglev_reduce_text(const maglev::ReduceResult& r) {
   if (r.median) out += solution_line("medians", *r.median);
   if (r.huber) out += solution_line("Huber means", *r.huber);
   out += fmt::format("  processed − plain: {:+.3f}\"\n",
-                     as(r.processed.alpha1_rad.value - r.plain.alpha1_rad.value));
+                     units::rad_to_arcsec(r.processed.alpha1_rad.value - r.plain.alpha1_rad.value));
   if (r.symmetry)
     out += fmt::format("symmetry about the prior bias: z = {:.2f}, p = {:.3f} ({})\n",
                        r.symmetry->z, r.symmetry->p, r.symmetry->passed ? "passed" : "FAILED");
@@ -69,13 +68,13 @@ std::string maglev_reduce_text(const maglev::ReduceResult& r) {
         "gyro azimuth A_G {} ± {:.2f}\"\nastronomic A     {} ± {:.2f}\"\ngeodetic α       {} ± "
         "{:.2f}\"\ngrid T           {} ± {:.2f}\"\n",
         format_direction_dms(Angle::radians(c.gyro_azimuth_rad.value)),
-        as(c.gyro_azimuth_rad.sigma),
+        units::rad_to_arcsec(c.gyro_azimuth_rad.sigma),
         format_direction_dms(Angle::radians(c.astronomic_azimuth_rad.value)),
-        as(c.astronomic_azimuth_rad.sigma),
+        units::rad_to_arcsec(c.astronomic_azimuth_rad.sigma),
         format_direction_dms(Angle::radians(c.geodetic_azimuth_rad.value)),
-        as(c.geodetic_azimuth_rad.sigma),
+        units::rad_to_arcsec(c.geodetic_azimuth_rad.sigma),
         format_direction_dms(Angle::radians(c.grid_azimuth_rad.value)),
-        as(c.grid_azimuth_rad.sigma));
+        units::rad_to_arcsec(c.grid_azimuth_rad.sigma));
     for (const auto& n : c.notes) out += "note: " + n + "\n";
   }
   for (const auto& n : r.notes) out += "note: " + n + "\n";
@@ -98,7 +97,7 @@ std::string maglev_calibration_text(const maglev::CalibrationResult& r) {
                      r.trend_z, r.trend_significant ? "significant" : "not significant");
   out += fmt::format("best set-up azimuth α* = {} ± {:.3f}\"\n",
                      format_dms(Angle::radians(r.best_azimuth_rad.value), {3, true, true}),
-                     as(r.best_azimuth_rad.sigma));
+                     units::rad_to_arcsec(r.best_azimuth_rad.sigma));
   out += fmt::format("constant deviation  I* = {:.6e} ± {:.3g} A\n", r.constant_deviation_A.value,
                      r.constant_deviation_A.sigma);
   out += fmt::format("scale from slopes   K  = {:.6f} ± {:.4f} A·s/rad\n",

@@ -9,9 +9,11 @@
 #include "meridian/adjust/likelihood.hpp"
 #include "meridian/core/error.hpp"
 
-#include "random_matrix.hpp"
+#include "adjust_test_support.hpp"
 
 namespace {
+
+using meridian_test::random_spd;
 
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -23,22 +25,14 @@ using meridian::adjust::reml_fisher_information;
 
 constexpr double kLog2Pi = 1.8378770664093454836;
 
-MatrixXd random_spd(Index n, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> U(-1.0, 1.0);
-  MatrixXd B(n, n);
-  for (Index i = 0; i < n; ++i)
-    for (Index j = 0; j < n; ++j) B(i, j) = U(rng);
-  return B * B.transpose() + 0.5 * MatrixXd::Identity(n, n);
-}
-
 using meridian_test::random_matrix;
 
-struct Dense {
+struct DenseLikelihood {
   double ml, reml;
 };
 
 // The textbook formulas with explicit inverses (Harville 1977).
-Dense dense_likelihood(const MatrixXd& A, const VectorXd& l, const MatrixXd& D) {
+DenseLikelihood dense_likelihood(const MatrixXd& A, const VectorXd& l, const MatrixXd& D) {
   const MatrixXd P = D.inverse();
   const MatrixXd N = A.transpose() * P * A;
   const VectorXd x = N.inverse() * A.transpose() * P * l;
@@ -59,7 +53,7 @@ TEST(Likelihood, MatchesDenseFormulas) {
     const VectorXd l = random_matrix(n, 1, rng);
     const MatrixXd D = random_spd(n, rng);
     const auto g = gls_log_likelihood(A, l, CovarianceFactor(D));
-    const Dense d = dense_likelihood(A, l, D);
+    const DenseLikelihood d = dense_likelihood(A, l, D);
     EXPECT_NEAR(g.ml, d.ml, 1e-10 * std::fabs(d.ml)) << trial;
     EXPECT_NEAR(g.reml, d.reml, 1e-10 * std::fabs(d.reml)) << trial;
     EXPECT_EQ(g.observations, n);

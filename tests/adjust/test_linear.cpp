@@ -8,10 +8,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "adjust_test_support.hpp"
 #include "meridian/adjust/least_squares.hpp"
 #include "meridian/core/error.hpp"
 
 namespace {
+
+using meridian_test::kNaN;
+using meridian_test::message_of;
+using meridian_test::random_spd;
 
 using meridian::InputError;
 using meridian::NumericalError;
@@ -24,19 +29,6 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using ::testing::HasSubstr;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Message of the exception thrown by f, or "" when none of type E is thrown.
-template <typename E, typename F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
-}
-
 MatrixXd line_design(const std::vector<double>& t) {
   MatrixXd A(static_cast<Index>(t.size()), 2);
   for (std::size_t i = 0; i < t.size(); ++i) {
@@ -44,15 +36,6 @@ MatrixXd line_design(const std::vector<double>& t) {
     A(static_cast<Index>(i), 1) = t[i];
   }
   return A;
-}
-
-// Random symmetric positive definite matrix with correlations.
-MatrixXd random_spd(Index n, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> U(-1.0, 1.0);
-  MatrixXd B(n, n);
-  for (Index i = 0; i < n; ++i)
-    for (Index j = 0; j < n; ++j) B(i, j) = U(rng);
-  return B * B.transpose() + 0.5 * MatrixXd::Identity(n, n);
 }
 
 // Hand-computed regression: t = 1..5, y = 2.1 3.9 6.2 7.8 10.1.

@@ -8,11 +8,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "adjust_test_support.hpp"
 #include "meridian/adjust/least_squares.hpp"
 #include "meridian/adjust/nonlinear.hpp"
 #include "meridian/core/error.hpp"
 
 namespace {
+
+using meridian_test::message_of;
 
 using meridian::InputError;
 using meridian::NumericalError;
@@ -25,16 +28,6 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using ::testing::HasSubstr;
-
-template <typename E, typename F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
-}
 
 // y = a·exp(−b·t), t = 0, 0.5, …, 6.
 VectorXd times() { return VectorXd::LinSpaced(13, 0.0, 6.0); }

@@ -9,11 +9,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "adjust_test_support.hpp"
 #include "meridian/adjust/least_squares.hpp"
 #include "meridian/adjust/statistics.hpp"
 #include "meridian/core/error.hpp"
 
 namespace {
+
+using meridian_test::kNaN;
 
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -38,7 +41,6 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
 

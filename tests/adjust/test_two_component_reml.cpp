@@ -14,7 +14,7 @@
 #include "meridian/adjust/variance_components.hpp"
 #include "meridian/core/error.hpp"
 
-#include "random_matrix.hpp"
+#include "adjust_test_support.hpp"
 
 namespace {
 

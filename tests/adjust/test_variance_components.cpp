@@ -12,9 +12,11 @@
 #include "meridian/adjust/variance_components.hpp"
 #include "meridian/core/error.hpp"
 
-#include "random_matrix.hpp"
+#include "adjust_test_support.hpp"
 
 namespace {
+
+using meridian_test::message_of;
 
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -29,16 +31,6 @@ using meridian::adjust::VarianceComponent;
 using meridian::adjust::VceMethod;
 using meridian::adjust::VceOptions;
 using ::testing::HasSubstr;
-
-template <typename E, typename F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
-}
 
 using meridian_test::random_matrix;
 

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "dov_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/dov/attitude_difference.hpp"
@@ -27,7 +28,7 @@ using meridian::dov::rotation_vector;
 using meridian::dov::skew_symmetric_part;
 namespace units = meridian::units;
 
-constexpr double kAs = units::kArcsecond;
+using meridian_test::kAs;
 
 Eigen::Matrix3d random_rotation(std::mt19937_64& rng) {
   std::normal_distribution<double> nd;

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dov_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/dov/simulator.hpp"
 #include "meridian/io/dov_files.hpp"
@@ -16,7 +17,7 @@
 namespace {
 
 using namespace meridian;
-constexpr double kAs = units::kArcsecond;
+using meridian_test::kAs;
 
 dov::Input small_line() {
   dov::SimulationOptions so;

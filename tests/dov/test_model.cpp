@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "dov_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/dov/model.hpp"
@@ -16,7 +17,7 @@ namespace {
 using meridian::InputError;
 using namespace meridian::dov;
 namespace units = meridian::units;
-constexpr double kAs = units::kArcsecond;
+using meridian_test::kAs;
 
 TEST(DovModel, ObservationMatrixIsTheSpecs) {
   // spec §4: H = [[1,0,0,0,0,0,0,1], [0,1,0,0,0,0,−1,0]], in the state order of §3.

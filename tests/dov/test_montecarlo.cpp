@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dov_test_support.hpp"
 #include "meridian/dov/deflection.hpp"
 #include "meridian/dov/simulator.hpp"
 #include "meridian/filter/consistency.hpp"
@@ -23,7 +24,7 @@ using namespace meridian::dov;
 using meridian::filter::ConsistencyRun;
 using meridian::filter::MonteCarloConsistency;
 namespace units = meridian::units;
-constexpr double kAs = units::kArcsecond;
+using meridian_test::kAs;
 constexpr int kSeeds = 50;
 constexpr double kCheckEvery_s = 600.0;
 

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "dov_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/progress.hpp"
 #include "meridian/dov/deflection.hpp"
@@ -19,7 +20,7 @@ namespace {
 using meridian::InputError;
 using namespace meridian::dov;
 namespace units = meridian::units;
-constexpr double kAs = units::kArcsecond;
+using meridian_test::kAs;
 
 Input short_line(std::uint64_t seed = 5, double duration_s = 200.0) {
   SimulationOptions so;

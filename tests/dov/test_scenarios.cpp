@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dov_test_support.hpp"
 #include "meridian/dov/deflection.hpp"
 #include "meridian/dov/simulator.hpp"
 
@@ -15,7 +16,7 @@ namespace {
 
 using namespace meridian::dov;
 namespace units = meridian::units;
-constexpr double kAs = units::kArcsecond;
+using meridian_test::kAs;
 constexpr double kDegPerHour = units::kDegree / 3600.0;
 
 void print(const std::string& name, const Summary& s) {

@@ -9,16 +9,17 @@
 #include "gravity_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gravity/gravity_circle.hpp"
+#include "test_units.hpp"
 
 namespace {
 
 using namespace gtest_gravity;
+using gtest_gravity::kDeg;
 using meridian::gravity::FieldValues;
 using meridian::gravity::GeodeticPoint;
 using meridian::gravity::GravityField;
 using meridian::gravity::GravityModelData;
 using meridian::gravity::Quantities;
-constexpr double kDeg = meridian::units::kDegree;
 
 // A model equal to the WGS84 normal gravitational field (zonal terms from
 // GeographicLib's J_n) plus one harmonic C̄_nm cos mλ + S̄_nm sin mλ; its

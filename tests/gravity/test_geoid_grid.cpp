@@ -13,12 +13,13 @@
 #include "gravity_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gravity/geoid_grid.hpp"
+#include "test_units.hpp"
 
 namespace {
 
 using namespace gtest_gravity;
+using gtest_gravity::kDeg;
 using meridian::gravity::GridInterpolation;
-constexpr double kDeg = meridian::units::kDegree;
 
 template <class T>
 void put_be(std::string& out, T v) {

@@ -7,11 +7,12 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/gravity/normal_gravity.hpp"
+#include "test_units.hpp"
 
 namespace {
 
+using gtest_gravity::kDeg;
 using meridian::gravity::NormalGravity;
-constexpr double kDeg = meridian::units::kDegree;
 
 TEST(NormalGravity, Wgs84ConstantsMatchGeographicLib) {
   const NormalGravity n(meridian::gravity::wgs84_normal_field());

@@ -18,12 +18,14 @@
 #include "meridian/gravity/points_summary.hpp"
 #include "meridian/gravity/synthetic.hpp"
 #include "meridian/gravity/thinned_sample.hpp"
+#include "test_units.hpp"
 
 namespace {
 
 using namespace meridian;
 using namespace meridian::gravity;
-constexpr double kDeg = units::kDegree, kArcsec = units::kArcsecond;
+using gtest_gravity::kArcsec;
+using gtest_gravity::kDeg;
 
 FieldValues values(double xi, double eta, double n) {
   FieldValues v{};

@@ -7,12 +7,14 @@
 #include "gravity_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gravity/track.hpp"
+#include "test_units.hpp"
 
 namespace {
 
 using namespace gtest_gravity;
+using gtest_gravity::kArcsec;
+using gtest_gravity::kDeg;
 using meridian::gravity::GeodeticPoint;
-constexpr double kDeg = meridian::units::kDegree, kArcsec = meridian::units::kArcsecond;
 
 std::vector<GeodeticPoint> wiggly_track(std::size_t n, double step_m) {
   std::vector<GeodeticPoint> t;

@@ -9,14 +9,15 @@
 
 #include "gravity_test_support.hpp"
 #include "meridian/gravity/gravity_circle.hpp"
+#include "test_units.hpp"
 
 namespace {
 
 using namespace gtest_gravity;
+using gtest_gravity::kArcsec;
 using meridian::gravity::FieldValues;
 using meridian::gravity::GravityField;
 using meridian::gravity::GravityModelData;
-constexpr double kArcsec = meridian::units::kArcsecond;
 
 struct MaxDiff {
   double xi_arcsec = 0, eta_arcsec = 0, geoid_m = 0, anomaly_m_s2 = 0, t_m2_s2 = 0;

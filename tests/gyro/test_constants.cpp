@@ -14,7 +14,7 @@ using namespace meridian::gyro;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using meridian::units::kPi;
 constexpr double kOmega = 7.292115e-5;  // spec README, written out independently
 
 // A plausible sensitive element: T_A ≈ 8 min and λ ≈ 0.3 at φ = 34°.

@@ -18,10 +18,10 @@ using namespace meridian;
 using namespace meridian::gyro;
 
 namespace {
-constexpr double kArcsec = units::kArcsecond;
-constexpr double kDeg = units::kDegree;
 
-double diff_arcsec(double a, double b) { return std::remainder(a - b, 2 * units::kPi) / kArcsec; }
+double diff_arcsec(double a, double b) {
+  return std::remainder(a - b, 2 * units::kPi) / units::kArcsecond;
+}
 
 // Run GeographicLib's own TransverseMercatorProj: returns gamma (degrees).
 double tool_convergence_deg(double lat_deg, double lon_deg, double lon0_deg, double a, double f) {
@@ -41,10 +41,12 @@ TEST(Campaign, GridAzimuthAgreesWithGeographicLibTool) {
   const auto sim = simulate_campaign(example_campaign_truth(), 11);
   const auto r = process(sim.input);
   const auto& e = sim.input.grid.ellipsoid;
-  const double gamma_tool = tool_convergence_deg(r.station.lat_rad / kDeg, r.station.lon_rad / kDeg,
-                                                 sim.input.grid.central_meridian_rad / kDeg, e.a_m, e.f);
-  const double t_independent = r.chain.geodetic_azimuth_rad.value - gamma_tool * kDeg + r.chain.arc_to_chord_rad;
+  const double gamma_tool =
+      tool_convergence_deg(r.station.lat_rad / units::kDegree, r.station.lon_rad / units::kDegree,
+                           sim.input.grid.central_meridian_rad / units::kDegree, e.a_m, e.f);
+  const double t_independent =
+      r.chain.geodetic_azimuth_rad.value - gamma_tool * units::kDegree + r.chain.arc_to_chord_rad;
   EXPECT_NEAR(diff_arcsec(r.chain.grid_azimuth_rad.value, t_independent), 0.0, 0.001);
-  EXPECT_NEAR(r.chain.convergence_rad / kDeg, gamma_tool, 0.001 / 3600);
+  EXPECT_NEAR(r.chain.convergence_rad / units::kDegree, gamma_tool, 0.001 / 3600);
 }
 

@@ -38,7 +38,6 @@ using namespace meridian;
 using namespace meridian::gyro;
 
 constexpr int kRuns = 600;
-constexpr double kArcsec = units::kArcsecond;
 
 // Errors of one method over the runs: e = estimate − truth, d = e − the
 // method's approximation error, s = reported σ (all in one unit).
@@ -90,7 +89,7 @@ struct Geometry {
 
 void run_nontracking(const Geometry& g, std::uint64_t seed) {
   Instrument inst;  // (1+λ)·τ = 780″/div converts β to ΔN in the table
-  inst.scale_value_rad = 600.0 * kArcsec;
+  inst.scale_value_rad = 600.0 * units::kArcsecond;
   inst.torsion_ratio = {0.30, 0.0};
   NonTrackingSimulation sim;  // the simulator's defaults: B 9 div, T_B 440 s, t0 50 s, k 0
   sim.beta_div = g.beta_div;
@@ -216,13 +215,13 @@ constexpr ReversalMethod kThreePoint[] = {ReversalMethod::Schuler, ReversalMetho
 
 TEST(MonteCarloTracking, StatedReadingSigma) {
   TrackingSimulation sim;
-  sim.centre_rad = (12.0 * 60.0 + 34.0) * kArcsec;  // M = 0°12′34″
-  sim.amplitude_rad = 8.0 * 600.0 * kArcsec;        // A = 8 div·τ
+  sim.centre_rad = (12.0 * 60.0 + 34.0) * units::kArcsecond;  // M = 0°12′34″
+  sim.amplitude_rad = 8.0 * 600.0 * units::kArcsecond;        // A = 8 div·τ
   sim.kappa = 0.002;
   sim.reversals = 5;
-  sim.reading_noise = NoiseModel::white(8.0 * kArcsec);
+  sim.reading_noise = NoiseModel::white(8.0 * units::kArcsecond);
   Instrument inst;
-  inst.scale_value_rad = 600.0 * kArcsec;
+  inst.scale_value_rad = 600.0 * units::kArcsecond;
   inst.torsion_ratio = {0.30, 0.0};
   std::map<std::string, Sample> stated, free;
   std::map<std::string, int> rejected;
@@ -230,7 +229,7 @@ TEST(MonteCarloTracking, StatedReadingSigma) {
     TrackingObservations obs;
     obs.reversals_rad = simulate_tracking(sim, 20262000 + static_cast<std::uint64_t>(run));
     for (ReversalMethod m : kThreePoint) {
-      obs.sigma_reading_rad = 8.0 * kArcsec;
+      obs.sigma_reading_rad = 8.0 * units::kArcsecond;
       const TrackingResult r = reduce_tracking(m, obs, inst);
       stated[to_string(m)].add(wrap_signed_rad(r.north.north_rad - sim.centre_rad), 0.0,
                                r.north.sigma_rad);
@@ -243,7 +242,7 @@ TEST(MonteCarloTracking, StatedReadingSigma) {
     }
   }
   for (const auto& [name, s] : stated) {
-    check("tracking, 5 reversals, σ 8″ stated", name, s, 1.0 / kArcsec, "″");
+    check("tracking, 5 reversals, σ 8″ stated", name, s, 1.0 / units::kArcsecond, "″");
     // The global test at α = 1 % rejects about 1 % of the runs under H0
     // (binomial 6 ± 2.4 of 600).
     std::printf("  %-34s %-18s global test rejected %d of %d runs\n",
@@ -257,8 +256,8 @@ TEST(MonteCarloTracking, StatedReadingSigma) {
   for (const auto& [name, s] : free) {
     const double ratio = s.reported() / s.scatter();
     std::printf("  %-34s %-18s σ reported %6.3f″ (a posteriori)  empirical %6.3f″  ratio %.3f\n",
-                "tracking, 5 reversals, no σ stated", name.c_str(), s.reported() / kArcsec,
-                s.scatter() / kArcsec, ratio);
+                "tracking, 5 reversals, no σ stated", name.c_str(),
+                s.reported() / units::kArcsecond, s.scatter() / units::kArcsecond, ratio);
     EXPECT_NEAR(ratio, std::sqrt(units::kPi) / 2.0, 0.06) << name;
   }
 }

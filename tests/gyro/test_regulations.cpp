@@ -20,8 +20,6 @@ using namespace meridian;
 using namespace meridian::gyro;
 
 namespace {
-constexpr double kArcsec = units::kArcsecond;
-constexpr double kDeg = units::kDegree;
 
 SimulatedCampaign clean(std::uint64_t seed = 3) {
   CampaignTruth t = example_campaign_truth();
@@ -45,27 +43,29 @@ bool has_warning(const CampaignResult& r, const std::string& text) {
 
 TEST(Regulations, LimitsFollowTheAccuracyClass) {
   const RegulationLimits c15 = regulation_limits(15);
-  EXPECT_NEAR(c15.run_difference_rad / kArcsec, 40, 1e-12);
-  EXPECT_NEAR(c15.constant_difference_rad / kArcsec, 40, 1e-12);
-  EXPECT_NEAR(c15.orientation_difference_rad / kArcsec, 40, 1e-12);
-  EXPECT_NEAR(c15.orientation_mean_sigma_rad / kArcsec, 10, 1e-12);
+  EXPECT_NEAR(c15.run_difference_rad / units::kArcsecond, 40, 1e-12);
+  EXPECT_NEAR(c15.constant_difference_rad / units::kArcsecond, 40, 1e-12);
+  EXPECT_NEAR(c15.orientation_difference_rad / units::kArcsecond, 40, 1e-12);
+  EXPECT_NEAR(c15.orientation_mean_sigma_rad / units::kArcsecond, 10, 1e-12);
   EXPECT_NEAR(c15.zero_position_div, 0.5, 0);
   const RegulationLimits c25 = regulation_limits(20);  // a 20" instrument is held to the 25" column
-  EXPECT_NEAR(c25.run_difference_rad / kArcsec, 70, 1e-12);
-  EXPECT_NEAR(c25.orientation_difference_rad / kArcsec, 60, 1e-12);
-  EXPECT_NEAR(c25.orientation_mean_sigma_rad / kArcsec, 15, 1e-12);
+  EXPECT_NEAR(c25.run_difference_rad / units::kArcsecond, 70, 1e-12);
+  EXPECT_NEAR(c25.orientation_difference_rad / units::kArcsecond, 60, 1e-12);
+  EXPECT_NEAR(c25.orientation_mean_sigma_rad / units::kArcsecond, 15, 1e-12);
   const RegulationLimits c5 = regulation_limits(5);
-  EXPECT_NEAR(c5.run_difference_rad / kArcsec, 10, 1e-12);
-  EXPECT_NEAR(c5.constant_means_rad / kArcsec, 15, 1e-12);
-  EXPECT_NEAR(regulation_limits(50).run_difference_rad / kArcsec, 140, 1e-9);  // 70" × 50/25
+  EXPECT_NEAR(c5.run_difference_rad / units::kArcsecond, 10, 1e-12);
+  EXPECT_NEAR(c5.constant_means_rad / units::kArcsecond, 15, 1e-12);
+  EXPECT_NEAR(regulation_limits(50).run_difference_rad / units::kArcsecond, 140,
+              1e-9);  // 70" × 50/25
   EXPECT_THROW(regulation_limits(0), InputError);
   Tolerances t;
-  t.instrument_constant_difference_rad = 30 * kArcsec;
+  t.instrument_constant_difference_rad = 30 * units::kArcsecond;
   const RegulationLimits o = apply_tolerances(c15, t);
-  EXPECT_NEAR(o.constant_difference_rad / kArcsec, 30, 1e-12);
-  EXPECT_NEAR(o.constant_means_rad / kArcsec, 30, 1e-12);  // the same limit for the means unless set apart
-  t.instrument_constant_means_rad = 35 * kArcsec;
-  EXPECT_NEAR(apply_tolerances(c15, t).constant_means_rad / kArcsec, 35, 1e-12);
+  EXPECT_NEAR(o.constant_difference_rad / units::kArcsecond, 30, 1e-12);
+  EXPECT_NEAR(o.constant_means_rad / units::kArcsecond, 30,
+              1e-12);  // the same limit for the means unless set apart
+  t.instrument_constant_means_rad = 35 * units::kArcsecond;
+  EXPECT_NEAR(apply_tolerances(c15, t).constant_means_rad / units::kArcsecond, 35, 1e-12);
 }
 
 TEST(Regulations, CleanCampaignPassesEveryCheck) {
@@ -84,15 +84,15 @@ TEST(Regulations, CleanCampaignPassesEveryCheck) {
   double mean = 0, vv = 0;
   for (double x : e) mean += x / static_cast<double>(e.size());
   for (double x : e) vv += (x - mean) * (x - mean);
-  EXPECT_NEAR(*r.constant_one_run_sigma_rad / kArcsec, std::sqrt(vv / static_cast<double>(e.size() - 1)) / kArcsec,
-              1e-9);
+  EXPECT_NEAR(*r.constant_one_run_sigma_rad / units::kArcsecond,
+              std::sqrt(vv / static_cast<double>(e.size() - 1)) / units::kArcsecond, 1e-9);
 }
 
 TEST(Regulations, InstrumentConstantsOfSingleRunsAreCompared) {
   // One run on the known line pointed 80" off: its E spreads from the others
   // while the before and after means still agree within 40".
   auto sim = clean();
-  sim.input.known_line->before[1].target_reading_rad->value += 80 * kArcsec;
+  sim.input.known_line->before[1].target_reading_rad->value += 80 * units::kArcsecond;
   const CampaignResult r = process(sim.input);
   const Check* runs = find_check(r, "any two runs on the known line");
   ASSERT_NE(runs, nullptr);
@@ -100,8 +100,8 @@ TEST(Regulations, InstrumentConstantsOfSingleRunsAreCompared) {
   double lo = 1e9, hi = -1e9;
   for (const auto* v : {&r.instrument_constant->before, &r.instrument_constant->after})
     for (const auto& x : *v) {
-      lo = std::min(lo, wrap_signed_rad(x.value) / kArcsec);
-      hi = std::max(hi, wrap_signed_rad(x.value) / kArcsec);
+      lo = std::min(lo, wrap_signed_rad(x.value) / units::kArcsecond);
+      hi = std::max(hi, wrap_signed_rad(x.value) / units::kArcsecond);
     }
   EXPECT_NEAR(runs->value, hi - lo, 1e-6);
   EXPECT_GT(runs->value, 60.0);
@@ -111,7 +111,7 @@ TEST(Regulations, InstrumentConstantsOfSingleRunsAreCompared) {
 
 TEST(Regulations, KnownAzimuthDisagreeingWithCoordinatesFails) {
   auto sim = clean();
-  sim.input.known_line->azimuth.value_rad.value += 1.0 * kDeg;
+  sim.input.known_line->azimuth.value_rad.value += 1.0 * units::kDegree;
   const CampaignResult r = process(sim.input);
   const Check* c = find_check(r, "known line: the given grid azimuth against its coordinates");
   ASSERT_NE(c, nullptr);
@@ -169,7 +169,7 @@ TEST(Regulations, ShortProgrammeFailsAndClassSetsTheLimit) {
   five.input.instrument.accuracy_class_arcsec = 5;
   const CampaignResult r5 = process(five.input);
   EXPECT_NEAR(find_check(r5, "any two runs on the line")->tolerance, 10.0, 1e-12);
-  five.input.tolerances.determination_difference_rad = 25 * kArcsec;
+  five.input.tolerances.determination_difference_rad = 25 * units::kArcsecond;
   const CampaignResult r25 = process(five.input);
   const Check* o = find_check(r25, "any two runs on the line");
   EXPECT_NEAR(o->tolerance, 25.0, 1e-12);
@@ -229,7 +229,7 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   EXPECT_TRUE(r.all_checks_pass());
   // A second orientation 60" off fails the difference rule.
   CampaignResult c = b;
-  c.chain.grid_azimuth_rad.value += 60 * kArcsec;
+  c.chain.grid_azimuth_rad.value += 60 * units::kArcsecond;
   const OrientationsResult bad = combine_orientations({a, c});
   EXPECT_FALSE(bad.checks[2].pass);
   EXPECT_FALSE(bad.all_checks_pass());
@@ -241,7 +241,7 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   EXPECT_THROW(combine_orientations({a, a}), InputError);
   // The tightest limits of the orientations apply.
   CampaignResult strict = b;
-  strict.limits.orientation_difference_rad = 15 * kArcsec;
+  strict.limits.orientation_difference_rad = 15 * units::kArcsecond;
   EXPECT_NEAR(combine_orientations({a, strict}).checks[2].tolerance, 15.0, 1e-12);
   // Another line, or one orientation alone, is an input error.
   CampaignResult other = b;
@@ -252,7 +252,7 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
 
 TEST(Regulations, LooserFileLimitsAreSaidAloud) {
   auto sim = clean();
-  sim.input.tolerances.determination_difference_rad = 400 * kArcsec;
+  sim.input.tolerances.determination_difference_rad = 400 * units::kArcsecond;
   const CampaignResult r = process(sim.input);
   const Check* c = find_check(r, "any two runs on the line");
   ASSERT_NE(c, nullptr);
@@ -270,7 +270,7 @@ TEST(Regulations, DeflectionHeldInEIsNotAppliedTwice) {
   t.give_eta = false;
   auto sim = simulate_campaign(t, 7);
   const CampaignResult without = process(sim.input);
-  sim.input.line.from.eta_rad = Uncertain{-5.0 * kArcsec, 0.5 * kArcsec};
+  sim.input.line.from.eta_rad = Uncertain{-5.0 * units::kArcsecond, 0.5 * units::kArcsecond};
   const CampaignResult with_station_eta = process(sim.input);
   EXPECT_FALSE(with_station_eta.chain.laplace_applied);
   EXPECT_DOUBLE_EQ(with_station_eta.chain.grid_azimuth_rad.value, without.chain.grid_azimuth_rad.value);
@@ -278,7 +278,7 @@ TEST(Regulations, DeflectionHeldInEIsNotAppliedTwice) {
   for (const auto& n : with_station_eta.notes) noted = noted || n.find("not applied: E was calibrated") != std::string::npos;
   EXPECT_TRUE(noted);
   // With eta at both stations both are applied.
-  sim.input.known_line->from.eta_rad = Uncertain{-4.0 * kArcsec, 0.5 * kArcsec};
+  sim.input.known_line->from.eta_rad = Uncertain{-4.0 * units::kArcsecond, 0.5 * units::kArcsecond};
   EXPECT_TRUE(process(sim.input).chain.laplace_applied);
 }
 
@@ -287,10 +287,12 @@ TEST(Regulations, TargetRoundsThatDisagreeWarn) {
   auto& d = sim.input.line.determinations[0];
   const double r = d.target_reading_rad->value;
   d.target_reading_rad.reset();
-  d.target_rounds = {{TargetRound::When::Before, r - 5 * kArcsec, r + units::kPi + 5 * kArcsec},
-                     {TargetRound::When::After, r - 5 * kArcsec, r + units::kPi + 65 * kArcsec}};  // one face 1' off
+  d.target_rounds = {{TargetRound::When::Before, r - 5 * units::kArcsecond,
+                      r + units::kPi + 5 * units::kArcsecond},
+                     {TargetRound::When::After, r - 5 * units::kArcsecond,
+                      r + units::kPi + 65 * units::kArcsecond}};  // one face 1' off
   const CampaignResult res = process(sim.input);
   EXPECT_TRUE(has_warning(res, "line.determinations[0]: the target rounds disagree"));
-  d.target_rounds[1].face_right_rad = r + units::kPi + 6 * kArcsec;
+  d.target_rounds[1].face_right_rad = r + units::kPi + 6 * units::kArcsecond;
   EXPECT_FALSE(has_warning(process(sim.input), "target rounds disagree"));
 }

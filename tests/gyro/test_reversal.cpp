@@ -15,7 +15,6 @@ using namespace meridian;
 using namespace meridian::gyro;
 
 namespace {
-constexpr double kArcsec = units::kArcsecond;
 
 // (R1) evaluated directly — the independent reference.
 std::vector<double> r1(double m, double a, double kappa, int n) {
@@ -53,23 +52,27 @@ TEST(Reversal, ClosedFormsOfTheSpec) {
 
 TEST(Reversal, TrackingRecoveryScenario4) {
   // M = 0°12'34", A = 8 div·τ (τ = 600"), κ = 0.002, no noise.
-  const double m = (12 * 60 + 34) * kArcsec;
-  const double a = 8 * 600 * kArcsec;
+  const double m = (12 * 60 + 34) * units::kArcsecond;
+  const double a = 8 * 600 * units::kArcsecond;
   for (int n : {3, 5, 7}) {
     const auto r = r1(m, a, 0.002, n);
     const auto nl = estimate_centre(ReversalMethod::NonlinearLsq, r, std::nan(""));
-    EXPECT_NEAR(nl.centre.value / kArcsec, m / kArcsec, 0.01) << "n = " << n;
+    EXPECT_NEAR(nl.centre.value / units::kArcsecond, m / units::kArcsecond, 0.01) << "n = " << n;
     EXPECT_NEAR(nl.damping->value, 0.002, 1e-9);
     EXPECT_NEAR(nl.amplitude->value, a, 1e-9);
     // The linearised estimators carry the second-order damping error only:
     // a few hundredths of an arc-second for κ = 0.002 and A = 80'.
-    EXPECT_NEAR(estimate_centre(ReversalMethod::Schuler, r, 0).centre.value / kArcsec, m / kArcsec, 0.5);
-    EXPECT_NEAR(estimate_centre(ReversalMethod::LinearLsq, r, 0).centre.value / kArcsec, m / kArcsec, 0.5);
+    EXPECT_NEAR(estimate_centre(ReversalMethod::Schuler, r, 0).centre.value / units::kArcsecond,
+                m / units::kArcsecond, 0.5);
+    EXPECT_NEAR(estimate_centre(ReversalMethod::LinearLsq, r, 0).centre.value / units::kArcsecond,
+                m / units::kArcsecond, 0.5);
   }
   // Without damping the linear forms are exact.
   const auto r = r1(m, a, 0.0, 5);
-  EXPECT_NEAR(estimate_centre(ReversalMethod::Schuler, r, 0).centre.value / kArcsec, m / kArcsec, 1e-9);
-  EXPECT_NEAR(estimate_centre(ReversalMethod::LinearLsq, r, 0).centre.value / kArcsec, m / kArcsec, 1e-9);
+  EXPECT_NEAR(estimate_centre(ReversalMethod::Schuler, r, 0).centre.value / units::kArcsecond,
+              m / units::kArcsecond, 1e-9);
+  EXPECT_NEAR(estimate_centre(ReversalMethod::LinearLsq, r, 0).centre.value / units::kArcsecond,
+              m / units::kArcsecond, 1e-9);
 }
 
 TEST(Reversal, TrackingAcrossNorthWraps) {
@@ -78,15 +81,17 @@ TEST(Reversal, TrackingAcrossNorthWraps) {
   for (double d : {359 + 41 / 60.0 + 12 / 3600.0, 0 + 44 / 60.0 + 50 / 3600.0, 359 + 42 / 60.0 + 4 / 3600.0})
     obs.reversals_rad.push_back(d * units::kDegree);
   Instrument inst;
-  inst.scale_value_rad = 600 * kArcsec;
+  inst.scale_value_rad = 600 * units::kArcsecond;
   inst.torsion_ratio = {0.3, 0};
   const auto t = reduce_tracking(ReversalMethod::Schuler, obs, inst);
   // (r1 + 2r2 + r3)/4 with r unwrapped about r1: 0°13'14" (−0°… + 2·0°44'50" …)/4.
-  const double r1v = -(18 * 60 + 48) * kArcsec, r2v = (44 * 60 + 50) * kArcsec, r3v = -(17 * 60 + 56) * kArcsec;
-  EXPECT_NEAR(t.north.north_rad / kArcsec, (r1v + 2 * r2v + r3v) / 4 / kArcsec, 1e-6);
+  const double r1v = -(18 * 60 + 48) * units::kArcsecond, r2v = (44 * 60 + 50) * units::kArcsecond,
+               r3v = -(17 * 60 + 56) * units::kArcsecond;
+  EXPECT_NEAR(t.north.north_rad / units::kArcsecond, (r1v + 2 * r2v + r3v) / 4 / units::kArcsecond,
+              1e-6);
   // With α_p: N_G = M − λτα_p.
   const auto z = reduce_tracking(ReversalMethod::Schuler, obs, inst, Uncertain{0.5, 0.0});
-  EXPECT_NEAR((z.north.north_rad - t.north.north_rad) / kArcsec, -0.3 * 600 * 0.5, 1e-6);
+  EXPECT_NEAR((z.north.north_rad - t.north.north_rad) / units::kArcsecond, -0.3 * 600 * 0.5, 1e-6);
 }
 
 TEST(Reversal, RejectsNonReversalData) {
@@ -107,7 +112,7 @@ TEST(Reversal, RejectsNonReversalData) {
 TEST(Reversal, MonteCarloSigmaMatchesScatter) {
   // White reading noise σ = 10": the a-posteriori σ of M (mean over runs, as
   // its square) agrees with the empirical scatter of M within 10 %.
-  const double m = 0.01, a = 8 * 600 * kArcsec, sigma = 10 * kArcsec;
+  const double m = 0.01, a = 8 * 600 * units::kArcsecond, sigma = 10 * units::kArcsecond;
   std::mt19937_64 rng(20261122);
   std::normal_distribution<double> noise(0.0, sigma);
   for (auto method : {ReversalMethod::LinearLsq, ReversalMethod::NonlinearLsq, ReversalMethod::Schuler}) {

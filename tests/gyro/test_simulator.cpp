@@ -21,7 +21,7 @@ using namespace meridian::gyro;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using meridian::units::kPi;
 
 // Spec §8 scenario 2: β = −0.12 div, B = 9 div, T_B = 440 s, t0 = 50 s, k = 0.
 NonTrackingSimulation scenario2() {

@@ -14,6 +14,7 @@
 #include "meridian/gyro/instrument.hpp"
 #include "meridian/gyro/nontracking.hpp"
 #include "meridian/gyro/unified_fit.hpp"
+#include "nontracking_truth.hpp"
 
 namespace {
 
@@ -28,6 +29,7 @@ using meridian::gyro::UnifiedFitResidual;
 using meridian::gyro::UnifiedFitResult;
 using meridian::units::kArcsecond;
 using meridian::units::kPi;
+using meridian_test::scenario_instrument;
 
 // (N1): a(t) = β + B·e^{−k(t−t0)}·sin(2π(t − t0)/T).
 struct Oscillation {
@@ -81,13 +83,6 @@ void add_reversals(NonTrackingObservations& obs, const Oscillation& o, double t_
     obs.reversals_div.push_back(o.value(t));
     obs.reversal_times_s.push_back(t);
   }
-}
-
-Instrument scenario_instrument() {
-  Instrument inst;
-  inst.scale_value_rad = 600.0 * kArcsecond;
-  inst.torsion_ratio = {0.30, 0.0};
-  return inst;
 }
 
 NonTrackingObservations scenario_observations(const Oscillation& o, double t_from,

@@ -17,9 +17,8 @@ using namespace meridian;
 using namespace meridian::gyro;
 
 namespace {
-constexpr double kArcsec = units::kArcsecond;
 
-double diff_arcsec(double a, double b) { return wrap_signed_rad(a - b) / kArcsec; }
+double diff_arcsec(double a, double b) { return wrap_signed_rad(a - b) / units::kArcsecond; }
 
 StationSimulation noise_free(Mode mode) {
   StationSimulation s;
@@ -114,9 +113,9 @@ TEST(GyroReduce, TrackingReadingsScatteringMoreThanStatedWarnNamingTheRun) {
   in.label = "D1-D2 1 (tracking)";
   in.mode = Mode::Tracking;
   in.method = ReversalMethod::Schuler;
-  in.tracking.sigma_reading_rad = 5.0 * kArcsec;
+  in.tracking.sigma_reading_rad = 5.0 * units::kArcsecond;
   Instrument inst;
-  inst.scale_value_rad = 600.0 * kArcsec;
+  inst.scale_value_rad = 600.0 * units::kArcsecond;
   inst.torsion_ratio = {0.169, 0.002};
   for (double third : {dms(359, 10, 16), dms(359, 8, 16)}) {
     in.tracking.reversals_rad = {dms(359, 7, 48), dms(0, 37, 1), third, dms(0, 36, 21),
@@ -128,11 +127,12 @@ TEST(GyroReduce, TrackingReadingsScatteringMoreThanStatedWarnNamingTheRun) {
     EXPECT_EQ(f.reading_sigma_test->rejected, bad);
     EXPECT_EQ(f.sigma_is_aposteriori, bad);
     // Schuler, n = 5: q = (1² + 3² + 4² + 3² + 1²)/12² = 0.25.
-    EXPECT_NEAR(r.primary.north.sigma_rad / kArcsec, (bad ? f.sigma0 / kArcsec : 5.0) * 0.5, 1e-9);
+    EXPECT_NEAR(r.primary.north.sigma_rad / units::kArcsecond,
+                (bad ? f.sigma0 / units::kArcsecond : 5.0) * 0.5, 1e-9);
     // Successive Schuler means (r_i + 2r_(i+1) + r_(i+2))/4 relative to 0°: −418.5″, −391.5″,
     // −421.25″ booked wrong; −448.5″, −451.5″, −451.25″ booked right.
     ASSERT_TRUE(f.partial_means_spread);
-    EXPECT_NEAR(*f.partial_means_spread / kArcsec, bad ? 29.75 : 3.0, 1e-6);
+    EXPECT_NEAR(*f.partial_means_spread / units::kArcsecond, bad ? 29.75 : 3.0, 1e-6);
     bool named = false;
     for (const auto& w : r.warnings)
       named = named ||
@@ -140,7 +140,7 @@ TEST(GyroReduce, TrackingReadingsScatteringMoreThanStatedWarnNamingTheRun) {
                w.find("against the stated 5.0\"") != std::string::npos);
     EXPECT_EQ(named, bad);
     if (bad) {
-      EXPECT_NEAR(f.sigma0 / kArcsec, 65.58, 0.01);
+      EXPECT_NEAR(f.sigma0 / units::kArcsecond, 65.58, 0.01);
     }
   }
 }
@@ -160,7 +160,7 @@ TEST(GyroReduce, SmallAngleWarningOnlyWhenItMattersForTheRunsSigma) {
   sim.reversals = 2;
   sim.known_period_s = 440.0;
   Instrument inst;
-  inst.scale_value_rad = 600.0 * kArcsec;
+  inst.scale_value_rad = 600.0 * units::kArcsecond;
   inst.torsion_ratio = {0.30, 0.0};
   DeterminationInput in;
   in.mode = Mode::NonTracking;
@@ -184,9 +184,10 @@ TEST(GyroReduce, SmallAngleWarningOnlyWhenItMattersForTheRunsSigma) {
     in.nontracking = simulate_nontracking(sim, 1);
     in.zero_position = c.zero;
     const DeterminationResult r = reduce_determination(in, inst);
-    EXPECT_NEAR(r.primary.approximation_error_rad / kArcsec, expected, 1e-6);
+    EXPECT_NEAR(r.primary.approximation_error_rad / units::kArcsecond, expected, 1e-6);
     EXPECT_NEAR(expected, 0.20, 0.01);
-    EXPECT_EQ(warned(r), c.warns) << "sigma(N_G) = " << r.primary.north.sigma_rad / kArcsec;
-    EXPECT_EQ(c.warns, std::abs(expected) > 0.1 * r.primary.north.sigma_rad / kArcsec);
+    EXPECT_EQ(warned(r), c.warns) << "sigma(N_G) = "
+                                  << r.primary.north.sigma_rad / units::kArcsecond;
+    EXPECT_EQ(c.warns, std::abs(expected) > 0.1 * r.primary.north.sigma_rad / units::kArcsecond);
   }
 }

@@ -24,7 +24,6 @@ using namespace meridian;
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = units::kDegree, kArcsec = units::kArcsecond;
 
 std::vector<gravity::GeodeticPoint> read_points(const std::string& text, std::size_t chunk = 1000) {
   std::istringstream in(text);
@@ -34,7 +33,7 @@ std::vector<gravity::GeodeticPoint> read_points(const std::string& text, std::si
   return all;
 }
 
-std::string error_of(const std::string& text) {
+std::string points_error_of(const std::string& text) {
   try {
     read_points(text);
   } catch (const Error& e) {
@@ -48,29 +47,33 @@ TEST(GravityPointReader, ReadsRowsWithHeaderCommentsDmsAndHeights) {
       "# line 7\nlat,lon,h\n37.84,112.56,850\n\n-89.9 , -179 ,0 # pole\n10, 20\n45 30 "
       "00,-120,100\n");
   ASSERT_EQ(p.size(), 4u);
-  EXPECT_NEAR(p[0].lat_rad, 37.84 * kDeg, 1e-15);
-  EXPECT_NEAR(p[0].lon_rad, 112.56 * kDeg, 1e-15);
+  EXPECT_NEAR(p[0].lat_rad, 37.84 * units::kDegree, 1e-15);
+  EXPECT_NEAR(p[0].lon_rad, 112.56 * units::kDegree, 1e-15);
   EXPECT_EQ(p[0].height_m, 850.0);
-  EXPECT_NEAR(p[1].lat_rad, -89.9 * kDeg, 1e-15);
+  EXPECT_NEAR(p[1].lat_rad, -89.9 * units::kDegree, 1e-15);
   EXPECT_EQ(p[2].height_m, 0.0);  // no height: 0
-  EXPECT_NEAR(p[3].lat_rad, 45.5 * kDeg, 1e-15);
+  EXPECT_NEAR(p[3].lat_rad, 45.5 * units::kDegree, 1e-15);
   // Whitespace-separated, CRLF, units in the header.
   const auto w = read_points("lat [deg] lon [deg] h [m]\r\n1.5 2.5 3\r\n-1 -2\r\n");
   ASSERT_EQ(w.size(), 2u);
-  EXPECT_NEAR(w[1].lon_rad, -2 * kDeg, 1e-15);
+  EXPECT_NEAR(w[1].lon_rad, -2 * units::kDegree, 1e-15);
   EXPECT_EQ(w[0].height_m, 3.0);
 }
 
 TEST(GravityPointReader, ErrorsNameTheLineAndTheField) {
   // The messages of `gravity points` before the record reader (docs/gravity-field.md).
-  EXPECT_EQ(error_of("lat,lon\n37.84,abc\n"),
+  EXPECT_EQ(points_error_of("lat,lon\n37.84,abc\n"),
             "p.csv:2: longitude: cannot read angle \"abc\": unexpected \"abc\"");
-  EXPECT_EQ(error_of("37.84,12,5,6\n"), "p.csv:1: expected lat,lon[,h] (2 or 3 fields), got 4");
-  EXPECT_EQ(error_of("37.84,12,5x\n"), "p.csv:1: h: height \"5x\" is not a number");
-  EXPECT_EQ(error_of("97.84,12\n"), "p.csv:1: latitude: latitude 97.84 deg is outside [-90, 90]");
-  EXPECT_EQ(error_of("1,2\n\n# c\n3\n"), "p.csv:4: expected lat,lon[,h] (2 or 3 fields), got 1");
-  EXPECT_EQ(error_of("1,600\n"), "p.csv:1: longitude: longitude 600 deg is outside [-540, 540]");
-  EXPECT_NE(error_of("1,2,-20000\n").find("p.csv:1: h: height -20000 m is outside"),
+  EXPECT_EQ(points_error_of("37.84,12,5,6\n"),
+            "p.csv:1: expected lat,lon[,h] (2 or 3 fields), got 4");
+  EXPECT_EQ(points_error_of("37.84,12,5x\n"), "p.csv:1: h: height \"5x\" is not a number");
+  EXPECT_EQ(points_error_of("97.84,12\n"),
+            "p.csv:1: latitude: latitude 97.84 deg is outside [-90, 90]");
+  EXPECT_EQ(points_error_of("1,2\n\n# c\n3\n"),
+            "p.csv:4: expected lat,lon[,h] (2 or 3 fields), got 1");
+  EXPECT_EQ(points_error_of("1,600\n"),
+            "p.csv:1: longitude: longitude 600 deg is outside [-540, 540]");
+  EXPECT_NE(points_error_of("1,2,-20000\n").find("p.csv:1: h: height -20000 m is outside"),
             std::string::npos);
 }
 
@@ -91,10 +94,11 @@ TEST(GravityPointReader, SamePointsWhateverTheChunkSize) {
 TEST(GravityCsv, RowsHaveTheDocumentedColumnsAndDecimals) {
   EXPECT_EQ(io::gravity_points_csv_header(), "lat_deg,lon_deg,h_m,xi_arcsec,eta_arcsec,geoid_m\n");
   gravity::FieldValues v{};
-  v.xi_rad = 1.5 * kArcsec;
-  v.eta_rad = -0.25 * kArcsec;
+  v.xi_rad = 1.5 * units::kArcsecond;
+  v.eta_rad = -0.25 * units::kArcsecond;
   v.geoid_m = 20.125;
-  const std::vector<gravity::GeodeticPoint> p{{37.84 * kDeg, -179.0 * kDeg, 850.5}};
+  const std::vector<gravity::GeodeticPoint> p{
+      {37.84 * units::kDegree, -179.0 * units::kDegree, 850.5}};
   std::string out = "x";
   io::append_gravity_points_csv(out, p, std::vector<gravity::FieldValues>{v});
   EXPECT_EQ(out, "x37.8400000000,-179.0000000000,850.5000,1.500000000,-0.250000000,20.125000000\n");
@@ -160,9 +164,10 @@ TEST(GravityJobs, StreamsEveryChunkAndSummarisesEveryPoint) {
     char c;
     std::istringstream(line) >> lat >> c >> lon >> c >> h >> c >> xi >> c >> eta >> c >> geoid;
     if (i % 499 == 0) {
-      const auto v = field.evaluate(gravity::GeodeticPoint{lat * kDeg, lon * kDeg, h});
-      EXPECT_NEAR(xi, v.xi_rad / kArcsec, 1e-8) << line;
-      EXPECT_NEAR(eta, v.eta_rad / kArcsec, 1e-8) << line;
+      const auto v =
+          field.evaluate(gravity::GeodeticPoint{lat * units::kDegree, lon * units::kDegree, h});
+      EXPECT_NEAR(xi, v.xi_rad / units::kArcsecond, 1e-8) << line;
+      EXPECT_NEAR(eta, v.eta_rad / units::kArcsecond, 1e-8) << line;
       EXPECT_NEAR(geoid, v.geoid_m, 1e-8) << line;
     }
     sum_n += geoid;

@@ -8,6 +8,7 @@
 namespace meridian::units {
 
 inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;  ///< radians per turn
 inline constexpr double kDegree = kPi / 180.0;            ///< radians per degree
 inline constexpr double kArcminute = kDegree / 60.0;      ///< radians per arc-minute
 inline constexpr double kArcsecond = kDegree / 3600.0;    ///< radians per arc-second

@@ -65,6 +65,11 @@ enum class Quantities : unsigned {
   All = 3u,
 };
 
+/// True when the request `what` includes quantity q (Quantities is a bit set).
+constexpr bool includes(Quantities what, Quantities q) {
+  return (static_cast<unsigned>(what) & static_cast<unsigned>(q)) != 0;
+}
+
 /// Results at one point. NaN where not requested. Frames and deflection
 /// signs: geodesy/frames.hpp.
 struct FieldValues {
