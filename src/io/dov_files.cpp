@@ -55,6 +55,18 @@ LineColumns find_columns(RecordReader& rr) {
   return c;
 }
 
+/// The CSV column(s) of a dov::Sample member, as the user wrote them: "model_eta_rad" →
+/// "model_eta_arcsec", "ins_body_to_nav" → "ins_11…ins_33" (a matrix check concerns all nine).
+std::string sample_column(const std::string& member) {
+  if (member == "lat_rad") return "lat_deg";
+  if (member == "lon_rad") return "lon_deg";
+  if (member == "model_eta_rad") return "model_eta_arcsec";
+  if (member == "model_xi_rad") return "model_xi_arcsec";
+  if (member == "lgu_body_to_nav") return "lgu_11…lgu_33";
+  if (member == "ins_body_to_nav") return "ins_11…ins_33";
+  return member;  // time_s, height_m, speed_m_s: the same name
+}
+
 /// "samples[12].time_s" → 12; the filter's "epoch 12" (= samples[12]) → 12.
 std::optional<std::size_t> sample_index(const std::string& field) {
   std::string digits;
@@ -214,11 +226,11 @@ dov::Result run_dov(const DovConfig& config, Progress* progress) {
     if (progress) progress->finish();
     const auto k = sample_index(e.context().field);
     if (k && *k < line.lines.size()) {
-      // "samples[k].member" → "line.csv:LINE: member"
+      // "samples[k].member" → "line.csv:LINE: column"
       const std::string& f = e.context().field;
       const auto dot = f.find("].");
       ErrorContext c{line.source, line.lines[*k],
-                     dot == std::string::npos ? std::string() : f.substr(dot + 2)};
+                     dot == std::string::npos ? std::string() : sample_column(f.substr(dot + 2))};
       const std::string msg = e.message();
       if (dynamic_cast<ParseError*>(&e)) throw ParseError(msg, c);
       if (dynamic_cast<InputError*>(&e)) throw InputError(msg, c);

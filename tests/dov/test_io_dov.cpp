@@ -135,7 +135,7 @@ TEST(DovFiles, ConfigAndRunner) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::filesystem::path(e.context().file), dir / "line.csv");
     EXPECT_EQ(e.context().line, 13);
-    EXPECT_EQ(e.context().field, "ins_body_to_nav");
+    EXPECT_EQ(e.context().field, "ins_11…ins_33");  // the CSV columns, not the Sample member
   }
   // a clean line runs
   write(dir / "line.csv", io::dov_line_csv(small_line()));
