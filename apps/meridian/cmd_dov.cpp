@@ -9,6 +9,7 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "meridian/core/atomic_file.hpp"
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
@@ -46,18 +47,39 @@ int run_simulate(const SimulateArgs& a) {
       Eigen::Vector3d(a.phi_e_arcsec, a.phi_n_arcsec, a.phi_u_arcsec) * units::kArcsecond;
   so.seed = a.seed;
   const dov::Input in = dov::simulate(so);
-  emit(a.out, io::dov_line_csv(in));
-  if (!a.config.empty()) {
-    // The configuration names the line relative to its own directory.
-    const auto config_dir = std::filesystem::absolute(a.config).parent_path();
-    const auto line = std::filesystem::relative(std::filesystem::absolute(a.out), config_dir);
-    emit(a.config, fmt::format("# meridian dov process configuration (spec defaults)\n"
-                               "line: {}\n"
-                               "sigma_model_arcsec: {}\n"
-                               "sigma_obs_arcsec: {}\n",
-                               line.string(), a.sigma_model_arcsec,
-                               a.sigma_ins_arcsec > 0.0 ? a.sigma_ins_arcsec : 0.5));
+  // The truth of the simulation, as gyro simulate records it: what produced this line.
+  const std::string settings = fmt::format(
+      "Simulated: seed {}, start {} {}, heading {}, height {} m, speed {} m/s, {} Hz, {} h, "
+      "sigma_model {}\", sigma_ins {}\", eps_U {} deg/h, phi(0) E N U = {} {} {}\"",
+      a.seed, a.latitude, a.longitude, a.heading, a.height_m, a.speed_m_s, a.rate_hz, a.hours,
+      a.sigma_model_arcsec, a.sigma_ins_arcsec, a.eps_u_deg_per_h, a.phi_e_arcsec, a.phi_n_arcsec,
+      a.phi_u_arcsec);
+  const std::string csv = io::dov_line_csv(in, settings);
+  if (a.config.empty()) {
+    emit(a.out, csv);
+    return kOk;
   }
+  if (a.out.empty() || a.out == "-")
+    throw InputError("--config needs --out to name a file: the configuration names the line");
+  if (std::filesystem::absolute(a.out).lexically_normal() ==
+      std::filesystem::absolute(a.config).lexically_normal())
+    throw InputError(fmt::format("--out and --config name the same file {}", a.out));
+  // The configuration names the line relative to its own directory.
+  const auto config_dir = std::filesystem::absolute(a.config).parent_path();
+  const auto line = std::filesystem::relative(std::filesystem::absolute(a.out), config_dir);
+  const std::string config = fmt::format("# meridian dov process configuration (spec defaults)\n"
+                                         "line: {}\n"
+                                         "sigma_model_arcsec: {}\n"
+                                         "sigma_obs_arcsec: {}\n",
+                                         line.string(), a.sigma_model_arcsec,
+                                         a.sigma_ins_arcsec > 0.0 ? a.sigma_ins_arcsec : 0.5);
+  // Both files or neither: both temporaries exist before either is renamed into place (a
+  // configuration in a missing directory used to leave the line written).
+  AtomicFileWriter line_file(a.out), config_file(a.config);
+  line_file.write(csv);
+  config_file.write(config);
+  line_file.commit();
+  config_file.commit();
   return kOk;
 }
 

@@ -193,12 +193,13 @@ Result process(const Input& input, Progress* progress) {
       const double dt = s.time_s - p.time_s;
       if (!(dt > 0.0))
         bad_sample(k, "time_s",
-                   fmt::format("time does not increase: {} s after {} s at samples[{}]", s.time_s,
-                               p.time_s, k - 1));
+                   fmt::format("time does not increase: {} s after the previous sample's {} s",
+                               s.time_s, p.time_s));
       if (dt > o.max_step_s)
         bad_sample(k, "time_s",
-                   fmt::format("gap of {} s after samples[{}] exceeds options.max_step_s = {} s",
-                               dt, k - 1, o.max_step_s));
+                   fmt::format("gap of {} s after the previous sample exceeds options.max_step_s "
+                               "= {} s",
+                               dt, o.max_step_s));
       const double lat = 0.5 * (s.lat_rad + p.lat_rad);
       const double speed = 0.5 * (s.speed_m_s + p.speed_m_s);
       const bool stationary = is_stationary(speed, o.model);

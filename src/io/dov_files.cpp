@@ -122,8 +122,14 @@ DovLine read_dov_line_file(const std::string& path) {
   return read_dov_line(f, path);
 }
 
-std::string dov_line_csv(const dov::Input& input) {
+std::string dov_line_csv(const dov::Input& input, const std::string& settings) {
   std::string out = "# meridian dov line: C_b^n (lgu_ij) and C_b^n' (ins_ij), rows E, N, U\n";
+  if (!settings.empty()) {
+    std::string one_line = settings;
+    for (char& ch : one_line)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    out += "# " + one_line + "\n";
+  }
   out += "time_s,lat_deg,lon_deg,height_m,speed_m_s";
   for (const char* p : {"lgu", "ins"})
     for (int i = 0; i < 3; ++i)

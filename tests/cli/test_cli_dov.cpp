@@ -1,6 +1,7 @@
 // Runs `meridian dov ...` as a user would: simulate a line with its configuration, process it
 // (JSON summary, profile CSV), and the errors for bad input (exit codes, file:line:column).
 
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -57,31 +58,51 @@ TEST_F(DovCli, SimulateAndProcessAHalfHourLine) {
   EXPECT_NE(t.out.find("smoothed"), std::string::npos) << t.out;
 }
 
+TEST_F(DovCli, SimulateRecordsItsSettingsAndWritesBothFilesOrNeither) {
+  ASSERT_EQ(run("dov simulate --hours 0.01 --seed 7 --phi-u-arcsec 4 --out line.csv").code, 0);
+  const std::string csv = slurp(dir_ / "line.csv");
+  const std::string second = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
+  EXPECT_EQ(second.rfind("# Simulated: seed 7, ", 0), 0u) << second;
+  EXPECT_NE(second.find("phi(0) E N U = 0 0 4\""), std::string::npos) << second;
+  // a configuration that cannot be written: neither file is written
+  const CmdResult r = run("dov simulate --hours 0.01 --out fresh.csv --config no/such/dir/dov.yaml");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("no/such/dir"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "fresh.csv"));
+  // the same file for both, or the line on standard output with a configuration: refused
+  EXPECT_NE(run("dov simulate --hours 0.01 --out same.yaml --config same.yaml").code, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "same.yaml"));
+  const CmdResult d = run("dov simulate --hours 0.01 --out - --config dov.yaml");
+  EXPECT_NE(d.code, 0);
+  EXPECT_NE(d.err.find("--config needs --out"), std::string::npos) << d.err;
+}
+
 TEST_F(DovCli, BadSampleNamesFileLineAndColumn) {
   ASSERT_EQ(run("dov simulate --hours 0.05 --out line.csv --config dov.yaml").code, 0);
-  // line 3 is the first sample (comment, header): make its lgu_11 unreadable
+  // line 4 is the first sample (two comments, header): make its lgu_11 unreadable
   std::string csv = slurp(dir_ / "line.csv");
-  std::size_t pos = csv.find('\n', csv.find('\n') + 1) + 1;  // start of line 3
+  std::size_t pos = 0;
+  for (int l = 0; l < 3; ++l) pos = csv.find('\n', pos) + 1;  // start of line 4
   for (int comma = 0; comma < 5; ++comma) pos = csv.find(',', pos) + 1;  // field 6: lgu_11
   csv.insert(pos, "q");
   write("line.csv", csv);
   const CmdResult r = run("dov process dov.yaml -q");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("line.csv:3: lgu_11"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line.csv:4: lgu_11"), std::string::npos) << r.err;
 }
 
 TEST_F(DovCli, NonOrthogonalMatrixAndConfigTypo) {
   ASSERT_EQ(run("dov simulate --hours 0.05 --out line.csv --config dov.yaml").code, 0);
   std::string csv = slurp(dir_ / "line.csv");
-  // sample 4 (line 7): scale its ins_11 by replacing the field with 2
+  // sample 4 (line 8): scale its ins_11 by replacing the field with 2
   std::size_t pos = 0;
-  for (int l = 0; l < 6; ++l) pos = csv.find('\n', pos) + 1;
+  for (int l = 0; l < 7; ++l) pos = csv.find('\n', pos) + 1;
   for (int comma = 0; comma < 14; ++comma) pos = csv.find(',', pos) + 1;  // field 15: ins_11
   csv.replace(pos, csv.find(',', pos) - pos, "2");
   write("line.csv", csv);
   const CmdResult r = run("dov process dov.yaml -q");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("line.csv:7: ins_11…ins_33"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line.csv:8: ins_11…ins_33"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("not orthogonal"), std::string::npos) << r.err;
   write("typo.yaml", "line: line.csv\nsigma_modle_arcsec: 3\n");
   const CmdResult t = run("dov process typo.yaml -q");

@@ -48,7 +48,9 @@ DovLine read_dov_line_file(const std::string& path);
 
 /// The line CSV of `input` (the columns above, truth columns when input.truth is not empty,
 /// every number with 17 significant digits so that a read gives the same doubles back).
-std::string dov_line_csv(const dov::Input& input);
+/// `settings`, when not empty, is written as a `# ` comment line before the header (the
+/// simulator's settings; the reader skips comments).
+std::string dov_line_csv(const dov::Input& input, const std::string& settings = {});
 
 /// A configuration: the line file and the options (spec defaults where a key is absent).
 ///
