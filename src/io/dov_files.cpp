@@ -1,6 +1,9 @@
 #include "meridian/io/dov_files.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -10,6 +13,9 @@
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/model_lookup.hpp"
+#include "meridian/gravity/track.hpp"
 #include "meridian/io/record_reader.hpp"
 
 namespace meridian::io {
@@ -22,7 +28,8 @@ std::string element_name(const char* prefix, int i, int j) {
 }
 
 struct LineColumns {
-  std::size_t time = 0, lat = 0, lon = 0, height = 0, speed = 0, eta = 0, xi = 0;
+  std::size_t time = 0, lat = 0, lon = 0, height = 0, speed = 0;
+  std::optional<std::size_t> eta, xi;  // the model columns (absent: a gravity model gives them)
   std::array<std::size_t, 9> lgu{}, ins{};
   std::array<std::string, 9> lgu_names, ins_names;
   std::optional<std::size_t> truth_eta, truth_xi;
@@ -38,8 +45,12 @@ LineColumns find_columns(RecordReader& rr) {
   c.lon = rr.require_column("lon_deg");
   c.height = rr.require_column("height_m");
   c.speed = rr.require_column("speed_m_s");
-  c.eta = rr.require_column("model_eta_arcsec");
-  c.xi = rr.require_column("model_xi_arcsec");
+  c.eta = rr.find_column("model_eta_arcsec");
+  c.xi = rr.find_column("model_xi_arcsec");
+  if (c.eta.has_value() != c.xi.has_value())
+    throw InputError("give both model_eta_arcsec and model_xi_arcsec, or neither (and a gravity "
+                     "model in the configuration)",
+                     ErrorContext{rr.source(), rr.header_line(), {}});
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       c.lgu_names[3 * i + j] = element_name("lgu", i, j);
@@ -86,6 +97,7 @@ DovLine read_dov_line(std::istream& in, const std::string& source) {
   const LineColumns c = find_columns(rr);
   DovLine out;
   out.source = source;
+  out.has_model_values = c.eta.has_value();
   RecordChunk chunk;
   while (rr.next(chunk, 16384)) {
     for (std::size_t k = 0; k < chunk.size(); ++k) {
@@ -101,8 +113,12 @@ DovLine read_dov_line(std::istream& in, const std::string& source) {
           s.lgu_body_to_nav(i, j) = r.number(c.lgu[3 * i + j]);
           s.ins_body_to_nav(i, j) = r.number(c.ins[3 * i + j]);
         }
-      s.model_eta_rad = r.number(c.eta) * kAs;
-      s.model_xi_rad = r.number(c.xi) * kAs;
+      if (c.eta) {
+        s.model_eta_rad = r.number(*c.eta) * kAs;
+        s.model_xi_rad = r.number(*c.xi) * kAs;
+      } else {
+        s.model_eta_rad = s.model_xi_rad = std::numeric_limits<double>::quiet_NaN();
+      }
       out.samples.push_back(s);
       out.lines.push_back(r.line());
       if (c.truth_eta) {
@@ -160,7 +176,7 @@ DovConfig read_dov_config(const std::string& path) {
   root.allow_only({"line", "zeta", "sigma_model_arcsec", "correlation_length_m",
                    "stationary_speed_m_s", "sigma_obs_arcsec", "sigma_obs_east_arcsec",
                    "sigma_obs_north_arcsec", "initial", "discretisation", "extraction",
-                   "max_step_s", "gate_alpha", "statistics_start_s"});
+                   "max_step_s", "gate_alpha", "statistics_start_s", "gravity_model"});
   DovConfig c;
   c.file = path;
   dov::Options& o = c.options;
@@ -216,18 +232,99 @@ DovConfig read_dov_config(const std::string& path) {
     o.gate_alpha = a;
   }
   if (auto n = root.get("statistics_start_s")) o.statistics_start_s = n->non_negative_number();
+  if (auto g = root.get("gravity_model")) {
+    // As in gyro campaign files: a file beside the configuration, a path, or a model name.
+    g->allow_only({"model", "max_degree"});
+    DovGravityModel m;
+    m.source = g->require("model").string();
+    const std::filesystem::path beside = std::filesystem::path(path).parent_path() / m.source;
+    m.lookup = std::filesystem::exists(beside) ? beside.string() : m.source;
+    if (auto v = g->get("max_degree")) {
+      m.max_degree = v->integer();
+      if (m.max_degree < 2) v->fail("max_degree must be at least 2");
+    }
+    c.gravity_model = m;
+  }
   c.lines = root.visited_lines();
   return c;
 }
 
+namespace {
+
+// η_G, ξ_G of every sample from the model: the astronomic deflection along the line, in chunks
+// (the track evaluator keeps its values per point). Returns the note for the result.
+std::string fill_model_values(DovLine& line, const DovConfig& config) {
+  const DovGravityModel& ref = *config.gravity_model;
+  gravity::GravityModelData data;
+  try {
+    data = gravity::load_model(ref.lookup, gravity::Truncation{ref.max_degree, -1});
+  } catch (Error& e) {
+    if (!e.context().file.empty()) throw;  // a bad model file names itself
+    InputError located(e.message(), {"", std::nullopt, "gravity_model.model"});
+    locate_error(located, config.file, config.lines);
+    throw located;
+  }
+  const gravity::GravityField field(data);
+  gravity::TrackOptions track;
+  constexpr std::size_t kChunk = 1 << 16;
+  std::vector<gravity::GeodeticPoint> points;
+  for (std::size_t start = 0; start < line.samples.size(); start += kChunk) {
+    const std::size_t n = std::min(kChunk, line.samples.size() - start);
+    points.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const dov::Sample& s = line.samples[start + i];
+      points[i] = {s.lat_rad, s.lon_rad, s.height_m};
+    }
+    gravity::TrackResult values;
+    try {
+      values = gravity::evaluate_track(field, points, gravity::Quantities::Deflection, track);
+    } catch (Error& e) {
+      // "points[i]": the sample's line in the line file
+      const std::string& f = e.context().field;
+      std::size_t i = 0;
+      if (f.rfind("points[", 0) == 0) i = std::strtoull(f.c_str() + 7, nullptr, 10);
+      throw InputError(e.message(), {line.source, line.lines[start + std::min(i, n - 1)],
+                                     "lat_deg, lon_deg, height_m"});
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      dov::Sample& s = line.samples[start + i];
+      s.model_eta_rad = values.values[i].eta_astro_rad;
+      s.model_xi_rad = values.values[i].xi_astro_rad;
+    }
+  }
+  return fmt::format(
+      "model values eta_G, xi_G from the gravity model {} (degree {}): the astronomic deflection "
+      "of its plumb line at each sample, evaluated along the line within {}\"",
+      data.name.empty() ? ref.source : data.name, data.coefficients.max_degree(),
+      track.tolerance_rad / kAs);
+}
+
+}  // namespace
+
 dov::Result run_dov(const DovConfig& config, Progress* progress) {
-  const DovLine line = read_dov_line_file(config.line_path);
+  DovLine line = read_dov_line_file(config.line_path);
+  std::string model_note;
+  if (config.gravity_model && line.has_model_values) {
+    InputError e(fmt::format("{} has model_eta_arcsec, model_xi_arcsec columns and the "
+                             "configuration names a gravity model: give one source of eta_G, xi_G",
+                             line.source),
+                 {"", std::nullopt, "gravity_model"});
+    locate_error(e, config.file, config.lines);
+    throw e;
+  }
+  if (!config.gravity_model && !line.has_model_values)
+    throw InputError("no model_eta_arcsec, model_xi_arcsec columns and no gravity_model in the "
+                     "configuration: the filter needs the global model's eta_G, xi_G",
+                     {line.source, std::nullopt, {}});
+  if (config.gravity_model) model_note = fill_model_values(line, config);
   dov::Input in;
   in.samples = line.samples;
   in.truth = line.truth;
   in.options = config.options;
   try {
-    return dov::process(in, progress);
+    dov::Result r = dov::process(in, progress);
+    if (!model_note.empty()) r.notes.push_back(model_note);
+    return r;
   } catch (Error& e) {
     if (progress) progress->finish();
     const auto k = sample_index(e.context().field);

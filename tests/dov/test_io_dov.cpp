@@ -1,9 +1,12 @@
 // io_dov: the line CSV round trip (write → read gives the same doubles and the same result),
 // errors naming file:line:column, the configuration and the runner's error location.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -12,6 +15,10 @@
 #include "dov_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/dov/simulator.hpp"
+#include "meridian/gravity/egm_format.hpp"
+#include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/model_lookup.hpp"
+#include "meridian/gravity/synthetic.hpp"
 #include "meridian/io/dov_files.hpp"
 
 namespace {
@@ -151,6 +158,93 @@ TEST(DovFiles, ConfigAndRunner) {
   }
   write(dir / "bad2.yaml", "line: line.csv\ndiscretisation: second_order\n");
   EXPECT_THROW(io::read_dov_config((dir / "bad2.yaml").string()), InputError);
+  std::filesystem::remove_all(dir);
+}
+
+// The line CSV without its model columns (as a user brings a line and names a model).
+std::string without_model_columns(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string out, row;
+  int eta = -1, xi = -1;
+  while (std::getline(in, row)) {
+    if (row.empty() || row[0] == '#') {
+      out += row + "\n";
+      continue;
+    }
+    std::vector<std::string> f;
+    std::stringstream ss(row);
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+    if (eta < 0)
+      for (int i = 0; i < static_cast<int>(f.size()); ++i) {
+        if (f[static_cast<std::size_t>(i)] == "model_eta_arcsec") eta = i;
+        if (f[static_cast<std::size_t>(i)] == "model_xi_arcsec") xi = i;
+      }
+    std::string kept;
+    for (int i = 0; i < static_cast<int>(f.size()); ++i)
+      if (i != eta && i != xi) kept += (kept.empty() ? "" : ",") + f[static_cast<std::size_t>(i)];
+    out += kept + "\n";
+  }
+  return out;
+}
+
+TEST(DovFiles, GravityModelGivesTheModelValues) {
+  const auto dir = temp_dir("gravity");
+  gravity::SyntheticModelOptions mo;
+  mo.max_degree = 180;
+  mo.seed = 5;
+  gravity::write_egm_files(gravity::make_synthetic_model(mo), dir / "syn");
+  const dov::Input in = small_line();
+  write(dir / "line.csv", without_model_columns(io::dov_line_csv(in)));
+  write(dir / "dov.yaml", "line: line.csv\ngravity_model: {model: syn.egm, max_degree: 120}\n");
+  const io::DovConfig c = io::read_dov_config((dir / "dov.yaml").string());
+  ASSERT_TRUE(c.gravity_model.has_value());
+  EXPECT_EQ(c.gravity_model->max_degree, 120);
+  const dov::Result r = io::run_dov(c);
+  ASSERT_EQ(r.epochs.size(), in.samples.size());
+  // η_G, ξ_G are the astronomic deflection of the truncated model at each sample (not ξ for η)
+  const gravity::GravityField field(
+      gravity::load_model((dir / "syn.egm").string(), gravity::Truncation{120, -1}));
+  double largest_arcsec = 0.0, max_diff_arcsec = 0.0;
+  for (std::size_t k = 0; k < in.samples.size(); k += 10) {
+    const dov::Sample& s = in.samples[k];
+    const auto v = field.evaluate({s.lat_rad, s.lon_rad, s.height_m}, gravity::Quantities::Deflection);
+    largest_arcsec = std::max({largest_arcsec, std::abs(v.eta_astro_rad) / kAs, std::abs(v.xi_astro_rad) / kAs});
+    max_diff_arcsec = std::max({max_diff_arcsec, std::abs(r.epochs[k].model_eta_rad - v.eta_astro_rad) / kAs,
+                                std::abs(r.epochs[k].model_xi_rad - v.xi_astro_rad) / kAs});
+  }
+  EXPECT_GT(largest_arcsec, 0.1);        // a model that deflects, so a swap would show
+  EXPECT_LT(max_diff_arcsec, 2e-4);      // the track tolerance, 1e-4″
+  bool noted = false;
+  for (const auto& n : r.notes) noted = noted || n.find("degree 120") != std::string::npos;
+  EXPECT_TRUE(noted);
+  // exactly one source of model values: columns and a model, or neither, are errors
+  write(dir / "both.csv", io::dov_line_csv(in));
+  write(dir / "both.yaml", "line: both.csv\nzeta: 0.05\ngravity_model: {model: syn.egm}\n");
+  try {
+    io::run_dov(io::read_dov_config((dir / "both.yaml").string()));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::filesystem::path(e.context().file), dir / "both.yaml");
+    EXPECT_EQ(e.context().line, 3) << e.what();
+    EXPECT_NE(std::string(e.what()).find("one source"), std::string::npos) << e.what();
+  }
+  write(dir / "none.yaml", "line: line.csv\n");
+  try {
+    io::run_dov(io::read_dov_config((dir / "none.yaml").string()));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::filesystem::path(e.context().file), dir / "line.csv") << e.what();
+    EXPECT_NE(std::string(e.what()).find("no gravity_model"), std::string::npos) << e.what();
+  }
+  // a model that is not found: the configuration's line of the key
+  write(dir / "missing.yaml", "line: line.csv\ngravity_model:\n  model: no-such-model-xyz\n");
+  try {
+    io::run_dov(io::read_dov_config((dir / "missing.yaml").string()));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::filesystem::path(e.context().file), dir / "missing.yaml") << e.what();
+    EXPECT_EQ(e.context().line, 3) << e.what();
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -23,6 +23,7 @@
 /// missing column, IoError when the file cannot be opened.
 
 #include <istream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct DovLine {
   std::vector<dov::Sample> samples;
   std::vector<dov::Truth> truth;
   std::vector<int> lines;
+  /// false when the file has no model_eta_arcsec, model_xi_arcsec columns (the model values
+  /// are then NaN until a gravity model fills them: run_dov).
+  bool has_model_values = true;
 };
 
 /// Read a line CSV from `in`; `source` names it in errors. Throws as the file comment says.
@@ -51,6 +55,13 @@ DovLine read_dov_line_file(const std::string& path);
 /// `settings`, when not empty, is written as a `# ` comment line before the header (the
 /// simulator's settings; the reader skips comments).
 std::string dov_line_csv(const dov::Input& input, const std::string& settings = {});
+
+/// The global gravity model a configuration names (`gravity_model: {model: …, max_degree: …}`).
+struct DovGravityModel {
+  std::string source;   ///< name or path as written (e.g. "egm2008", "models/x.gfc")
+  std::string lookup;   ///< the path beside the configuration when such a file exists, else source
+  int max_degree = -1;  ///< truncate on load; −1: the model's full degree
+};
 
 /// A configuration: the line file and the options (spec defaults where a key is absent).
 ///
@@ -67,12 +78,17 @@ std::string dov_line_csv(const dov::Input& input, const std::string& settings = 
 ///   max_step_s: 60
 ///   gate_alpha: 0                   # χ² gate significance; 0: none
 ///   statistics_start_s: 0
+///   gravity_model: {model: egm2008, max_degree: 360}   # instead of the model columns
 ///
 /// Unknown keys are errors (typos). Errors carry the file, line and key.
 struct DovConfig {
   std::string file;       ///< the configuration's path
   std::string line_path;  ///< resolved against the configuration's directory
   dov::Options options;
+  /// The global model that gives η_G, ξ_G at every sample (as in gyro campaign files: a file
+  /// beside the configuration, a path, or a name looked up where GeographicLib keeps its
+  /// models, gravity/model_lookup.hpp); absent: the line's model columns.
+  std::optional<DovGravityModel> gravity_model;
   FieldLines lines;  ///< lines of the configuration's keys
 };
 
@@ -80,9 +96,15 @@ struct DovConfig {
 /// IoError when the file cannot be read.
 DovConfig read_dov_config(const std::string& path);
 
-/// Read config.line_path, run dov::process with config.options and return the result. Errors
-/// about a sample ("samples[k].member") get the line file's name and the sample's line,
-/// errors about options the configuration's.
+/// Read config.line_path, run dov::process with config.options and return the result. With
+/// config.gravity_model, η_G, ξ_G of every sample are the astronomic deflection of the model's
+/// plumb line at the sample's position, ξ = Φ − φ, η = (Λ − λ)·cos φ (the gyro runner's
+/// quantity; gravity/gravity_field.hpp, xi_astro_rad and eta_astro_rad), evaluated along the
+/// line by gravity::evaluate_track within 1e-4″, and a note names the model and its degree.
+/// Exactly one source of model values: a line with model columns and a configuration that
+/// names a model, or neither, is an InputError. Errors about a sample ("samples[k].member")
+/// get the line file's name, the sample's line and the CSV column, errors about options and
+/// the model the configuration's file, line and key.
 dov::Result run_dov(const DovConfig& config, Progress* progress = nullptr);
 
 }  // namespace meridian::io
