@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 #include <system_error>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -15,6 +16,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/dov/simulator.hpp"
 #include "meridian/io/dov_files.hpp"
+#include "meridian/report/dov_html.hpp"
 #include "meridian/report/dov_outputs.hpp"
 
 namespace meridian::cli {
@@ -84,26 +86,32 @@ int run_simulate(const SimulateArgs& a) {
 }
 
 struct ProcessArgs {
-  std::string config, output;
+  std::string config, output, report;
   bool json = false, quiet = false;
 };
 
 int run_process(const ProcessArgs& a) {
+  require_html_reports_for(a.report);
   const io::DovConfig c = io::read_dov_config(a.config);
-  // The profile must not replace the line it is computed from (or the configuration).
-  if (!a.output.empty()) {
+  // The outputs must not replace the line they are computed from (or the configuration).
+  for (const auto& [out, option] : {std::pair{a.output, "--output"}, std::pair{a.report, "--report"}}) {
+    if (out.empty()) continue;
     std::error_code ec;
     for (const std::string& in : {c.line_path, a.config})
-      if (std::filesystem::equivalent(a.output, in, ec))
-        throw InputError(fmt::format("the profile would overwrite the input {}", in),
-                         {"", std::nullopt, "--output"});
+      if (std::filesystem::equivalent(out, in, ec))
+        throw InputError(fmt::format("the {} would overwrite the input {}",
+                                     option == std::string("--output") ? "profile" : "report", in),
+                         {"", std::nullopt, option});
   }
   TerminalProgress progress(a.quiet);
   const dov::Result r = io::run_dov(c, &progress);
   // Everything is computed before anything is written (atomic outputs).
   const std::string text = a.json ? report::dov_summary_to_json(r, c.options).dump(2) + "\n"
                                   : report::dov_summary_text(r);
+  const std::string html =
+      a.report.empty() ? std::string() : report::render_html(report::dov_document(r, c.options, a.config));
   if (!a.output.empty()) emit(a.output, report::dov_profile_csv(r));
+  if (!a.report.empty()) emit(a.report, html);
   emit("", text);
   return kOk;
 }
@@ -157,6 +165,7 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
       ->required();
   pro->add_flag("--json", pa->json, "Print the summary as JSON");
   pro->add_option("-o,--output", pa->output, "Write the per-epoch profile CSV here");
+  pro->add_option("--report", pa->report, "Write an HTML report (profile with ±σ, innovations)");
   pro->add_flag("-q,--quiet", pa->quiet, "No progress bar");
   pro->callback([pa, &exit_code] { exit_code = guarded([&] { return run_process(*pa); }); });
 }

@@ -30,6 +30,7 @@ REQUIRED = {
     "spec-scenario-2.html": ["summary", "determination-1"],
     "tracking.html": ["summary", "determination-1"],
     "gravity-points.html": ["summary", "maps", "definitions"],
+    "dov.html": ["summary", "profile", "innovations", "notes"],
 }
 
 # The gravity points page: a 20 x 20 grid of points over a region.
@@ -102,6 +103,21 @@ def write_gravity_report(meridian, out):
     return None
 
 
+def write_dov_report(meridian, out):
+    """A simulated half-hour deflection-of-the-vertical line and `dov process --report`;
+    returns an error message or None."""
+    line, config = os.path.join(out, "dov-line.csv"), os.path.join(out, "dov.yaml")
+    sim = subprocess.run([meridian, "dov", "simulate", "--hours", "0.5", "--seed", "2", "--out", line,
+                          "--config", config], capture_output=True, text=True)
+    if sim.returncode != 0:
+        return "meridian dov simulate: " + sim.stderr
+    run = subprocess.run([meridian, "dov", "process", config, "-q", "--report", os.path.join(out, "dov.html")],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        return "meridian dov process --report: " + run.stderr
+    return None
+
+
 def write_cjk_campaign_report(meridian, examples, out):
     """The example campaign with Chinese station and observer names, as a mine
     books them; returns an error message or None."""
@@ -137,7 +153,7 @@ def main():
         print("FAIL: meridian demo:", demo.stderr)
         return 1
     passed = failed = 0
-    for problem in (write_gravity_report(args.meridian, args.out),
+    for problem in (write_gravity_report(args.meridian, args.out), write_dov_report(args.meridian, args.out),
                     write_cjk_campaign_report(args.meridian, args.examples, args.out)):
         if problem:
             failed += 1

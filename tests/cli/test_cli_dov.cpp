@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -109,4 +110,24 @@ TEST_F(DovCli, NonOrthogonalMatrixAndConfigTypo) {
   EXPECT_EQ(t.code, 1);
   EXPECT_NE(t.err.find("typo.yaml:2"), std::string::npos) << t.err;
   EXPECT_FALSE(std::ifstream(dir_ / "profile.csv").good());
+}
+
+TEST_F(DovCli, HtmlReportShowsTheProfileAndTheNisCheck) {
+  ASSERT_EQ(run("dov simulate --hours 0.25 --seed 4 --out line.csv --config dov.yaml").code, 0);
+  const CmdResult r = run("dov process dov.yaml -q --json --report r.html");
+  if (r.code != 0 && r.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << r.err;
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = slurp(dir_ / "r.html");
+  for (const char* id : {"summary", "profile", "innovations", "notes"})
+    EXPECT_NE(html.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
+  EXPECT_NE(html.find("mean NIS"), std::string::npos);
+  EXPECT_NE(html.find("smoothed ± σ"), std::string::npos);
+  // the same NIS as the JSON summary, to three decimals
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NE(html.find(fmt::format("{:.3f}", j["nis"]["mean"].get<double>())), std::string::npos);
+  // the report never replaces an input, and a bad configuration writes none
+  EXPECT_NE(run("dov process dov.yaml -q --report line.csv").code, 0);
+  write("typo.yaml", "line: line.csv\nzetta: 0.05\n");
+  EXPECT_NE(run("dov process typo.yaml -q --report bad.html").code, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.html"));
 }

@@ -1,0 +1,23 @@
+#pragma once
+/// \file dov_html.hpp
+/// `dov process --report FILE.html`: a report::Document (render with render_html) of a
+/// deflection-of-the-vertical line. Sections (HTML ids): `summary` (the smoothed figures, the
+/// consistency check of the mean NIS against its 95 % interval, RMS errors when truth was
+/// given), `profile` (η and ξ against time: the global model's η_G, ξ_G, the filtered and the
+/// smoothed estimate with its ±σ band), `innovations` (ν_E, ν_N in a ±2√S band), `notes`. Angles in
+/// arcseconds, signs of η, ξ as geodesy/frames.hpp; at most 2000 epochs drawn per plot (every
+/// k-th, said in the caption). The true η, ξ are not drawn (the Result does not carry them).
+
+#include <string>
+
+#include "meridian/dov/deflection.hpp"
+#include "meridian/report/html.hpp"
+
+namespace meridian::report {
+
+/// The report of `result`, computed with `options`; `input` names the configuration or line in
+/// the header.
+Document dov_document(const dov::Result& result, const dov::Options& options,
+                      const std::string& input);
+
+}  // namespace meridian::report
