@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <filesystem>
@@ -105,6 +106,9 @@ DovLine read_dov_line(std::istream& in, const std::string& source) {
       dov::Sample s;
       s.time_s = r.number(c.time);
       s.lat_rad = r.angle(c.lat).rad();
+      if (!(std::abs(s.lat_rad) <= units::kPi / 2))  // found by fuzz_dov_line
+        throw InputError(fmt::format("latitude {}° is beyond ±90°", s.lat_rad / units::kDegree),
+                         r.context(c.lat));
       s.lon_rad = r.angle(c.lon).rad();
       s.height_m = r.number(c.height);
       s.speed_m_s = r.number(c.speed);

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "dov_test_support.hpp"
@@ -75,6 +76,23 @@ TEST(DovFiles, LineRoundTrip) {
 
 TEST(DovFiles, LineErrorsNameLineAndColumn) {
   const std::string csv = io::dov_line_csv(small_line());
+  {
+    // a latitude beyond 90° (found by fuzz_dov_line): the reader names it, line and column
+    dov::Input in = small_line();
+    in.samples[2].lat_rad = 1.0;  // then made 91° in the text below
+    std::string bad = io::dov_line_csv(in);
+    const std::string written = fmt::format("{:.17g}", 1.0 / units::kDegree);
+    ASSERT_NE(bad.find(written), std::string::npos);
+    bad.replace(bad.find(written), written.size(), "91");
+    std::istringstream s(bad);
+    try {
+      io::read_dov_line(s, "line.csv");
+      FAIL();
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.context().line, 5) << e.what();  // the comment, the header, samples 0 and 1
+      EXPECT_EQ(e.context().field, "lat_deg") << e.what();
+    }
+  }
   {
     std::string bad = csv;
     const auto third = bad.find('\n', bad.find('\n', bad.find('\n') + 1) + 1);  // end of line 3

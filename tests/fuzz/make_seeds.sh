@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 exe=${1:-../../build/meridian}
 c=corpus
-rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv}
+rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv,fuzz_dov_line}
 tmp=$(mktemp -d) && trap 'rm -rf "$tmp"' EXIT
 for f in tracking nontracking-noisy spec-scenario-2 transit-factor; do cp ../../examples/$f.yaml $c/fuzz_gyro_reduce/; done
 cp ../../examples/campaign.yaml $c/fuzz_gyro_campaign/
@@ -49,4 +49,16 @@ PY
 printf 'lat,lon,h\n10,20,0\n-89.9,0,5000\n45 30 00,-120,100\n' > $c/fuzz_points_csv/header-comma.csv
 printf '# comment\r\n56.3;21.2;10.5\r\n\r\n-33 52 10.5;151 12 30;0\r\n' > $c/fuzz_points_csv/semicolon-crlf.csv
 printf '0 0\n89.999 539.9 -400\n' > $c/fuzz_points_csv/whitespace.csv
+# Deflection-of-the-vertical lines from the simulator: 5 s at 1 Hz with truth, and the same
+# without the model columns (a line for a configuration that names a gravity model).
+"$exe" dov simulate --hours 0.0014 --rate-hz 1 --seed 1 --out $c/fuzz_dov_line/line-5s.csv > /dev/null
+python3 - "$c" <<'PY'
+import sys
+c = sys.argv[1]
+rows = open(f"{c}/fuzz_dov_line/line-5s.csv").read().splitlines()
+hdr = next(r for r in rows if not r.startswith("#")).split(",")
+drop = {hdr.index("model_eta_arcsec"), hdr.index("model_xi_arcsec")}
+out = [r if r.startswith("#") else ",".join(f for i, f in enumerate(r.split(",")) if i not in drop) for r in rows]
+open(f"{c}/fuzz_dov_line/no-model-columns.csv", "w").write("\n".join(out) + "\n")
+PY
 du -sh $c
