@@ -35,16 +35,14 @@ nlohmann::json nav_inspect_to_json(const io::nmea::Summary& s) {
   nlohmann::json j;
   j["file"] = s.file;
   j["lines"] = s.lines;
-  j["sentences"] = nlohmann::json::object();
-  for (const auto& [k, n] : s.sentences) j["sentences"][k] = n;
+  j["sentences"] = nlohmann::json(s.sentences);  // a std::map becomes an object, {} when empty
   j["proprietary"] = s.proprietary;
   j["unknown"] = s.unknown;
   j["bad_checksum"] = s.bad_checksum;
   j["no_checksum"] = s.no_checksum;
   j["malformed"] = s.malformed;
   j["duplicates"] = s.duplicates;
-  j["duplicates_by_type"] = nlohmann::json::object();
-  for (const auto& [k, n] : s.duplicates_by_type) j["duplicates_by_type"][k] = n;
+  j["duplicates_by_type"] = nlohmann::json(s.duplicates_by_type);
   j["comments"] = s.comments;
   j["logger_prefixed"] = s.logger_prefixed;
   j["accept_missing_checksum"] = s.accept_missing_checksum;
