@@ -12,5 +12,6 @@ void add_demo_command(CLI::App& app, int& exit_code);
 void add_report_commands(CLI::App& app, int& exit_code);
 void add_maglev_commands(CLI::App& app, int& exit_code);
 void add_dov_commands(CLI::App& app, int& exit_code);
+void add_nav_commands(CLI::App& app, int& exit_code);
 
 }  // namespace meridian::cli

@@ -124,6 +124,7 @@ int main(int argc, char** argv) {
   meridian::cli::add_gravity_commands(app, exit_code);
   meridian::cli::add_maglev_commands(app, exit_code);
   meridian::cli::add_dov_commands(app, exit_code);
+  meridian::cli::add_nav_commands(app, exit_code);
   meridian::cli::add_demo_command(app, exit_code);
   meridian::cli::add_report_commands(app, exit_code);
   try {
