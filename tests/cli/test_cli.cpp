@@ -199,6 +199,7 @@ TEST_F(Cli, HtmlReportWrittenOnlyOnSuccess) {
   ASSERT_EQ(s.code, 0) << s.err;
   const auto html = dir_ / "c.html";
   const CmdResult c = run("gyro campaign " + (dir_ / "c.yaml").string() + " --report " + html.string());
+  if (c.code != 0 && c.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << c.err;
   ASSERT_EQ(c.code, 0) << c.err;
   const std::string page = slurp(html);
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
@@ -340,6 +341,7 @@ TEST_F(Cli, StrictListsTheFailedChecksAndWritesNoFile) {
   const auto f = write("strict.yaml", job);
   const auto out = dir_ / "out.txt", html = dir_ / "out.html";
   const CmdResult r = run("gyro campaign " + f.string() + " --strict -o " + out.string() + " --report " + html.string());
+  if (r.err.find("without HTML reports") != std::string::npos) GTEST_SKIP() << r.err;
   EXPECT_EQ(r.code, 1);
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(html));
