@@ -85,6 +85,11 @@ int run_simulate(const SimulateArgs& a) {
   return kOk;
 }
 
+// "egm96 (to degree 360)" as the configuration names it; the note gives the degree loaded.
+std::string model_text(const io::DovGravityModel& m) {
+  return m.max_degree > 0 ? fmt::format("{} (to degree {})", m.source, m.max_degree) : m.source;
+}
+
 struct ProcessArgs {
   std::string config, output, report;
   bool json = false, quiet = false;
@@ -94,6 +99,10 @@ int run_process(const ProcessArgs& a) {
   require_html_reports_for(a.report);
   const io::DovConfig c = io::read_dov_config(a.config);
   // The outputs must not replace the line they are computed from (or the configuration).
+  if (!a.output.empty() && !a.report.empty() &&
+      std::filesystem::absolute(a.output).lexically_normal() ==
+          std::filesystem::absolute(a.report).lexically_normal())
+    throw InputError(fmt::format("--output and --report name the same file {}", a.output));
   for (const auto& [out, option] : {std::pair{a.output, "--output"}, std::pair{a.report, "--report"}}) {
     if (out.empty()) continue;
     std::error_code ec;
@@ -109,7 +118,9 @@ int run_process(const ProcessArgs& a) {
   const std::string text = a.json ? report::dov_summary_to_json(r, c.options).dump(2) + "\n"
                                   : report::dov_summary_text(r);
   const std::string html =
-      a.report.empty() ? std::string() : report::render_html(report::dov_document(r, c.options, a.config));
+      a.report.empty() ? std::string() : report::render_html(report::dov_document(
+                             r, c.options, a.config, c.line_path,
+                             c.gravity_model ? model_text(*c.gravity_model) : std::string()));
   if (!a.output.empty()) emit(a.output, report::dov_profile_csv(r));
   if (!a.report.empty()) emit(a.report, html);
   emit("", text);

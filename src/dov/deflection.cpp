@@ -193,8 +193,8 @@ Result process(const Input& input, Progress* progress) {
       const double dt = s.time_s - p.time_s;
       if (!(dt > 0.0))
         bad_sample(k, "time_s",
-                   fmt::format("time does not increase: {} s after the previous sample's {} s",
-                               s.time_s, p.time_s));
+                   fmt::format("time {} s is not after the previous sample's {} s", s.time_s,
+                               p.time_s));
       if (dt > o.max_step_s)
         bad_sample(k, "time_s",
                    fmt::format("gap of {} s after the previous sample exceeds options.max_step_s "
@@ -219,14 +219,15 @@ Result process(const Input& input, Progress* progress) {
       kf.predict(cache.step);
     }
     const Eigen::Matrix3d c = attitude_difference_matrix(s.lgu_body_to_nav, s.ins_body_to_nav);
-    const AttitudeDifference d = extract(c, o.extraction, sample_field(k, "lgu_body_to_nav"));
+    // Both matrices make the difference: the error names neither one alone.
+    const AttitudeDifference d = extract(c, o.extraction, sample_field(k, "attitude_difference"));
     const double size = d.vector().norm();
     if (!(size <= o.max_attitude_difference_rad))
-      bad_sample(k, "lgu_body_to_nav",
-                 fmt::format("the attitude difference of {:.3g} rad exceeds "
-                             "options.max_attitude_difference_rad = {:.3g} rad (do the two "
-                             "matrices describe the same body and frame order?)",
-                             size, o.max_attitude_difference_rad));
+      bad_sample(k, "attitude_difference",
+                 fmt::format("the two attitude matrices differ by {:.4g}° (limit {:.4g}°, "
+                             "options.max_attitude_difference_rad): do they describe the same "
+                             "body and frame order?",
+                             size / units::kDegree, o.max_attitude_difference_rad / units::kDegree));
     filter::Vector<Obs::size> y;
     y(Obs::east) = d.east_rad - s.model_xi_rad;
     y(Obs::north) = d.north_rad + s.model_eta_rad;

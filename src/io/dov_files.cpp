@@ -76,6 +76,7 @@ std::string sample_column(const std::string& member) {
   if (member == "model_xi_rad") return "model_xi_arcsec";
   if (member == "lgu_body_to_nav") return "lgu_11…lgu_33";
   if (member == "ins_body_to_nav") return "ins_11…ins_33";
+  if (member == "attitude_difference") return "lgu_11…lgu_33, ins_11…ins_33";
   return member;  // time_s, height_m, speed_m_s: the same name
 }
 

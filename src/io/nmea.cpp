@@ -234,6 +234,8 @@ class Inspector {
 
   void line(int n, std::string& text, bool overlong) {
     ++s_.lines;
+    // A UTF-8 byte-order mark before the first line (editors on Windows write one).
+    if (n == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
     while (!text.empty() && (text.back() == '\r' || text.back() == ' ' || text.back() == '\t')) text.pop_back();
     if (overlong || text.size() > kMaxLineBytes) return malformed(n, fmt::format("longer than {} bytes", kMaxLineBytes));
     const std::size_t first = text.find_first_not_of(" \t");
@@ -254,6 +256,8 @@ class Inspector {
       while (!prefix.empty() && (prefix.back() == ' ' || prefix.back() == '\t' || prefix.back() == ','))
         prefix.remove_suffix(1);
       st.logger_time_s = logger_stamp(prefix);
+      // The logger's clock spans the file whatever becomes of the sentence after its stamp.
+      widen(first_logger_, last_logger_, st.logger_time_s);
     }
     const std::string_view body(text.data() + dollar, text.size() - dollar);
     if (body.find('$', 1) != std::string_view::npos) return malformed(n, "a second '$' (truncated sentence)");
@@ -271,11 +275,11 @@ class Inspector {
         if (s_.bad_checksum_lines.size() < kMaxLinesListed) s_.bad_checksum_lines.push_back(n);
         return;
       }
+    } else if (!options_.accept_missing_checksum) {
+      count_no_checksum(n);  // rejected here
+      return;
     } else {
-      ++s_.no_checksum;
-      if (s_.no_checksum_lines.size() < kMaxLinesListed) s_.no_checksum_lines.push_back(n);
-      if (!options_.accept_missing_checksum) return;
-      st.has_checksum = false;
+      st.has_checksum = false;  // counted once it is accepted: a malformed one is only malformed
     }
     const Fields f = nmea_split(content);
     const std::string_view address = f[0];
@@ -292,6 +296,7 @@ class Inspector {
       return malformed(n, fmt::format("{}: {}", address, e.reason));
     }
     const std::string key(address);
+    if (!st.has_checksum) count_no_checksum(n);
     ++s_.sentences[key];
     if (std::holds_alternative<std::monostate>(st.data)) ++s_.unknown;
     // Only a repeated time is a duplicate: an untimed sentence repeats whenever the value is
@@ -310,7 +315,6 @@ class Inspector {
       return;
     }
     date_and_time(st);
-    widen(first_logger_, last_logger_, st.logger_time_s);
     widen(first_time_, last_time_, st.time_s);
     if (cb_) cb_(st);
   }
@@ -330,6 +334,11 @@ class Inspector {
     if (!t) return;
     if (!lo || *t < *lo) lo = t;
     if (!hi || *t > *hi) hi = t;
+  }
+
+  void count_no_checksum(int n) {
+    ++s_.no_checksum;
+    if (s_.no_checksum_lines.size() < kMaxLinesListed) s_.no_checksum_lines.push_back(n);
   }
 
   void malformed(int n, std::string reason) {

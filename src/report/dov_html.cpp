@@ -19,7 +19,7 @@ double arcsec(double rad) { return units::rad_to_arcsec(rad); }
 std::size_t stride(std::size_t n) { return std::max<std::size_t>(1, (n + kMaxDrawn - 1) / kMaxDrawn); }
 
 std::string drawn(std::size_t step) {
-  return step == 1 ? "All epochs drawn." : fmt::format("Every {}th epoch drawn.", step);
+  return step == 1 ? "All epochs drawn." : fmt::format("One epoch in {} drawn.", step);
 }
 
 json axis(const char* field, const std::string& title, bool zero = true) {
@@ -106,7 +106,8 @@ std::string pair_text(const dov::EtaXi& v) {
 
 }  // namespace
 
-Document dov_document(const dov::Result& r, const dov::Options& o, const std::string& input) {
+Document dov_document(const dov::Result& r, const dov::Options& o, const std::string& input,
+                      const std::string& line_file, const std::string& model_source) {
   const dov::Summary& s = r.summary;
   Document doc;
   doc.title = "Dynamic deflection of the vertical";
@@ -114,6 +115,8 @@ Document dov_document(const dov::Result& r, const dov::Options& o, const std::st
   doc.footer = report_generator();
   doc.header = {
       {"input", input},
+      {"line", line_file.empty() ? input : line_file},
+      {"global model", model_source.empty() ? "η_G, ξ_G columns of the line" : model_source},
       {"epochs", fmt::format("{} ({} in the statistics)", s.epochs, s.statistics_epochs)},
       {"model error", fmt::format("second-order Gauss–Markov, σ {:.2f}″, ζ {:.3f}, λ {:.0f} m",
                                   arcsec(o.model.sigma_model_rad), o.model.zeta,
@@ -150,9 +153,11 @@ Document dov_document(const dov::Result& r, const dov::Options& o, const std::st
     kv.items.push_back({"mean NEES smoothed (8 states)", fmt::format("{:.3f}", *s.mean_nees_smoothed)});
   summary.blocks.push_back(kv);
   summary.blocks.push_back(Paragraph{
-      "η > 0: the plumb line points east of the ellipsoid normal; ξ > 0: north (astronomic "
-      "minus geodetic). σ is the filter's standard deviation of δη̂, δξ̂, the error of the "
-      "estimate about the global model's value."});
+      "η > 0: the astronomic zenith (the upward plumb line) lies east of the ellipsoid normal; "
+      "ξ > 0: north of it (astronomic minus geodetic). σ is the filter's standard deviation of "
+      "δη̂, δξ̂, the estimate's departure from the global model, under the model-error model "
+      "(σ_model, ζ, λ). An error of the global model that is constant over the whole line is "
+      "not observable from the attitude difference and is not in σ."});
   doc.sections.push_back(summary);
 
   Section profile{"profile", "Profile", {}, 2};

@@ -16,10 +16,11 @@ std::vector<std::string> nav_warnings(const io::nmea::Summary& s) {
                             "sentence times are as logged",
                             s.rollover_line.value_or(0)));
   if (s.accept_missing_checksum && s.no_checksum > 0)
-    w.push_back(fmt::format("{} sentences without a checksum accepted unverified", s.no_checksum));
+    w.push_back(fmt::format("{} sentence{} without a checksum accepted unverified", s.no_checksum,
+                            s.no_checksum == 1 ? "" : "s"));
   if (s.no_checksum > 0 && !s.accept_missing_checksum)
-    w.push_back(fmt::format("{} sentences without a checksum rejected (--accept-missing-checksum accepts them)",
-                            s.no_checksum));
+    w.push_back(fmt::format("{} sentence{} without a checksum rejected (--accept-missing-checksum accepts them)",
+                            s.no_checksum, s.no_checksum == 1 ? "" : "s"));
   return w;
 }
 
@@ -88,7 +89,7 @@ std::string nav_inspect_text(const io::nmea::Summary& s) {
     out += fmt::format("  time: {} to {} ({})\n", io::nmea::iso8601_utc(*s.first_time_s),
                        io::nmea::iso8601_utc(*s.last_time_s), s.time_source == "logger" ? "logger stamps" : "sentences");
   else
-    out += "  time: no date in the file\n";
+    out += "  time: none (no dated sentence was accepted and no line has a logger stamp)\n";
   for (const auto& w : nav_warnings(s)) out += fmt::format("  warning: {}\n", w);
   return out;
 }

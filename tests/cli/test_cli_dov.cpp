@@ -127,6 +127,11 @@ TEST_F(DovCli, HtmlReportShowsTheProfileAndTheNisCheck) {
   EXPECT_NE(html.find(fmt::format("{:.3f}", j["nis"]["mean"].get<double>())), std::string::npos);
   // the report never replaces an input, and a bad configuration writes none
   EXPECT_NE(run("dov process dov.yaml -q --report line.csv").code, 0);
+  // profile and report on one path: refused (a trial lost the profile this way)
+  const CmdResult same = run("dov process dov.yaml -q -o out.html --report out.html");
+  EXPECT_NE(same.code, 0);
+  EXPECT_NE(same.err.find("same file"), std::string::npos) << same.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.html"));
   write("typo.yaml", "line: line.csv\nzetta: 0.05\n");
   EXPECT_NE(run("dov process typo.yaml -q --report bad.html").code, 0);
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.html"));

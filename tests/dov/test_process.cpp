@@ -80,8 +80,9 @@ TEST(DovProcess, BadAttitudeMatricesNameTheSample) {
         Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
         in.samples[20].lgu_body_to_nav;
     std::string msg;
-    EXPECT_EQ(error_field(in, &msg), "samples[20].lgu_body_to_nav");
+    EXPECT_EQ(error_field(in, &msg), "samples[20].attitude_difference");  // both matrices
     EXPECT_NE(msg.find("max_attitude_difference_rad"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("17.19°"), std::string::npos) << msg;  // 0.3 rad, in degrees
   }
 }
 
@@ -91,7 +92,7 @@ TEST(DovProcess, TimeReversalsDuplicatesAndGaps) {
     std::swap(in.samples[40].time_s, in.samples[41].time_s);
     std::string msg;
     EXPECT_EQ(error_field(in, &msg), "samples[41].time_s");
-    EXPECT_NE(msg.find("does not increase"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("is not after the previous sample's"), std::string::npos) << msg;
     // no sample index in the message: the field names samples[41], the reader its line
     EXPECT_EQ(msg.find("samples[", msg.find(": ")), std::string::npos) << msg;
   }

@@ -194,6 +194,16 @@ TEST(NmeaCatalogue, MissingChecksumAcceptedUnderTheOption) {
   EXPECT_FALSE(r.sentences[0].has_checksum);
   EXPECT_EQ(r.summary.no_checksum, 2);
   EXPECT_TRUE(r.summary.accept_missing_checksum);
+  // a truncated GGA without checksum is malformed only, not also "accepted unverified"
+  const Read t = read_text("$GPGGA,123519,4807.038,N\n", o);
+  EXPECT_EQ(t.summary.malformed, 1);
+  EXPECT_EQ(t.summary.no_checksum, 0);
+}
+
+TEST(NmeaCatalogue, ByteOrderMarkBeforeTheFirstLine) {
+  const Read r = read_text("\xEF\xBB\xBF" + with_sum("HEHDT,218.53,T") + "\n");
+  EXPECT_EQ(r.summary.malformed, 0);
+  EXPECT_EQ(r.sentences.size(), 1u);
 }
 
 TEST(NmeaCatalogue, DuplicateFixAndRolloverWithoutStamp) {
@@ -272,6 +282,10 @@ TEST(NmeaRealLogs, HandheldWithoutChecksums) {
   const Read rejected = read_data("nbp1406-gps-nochecksum.nmea");
   EXPECT_EQ(rejected.summary.no_checksum, 5000);  // grep -c '\*' → 0 of wc -l 5000
   EXPECT_TRUE(rejected.summary.sentences.empty());
+  // every sentence rejected, but the logger stamps still span the file (head -1, tail -1)
+  ASSERT_TRUE(rejected.summary.first_time_s.has_value());
+  EXPECT_EQ(rejected.summary.time_source, "logger");
+  EXPECT_EQ(nmea::iso8601_utc(*rejected.summary.first_time_s), "2014-08-01T00:00:00.316Z");
   nmea::Options o;
   o.accept_missing_checksum = true;
   const Read r = read_data("nbp1406-gps-nochecksum.nmea", o);

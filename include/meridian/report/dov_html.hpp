@@ -15,9 +15,11 @@
 
 namespace meridian::report {
 
-/// The report of `result`, computed with `options`; `input` names the configuration or line in
-/// the header.
+/// The report of `result`, computed with `options`; `input` names the configuration,
+/// `line_file` the line and `model_source` the gravity model that gave η_G, ξ_G (empty: the
+/// line's model columns) in the header.
 Document dov_document(const dov::Result& result, const dov::Options& options,
-                      const std::string& input);
+                      const std::string& input, const std::string& line_file = {},
+                      const std::string& model_source = {});
 
 }  // namespace meridian::report
