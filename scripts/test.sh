@@ -45,9 +45,10 @@ if [ "${MERIDIAN_SKIP_SANITIZERS:-0}" != 1 ]; then
 fi
 if [ "${MERIDIAN_FUZZ:-0}" = 1 ]; then
   # Every reader's libFuzzer harness for a bounded time (docs/reliability.md):
-  # 7 harnesses x 15 s plus the clang build: about 5 minutes on 2 cores (measured
-  # 2026-12-01). Not in the default run: with it the whole command took 36 min 44 s on
-  # this 2-core machine, over the 30-minute CI budget; MERIDIAN_FUZZ=1 adds it.
+  # 9 harnesses x 15 s plus the clang build (about 85 s with unity builds, 2026-12-02). Not in
+  # the default run yet: the whole command took 14 min on an idle 2-core machine here, but the
+  # last CI machine ran about 1.7x slower, and this would take it to about 30 minutes, the
+  # budget (docs/reliability.md); MERIDIAN_FUZZ=1 adds it.
   echo "== libFuzzer harnesses (clang, ASan+UBSan), ${FUZZ_SECONDS:-15} s each"
   FUZZ_SECONDS=${FUZZ_SECONDS:-15} bash scripts/fuzz.sh
 fi

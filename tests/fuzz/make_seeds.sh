@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 exe=${1:-../../build/meridian}
 c=corpus
-rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv,fuzz_dov_line}
+rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv,fuzz_dov_line,fuzz_nmea}
 tmp=$(mktemp -d) && trap 'rm -rf "$tmp"' EXIT
 for f in tracking nontracking-noisy spec-scenario-2 transit-factor; do cp ../../examples/$f.yaml $c/fuzz_gyro_reduce/; done
 cp ../../examples/campaign.yaml $c/fuzz_gyro_campaign/
@@ -60,5 +60,29 @@ hdr = next(r for r in rows if not r.startswith("#")).split(",")
 drop = {hdr.index("model_eta_arcsec"), hdr.index("model_xi_arcsec")}
 out = [r if r.startswith("#") else ",".join(f for i, f in enumerate(r.split(",")) if i not in drop) for r in rows]
 open(f"{c}/fuzz_dov_line/no-model-columns.csv", "w").write("\n".join(out) + "\n")
+PY
+# NMEA 0183 logs written here (not copies of ../shared/data): the quirks of real loggers —
+# logger stamps, lower-case checksums, proprietary and undecoded types, empty fields, the 1.x
+# GLL without checksum, a comment, CR LF, a day change, no final newline.
+python3 - "$c" <<'PY'
+import sys
+c = sys.argv[1]
+def s(body, lower=False):
+    x = 0
+    for ch in body.encode():
+        x ^= ch
+    return f"${body}*{x:02x}" if lower else f"${body}*{x:02X}"
+stamped = [f"2014-08-01T23:59:5{i}.160000Z " + t for i, t in enumerate([
+    s("INZDA,235950.17,31,07,2014,,"), s("INGGA,235950.16,6402.3208,S,06203.4560,W,2,09,0.9,4.5,M,20.1,M,3.0,0130"),
+    s("INHDT,123.45,T"), s("INVTG,122.9,T,,M,9.8,N,18.1,K,D"), s("PSXN,20,1,0,0,0"),
+    s("INGGA,000001.16,6402.3300,S,06203.4400,W,2,09,0.9,4.6,M,20.1,M,3.0,0130"),
+    s("HEHDT,218.53,T", lower=True), s("VDVBW,5.1,0.2,A,5.3,0.1,A")])]
+open(f"{c}/fuzz_nmea/logger-stamped.nmea", "w").write("\n".join(stamped) + "\n")
+yacht = ["# chart plotter", s("GPRMC,120000,A,5231.1000,N,00513.2000,E,5.2,270.0,150610,1.0,W"),
+         s("IIHDT,,T"), s("GPGGA,120001,5231.1010,N,00513.1990,E,1,07,1.2,,M,,M,,"),
+         s("GPRMC,120000,A,5231.1000,N,00513.2000,E,5.2,270.0,150610,1.0,W"), s("IIXDR,C,19.5,C,AIRTEMP")]
+open(f"{c}/fuzz_nmea/yacht-crlf.nmea", "w", newline="").write("\r\n".join(yacht))
+open(f"{c}/fuzz_nmea/no-checksum-1x.nmea", "w").write(
+    "$GPGLL,2200.097,S,01756.346,W\n$GPVTG,054.7,T,034.4,M,005.5,N,010.2,K\n$GPZDA,000001,01,08,1994,00,00\n")
 PY
 du -sh $c
