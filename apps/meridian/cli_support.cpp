@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -86,6 +87,10 @@ void TerminalProgress::finish() {
   std::fputs("\r\033[K", stderr);  // clear the bar's line
   std::fflush(stderr);
   drawn_ = false;
+}
+
+bool same_path(const std::string& a, const std::string& b) {
+  return std::filesystem::absolute(a).lexically_normal() == std::filesystem::absolute(b).lexically_normal();
 }
 
 double angle_option(const std::string& text, const char* name) {

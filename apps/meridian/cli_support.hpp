@@ -31,6 +31,10 @@ void emit(const std::string& path, const std::string& text);
 /// an Error saying how to enable them, before any work is done.
 void require_html_reports_for(const std::string& report_path);
 
+/// True when paths a and b name the same file, compared as absolute, normalised paths (neither
+/// need exist yet: two outputs about to be written).
+bool same_path(const std::string& a, const std::string& b);
+
 /// An angle option as typed (DMS or decimal degrees, core/dms.hpp) in radians; a parse error
 /// names the option (`name`, e.g. "--latitude").
 double angle_option(const std::string& text, const char* name);

@@ -4,7 +4,6 @@
 #include <memory>
 #include <string>
 #include <system_error>
-#include <utility>
 
 #include <fmt/format.h>
 
@@ -63,8 +62,7 @@ int run_simulate(const SimulateArgs& a) {
   }
   if (a.out.empty() || a.out == "-")
     throw InputError("--config needs --out to name a file: the configuration names the line");
-  if (std::filesystem::absolute(a.out).lexically_normal() ==
-      std::filesystem::absolute(a.config).lexically_normal())
+  if (same_path(a.out, a.config))
     throw InputError(fmt::format("--out and --config name the same file {}", a.out));
   // The configuration names the line relative to its own directory.
   const auto config_dir = std::filesystem::absolute(a.config).parent_path();
@@ -99,18 +97,20 @@ int run_process(const ProcessArgs& a) {
   require_html_reports_for(a.report);
   const io::DovConfig c = io::read_dov_config(a.config);
   // The outputs must not replace the line they are computed from (or the configuration).
-  if (!a.output.empty() && !a.report.empty() &&
-      std::filesystem::absolute(a.output).lexically_normal() ==
-          std::filesystem::absolute(a.report).lexically_normal())
+  if (!a.output.empty() && !a.report.empty() && same_path(a.output, a.report))
     throw InputError(fmt::format("--output and --report name the same file {}", a.output));
-  for (const auto& [out, option] : {std::pair{a.output, "--output"}, std::pair{a.report, "--report"}}) {
-    if (out.empty()) continue;
+  struct Output {
+    const std::string& path;
+    const char* option;
+    const char* what;
+  };
+  for (const Output& o : {Output{a.output, "--output", "profile"}, Output{a.report, "--report", "report"}}) {
+    if (o.path.empty()) continue;
     std::error_code ec;
     for (const std::string& in : {c.line_path, a.config})
-      if (std::filesystem::equivalent(out, in, ec))
-        throw InputError(fmt::format("the {} would overwrite the input {}",
-                                     option == std::string("--output") ? "profile" : "report", in),
-                         {"", std::nullopt, option});
+      if (std::filesystem::equivalent(o.path, in, ec))
+        throw InputError(fmt::format("the {} would overwrite the input {}", o.what, in),
+                         {"", std::nullopt, o.option});
   }
   TerminalProgress progress(a.quiet);
   const dov::Result r = io::run_dov(c, &progress);

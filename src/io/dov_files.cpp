@@ -15,9 +15,9 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/track.hpp"
 #include "meridian/io/record_reader.hpp"
+#include "gravity_model_ref.hpp"
 
 namespace meridian::io {
 namespace {
@@ -242,8 +242,7 @@ DovConfig read_dov_config(const std::string& path) {
     g->allow_only({"model", "max_degree"});
     DovGravityModel m;
     m.source = g->require("model").string();
-    const std::filesystem::path beside = std::filesystem::path(path).parent_path() / m.source;
-    m.lookup = std::filesystem::exists(beside) ? beside.string() : m.source;
+    m.lookup = detail::model_lookup_path(path, m.source);
     if (auto v = g->get("max_degree")) {
       m.max_degree = v->integer();
       if (m.max_degree < 2) v->fail("max_degree must be at least 2");
@@ -262,12 +261,10 @@ std::string fill_model_values(DovLine& line, const DovConfig& config) {
   const DovGravityModel& ref = *config.gravity_model;
   gravity::GravityModelData data;
   try {
-    data = gravity::load_model(ref.lookup, gravity::Truncation{ref.max_degree, -1});
+    data = detail::load_named_model(ref.lookup, ref.max_degree);
   } catch (Error& e) {
-    if (!e.context().file.empty()) throw;  // a bad model file names itself
-    InputError located(e.message(), {"", std::nullopt, "gravity_model.model"});
-    locate_error(located, config.file, config.lines);
-    throw located;
+    if (e.context().file.empty()) locate_error(e, config.file, config.lines);
+    throw;
   }
   const gravity::GravityField field(data);
   gravity::TrackOptions track;

@@ -10,6 +10,7 @@
 #include "meridian/geodesy/frames.hpp"
 #include "meridian/geodesy/laplace.hpp"
 #include "meridian/io/document.hpp"
+#include "gravity_model_ref.hpp"
 #include "gyro_record.hpp"
 
 namespace meridian::io {
@@ -350,8 +351,7 @@ gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesyste
   n.allow_only({"model", "max_degree", "eta_sigma_arcsec", "xi_sigma_arcsec"});
   gyro::GravityModelRef r;
   r.source = n.require("model").string();
-  const std::filesystem::path beside = campaign_path.parent_path() / r.source;
-  r.lookup = std::filesystem::exists(beside) ? beside.string() : r.source;
+  r.lookup = detail::model_lookup_path(campaign_path, r.source);
   if (auto v = n.get("max_degree")) r.max_degree = v->integer();
   if (auto v = n.get("eta_sigma_arcsec"))
     r.sigma_eta_rad = v->positive_number() * units::kArcsecond;

@@ -5,6 +5,7 @@
 #include "meridian/core/error.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/model_lookup.hpp"
+#include "gravity_model_ref.hpp"
 
 namespace meridian::io {
 namespace {
@@ -25,13 +26,7 @@ auto located(const std::string& file, const FieldLines& lines, F&& body) {
 const gyro::DeflectionModel& DeflectionModels::get(const gyro::GravityModelRef& ref) {
   const auto key = std::make_pair(ref.lookup, ref.max_degree);
   if (const auto it = loaded_.find(key); it != loaded_.end()) return *it->second;
-  gravity::GravityModelData data;
-  try {
-    data = gravity::load_model(ref.lookup, gravity::Truncation{ref.max_degree, -1});
-  } catch (const Error& e) {
-    if (!e.context().file.empty()) throw;  // a bad model file names itself
-    throw InputError(e.message(), {"", std::nullopt, "gravity_model.model"});
-  }
+  const gravity::GravityModelData data = detail::load_named_model(ref.lookup, ref.max_degree);
   auto field = std::make_shared<const gravity::GravityField>(data);
   auto model = std::make_shared<gyro::DeflectionModel>();
   model->description = fmt::format("{} (degree {})", data.name.empty() ? ref.source : data.name,

@@ -205,6 +205,18 @@ std::string without_model_columns(const std::string& csv) {
   return out;
 }
 
+// The InputError of running the configuration at `config`; a test failure (and an empty error)
+// when it runs or throws anything else.
+InputError run_error(const std::filesystem::path& config) {
+  try {
+    io::run_dov(io::read_dov_config(config.string()));
+    ADD_FAILURE() << config << " ran without an InputError";
+  } catch (const InputError& e) {
+    return e;
+  }
+  return InputError("");
+}
+
 TEST(DovFiles, GravityModelGivesTheModelValues) {
   const auto dir = temp_dir("gravity");
   gravity::SyntheticModelOptions mo;
@@ -238,31 +250,19 @@ TEST(DovFiles, GravityModelGivesTheModelValues) {
   // exactly one source of model values: columns and a model, or neither, are errors
   write(dir / "both.csv", io::dov_line_csv(in));
   write(dir / "both.yaml", "line: both.csv\nzeta: 0.05\ngravity_model: {model: syn.egm}\n");
-  try {
-    io::run_dov(io::read_dov_config((dir / "both.yaml").string()));
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::filesystem::path(e.context().file), dir / "both.yaml");
-    EXPECT_EQ(e.context().line, 3) << e.what();
-    EXPECT_NE(std::string(e.what()).find("one source"), std::string::npos) << e.what();
-  }
+  const InputError both = run_error(dir / "both.yaml");
+  EXPECT_EQ(std::filesystem::path(both.context().file), dir / "both.yaml");
+  EXPECT_EQ(both.context().line, 3) << both.what();
+  EXPECT_NE(std::string(both.what()).find("one source"), std::string::npos) << both.what();
   write(dir / "none.yaml", "line: line.csv\n");
-  try {
-    io::run_dov(io::read_dov_config((dir / "none.yaml").string()));
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::filesystem::path(e.context().file), dir / "line.csv") << e.what();
-    EXPECT_NE(std::string(e.what()).find("no gravity_model"), std::string::npos) << e.what();
-  }
+  const InputError none = run_error(dir / "none.yaml");
+  EXPECT_EQ(std::filesystem::path(none.context().file), dir / "line.csv") << none.what();
+  EXPECT_NE(std::string(none.what()).find("no gravity_model"), std::string::npos) << none.what();
   // a model that is not found: the configuration's line of the key
   write(dir / "missing.yaml", "line: line.csv\ngravity_model:\n  model: no-such-model-xyz\n");
-  try {
-    io::run_dov(io::read_dov_config((dir / "missing.yaml").string()));
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::filesystem::path(e.context().file), dir / "missing.yaml") << e.what();
-    EXPECT_EQ(e.context().line, 3) << e.what();
-  }
+  const InputError missing = run_error(dir / "missing.yaml");
+  EXPECT_EQ(std::filesystem::path(missing.context().file), dir / "missing.yaml") << missing.what();
+  EXPECT_EQ(missing.context().line, 3) << missing.what();
   std::filesystem::remove_all(dir);
 }
 
