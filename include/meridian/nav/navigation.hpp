@@ -1,0 +1,198 @@
+#pragma once
+/// \file navigation.hpp
+/// The marine navigation post-processing workflow (shared/spec/navigation.md;
+/// docs/navigation.md): dead reckoning, lines of position, satellite fixes → the best track
+/// with σ, blunders rejected, the DR velocity bias estimated; the classical sequential
+/// adjustment and its variants beside an EKF and its RTS smoother, on the same data.
+///
+///   Input (DR, stations, chains, LOPs, fixes, optional truth, Options) → process() → Result
+///
+/// Epochs: one per DR sample (its time_s); epoch 0 is the first sample, where the initial
+/// position applies. Every LOP and fix is reduced to the DR epoch nearest in time (spec §3: the
+/// DR increment between them is added to the computed value and its variance to the
+/// observation's). Observations more than Options::max_reduction_s from every epoch, or
+/// outside the DR span, are skipped and listed in Result::skipped.
+///
+/// The state of the sequential methods is the position (x, y) plus the chain parameters
+/// (spec §4.3); of the EKF also the velocity bias W = (W_N, W_E) (m/s), the correction to add
+/// to the DR velocity: v_true = v_DR + W. DR increments: Δ_k = (t_k − t_{k−1})·v_k with
+/// covariance (t_k − t_{k−1})²·Σ_v,k.
+///
+/// Errors: InputError with field "dr[k].<member>", "lops[k].<member>", "fixes[k].<member>",
+/// "stations[k].<member>", "chains[k].<member>", "truth[k].<member>", "initial.<member>" or
+/// "options.<name>"; NumericalError (from the filter module, naming "epoch k" = dr[k]) when a
+/// covariance is no longer positive definite. No output is NaN.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "meridian/core/progress.hpp"
+#include "meridian/filter/detail/record_store.hpp"
+#include "meridian/nav/method.hpp"
+#include "meridian/nav/observations.hpp"
+
+namespace meridian::nav {
+
+/// Truth points farther apart than this are not interpolated between (s).
+inline constexpr double kTruthMaxGap_s = 10.0;
+/// A LOP whose station lies closer than this to the ship is not used (m): its direction is
+/// undefined there.
+inline constexpr double kMinStationDistance_m = 1.0;
+
+/// How the sequential methods reject a gross LOP error (spec §4.4).
+enum class Rejection {
+  Threshold,  ///< "threshold": |misclosure against the predicted position| > threshold_m
+  WTest,      ///< "w-test": |ν|/√S > the two-sided normal critical value at α
+};
+
+/// Model of the velocity bias in the EKF (spec §6).
+enum class BiasModel {
+  RandomWalk,   ///< "random-walk": Ẇ = w, w white with density bias_random_walk (m/s/√s)²
+  GaussMarkov,  ///< "gauss-markov": first order, correlation time bias_correlation_time_s,
+                ///< stationary σ bias_sigma_m_s
+};
+
+struct Options {
+  Rejection rejection = Rejection::Threshold;
+  double threshold_m = 100.0;   ///< spec §4.4 default; > 0
+  double alpha = 0.001;         ///< w-test significance and the EKF's χ² gate; 0 < α < 1
+  double segment_s = 60.0;      ///< method II segment length (s), > 0
+  /// Methods I and II: W_i = (X̂_i − X_i⁰)/t_i enters the running mean only once t_i ≥ this
+  /// (s, ≥ 0; method II: t_i counted from the segment start, and at most half a segment),
+  /// because the first W_i divide the position noise by a few seconds.
+  double bias_start_s = 180.0;
+  double backward_window_s = 60.0;  ///< §4.2 window P₁…P₂ (s), ≥ 0
+  /// §5: a fix farther than this from the forward solution at its epoch is flagged and not
+  /// combined (m), > 0. Also a fix failing the χ²(2) test at α is flagged.
+  double fix_tolerance_m = 200.0;
+  double max_reduction_s = 10.0;  ///< farthest an observation may be reduced (s), ≥ 0
+  double max_dr_gap_s = 60.0;     ///< a longer DR gap is an InputError (s), > 0
+  /// The sequential methods carry the position without a bias state, so the σ of the DR
+  /// velocity they use must cover the systematic DR error they do not model: each velocity
+  /// component gets this σ (m/s, white per sample, ≥ 0) on top of DrSample::covariance.
+  /// The EKF and dead reckoning use DrSample::covariance alone.
+  double sequential_sigma_velocity_m_s = 0.4;
+  // EKF bias model.
+  BiasModel bias_model = BiasModel::RandomWalk;
+  double bias_sigma_m_s = 1.0;             ///< prior σ of each bias component (m/s), > 0
+  double bias_random_walk_m_s_per_sqrt_s = 0.005;  ///< random-walk density (m/s/√s), ≥ 0
+  double bias_correlation_time_s = 600.0;  ///< Gauss–Markov τ (s), > 0
+  /// Time from the first epoch over which the per-minute statistics bins run (s): bin j holds
+  /// epochs with j·60 ≤ t − t₀ < (j+1)·60.
+  double statistics_bin_s = 60.0;
+  /// A stretch longer than this without any used observation gets a warning (s), > 0.
+  double warn_gap_s = 300.0;
+  filter::StorageOptions storage;  ///< where the RTS smoother's records spill
+};
+
+/// Initial position at the first DR epoch: the start of dead reckoning and the prior of the
+/// sequential methods and the EKF.
+struct InitialPosition {
+  double x_north_m = 0.0;
+  double y_east_m = 0.0;
+  double sigma_m = 100.0;  ///< σ of each coordinate (m), > 0
+};
+
+struct Input {
+  std::vector<DrSample> dr;  ///< at least 2, strictly increasing time_s
+  std::vector<Station> stations;
+  std::vector<Chain> chains;
+  std::vector<Lop> lops;     ///< any time order
+  std::vector<Fix> fixes;    ///< any time order
+  std::vector<TruthPoint> truth;  ///< empty, or strictly increasing times (interpolated)
+  InitialPosition initial;
+  Options options;
+};
+
+/// Flags of a track point (bits).
+enum TrackFlag : unsigned {
+  kUsedLop = 1u << 0,       ///< at least one LOP was used at this epoch
+  kRejectedLop = 1u << 1,   ///< at least one LOP was rejected at this epoch
+  kUsedFix = 1u << 2,       ///< a fix was combined at this epoch
+  kFlaggedFix = 1u << 3,    ///< a fix was flagged for inspection and not combined
+};
+
+/// A position of one method at one epoch.
+struct TrackPoint {
+  double time_s = 0.0;
+  double x_north_m = 0.0;
+  double y_east_m = 0.0;
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  ///< of (x, y) (m²)
+  double bias_north_m_s = 0.0;  ///< the velocity-bias estimate in use (0 without one)
+  double bias_east_m_s = 0.0;
+  double sigma_bias_north_m_s = 0.0;  ///< 0 where the method gives no σ (methods I, II)
+  double sigma_bias_east_m_s = 0.0;
+  unsigned flags = 0;  ///< TrackFlag bits
+  double sigma_x_m() const;
+  double sigma_y_m() const;
+};
+
+/// Errors against truth (epochs where truth is available).
+struct ErrorStatistics {
+  std::size_t epochs = 0;    ///< epochs compared
+  double bin_s = 60.0;       ///< length of the per_minute_rms_m bins (Options::statistics_bin_s)
+  double rms_m = 0.0;        ///< √mean(|Δ|²), Δ = estimated − true horizontal position
+  double max_error_m = 0.0;  ///< max |Δ|
+  /// Per bin of Options::statistics_bin_s from the first epoch; a bin without truth is NaN
+  /// in memory and null in JSON.
+  std::vector<double> per_minute_rms_m;
+  double mean_nees = 0.0;    ///< mean of Δᵀ·P⁻¹·Δ (2 degrees of freedom)
+};
+
+/// A time-invariant parameter of a chain (spec §4.3) as estimated by one method.
+struct ChainParameter {
+  std::size_t chain = 0;
+  std::string name;      ///< "scale" or "offset_m"
+  double value = 0.0;    ///< dimensionless or m
+  double sigma = 0.0;
+};
+
+struct MethodResult {
+  Method method = Method::DeadReckoning;
+  std::vector<TrackPoint> track;  ///< one per epoch
+  std::vector<ChainParameter> parameters;  ///< at the last epoch (smoother: the whole line)
+  std::optional<ErrorStatistics> errors;   ///< with truth
+};
+
+/// An observation that a method did not use.
+struct RejectedObservation {
+  enum class Kind { Lop, Fix };
+  Kind kind = Kind::Lop;
+  std::size_t index = 0;   ///< into Input::lops or Input::fixes
+  Method method = Method::SequentialNoBias;
+  double time_s = 0.0;
+  double misclosure_m = 0.0;  ///< observed − computed against the predicted position (m)
+  double statistic = 0.0;     ///< |w| for a LOP (w-test), √(χ²) for a fix (0 for the threshold)
+  std::string reason;         ///< "misclosure 153.2 m > 100 m", "w = 4.1 > 3.29", …
+};
+
+/// An observation no method could use (outside the DR span, station at the ship, …).
+struct SkippedObservation {
+  RejectedObservation::Kind kind = RejectedObservation::Kind::Lop;
+  std::size_t index = 0;
+  double time_s = 0.0;
+  std::string reason;
+};
+
+struct Result {
+  std::vector<MethodResult> methods;  ///< in kAllMethods order; FixClosure only with fixes
+  std::vector<RejectedObservation> rejected;
+  std::vector<SkippedObservation> skipped;
+  std::size_t epochs = 0;
+  std::size_t lops_used = 0;   ///< LOPs reduced to an epoch (before rejection)
+  std::size_t fixes_used = 0;
+  std::vector<std::string> notes;     ///< assumptions and defaults
+  std::vector<std::string> warnings;  ///< gaps without observations, flagged fixes, …
+  /// The result of `m`; nullptr when not computed.
+  const MethodResult* find(Method m) const;
+};
+
+/// Throws InputError (field "options.<name>") unless every option is in range.
+void validate(const Options& options);
+/// Run every method over the line (file comment).
+Result process(const Input& input, Progress* progress = nullptr);
+
+}  // namespace meridian::nav

@@ -1,0 +1,125 @@
+// The modern comparison (spec §6): an extended Kalman filter with position, velocity bias and
+// the chain parameters, and its Rauch–Tung–Striebel smoother, both from the filter module.
+#include <cmath>
+#include <map>
+
+#include "meridian/filter/discretisation.hpp"
+#include "meridian/filter/rts_smoother.hpp"
+#include "meridian/filter/smoother_storage.hpp"
+#include "methods.hpp"
+
+namespace meridian::nav::detail {
+
+namespace {
+
+// Φ and Q_d of position + bias over dt (Van Loan; exact for both bias models): ṗ = W,
+// Ẇ = 0 (random walk, density q²) or −W/τ (Gauss–Markov, density 2σ²/τ).
+filter::DiscreteModel<4> bias_model(const Options& o, double dt) {
+  filter::ContinuousModel<4, 2> m;
+  m.F.setZero();
+  m.F(0, 2) = 1.0;
+  m.F(1, 3) = 1.0;
+  double q = o.bias_random_walk_m_s_per_sqrt_s * o.bias_random_walk_m_s_per_sqrt_s;
+  if (o.bias_model == BiasModel::GaussMarkov) {
+    m.F(2, 2) = m.F(3, 3) = -1.0 / o.bias_correlation_time_s;
+    q = 2.0 * o.bias_sigma_m_s * o.bias_sigma_m_s / o.bias_correlation_time_s;
+  }
+  m.G.setZero();
+  m.G(2, 0) = 1.0;
+  m.G(3, 1) = 1.0;
+  m.q_c = q * Eigen::Matrix2d::Identity();
+  return filter::discretise(m, dt);
+}
+
+}  // namespace
+
+template <int N>
+std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
+                                      std::vector<RejectedObservation>& rejected,
+                                      Progress* progress) {
+  const Input& in = *p.input;
+  const Options& o = in.options;
+  const std::size_t n = p.epochs;
+  Layout layout;
+  layout.bias = 2;
+  layout.params = 4;
+  layout.size = 4 + p.n_params;
+  const int size = layout.size;
+  filter::Estimate<N> init;
+  init.x = filter::Vector<N>::Zero(size);
+  init.x(0) = in.initial.x_north_m;
+  init.x(1) = in.initial.y_east_m;
+  init.P = filter::Matrix<N, N>::Zero(size, size);
+  init.P(0, 0) = init.P(1, 1) = in.initial.sigma_m * in.initial.sigma_m;
+  init.P(2, 2) = init.P(3, 3) = o.bias_sigma_m_s * o.bias_sigma_m_s;
+  if constexpr (N == Eigen::Dynamic)
+  for (int i = 0; i < p.n_params; ++i)
+    init.P(4 + i, 4 + i) = p.param_prior_sigma[static_cast<std::size_t>(i)] *
+                           p.param_prior_sigma[static_cast<std::size_t>(i)];
+  filter::KalmanFilter<N> kf(init);
+  filter::SmootherStorage<N> storage(size, o.storage);
+
+  MethodResult ekf;
+  ekf.method = Method::Ekf;
+  ekf.track.reserve(n);
+  filter::Matrix<N, N> phi = filter::Matrix<N, N>::Identity(size, size);
+  filter::Matrix<N, N> q = filter::Matrix<N, N>::Zero(size, size);
+  double cached_dt = -1.0;
+  filter::DiscreteModel<4> model{filter::Matrix<4, 4>::Identity(), filter::Matrix<4, 4>::Zero()};
+  const Eigen::Vector2d no_bias = Eigen::Vector2d::Zero();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0) {
+      if (p.dt[k] != cached_dt) {
+        model = bias_model(o, p.dt[k]);
+        cached_dt = p.dt[k];
+        phi.template topLeftCorner<4, 4>() = model.phi;
+      }
+      q.template topLeftCorner<4, 4>() = model.q;
+      q.template topLeftCorner<2, 2>() += p.q_incr[k];
+      filter::Vector<N> x = phi * kf.estimate().x;
+      x.template head<2>() += p.incr[k];
+      kf.predict_extended(x, phi, q);
+    }
+    const unsigned flags =
+        update_epoch<N>(p, k, kf, layout, no_bias, Method::Ekf, sc, rejected, nullptr);
+    storage.append(kf.predicted(), kf.transition(), kf.estimate());
+    TrackPoint tp = track_point<N>(p.t[k], kf.estimate(), layout);
+    tp.flags = flags;
+    ekf.track.push_back(tp);
+    if (progress && (k % 4096 == 0)) progress->update(k, 2 * n, "filter");
+  }
+  if constexpr (N == Eigen::Dynamic)
+  for (int i = 0; i < p.n_params; ++i) {
+    const auto c = static_cast<std::size_t>(i);
+    ekf.parameters.push_back({p.param_chain[c], p.param_names[c], kf.estimate().x(4 + i),
+                              kf.estimate().sigma(4 + i)});
+  }
+  MethodResult rts;
+  rts.method = Method::Rts;
+  rts.track.resize(n);
+  std::size_t done = 0;
+  filter::rts_smooth(storage, [&](Eigen::Index k, const filter::Estimate<N>& s) {
+    const auto i = static_cast<std::size_t>(k);
+    rts.track[i] = track_point<N>(p.t[i], s, layout);
+    rts.track[i].flags = ekf.track[i].flags;
+    if constexpr (N == Eigen::Dynamic)
+    if (i == 0)
+      for (int j = 0; j < p.n_params; ++j) {
+        const auto c = static_cast<std::size_t>(j);
+        rts.parameters.push_back({p.param_chain[c], p.param_names[c], s.x(4 + j), s.sigma(4 + j)});
+      }
+    if (progress && (++done % 4096 == 0)) progress->update(n + done, 2 * n, "smoother");
+  });
+  std::vector<MethodResult> out;
+  out.push_back(std::move(ekf));
+  out.push_back(std::move(rts));
+  return out;
+}
+
+template std::vector<MethodResult> run_ekf_rts<4>(const Prepared&, const Screening&,
+                                                  std::vector<RejectedObservation>&, Progress*);
+template std::vector<MethodResult> run_ekf_rts<Eigen::Dynamic>(const Prepared&, const Screening&,
+                                                               std::vector<RejectedObservation>&,
+                                                               Progress*);
+
+}  // namespace meridian::nav::detail

@@ -1,0 +1,261 @@
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "meridian/core/error.hpp"
+#include "prepared.hpp"
+
+namespace meridian::nav::detail {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& field, const std::string& message) {
+  throw InputError(message, {{}, {}, field});
+}
+
+std::string at(const char* list, std::size_t i, const char* member) {
+  return fmt::format("{}[{}].{}", list, i, member);
+}
+
+void require_finite(double v, const std::string& field) {
+  if (!std::isfinite(v)) fail(field, "is not finite");
+}
+
+bool is_covariance(const Eigen::Matrix2d& c, bool definite) {
+  if (!c.allFinite()) return false;
+  if (std::abs(c(0, 1) - c(1, 0)) > 1e-9 * c.cwiseAbs().maxCoeff()) return false;
+  const double det = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
+  if (definite) return c(0, 0) > 0.0 && det > 0.0;
+  return c(0, 0) >= 0.0 && c(1, 1) >= 0.0 && det >= -1e-12 * c.cwiseAbs().maxCoeff();
+}
+
+// Reduce an observation at time `time` to its nearest epoch (spec §3). Returns nullopt with
+// a reason when it cannot be reduced.
+std::optional<Reduced> reduce(const Prepared& p, double time, double max_reduction_s,
+                              std::string& reason) {
+  const auto& t = p.t;
+  if (time < t.front() - max_reduction_s || time > t.back() + max_reduction_s) {
+    reason = fmt::format("time {:.3f} s is outside the dead-reckoning span {:.3f} … {:.3f} s",
+                         time, t.front(), t.back());
+    return std::nullopt;
+  }
+  const auto it = std::lower_bound(t.begin(), t.end(), time);
+  std::size_t k = static_cast<std::size_t>(it - t.begin());
+  if (k == t.size()) k = t.size() - 1;
+  if (k > 0 && std::abs(t[k - 1] - time) <= std::abs(t[k] - time)) --k;  // ties: earlier
+  const double dt = time - t[k];
+  if (std::abs(dt) > max_reduction_s) {
+    reason = fmt::format("{:.1f} s from the nearest dead-reckoning epoch (max_reduction_s {:g})",
+                         std::abs(dt), max_reduction_s);
+    return std::nullopt;
+  }
+  Reduced r;
+  r.epoch = k;
+  r.dt_s = dt;
+  if (dt != 0.0) {
+    // The velocity of the interval that contains the observation time (spec §1: a sample's
+    // velocity holds over the interval that ends at it).
+    const std::size_t s = dt > 0.0 ? std::min(k + 1, t.size() - 1) : k;
+    const DrSample& d = p.input->dr[s];
+    r.delta = dt * Eigen::Vector2d(d.v_north_m_s, d.v_east_m_s);
+    r.q_delta = dt * dt * d.covariance;
+    const double sv = p.input->options.sequential_sigma_velocity_m_s;
+    r.q_delta_seq = r.q_delta + dt * dt * sv * sv * Eigen::Matrix2d::Identity();
+  }
+  return r;
+}
+
+}  // namespace
+
+Prepared prepare(const Input& in) {
+  validate(in.options);
+  const Options& o = in.options;
+  Prepared p;
+  p.input = &in;
+  const std::size_t n = in.dr.size();
+  if (n < 2) fail("dr", fmt::format("needs at least 2 dead-reckoning samples, got {}", n));
+  require_finite(in.initial.x_north_m, "initial.x_north_m");
+  require_finite(in.initial.y_east_m, "initial.y_east_m");
+  if (!(std::isfinite(in.initial.sigma_m) && in.initial.sigma_m > 0.0))
+    fail("initial.sigma_m", "must be finite and > 0");
+
+  p.epochs = n;
+  p.t.resize(n);
+  p.dt.assign(n, 0.0);
+  p.incr.assign(n, Eigen::Vector2d::Zero());
+  p.q_incr.assign(n, Eigen::Matrix2d::Zero());
+  p.q_incr_seq.assign(n, Eigen::Matrix2d::Zero());
+  const double sv2 = o.sequential_sigma_velocity_m_s * o.sequential_sigma_velocity_m_s;
+  p.dr.assign(n, Eigen::Vector2d::Zero());
+  p.dr[0] = Eigen::Vector2d(in.initial.x_north_m, in.initial.y_east_m);
+  for (std::size_t k = 0; k < n; ++k) {
+    const DrSample& d = in.dr[k];
+    require_finite(d.time_s, at("dr", k, "time_s"));
+    require_finite(d.v_north_m_s, at("dr", k, "v_north_m_s"));
+    require_finite(d.v_east_m_s, at("dr", k, "v_east_m_s"));
+    if (!is_covariance(d.covariance, false))
+      fail(at("dr", k, "covariance"), "is not a symmetric covariance with variances >= 0");
+    p.t[k] = d.time_s;
+    if (k == 0) continue;
+    const double dt = d.time_s - in.dr[k - 1].time_s;
+    if (!(dt > 0.0))
+      fail(at("dr", k, "time_s"),
+           fmt::format("times must increase strictly: {:.6f} s after {:.6f} s", d.time_s,
+                       in.dr[k - 1].time_s));
+    if (dt > o.max_dr_gap_s)
+      fail(at("dr", k, "time_s"),
+           fmt::format("a gap of {:.1f} s in the dead reckoning exceeds max_dr_gap_s = {:g} s", dt,
+                       o.max_dr_gap_s));
+    p.dt[k] = dt;
+    p.incr[k] = dt * Eigen::Vector2d(d.v_north_m_s, d.v_east_m_s);
+    p.q_incr[k] = dt * dt * d.covariance;
+    p.q_incr_seq[k] = p.q_incr[k] + dt * dt * sv2 * Eigen::Matrix2d::Identity();
+    p.dr[k] = p.dr[k - 1] + p.incr[k];
+  }
+
+  for (std::size_t i = 0; i < in.stations.size(); ++i) {
+    require_finite(in.stations[i].x_north_m, at("stations", i, "x_north_m"));
+    require_finite(in.stations[i].y_east_m, at("stations", i, "y_east_m"));
+  }
+  // Chain parameters: their place among the parameters.
+  p.scale_col.assign(in.chains.size(), -1);
+  p.offset_col.assign(in.chains.size(), -1);
+  for (std::size_t c = 0; c < in.chains.size(); ++c) {
+    const Chain& ch = in.chains[c];
+    if (ch.estimate_scale) {
+      if (!(std::isfinite(ch.sigma_scale_prior) && ch.sigma_scale_prior > 0.0))
+        fail(at("chains", c, "sigma_scale_prior"), "must be finite and > 0");
+      p.scale_col[c] = p.n_params++;
+      p.param_names.emplace_back("scale");
+      p.param_chain.push_back(c);
+      p.param_prior_sigma.push_back(ch.sigma_scale_prior);
+    }
+    if (ch.estimate_offset) {
+      if (!(std::isfinite(ch.sigma_offset_prior_m) && ch.sigma_offset_prior_m > 0.0))
+        fail(at("chains", c, "sigma_offset_prior_m"), "must be finite and > 0");
+      p.offset_col[c] = p.n_params++;
+      p.param_names.emplace_back("offset_m");
+      p.param_chain.push_back(c);
+      p.param_prior_sigma.push_back(ch.sigma_offset_prior_m);
+    }
+  }
+
+  for (std::size_t i = 0; i < in.lops.size(); ++i) {
+    const Lop& l = in.lops[i];
+    require_finite(l.time_s, at("lops", i, "time_s"));
+    require_finite(l.value_m, at("lops", i, "value_m"));
+    if (!(std::isfinite(l.sigma_m) && l.sigma_m > 0.0))
+      fail(at("lops", i, "sigma_m"), "must be finite and > 0");
+    if (l.station >= in.stations.size())
+      fail(at("lops", i, "station"), fmt::format("no station {} (there are {})", l.station,
+                                                 in.stations.size()));
+    if (l.type == LopType::RangeDifference) {
+      if (l.station2 >= in.stations.size())
+        fail(at("lops", i, "station2"), fmt::format("no station {} (there are {})", l.station2,
+                                                    in.stations.size()));
+      if (l.station2 == l.station)
+        fail(at("lops", i, "station2"), "a range difference needs two different stations");
+    }
+    if (l.chain != Lop::kNoChain && l.chain >= in.chains.size())
+      fail(at("lops", i, "chain"), fmt::format("no chain {} (there are {})", l.chain,
+                                               in.chains.size()));
+    std::string reason;
+    auto r = reduce(p, l.time_s, o.max_reduction_s, reason);
+    if (!r) {
+      p.skipped.push_back({RejectedObservation::Kind::Lop, i, l.time_s, reason});
+      continue;
+    }
+    r->index = i;
+    p.lops.push_back(*r);
+  }
+  for (std::size_t i = 0; i < in.fixes.size(); ++i) {
+    const Fix& f = in.fixes[i];
+    require_finite(f.time_s, at("fixes", i, "time_s"));
+    require_finite(f.x_north_m, at("fixes", i, "x_north_m"));
+    require_finite(f.y_east_m, at("fixes", i, "y_east_m"));
+    if (!is_covariance(f.covariance, true))
+      fail(at("fixes", i, "covariance"), "is not a symmetric positive definite covariance");
+    std::string reason;
+    auto r = reduce(p, f.time_s, o.max_reduction_s, reason);
+    if (!r) {
+      p.skipped.push_back({RejectedObservation::Kind::Fix, i, f.time_s, reason});
+      continue;
+    }
+    r->index = i;
+    p.fixes.push_back(*r);
+  }
+  const auto by_epoch = [](const Reduced& a, const Reduced& b) {
+    return a.epoch != b.epoch ? a.epoch < b.epoch : a.index < b.index;
+  };
+  std::sort(p.lops.begin(), p.lops.end(), by_epoch);
+  std::sort(p.fixes.begin(), p.fixes.end(), by_epoch);
+  const auto offsets = [n](const std::vector<Reduced>& v) {
+    std::vector<std::size_t> b(n + 1, 0);
+    for (const Reduced& r : v) ++b[r.epoch + 1];
+    std::partial_sum(b.begin(), b.end(), b.begin());
+    return b;
+  };
+  p.lop_begin = offsets(p.lops);
+  p.fix_begin = offsets(p.fixes);
+
+  // Truth: linear interpolation between truth points at most kTruthMaxGap_s apart.
+  p.truth.assign(n, std::nullopt);
+  const auto& tr = in.truth;
+  for (std::size_t i = 0; i < tr.size(); ++i) {
+    require_finite(tr[i].time_s, at("truth", i, "time_s"));
+    require_finite(tr[i].x_north_m, at("truth", i, "x_north_m"));
+    require_finite(tr[i].y_east_m, at("truth", i, "y_east_m"));
+    if (i > 0 && !(tr[i].time_s > tr[i - 1].time_s))
+      fail(at("truth", i, "time_s"), "truth times must increase strictly");
+  }
+  if (!tr.empty()) {
+    std::size_t j = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double tk = p.t[k];
+      while (j + 1 < tr.size() && tr[j + 1].time_s <= tk) ++j;
+      if (std::abs(tr[j].time_s - tk) <= 1e-6) {
+        p.truth[k] = Eigen::Vector2d(tr[j].x_north_m, tr[j].y_east_m);
+      } else if (tr[j].time_s < tk && j + 1 < tr.size() &&
+                 tr[j + 1].time_s - tr[j].time_s <= kTruthMaxGap_s) {
+        const double u = (tk - tr[j].time_s) / (tr[j + 1].time_s - tr[j].time_s);
+        p.truth[k] = Eigen::Vector2d((1 - u) * tr[j].x_north_m + u * tr[j + 1].x_north_m,
+                                     (1 - u) * tr[j].y_east_m + u * tr[j + 1].y_east_m);
+      }
+    }
+  }
+  return p;
+}
+
+LopEvaluation evaluate_geometry(const Prepared& p, const Lop& lop, const Eigen::Vector2d& position,
+                                const ChainValues& chain) {
+  LopEvaluation e;
+  const auto& st = p.input->stations;
+  const auto unit = [&](std::size_t s, double& d) -> Eigen::RowVector2d {
+    const Eigen::Vector2d v = position - Eigen::Vector2d(st[s].x_north_m, st[s].y_east_m);
+    d = v.norm();
+    if (d < kMinStationDistance_m) {
+      e.ok = false;
+      return Eigen::RowVector2d::Zero();
+    }
+    return (v / d).transpose();
+  };
+  double d1 = 0.0;
+  Eigen::RowVector2d g = unit(lop.station, d1);
+  double geometric = d1;
+  if (lop.type == LopType::RangeDifference) {
+    double d2 = 0.0;
+    g -= unit(lop.station2, d2);
+    geometric -= d2;
+  }
+  if (!e.ok) return e;
+  e.computed_m = (1.0 + chain.scale) * geometric + chain.offset;
+  e.h_position = (1.0 + chain.scale) * g;
+  e.scale_state = chain.scale_state;
+  e.h_scale = geometric;
+  e.offset_state = chain.offset_state;
+  return e;
+}
+
+}  // namespace meridian::nav::detail
