@@ -27,3 +27,6 @@ M=${1:-../build/meridian}
 # K*w*cos(phi)), alpha* = 0.11459 deg, I* = 1.75e-5 A:  meridian maglev calibrate maglev-calibration.csv --latitude 35
 "$M" maglev simulate --calibration-azimuths=-3,-2,-1,0,1,2,3 --slope-ratio1=1.01 --slope-ratio2=0.99 \
   --best-azimuth=0.11459 --constant-deviation=1.75e-5 --white=1e-5 --seed=4 --out maglev
+# Marine navigation (docs/navigation.md): spec §8 scenario C (the DR speed bias changes at minutes
+# 10 and 15), 30 min, DR and three range LOPs every 5 s:  meridian nav process nav-scenario-c/nav.yaml
+"$M" nav simulate --scenario C --seed 1 --out nav-scenario-c

@@ -10,10 +10,13 @@
 #include "commands.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/io/gyro_jobs.hpp"
+#include "meridian/io/nav_files.hpp"
 #include "meridian/report/gyro_html.hpp"
 #include "meridian/report/gyro_json.hpp"
 #include "meridian/report/gyro_text.hpp"
 #include "meridian/report/html.hpp"
+#include "meridian/report/nav_html.hpp"
+#include "meridian/report/nav_outputs.hpp"
 
 namespace meridian::cli {
 namespace demo_cmd {
@@ -33,6 +36,39 @@ fs::path find_examples(const std::string& given) {
   for (const char* d : {MERIDIAN_SOURCE_EXAMPLES_DIR, MERIDIAN_INSTALLED_EXAMPLES_DIR})
     if (fs::exists(fs::path(d) / "campaign.yaml")) return d;
   throw IoError("cannot find the bundled examples; pass --examples DIR");
+}
+
+// The navigation examples: spec §8 scenario C (simulated, bundled) and, when the real logs are
+// beside the project (../shared/data/nmea), the NBP1406 line. Text summaries to stdout, reports
+// (and the JSON summaries) to `out`.
+void run_navigation(const fs::path& dir, const fs::path& out, std::vector<fs::path>& written) {
+  struct Job {
+    const char* config;
+    const char* name;
+    const char* title;
+  };
+  for (const Job& j : {Job{"nav-scenario-c/nav.yaml", "nav-scenario-c",
+                           "Marine navigation: spec scenario C (the DR bias changes at minutes 10 and 15)"},
+                       Job{"nav-nbp1406.yaml", "nav-nbp1406",
+                           "Marine navigation: R/V N. B. Palmer, NBP1406 (real logs)"}}) {
+    const fs::path file = dir / j.config;
+    if (!fs::exists(file)) continue;
+    const io::NavConfig c = io::read_nav_config(file.string());
+    if (c.nmea && !fs::exists(c.nmea->heading_path)) {
+      std::cout << "\nmeridian demo: " << file.string() << " skipped: " << c.nmea->heading_path
+                << " is not there (the real logs of ../shared/data/nmea)\n";
+      continue;
+    }
+    const io::NavRun run = io::run_nav(c);
+    std::cout << "\nmeridian demo: " << j.title << " (" << file.string() << ")\n\n"
+              << report::nav_summary_text(run.result);
+    written.push_back(out / (std::string(j.name) + ".json"));
+    emit(written.back().string(), report::nav_to_json(run.result).dump(2) + "\n");
+    if (report::html_reports_available()) {
+      written.push_back(out / (std::string(j.name) + ".html"));
+      emit(written.back().string(), report::render_html(report::nav_document(run.result, j.title)));
+    }
+  }
 }
 
 int run_demo(const DemoArgs& a) {
@@ -63,6 +99,7 @@ int run_demo(const DemoArgs& a) {
            report::render_html(report::gyro_reduce_document(g.file.file, g.file.input, g.result)));
     }
   }
+  run_navigation(dir, out, written);
   std::cout << "\nReports written:\n";
   for (const auto& p : written) std::cout << "  " << p.string() << "\n";
   if (report::html_reports_available())
@@ -77,7 +114,7 @@ int run_demo(const DemoArgs& a) {
 void add_demo_command(CLI::App& app, int& exit_code) {
   using namespace demo_cmd;  // the command's option structs and run functions
   auto a = std::make_shared<DemoArgs>();
-  CLI::App* demo = app.add_subcommand("demo", "Run the gyro campaign on the bundled example data");
+  CLI::App* demo = app.add_subcommand("demo", "Run the gyro campaign and the navigation examples on the bundled example data");
   demo->add_option("--examples", a->examples_dir, "Directory of the example files");
   demo->add_option("--output-dir", a->output_dir, "Where the reports are written")->capture_default_str();
   demo->callback([a, &exit_code] { exit_code = guarded([&] { return run_demo(*a); }); });

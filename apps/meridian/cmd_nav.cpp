@@ -1,15 +1,25 @@
-// meridian nav inspect
+// meridian nav inspect | simulate | process
 
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "meridian/core/atomic_file.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/io/nav_files.hpp"
 #include "meridian/io/nmea.hpp"
+#include "meridian/nav/simulator.hpp"
+#include "meridian/report/html.hpp"
+#include "meridian/report/nav_html.hpp"
 #include "meridian/report/nav_inspect.hpp"
+#include "meridian/report/nav_outputs.hpp"
 
 namespace meridian::cli {
 namespace nav_cmd {
@@ -39,12 +49,125 @@ int run_inspect(const InspectArgs& a) {
   return kOk;
 }
 
+struct SimulateArgs {
+  std::string scenario = "A";
+  std::uint64_t seed = 1;
+  std::string out;
+  int stations = 3;
+  double duration_s = 1800.0;
+  double fixes_every_s = 0.0;
+};
+
+int run_simulate(const SimulateArgs& a) {
+  nav::SimulationOptions so;
+  so.scenario = nav::scenario_from_string(a.scenario);
+  so.seed = a.seed;
+  so.stations = a.stations;
+  so.duration_s = a.duration_s;
+  so.fix_interval_s = a.fixes_every_s;
+  const nav::SimulatedLine line = nav::simulate(so);
+  const nav::Input& in = line.input;
+  // Every file says what produced it: `# Simulated: <settings>`.
+  const std::string settings =
+      line.settings.rfind("Simulated", 0) == 0 ? line.settings : "Simulated: " + line.settings;
+  // The files a user would bring, every one computed before any is written.
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"dr.csv", io::nav_dr_csv(in.dr, settings)},
+      {"stations.csv", io::nav_stations_csv(in.stations, settings)},
+      {"lops.csv", io::nav_lops_csv(in, settings)},
+      {"truth.csv", io::nav_truth_csv(in.truth, settings)},
+  };
+  if (!in.fixes.empty()) files.emplace_back("fixes.csv", io::nav_fixes_csv(in.fixes, settings));
+  files.emplace_back("nav.yaml", io::nav_simulation_config(line, so));
+  const std::filesystem::path dir = a.out;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw IoError(fmt::format("cannot create the directory {}{}", a.out, ec ? ": " + ec.message() : ""),
+                  {a.out, std::nullopt, {}});
+  // All or none: every temporary exists before any is renamed into place.
+  std::vector<std::unique_ptr<AtomicFileWriter>> writers;
+  for (const auto& [name, text] : files) {
+    writers.push_back(std::make_unique<AtomicFileWriter>(dir / name));
+    writers.back()->write(text);
+  }
+  for (auto& w : writers) w->commit();
+  return kOk;
+}
+
+struct ProcessArgs {
+  std::string config, track, geojson, rejected, report;
+  std::string method = "rts";
+  bool json = false, quiet = false;
+};
+
+int run_process(const ProcessArgs& a) {
+  require_html_reports_for(a.report);
+  const nav::Method method = nav::method_from_string(a.method);
+  const io::NavConfig c = io::read_nav_config(a.config);
+  // No two outputs on one path, and none over an input.
+  struct Output {
+    const std::string& path;
+    const char* option;
+    const char* what;
+  };
+  const Output outputs[] = {{a.track, "-o", "track"},
+                            {a.geojson, "--geojson", "GeoJSON track"},
+                            {a.rejected, "--rejected", "list of rejected observations"},
+                            {a.report, "--report", "report"}};
+  std::vector<std::string> inputs = {a.config, c.dr_path, c.stations_path, c.lops_path, c.fixes_path, c.truth_path};
+  if (c.nmea) inputs.insert(inputs.end(), {c.nmea->heading_path, c.nmea->speed_path, c.nmea->positions_path});
+  for (std::size_t i = 0; i < std::size(outputs); ++i) {
+    const Output& o = outputs[i];
+    if (o.path.empty() || o.path == "-") continue;
+    for (std::size_t j = i + 1; j < std::size(outputs); ++j)
+      if (!outputs[j].path.empty() && same_path(o.path, outputs[j].path))
+        throw InputError(fmt::format("{} and {} name the same file {}", o.option, outputs[j].option, o.path));
+    for (const std::string& in : inputs) {
+      std::error_code ec;
+      if (!in.empty() && (same_path(o.path, in) || std::filesystem::equivalent(o.path, in, ec)))
+        throw InputError(fmt::format("the {} would overwrite the input {}", o.what, in), {"", std::nullopt, o.option});
+    }
+  }
+  TerminalProgress progress(a.quiet);
+  const io::NavRun run = io::run_nav(c, &progress);
+  const nav::Result& r = run.result;
+  if (!a.track.empty() && !r.find(method))
+    throw InputError(fmt::format("the method {} was not computed for this job{}", a.method,
+                                 method == nav::Method::FixClosure ? " (it needs fixes)" : ""),
+                     {"", std::nullopt, "--method"});
+  if (!a.geojson.empty() && !run.to_geographic)
+    throw InputError("GeoJSON needs latitudes and longitudes: the job is in plane coordinates without a "
+                     "projection (give projection: in the configuration)",
+                     {"", std::nullopt, "--geojson"});
+  // Everything is computed before anything is written (atomic outputs).
+  const std::string text = a.json ? report::nav_to_json(r).dump(2) + "\n" : report::nav_summary_text(r);
+  const std::string track = a.track.empty() ? std::string() : report::nav_track_csv(r, method, run.to_geographic);
+  std::string geojson;
+  if (!a.geojson.empty()) {
+    std::vector<nav::Method> methods;
+    for (const nav::MethodResult& m : r.methods) methods.push_back(m.method);
+    geojson = report::nav_track_geojson(r, methods, run.to_geographic);
+  }
+  const std::string rejected = a.rejected.empty() ? std::string() : report::nav_rejected_csv(r);
+  const std::string html =
+      a.report.empty() ? std::string()
+                       : report::render_html(report::nav_document(r, "Marine navigation: " + a.config));
+  if (!a.track.empty()) emit(a.track, track);
+  if (!a.geojson.empty()) emit(a.geojson, geojson);
+  if (!a.rejected.empty()) emit(a.rejected, rejected);
+  if (!a.report.empty()) emit(a.report, html);
+  emit("", text);
+  return kOk;
+}
+
 }  // namespace
 }  // namespace nav_cmd
 
 void add_nav_commands(CLI::App& app, int& exit_code) {
   using namespace nav_cmd;
-  CLI::App* nav = app.add_subcommand("nav", "Marine navigation: inspect NMEA 0183 logs");
+  CLI::App* nav = app.add_subcommand(
+      "nav", "Marine navigation: inspect NMEA 0183 logs, simulate and process survey lines");
   nav->require_subcommand(1);
   auto ia = std::make_shared<InspectArgs>();
   CLI::App* ins = nav->add_subcommand(
@@ -54,6 +177,41 @@ void add_nav_commands(CLI::App& app, int& exit_code) {
   ins->add_flag("--accept-missing-checksum", ia->accept_missing_checksum,
                 "Accept sentences without *HH (counted, with a warning)");
   ins->callback([ia, &exit_code] { exit_code = guarded([&] { return run_inspect(*ia); }); });
+
+  auto sa = std::make_shared<SimulateArgs>();
+  CLI::App* sim = nav->add_subcommand(
+      "simulate", "Simulate the 1988 validation line (spec section 8): DR, stations, LOPs, truth, fixes, nav.yaml");
+  sim->add_option("--scenario", sa->scenario, "A bias, B no bias, C bias change, D bad start")
+      ->check(CLI::IsMember({"A", "B", "C", "D", "a", "b", "c", "d"}))
+      ->capture_default_str();
+  sim->add_option("--seed", sa->seed, "Random seed")->capture_default_str();
+  sim->add_option("--out", sa->out, "Directory to write (created when missing)")->required();
+  sim->add_option("--stations", sa->stations, "Shore stations (2 or 3)")
+      ->check(CLI::IsMember({2, 3}))
+      ->capture_default_str();
+  sim->add_option("--duration-s", sa->duration_s, "Length of the line (s)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sim->add_option("--fixes-every-s", sa->fixes_every_s, "A satellite fix every this many seconds (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sim->callback([sa, &exit_code] { exit_code = guarded([&] { return run_simulate(*sa); }); });
+
+  auto pa = std::make_shared<ProcessArgs>();
+  CLI::App* pro = nav->add_subcommand(
+      "process", "Dead reckoning + LOPs + fixes: the sequential adjustment, its variants, EKF and RTS smoother");
+  pro->add_option("CONFIG", pa->config, "YAML or JSON configuration (docs/file-formats.md)")->required();
+  pro->add_flag("--json", pa->json, "Print the summary as JSON");
+  pro->add_option("-o,--output", pa->track, "Write the track CSV of --method here");
+  pro->add_option("--method", pa->method,
+                  "Method of the -o track: dead-reckoning, sequential-no-bias, sequential-bias-I, "
+                  "sequential-bias-II, backward, fix-closure, ekf, rts")
+      ->capture_default_str();
+  pro->add_option("--geojson", pa->geojson, "Write the tracks of every method as GeoJSON (needs a projection)");
+  pro->add_option("--rejected", pa->rejected, "Write the rejected observations as CSV");
+  pro->add_option("--report", pa->report, "Write an HTML report");
+  pro->add_flag("-q,--quiet", pa->quiet, "No progress bar");
+  pro->callback([pa, &exit_code] { exit_code = guarded([&] { return run_process(*pa); }); });
 }
 
 }  // namespace meridian::cli

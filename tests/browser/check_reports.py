@@ -31,6 +31,8 @@ REQUIRED = {
     "tracking.html": ["summary", "determination-1"],
     "gravity-points.html": ["summary", "maps", "definitions"],
     "dov.html": ["summary", "profile", "innovations", "notes"],
+    "nav-scenario-c.html": ["summary", "track", "errors", "bias", "rejected", "notes"],
+    "nav-nbp1406.html": ["summary", "track", "errors", "bias", "notes"],
 }
 
 # The gravity points page: a 20 x 20 grid of points over a region.

@@ -91,3 +91,139 @@ TEST_F(NavCli, SixRealLogs) {
   EXPECT_EQ(files[4]["duplicates_by_type"]["GPRMC"], 1);
   EXPECT_TRUE(files[5]["first_time"].is_null());  // plaka: no date anywhere
 }
+
+// --- nav simulate / nav process -------------------------------------------------------------
+
+namespace {
+
+const char* kDr = "time_s,speed_m_s,heading_deg\n0,5,90\n5,5,90\n10,5,90\n";
+const char* kStations = "name,x_m,y_m\nA,1000,0\nB,-1000,2000\n";
+const char* kLops =
+    "time_s,type,station,station2,value,sigma_m\n"
+    "5,range,A,,1000,50\n"
+    "10,range,B,,2000,50\n";
+const char* kConfig = "dr: dr.csv\nstations: stations.csv\nlops: lops.csv\ninitial: {x_m: 0, y_m: 0, sigma_m: 50}\n";
+
+}  // namespace
+
+TEST_F(NavCli, SimulateRejectsBadOptions) {
+  EXPECT_EQ(run("nav simulate --scenario E --out d").code, 2);
+  EXPECT_EQ(run("nav simulate --stations 4 --out d").code, 2);
+  EXPECT_EQ(run("nav simulate --duration-s -5 --out d").code, 2);
+  EXPECT_EQ(run("nav simulate --scenario A").code, 2);  // --out is required
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "d"));
+}
+
+// Needs nav::simulate and nav::process (placeholders that throw until the numerics land: this
+// test fails only for that reason until then).
+TEST_F(NavCli, SimulateWritesTheUsersFilesAndProcessRunsThem) {
+  const CmdResult s = run("nav simulate --scenario C --seed 7 --out line --stations 2 --duration-s 1200 --fixes-every-s 300");
+  ASSERT_EQ(s.code, 0) << s.err;
+  for (const char* f : {"dr.csv", "stations.csv", "lops.csv", "truth.csv", "fixes.csv", "nav.yaml"})
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "line" / f)) << f;
+  EXPECT_NE(slurp(dir_ / "line" / "dr.csv").find("# Simulated:"), std::string::npos);
+  const CmdResult p = run("nav process line/nav.yaml --json -o track.csv --rejected rejected.csv -q");
+  ASSERT_EQ(p.code, 0) << p.err;
+  const auto j = nlohmann::json::parse(p.out);
+  EXPECT_EQ(j["epochs"], 241);  // 1200 s / 5 s + 1
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "track.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "rejected.csv"));
+  // a plane job has no latitudes: --geojson is refused, nothing written
+  const CmdResult g = run("nav process line/nav.yaml --geojson t.geojson -q");
+  EXPECT_EQ(g.code, 1);
+  EXPECT_NE(g.err.find("projection"), std::string::npos) << g.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "t.geojson"));
+}
+
+TEST_F(NavCli, SimulateFailureLeavesNoFiles) {
+  // Until nav::simulate exists it fails here (exit 3); afterwards a bad duration is refused by
+  // the simulator. Either way no directory content appears.
+  const CmdResult s = run("nav simulate --out line --duration-s 1e-9");
+  if (s.code != 0) {
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "line" / "nav.yaml")) << s.err;
+  }
+}
+
+TEST_F(NavCli, ProcessBadConfigNamesFileAndLineAndWritesNothing) {
+  write("dr.csv", kDr);
+  write("stations.csv", kStations);
+  write("lops.csv", kLops);
+  write("nav.yaml", std::string(kConfig) + "threshhold_m: 100\n");
+  const CmdResult r = run("nav process nav.yaml -o track.csv --rejected rej.csv -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("nav.yaml:5: threshhold_m"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "track.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "rej.csv"));
+  write("nav.yaml", std::string(kConfig) + "rejection: sometimes\n");
+  const CmdResult b = run("nav process nav.yaml -q");
+  EXPECT_EQ(b.code, 1);
+  EXPECT_NE(b.err.find("nav.yaml:5: rejection"), std::string::npos) << b.err;
+}
+
+TEST_F(NavCli, ProcessBadCsvNamesFileLineColumnAndWritesNothing) {
+  write("dr.csv", kDr);
+  write("stations.csv", kStations);
+  write("lops.csv", std::string(kLops) + "15,range,C,,100,50\n");
+  write("nav.yaml", kConfig);
+  const CmdResult r = run("nav process nav.yaml -o track.csv -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("lops.csv:4: station: unknown station \"C\""), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "track.csv"));
+  write("lops.csv", std::string(kLops) + "15,range,A,,1e,50\n");
+  const CmdResult v = run("nav process nav.yaml -o track.csv -q");
+  EXPECT_EQ(v.code, 1);
+  EXPECT_NE(v.err.find("lops.csv:4: value:"), std::string::npos) << v.err;
+  write("lops.csv", std::string(kLops) + "5,range,A,,1000,50\n");  // line 2 again
+  const CmdResult d = run("nav process nav.yaml -q");
+  EXPECT_EQ(d.code, 1);
+  EXPECT_NE(d.err.find("lines 2 and 4"), std::string::npos) << d.err;
+  write("dr.csv", "time_s,speed_m_s,heading_deg\n0,5,90\n5,5,90\n5,5,90\n");
+  write("lops.csv", kLops);
+  const CmdResult t = run("nav process nav.yaml -q");
+  EXPECT_EQ(t.code, 1);
+  EXPECT_NE(t.err.find("dr.csv:4: time_s:"), std::string::npos) << t.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "track.csv"));
+}
+
+TEST_F(NavCli, ProcessRefusesOneOutputPathTwiceOrOverAnInput) {
+  write("dr.csv", kDr);
+  write("stations.csv", kStations);
+  write("lops.csv", kLops);
+  write("nav.yaml", kConfig);
+  const CmdResult a = run("nav process nav.yaml -o out.csv --rejected ./out.csv -q");
+  EXPECT_EQ(a.code, 1);
+  EXPECT_NE(a.err.find("name the same file"), std::string::npos) << a.err;
+  const CmdResult b = run("nav process nav.yaml --geojson x.json --report x.json -q");
+  EXPECT_EQ(b.code, 1);
+  const CmdResult c = run("nav process nav.yaml -o lops.csv -q");
+  EXPECT_EQ(c.code, 1);
+  EXPECT_NE(c.err.find("would overwrite the input"), std::string::npos) << c.err;
+  EXPECT_EQ(slurp(dir_ / "lops.csv"), kLops);
+  const CmdResult m = run("nav process nav.yaml --method best -q");
+  EXPECT_EQ(m.code, 1);
+  EXPECT_NE(m.err.find("unknown navigation method \"best\""), std::string::npos) << m.err;
+  const CmdResult f = run("nav process missing.yaml -q");
+  EXPECT_NE(f.code, 0);
+  EXPECT_NE(f.err.find("missing.yaml"), std::string::npos) << f.err;
+  write("nav2.yaml", "dr: nothere.csv\ninitial: {x_m: 0, y_m: 0}\n");
+  const CmdResult g = run("nav process nav2.yaml -q");
+  EXPECT_EQ(g.code, 4);
+  EXPECT_NE(g.err.find("nothere.csv"), std::string::npos) << g.err;
+}
+
+// Needs nav::process (placeholder: this test fails only for that reason until then).
+TEST_F(NavCli, ProcessWritesTrackRejectedAndJson) {
+  write("dr.csv", kDr);
+  write("stations.csv", kStations);
+  write("lops.csv", kLops);
+  write("nav.yaml", kConfig);
+  const CmdResult r = run("nav process nav.yaml --json -o track.csv --method sequential-bias-II -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["epochs"], 3);
+  EXPECT_NE(slurp(dir_ / "track.csv").find("time_s"), std::string::npos);
+  const CmdResult f = run("nav process nav.yaml -o t2.csv --method fix-closure -q");  // no fixes
+  EXPECT_EQ(f.code, 1);
+  EXPECT_NE(f.err.find("needs fixes"), std::string::npos) << f.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "t2.csv"));
+}

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 exe=${1:-../../build/meridian}
 c=corpus
-rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv,fuzz_dov_line,fuzz_nmea}
+rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv,fuzz_dov_line,fuzz_nmea,fuzz_nav_csv}
 tmp=$(mktemp -d) && trap 'rm -rf "$tmp"' EXIT
 for f in tracking nontracking-noisy spec-scenario-2 transit-factor; do cp ../../examples/$f.yaml $c/fuzz_gyro_reduce/; done
 cp ../../examples/campaign.yaml $c/fuzz_gyro_campaign/
@@ -86,3 +86,24 @@ open(f"{c}/fuzz_nmea/no-checksum-1x.nmea", "w").write(
     "$GPGLL,2200.097,S,01756.346,W\n$GPVTG,054.7,T,034.4,M,005.5,N,010.2,K\n$GPZDA,000001,01,08,1994,00,00\n")
 PY
 du -sh $c
+# Navigation CSVs from nav simulate (a minute of scenario A with a fix), each prefixed by the
+# byte that selects its reader in fuzz_nav_csv (0 DR, 1 stations, 2 LOPs, 3 fixes, 4 truth),
+# plus hand-written speed/heading, geographic and hyperbolic records.
+"$exe" nav simulate --scenario A --seed 1 --duration-s 60 --fixes-every-s 30 --out "$tmp/nav" > /dev/null
+python3 - "$c" "$tmp/nav" <<'PY'
+import sys
+c, d = sys.argv[1], sys.argv[2]
+files = [("dr.csv", 0), ("stations.csv", 1), ("lops.csv", 2), ("fixes.csv", 3), ("truth.csv", 4)]
+for name, sel in files:
+    open(f"{c}/fuzz_nav_csv/{name}", "wb").write(bytes([sel]) + open(f"{d}/{name}", "rb").read())
+extra = [
+    (0, "time_s,speed_m_s,heading_deg\n0,5.1,359.5\n1,5.0,0 30 00\n2.5,4.9,1.5\n"),
+    (1, "name,lat_deg,lon_deg\nA,52 10 30.5,4.5\nB,-33.9,151.2\n"),
+    (2, "time_s,type,station,station2,value,sigma_m,chain\n0,range_difference,A,B,1234.5,20,Loran\n"
+        "1,time_difference,A,B,12.5,30,Loran\n2,range,A,,15000,50,\n"),
+    (3, "time_s;lat_deg;lon_deg;sigma_x_m;sigma_y_m\r\n0;52.1;4.4;3;4\r\n"),
+    (4, "time_s x_m y_m\n0 0 0\n1 1 1\n"),
+]
+for i, (sel, text) in enumerate(extra):
+    open(f"{c}/fuzz_nav_csv/hand-{i}.csv", "wb").write(bytes([sel]) + text.encode())
+PY
