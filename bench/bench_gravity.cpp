@@ -9,10 +9,13 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <random>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "meridian/core/units.hpp"
@@ -52,12 +55,13 @@ struct Models {
   std::unique_ptr<GeographicLib::GravityModel> geographiclib;
 };
 
-Models& models(int degree, unsigned threads = 1) {
-  static std::map<std::pair<int, unsigned>, Models> cache;
-  Models& m = cache[{degree, threads}];
+Models& models(int degree, unsigned threads = 1, mg::SimdKernel kernel = mg::SimdKernel::Auto) {
+  static std::map<std::tuple<int, unsigned, mg::SimdKernel>, Models> cache;
+  Models& m = cache[{degree, threads, kernel}];
   if (!m.meridian) {
     const std::string name = model_name(degree);
-    m.meridian = std::make_unique<mg::GravityField>(mg::read_egm_file(dir() / (name + ".egm")), mg::FieldOptions{false, threads});
+    m.meridian = std::make_unique<mg::GravityField>(mg::read_egm_file(dir() / (name + ".egm")),
+                                                    mg::FieldOptions{false, threads, kernel});
     m.geographiclib = std::make_unique<GeographicLib::GravityModel>(name, dir().string());
   }
   return m;
@@ -115,6 +119,25 @@ void BM_Meridian_DeflectionSinglePoint(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts[i++ % pts.size()], mg::Quantities::Deflection));
   st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()));
 }
+// Each summation kernel (range(2): 0 baseline, 1 x86-64-v3, 2 x86-64-v4) in batches and one
+// point per call (range(1) = 1), so every path a CPU may pick is measured (issue 14).
+void BM_Meridian_DeflectionKernel(benchmark::State& st) {
+  const auto kernel = std::array{mg::SimdKernel::Baseline, mg::SimdKernel::X86_64_V3,
+                                 mg::SimdKernel::X86_64_V4}[static_cast<std::size_t>(st.range(2))];
+  if (!mg::simd_kernel_supported(kernel)) {
+    st.SkipWithError("kernel not supported by this CPU");
+    return;
+  }
+  st.SetLabel(std::string(to_string(kernel)));
+  const auto& f = *models(static_cast<int>(st.range(0)), 1, kernel).meridian;
+  const auto pts = scattered(static_cast<std::size_t>(st.range(1)));
+  if (st.range(1) == 1) {
+    for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts[0], mg::Quantities::Deflection));
+  } else {
+    for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts, mg::Quantities::Deflection));
+  }
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(1)));
+}
 // Batches on all cores (threads = range(2)).
 void BM_Meridian_DeflectionThreads(benchmark::State& st) {
   const auto& f = *models(static_cast<int>(st.range(0)), static_cast<unsigned>(st.range(2))).meridian;
@@ -163,6 +186,10 @@ BENCHMARK(BM_Meridian_Deflection)->Args({360, 256})->Args({2190, 16})->Unit(benc
 BENCHMARK(BM_GeographicLib_Deflection)->Args({360, 256})->Args({2190, 16})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Meridian_DeflectionAndGeoid)->Args({360, 256})->Args({2190, 16})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GeographicLib_DeflectionAndGeoid)->Args({360, 256})->Args({2190, 16})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Meridian_DeflectionKernel)
+    ->ArgsProduct({{360}, {256, 1}, {0, 1, 2}})
+    ->Args({2190, 16, 0})->Args({2190, 16, 1})->Args({2190, 16, 2})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Meridian_DeflectionSinglePoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Meridian_DeflectionThreads)->Args({360, 1024, 1})->Args({360, 1024, 2})->Args({2190, 64, 1})->Args({2190, 64, 2})
     ->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -48,14 +48,15 @@ GravityField::GravityField(const GravityModelData& model, FieldOptions options)
   if (!(std::isfinite(radius_m_) && radius_m_ > 0))
     throw InputError("gravity model: reference radius must be positive", {model.source_file, {}, "radius"});
   dgm_ = gm_ * model.coefficients.c(0, 0) - normal_.gm_m3_s2();
-  table_ = std::make_unique<detail::SynthesisTable>(disturbing_coefficients(model, normal_));
+  const SimdKernel kernel = resolve_simd_kernel(options.simd_kernel);
+  table_ = std::make_unique<detail::SynthesisTable>(disturbing_coefficients(model, normal_), kernel);
   if (model.correction) {
     SphericalHarmonicCoefficients cc = model.correction->coefficients;
     if (!(model.correction->multiplier > 0))
       throw InputError("geoid correction multiplier must be positive", {model.source_file, {}, "CorrectionMultiplier"});
     cc.set(0, 0, cc.c(0, 0) + model.correction->height_offset_m / model.correction->multiplier, 0.0);
     corr_mult_ = model.correction->multiplier;
-    correction_ = std::make_unique<detail::SynthesisTable>(cc);
+    correction_ = std::make_unique<detail::SynthesisTable>(cc, kernel);
   }
   if (threads_ == 0) threads_ = std::max(1u, std::thread::hardware_concurrency());
 }
@@ -66,6 +67,7 @@ GravityField& GravityField::operator=(GravityField&&) noexcept = default;
 
 int GravityField::max_degree() const noexcept { return table_->max_degree(); }
 int GravityField::max_order() const noexcept { return table_->max_order(); }
+SimdKernel GravityField::simd_kernel() const noexcept { return table_->kernel(); }
 
 void GravityField::check_point(const GeodeticPoint& p) {
   if (!std::isfinite(p.lat_rad) || std::abs(p.lat_rad) > std::numbers::pi / 2)

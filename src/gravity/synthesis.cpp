@@ -1,5 +1,6 @@
-// The summation kernel. Compiled with -ffp-contract=fast and cloned for
-// AVX-512/AVX2 (target_clones) so one binary runs everywhere at full speed.
+// The summation kernel. Compiled with -ffp-contract=fast and once per instruction set
+// (gravity/simd_kernel.hpp: baseline, AVX2 + FMA, AVX-512), chosen at run time, so one binary
+// runs everywhere at full speed.
 //
 // For each order m (descending) and each of kLanes points at once, the
 // forward column recursion over n of W_n = q^{n−m} P̄_nm(t)/u^m · kScale:
@@ -17,8 +18,8 @@
 
 namespace meridian::gravity::detail {
 
-SynthesisTable::SynthesisTable(const SphericalHarmonicCoefficients& c)
-    : n_(c.max_degree()), m_(c.max_order()) {
+SynthesisTable::SynthesisTable(const SphericalHarmonicCoefficients& c, SimdKernel kernel)
+    : n_(c.max_degree()), m_(c.max_order()), kernel_(resolve_simd_kernel(kernel)) {
   terms_.resize(c.size());
   start_.resize(static_cast<std::size_t>(m_) + 1);
   sectoral_.resize(static_cast<std::size_t>(m_) + 1);
@@ -98,67 +99,110 @@ MERIDIAN_INLINE void horner_step(V& hr, V& hi, const V& zr, const V& zi, const V
   hr = r;
 }
 
-// W lanes of type V (V8: kLanes points; V4 for small blocks: half the work on
-// AVX2 and on AMD Zen 4, which splits 512-bit operations in two).
-template <bool Grad, class V, int W>
+// Up to P·W points as P groups of W lanes of type V (V8: kLanes points; V4 for small blocks:
+// half the work on AVX2 and on AMD Zen 4, which splits 512-bit operations in two). The groups
+// share each column m while it is in cache (≤ 70 KB at degree 2190): the coefficient table is
+// streamed from memory once per block, however narrow the vectors, and the column loop keeps
+// only one group's recursion in registers.
+template <bool Grad, class V, int W, int P>
 MERIDIAN_INLINE void evaluate_impl(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
                                    int nmax, int mmax, const LanePoint* pts, int count, LaneSums* out) {
-  V t, u, q, cl, sl;
-  for (int i = 0; i < W; ++i) {
-    const LanePoint& p = pts[std::min(i, count - 1)];
-    t[i] = p.t;
-    u[i] = p.u;
-    q[i] = p.q;
-    cl[i] = p.cos_lon;
-    sl[i] = p.sin_lon;
+  struct Group {
+    V t, u, q, cl, sl, tq, q2, zr, zi;
+    V h0r{}, h0i{}, h1r{}, h1i{}, h2r{}, h2i{}, gr{}, gi{};
+  };
+  Group g[P];
+  const int groups = (count + W - 1) / W;
+  for (int k = 0; k < groups; ++k) {
+    Group& G = g[k];
+    for (int i = 0; i < W; ++i) {
+      const LanePoint& p = pts[std::min(k * W + i, count - 1)];
+      G.t[i] = p.t;
+      G.u[i] = p.u;
+      G.q[i] = p.q;
+      G.cl[i] = p.cos_lon;
+      G.sl[i] = p.sin_lon;
+    }
+    G.tq = G.t * G.q;
+    G.q2 = G.q * G.q;
+    G.zr = G.u * G.q * G.cl;
+    G.zi = G.u * G.q * G.sl;
   }
-  const V tq = t * q, q2 = q * q, zr = u * q * cl, zi = u * q * sl;
-  V h0r{}, h0i{}, h1r{}, h1i{}, h2r{}, h2i{}, gr{}, gi{};
   V acc[6];
   for (int m = mmax; m >= 0; --m) {
-    column<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, tq, q, q2, acc);
-    horner_step(h0r, h0i, zr, zi, acc[0], acc[1]);
-    if constexpr (Grad) {
-      horner_step(h1r, h1i, zr, zi, acc[2], acc[3]);
-      horner_step(h2r, h2i, zr, zi, acc[4], acc[5]);
-      if (m >= 1) horner_step(gr, gi, zr, zi, static_cast<double>(m) * acc[0], static_cast<double>(m) * acc[1]);
+    for (int k = 0; k < groups; ++k) {
+      Group& G = g[k];
+      column<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, G.tq, G.q, G.q2, acc);
+      horner_step(G.h0r, G.h0i, G.zr, G.zi, acc[0], acc[1]);
+      if constexpr (Grad) {
+        horner_step(G.h1r, G.h1i, G.zr, G.zi, acc[2], acc[3]);
+        horner_step(G.h2r, G.h2i, G.zr, G.zi, acc[4], acc[5]);
+        if (m >= 1)
+          horner_step(G.gr, G.gi, G.zr, G.zi, static_cast<double>(m) * acc[0], static_cast<double>(m) * acc[1]);
+      }
     }
   }
-  for (int i = 0; i < count; ++i) {
-    LaneSums& o = out[i];
-    o.v = q[i] * h0r[i] * kInvScale;
+  for (int j = 0; j < count; ++j) {
+    const Group& G = g[j / W];
+    const int i = j % W;
+    LaneSums& o = out[j];
+    const double q = G.q[i];
+    o.v = q * G.h0r[i] * kInvScale;
     if constexpr (Grad) {
       // G e^{iλ}: real part Σ u^{m−1} m X_m, minus imaginary part the east sum.
-      const double g0 = gr[i] * cl[i] - gi[i] * sl[i], g3 = -(gr[i] * sl[i] + gi[i] * cl[i]);
-      o.dr = q[i] * h1r[i] * kInvScale;
-      o.dn = (q[i] * u[i] * h2r[i] - q[i] * q[i] * t[i] * g0) * kInvScale;
-      o.de = q[i] * q[i] * g3 * kInvScale;
+      const double g0 = G.gr[i] * G.cl[i] - G.gi[i] * G.sl[i], g3 = -(G.gr[i] * G.sl[i] + G.gi[i] * G.cl[i]);
+      o.dr = q * G.h1r[i] * kInvScale;
+      o.dn = (q * G.u[i] * G.h2r[i] - q * q * G.t[i] * g0) * kInvScale;
+      o.de = q * q * g3 * kInvScale;
     } else {
       o.dr = o.dn = o.de = 0;
     }
   }
 }
 
-#if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__) && !defined(MERIDIAN_NO_TARGET_CLONES)
-#define MERIDIAN_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define MERIDIAN_CLONES
-#endif
+typedef double V2 __attribute__((vector_size(2 * sizeof(double))));
 
-MERIDIAN_CLONES void evaluate_grad(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
-                                   int nmax, int mmax, const LanePoint* pts, int count, LaneSums* out) {
+// One function per kernel (gravity/simd_kernel.hpp), each in its native vector width; chosen
+// at run time by SynthesisTable::evaluate. Explicit target attributes rather than
+// target_clones: a clone cannot know its own width, and the 8-lane vectors that suit
+// AVX-512 spill on AVX2 (issue 14).
+#if defined(__x86_64__) && !defined(MERIDIAN_NO_TARGET_CLONES)
+#define MERIDIAN_HAVE_X86_KERNELS 1
+template <bool Grad>
+__attribute__((target("arch=x86-64-v4"))) void evaluate_v4(const SynthesisTable::Term* terms, const std::size_t* start,
+                                                           const double* sect, int nmax, int mmax,
+                                                           const LanePoint* pts, int count, LaneSums* out) {
+  // Up to 4 points: one 256-bit pass does half the work (AMD Zen 4 splits 512-bit operations).
   if (count <= 4)
-    evaluate_impl<true, V4, 4>(terms, start, sect, nmax, mmax, pts, count, out);
+    evaluate_impl<Grad, V4, 4, 1>(terms, start, sect, nmax, mmax, pts, count, out);
   else
-    evaluate_impl<true, V8, kLanes>(terms, start, sect, nmax, mmax, pts, count, out);
+    evaluate_impl<Grad, V8, kLanes, 1>(terms, start, sect, nmax, mmax, pts, count, out);
 }
 
-MERIDIAN_CLONES void evaluate_value(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
-                                    int nmax, int mmax, const LanePoint* pts, int count, LaneSums* out) {
-  if (count <= 4)
-    evaluate_impl<false, V4, 4>(terms, start, sect, nmax, mmax, pts, count, out);
-  else
-    evaluate_impl<false, V8, kLanes>(terms, start, sect, nmax, mmax, pts, count, out);
+template <bool Grad>
+__attribute__((target("arch=x86-64-v3"))) void evaluate_v3(const SynthesisTable::Term* terms, const std::size_t* start,
+                                                           const double* sect, int nmax, int mmax,
+                                                           const LanePoint* pts, int count, LaneSums* out) {
+  evaluate_impl<Grad, V4, 4, kLanes / 4>(terms, start, sect, nmax, mmax, pts, count, out);
+}
+#endif
+
+template <bool Grad>
+void evaluate_baseline(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect, int nmax,
+                       int mmax, const LanePoint* pts, int count, LaneSums* out) {
+  evaluate_impl<Grad, V2, 2, kLanes / 2>(terms, start, sect, nmax, mmax, pts, count, out);
+}
+
+template <bool Grad>
+void evaluate_with(SimdKernel kernel, const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
+                   int nmax, int mmax, const LanePoint* pts, int count, LaneSums* out) {
+#ifdef MERIDIAN_HAVE_X86_KERNELS
+  if (kernel == SimdKernel::X86_64_V4) return evaluate_v4<Grad>(terms, start, sect, nmax, mmax, pts, count, out);
+  if (kernel == SimdKernel::X86_64_V3) return evaluate_v3<Grad>(terms, start, sect, nmax, mmax, pts, count, out);
+#else
+  (void)kernel;
+#endif
+  evaluate_baseline<Grad>(terms, start, sect, nmax, mmax, pts, count, out);
 }
 
 }  // namespace
@@ -166,9 +210,9 @@ MERIDIAN_CLONES void evaluate_value(const SynthesisTable::Term* terms, const std
 void SynthesisTable::evaluate(const LanePoint* points, int count, bool gradient, LaneSums* out) const {
   if (count <= 0) return;
   if (gradient)
-    evaluate_grad(terms_.data(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
+    evaluate_with<true>(kernel_, terms_.data(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
   else
-    evaluate_value(terms_.data(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
+    evaluate_with<false>(kernel_, terms_.data(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
 }
 
 std::vector<double> SynthesisTable::column_sums(double t, double q, bool gradient) const {

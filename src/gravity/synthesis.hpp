@@ -7,13 +7,14 @@
 #include <vector>
 
 #include "meridian/gravity/coefficients.hpp"
+#include "meridian/gravity/simd_kernel.hpp"
 
 namespace meridian::gravity::detail {
 
 /// The "not requested" value of FieldValues.
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Points evaluated together (one AVX-512 vector; two AVX2 vectors).
+/// Points evaluated together (one AVX-512 vector; two passes of AVX2, four of SSE2).
 inline constexpr int kLanes = 8;
 /// Scale applied to P̄_nm / cos^m ψ so that neither overflow nor underflow
 /// occurs to degree ~2700 (Holmes & Featherstone 2002).
@@ -35,10 +36,13 @@ struct LaneSums {
 
 class SynthesisTable {
  public:
-  explicit SynthesisTable(const SphericalHarmonicCoefficients& c);
+  /// `kernel`: the instruction set of evaluate() (resolve_simd_kernel; InputError when this CPU
+  /// cannot run it).
+  explicit SynthesisTable(const SphericalHarmonicCoefficients& c, SimdKernel kernel = SimdKernel::Auto);
 
   int max_degree() const noexcept { return n_; }
   int max_order() const noexcept { return m_; }
+  SimdKernel kernel() const noexcept { return kernel_; }  ///< concrete, never Auto
 
   /// Evaluate 1..kLanes points (count); dr/dn/de only when `gradient`.
   void evaluate(const LanePoint* points, int count, bool gradient, LaneSums* out) const;
@@ -58,6 +62,7 @@ class SynthesisTable {
 
  private:
   int n_ = 0, m_ = 0;
+  SimdKernel kernel_ = SimdKernel::Baseline;
   std::vector<Term> terms_;         // column-major, m = 0..M, n = m..N
   std::vector<std::size_t> start_;  // index of (m, m) in terms_
   std::vector<double> sectoral_;    // kScale · P̄_mm / cos^m ψ

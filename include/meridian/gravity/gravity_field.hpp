@@ -38,6 +38,7 @@
 
 #include "meridian/gravity/gravity_model.hpp"
 #include "meridian/gravity/normal_gravity.hpp"
+#include "meridian/gravity/simd_kernel.hpp"
 
 namespace meridian::gravity {
 
@@ -92,6 +93,9 @@ struct FieldOptions {
   bool include_degree_zero = false;
   /// Threads for batch evaluation; 0 = std::thread::hardware_concurrency().
   unsigned threads = 0;
+  /// Instruction set of the summation kernel (simd_kernel.hpp). Auto: MERIDIAN_SIMD_KERNEL if
+  /// set, else the widest this CPU supports. The kernels agree to about 1e-15 relative.
+  SimdKernel simd_kernel = SimdKernel::Auto;
 };
 
 /// The synthesis engine for one model. Immutable and thread-safe after
@@ -99,7 +103,8 @@ struct FieldOptions {
 /// (≈ 32 bytes per coefficient pair).
 class GravityField {
  public:
-  /// Throws InputError for an empty/invalid model (GM, a not positive).
+  /// Throws InputError for an empty/invalid model (GM, a not positive), or for a
+  /// FieldOptions::simd_kernel (or MERIDIAN_SIMD_KERNEL) this CPU cannot run.
   explicit GravityField(const GravityModelData& model, FieldOptions options = {});
   ~GravityField();
   GravityField(GravityField&&) noexcept;
@@ -107,6 +112,8 @@ class GravityField {
 
   int max_degree() const noexcept;
   int max_order() const noexcept;
+  /// The summation kernel in use (concrete: never SimdKernel::Auto).
+  SimdKernel simd_kernel() const noexcept;
   const NormalGravity& normal() const noexcept { return normal_; }
   double model_gm_m3_s2() const noexcept { return gm_; }
   double model_radius_m() const noexcept { return radius_m_; }
