@@ -19,21 +19,21 @@ namespace {
 
 using detail::kNaN;
 
-// The disturbing potential's coefficients: the model minus the normal
-// field's even zonal terms C̄_n0 = −(GM_ref/GM)(a_ref/a)^n J_n/√(2n+1), with
-// C̄00 cancelled exactly (the GM difference is handled separately).
-SphericalHarmonicCoefficients disturbing_coefficients(const GravityModelData& m, const NormalGravity& normal) {
-  SphericalHarmonicCoefficients c = m.coefficients;
-  c.set(0, 0, 0.0, 0.0);
+// The disturbing potential's coefficients are the model's minus the normal field's even zonal
+// terms C̄_n0 = −(GM_ref/GM)(a_ref/a)^n J_n/√(2n+1), with C̄00 cancelled exactly (the GM
+// difference is handled separately): applied to the table built from the model's own
+// coefficients (no copy of the whole set).
+void remove_normal_field(detail::SynthesisTable& t, const GravityModelData& m, const NormalGravity& normal) {
+  const SphericalHarmonicCoefficients& c = m.coefficients;
+  t.set_zonal_c(0, 0.0);
   const double amult = (normal.a_m() / m.radius_m) * (normal.a_m() / m.radius_m);
   double mult = normal.gm_m3_s2() / m.gm_m3_s2;
   for (int n = 2; n <= c.max_degree(); n += 2) {
     mult *= amult;
     const double s = -mult * normal.jn(n) / std::sqrt(2.0 * n + 1);
     if (s == 0) break;  // J_n underflowed: nothing left to remove
-    c.set(n, 0, c.c(n, 0) - s, 0.0);
+    t.set_zonal_c(n, c.c(n, 0) - s);
   }
-  return c;
 }
 
 }  // namespace
@@ -49,7 +49,8 @@ GravityField::GravityField(const GravityModelData& model, FieldOptions options)
     throw InputError("gravity model: reference radius must be positive", {model.source_file, {}, "radius"});
   dgm_ = gm_ * model.coefficients.c(0, 0) - normal_.gm_m3_s2();
   const SimdKernel kernel = resolve_simd_kernel(options.simd_kernel);
-  table_ = std::make_unique<detail::SynthesisTable>(disturbing_coefficients(model, normal_), kernel);
+  table_ = std::make_unique<detail::SynthesisTable>(model.coefficients, kernel);
+  remove_normal_field(*table_, model, normal_);
   if (model.correction) {
     SphericalHarmonicCoefficients cc = model.correction->coefficients;
     if (!(model.correction->multiplier > 0))

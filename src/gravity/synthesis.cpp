@@ -20,23 +20,33 @@ namespace meridian::gravity::detail {
 
 SynthesisTable::SynthesisTable(const SphericalHarmonicCoefficients& c, SimdKernel kernel)
     : n_(c.max_degree()), m_(c.max_order()), kernel_(resolve_simd_kernel(kernel)) {
-  terms_.resize(c.size());
+  // Every term is written below: no zero fill of the 32 bytes per coefficient first.
+  terms_.reset(new Term[c.size()]);
   start_.resize(static_cast<std::size_t>(m_) + 1);
   sectoral_.resize(static_cast<std::size_t>(m_) + 1);
+  // α_nm = √((2n−1)(2n+1) / ((n−m)(n+m))),
+  // β_nm = √((2n+1)(n+m−1)(n−m−1) / ((n−m)(n+m)(2n−3))), from tables of √k and 1/√k: products
+  // instead of a square root and a division per term (loading a degree-2190 model computes
+  // 2.4 million of each; the products differ from the direct forms by a few ulp).
+  std::vector<double> root(2 * static_cast<std::size_t>(n_) + 2), inv_root(root.size());
+  for (std::size_t k = 0; k < root.size(); ++k) {
+    root[k] = std::sqrt(static_cast<double>(k));
+    inv_root[k] = k == 0 ? 0.0 : 1.0 / root[k];
+  }
+  const double* C = c.c_values().data();
+  const double* S = c.s_values().data();
   for (int m = 0; m <= m_; ++m) {
     const std::size_t k0 = c.index(m, m);
     start_[static_cast<std::size_t>(m)] = k0;
-    for (int n = m; n <= n_; ++n) {
-      Term& t = terms_[k0 + static_cast<std::size_t>(n - m)];
-      t.c = c.c(n, m);
-      t.s = c.s(n, m);
-      t.alpha = t.beta = 0;
-      if (n > m) {
-        const double dn = n, dm = m;
-        t.alpha = std::sqrt((2 * dn - 1) * (2 * dn + 1) / ((dn - dm) * (dn + dm)));
-        if (n > m + 1)
-          t.beta = std::sqrt((2 * dn + 1) * (dn + dm - 1) * (dn - dm - 1) / ((dn - dm) * (dn + dm) * (2 * dn - 3)));
-      }
+    Term* col = terms_.get() + k0;
+    col[0] = {0.0, 0.0, C[k0], S[k0]};
+    for (int n = m + 1; n <= n_; ++n) {
+      const auto u = [](int i) { return static_cast<std::size_t>(i); };
+      const double common = inv_root[u(n - m)] * inv_root[u(n + m)] * root[u(2 * n + 1)];
+      const double alpha = common * root[u(2 * n - 1)];
+      const double beta = n > m + 1 ? common * root[u(n + m - 1)] * root[u(n - m - 1)] * inv_root[u(2 * n - 3)] : 0.0;
+      const std::size_t k = k0 + u(n - m);
+      col[n - m] = {alpha, beta, C[k], S[k]};
     }
     double p = kScale;
     if (m == 1) p = kScale * std::sqrt(3.0);
@@ -210,16 +220,16 @@ void evaluate_with(SimdKernel kernel, const SynthesisTable::Term* terms, const s
 void SynthesisTable::evaluate(const LanePoint* points, int count, bool gradient, LaneSums* out) const {
   if (count <= 0) return;
   if (gradient)
-    evaluate_with<true>(kernel_, terms_.data(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
+    evaluate_with<true>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
   else
-    evaluate_with<false>(kernel_, terms_.data(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
+    evaluate_with<false>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
 }
 
 std::vector<double> SynthesisTable::column_sums(double t, double q, bool gradient) const {
   const std::size_t width = gradient ? 6 : 2;
   std::vector<double> sums(width * (static_cast<std::size_t>(m_) + 1));
   for (int m = 0; m <= m_; ++m) {
-    const Term* tm = terms_.data() + start_[static_cast<std::size_t>(m)];
+    const Term* tm = terms_.get() + start_[static_cast<std::size_t>(m)];
     const int count = n_ - m + 1;
     double w1 = sectoral_[static_cast<std::size_t>(m)], w2 = 0, d1 = 0, d2 = 0, np1 = m + 1.0;
     double a0 = tm[0].c * w1, b0 = tm[0].s * w1, a1 = np1 * a0, b1 = np1 * b0, a2 = 0, b2 = 0;

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "meridian/gravity/coefficients.hpp"
@@ -43,6 +44,8 @@ class SynthesisTable {
   int max_degree() const noexcept { return n_; }
   int max_order() const noexcept { return m_; }
   SimdKernel kernel() const noexcept { return kernel_; }  ///< concrete, never Auto
+  /// Replace C̄_n0 (0 ≤ n ≤ N): for the owner's adjustments while it builds its tables.
+  void set_zonal_c(int n, double c) noexcept { terms_[start_[0] + static_cast<std::size_t>(n)].c = c; }
 
   /// Evaluate 1..kLanes points (count); dr/dn/de only when `gradient`.
   void evaluate(const LanePoint* points, int count, bool gradient, LaneSums* out) const;
@@ -63,7 +66,7 @@ class SynthesisTable {
  private:
   int n_ = 0, m_ = 0;
   SimdKernel kernel_ = SimdKernel::Baseline;
-  std::vector<Term> terms_;         // column-major, m = 0..M, n = m..N
+  std::unique_ptr<Term[]> terms_;   // column-major, m = 0..M, n = m..N
   std::vector<std::size_t> start_;  // index of (m, m) in terms_
   std::vector<double> sectoral_;    // kScale · P̄_mm / cos^m ψ
 };
