@@ -175,11 +175,11 @@ def test_model_metadata(synth_files):
 
 
 def test_gil_is_released_during_a_batch():
-    # One thread evaluates a batch (about 0.1-0.5 s here); this thread sleeps 10 ms, which
+    # One thread evaluates a batch (0.2-1 s here); this thread sleeps 10 ms, which
     # it can only finish by taking the GIL back. Released: it finishes long before the batch
     # ends. Held: not before the batch's C++ call returns.
     model = mg.synthetic_model(360, 2, threads=1)
-    lat = np.linspace(-80, 80, 4000)
+    lat = np.linspace(-80, 80, 8000)
     started, t = threading.Event(), {}
 
     def batch():
