@@ -28,7 +28,7 @@ import dask.array as da
 import numpy as np
 
 from . import gravity
-from .errors import InputError
+from .errors import Error, InputError
 
 __all__ = ["deflection", "grid", "grid_to_netcdf", "open_model"]
 
@@ -51,10 +51,30 @@ def _recipe(model):
     return model._recipe
 
 
-def _block(recipe, geoid, lat, lon, h):
-    d = open_model(recipe).deflection(lat, lon, h, geoid=geoid)
+def _block(recipe, geoid, lat, lon, h, block_info=None):
+    try:
+        d = open_model(recipe).deflection(lat, lon, h, geoid=geoid)
+    except Error as e:
+        _to_global_index(e, block_info)
+        raise
     parts = [d.xi_arcsec, d.eta_arcsec] + ([d.geoid_m] if geoid else [])
     return np.stack([np.asarray(p, dtype=np.float64) for p in parts])
+
+
+def _to_global_index(err, block_info):
+    """The element index in err.field ("lat_deg[2, 3]", relative to the block) made
+    relative to the whole broadcast array, from dask's block_info."""
+    field = err.field or ""
+    if not block_info or not field.endswith("]") or "[" not in field:
+        return
+    name, _, idx = field[:-1].partition("[")
+    try:
+        local = [int(x) for x in idx.split(",")]
+    except ValueError:
+        return
+    start = [lo for lo, _ in block_info[0]["array-location"]]
+    if len(local) == len(start):
+        err.field = name + "[" + ", ".join(str(a + b) for a, b in zip(local, start)) + "]"
 
 
 def deflection(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks="auto"):
@@ -66,8 +86,8 @@ def deflection(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks="auto"):
     arrays' own chunks and otherwise picks ~10^5 points a chunk). Returns a
     gravity.Deflection of dask arrays; compute them together
     (``dask.compute(*d)``) so each chunk is evaluated once. Errors as
-    GravityModel.deflection, raised when computed (field indices are then relative
-    to the chunk), except dtype and shape errors, raised here.
+    GravityModel.deflection, raised when computed, with the element's index in the
+    broadcast shape (``"lat_deg[4, 7]"``), except dtype and shape errors, raised here.
     """
     recipe = _recipe(model)
     names = ("lat_deg", "lon_deg", "h_m")

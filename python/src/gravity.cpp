@@ -80,20 +80,24 @@ py::tuple evaluate(const Model& model, const Array& lat_deg, const Array& lon_de
   const double *lat = data_of(lat_deg), *lon = data_of(lon_deg), *h = data_of(h_m);
   double *xo = xi.mutable_data(), *eo = eta.mutable_data(), *no = geoid ? geoid_m->mutable_data() : nullptr;
   const mg::Quantities what = geoid ? mg::Quantities::All : mg::Quantities::Deflection;
+  auto point = [&](std::size_t i) -> mg::GeodeticPoint {
+    return {units::deg_to_rad(lat[i]), units::deg_to_rad(lon[i]), h[i]};
+  };
   {
     py::gil_scoped_release released;
+    // Every point first, as GravityField::evaluate does for its batch: bad input fails
+    // before any work is done.
+    for (std::size_t i = 0; i < n; ++i) {
+      try {
+        mg::GravityField::check_point(point(i));
+      } catch (const Error& e) {
+        throw InputError(e.message(), {"", std::nullopt, fmt::format("{}[{}]", argument_name(e.context().field), i)});
+      }
+    }
     std::vector<mg::GeodeticPoint> points(std::min(n, kChunk));
     for (std::size_t i0 = 0; i0 < n; i0 += kChunk) {
       const std::size_t m = std::min(kChunk, n - i0);
-      for (std::size_t k = 0; k < m; ++k) {
-        const std::size_t i = i0 + k;
-        points[k] = {units::deg_to_rad(lat[i]), units::deg_to_rad(lon[i]), h[i]};
-        try {
-          mg::GravityField::check_point(points[k]);
-        } catch (const Error& e) {
-          throw InputError(e.message(), {"", std::nullopt, fmt::format("{}[{}]", argument_name(e.context().field), i)});
-        }
-      }
+      for (std::size_t k = 0; k < m; ++k) points[k] = point(i0 + k);
       std::vector<mg::FieldValues> v;
       try {
         v = model.field->evaluate(std::span<const mg::GeodeticPoint>(points.data(), m), what);

@@ -52,10 +52,12 @@ def test_point_table_as_dask_arrays(client, model):
 
 
 def test_errors_cross_the_worker_boundary(client, model):
-    d = mdask.deflection(model, np.array([0.0, 95.0]), 0.0, chunks=1)
+    lat = np.zeros((6, 5))
+    lat[4, 3] = 95.0
+    d = mdask.deflection(model, lat, np.arange(5.0), chunks=(2, 2))
     with pytest.raises(meridian.InputError) as e:
         dask.compute(*d)
-    assert e.value.field == "lat_deg[0]"  # the index within its chunk (docs/scaling.md)
+    assert e.value.field == "lat_deg[4, 3]"  # the index in the whole array, not in its chunk
     with pytest.raises(meridian.InputError) as e:
         mdask.deflection(model, np.zeros(3), np.zeros(4))
     assert e.value.field == "lat_deg, lon_deg, h_m"
