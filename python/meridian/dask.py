@@ -1,7 +1,8 @@
 """Cluster-scale evaluation of gravity models with dask (docs/scaling.md).
 
-A grid or a long point table is split into chunks; each chunk is evaluated by
-GravityModel.deflection on a dask worker. The model travels as the recipe to open
+A grid or a long point table is split into chunks; each chunk is evaluated on a
+dask worker by GravityModel.grid (a sub-grid at one height) or
+GravityModel.deflection (points). The model travels as the recipe to open
 it (path and degree, or degree and seed), never as coefficients, and each worker
 process opens it once (a per-process cache), so a degree-2190 model is read once
 per worker, not once per chunk. Results are bit-for-bit those of one process:
@@ -114,16 +115,48 @@ def deflection(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks="auto"):
     return gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
 
 
+def _grid_block(recipe, geoid, h, lat2, lon2, block_info=None):
+    try:
+        d = open_model(recipe).grid(lat2[:, 0], lon2[0, :], h, geoid=geoid)
+    except Error as e:
+        if block_info:
+            r0 = block_info[0]["array-location"][0][0]
+            c0 = block_info[1]["array-location"][1][0]
+            field = e.field or ""
+            if field.startswith("lat_deg["):
+                e.field = f"lat_deg[{int(field[8:-1]) + r0}]"
+            elif field.startswith("lon_deg["):
+                e.field = f"lon_deg[{int(field[8:-1]) + c0}]"
+            elif field.startswith("points["):
+                i, j = (int(x) for x in field[7:-1].split(","))
+                e.field = f"points[{i + r0}, {j + c0}]"
+        raise
+    return np.stack([d.xi_arcsec, d.eta_arcsec] + ([d.geoid_m] if geoid else []))
+
+
 def grid(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks=(256, -1)):
-    """deflection() on the regular grid 1-D lat_deg (rows) × 1-D lon_deg (columns);
-    chunks of the (rows, columns) result, default 256 whole rows."""
+    """GravityModel.grid on the regular grid 1-D lat_deg (rows) × 1-D lon_deg (columns),
+    one sub-grid per chunk of the (rows, columns) result (default 256 whole rows).
+    With a scalar h_m each chunk runs the parallel path (GravityModel.grid), whose
+    values do not depend on the chunking, so the result equals model.grid(...) bit for
+    bit; with an array h_m, deflection() on the mesh. Errors: as GravityModel.grid, with
+    indices in the whole grid."""
+    recipe = _recipe(model)
     lat = gravity._real_array("lat_deg", lat_deg)
     lon = gravity._real_array("lon_deg", lon_deg)
+    h = gravity._real_array("h_m", h_m)
     for name, a in (("lat_deg", lat), ("lon_deg", lon)):
         if a.ndim != 1:
             raise InputError(f"must be 1-D for grid(), got shape {a.shape}", field=name)
     chunks = da.core.normalize_chunks(chunks, (lat.size, lon.size), dtype=np.float64)
-    return deflection(model, lat[:, None], lon[None, :], h_m, geoid=geoid, chunks=chunks)
+    if h.ndim != 0:
+        return deflection(model, lat[:, None], lon[None, :], h, geoid=geoid, chunks=chunks)
+    lat2 = da.from_array(lat[:, None], chunks=(chunks[0], 1))
+    lon2 = da.from_array(lon[None, :], chunks=(1, chunks[1]))
+    n = 3 if geoid else 2
+    stacked = da.map_blocks(functools.partial(_grid_block, recipe, bool(geoid), float(h)), lat2, lon2,
+                            new_axis=0, chunks=((n,),) + chunks, dtype=np.float64, name="meridian-grid")
+    return gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
 
 
 def grid_to_netcdf(path, model, lat_deg, lon_deg, h_m=0.0, *, rows_per_chunk=256, client=None):

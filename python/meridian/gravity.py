@@ -168,16 +168,29 @@ class GravityModel:
 
     def grid(self, lat_deg, lon_deg, h_m=0.0, *, geoid=True) -> Deflection:
         """ξ, η, N on the regular grid of 1-D lat_deg (rows) × 1-D lon_deg (columns):
-        arrays of shape (len(lat_deg), len(lon_deg)); h_m a scalar or an array
-        broadcastable to that shape. Evaluated on the batch path (all cores).
-        Errors as deflection(); InputError (field "lat_deg"/"lon_deg") when not 1-D.
+        arrays of shape (len(lat_deg), len(lon_deg)).
+
+        With a scalar h_m, the parallel path: per row the Legendre sums are formed once
+        for its latitude (gravity::GravityCircle) and each longitude then costs O(degree),
+        rows spread over the model's threads, the GIL released; the values equal
+        deflection()'s on the same points to rounding (≈1e-12″), and do not depend on
+        how a grid is split into sub-grids (meridian.dask relies on this). With h_m an
+        array broadcastable to the grid's shape, deflection() on the mesh.
+
+        Errors: InputError with field "lat_deg[i]", "lon_deg[j]" or "h_m" for bad values,
+        "lat_deg"/"lon_deg" when not 1-D; NumericalError "points[i, j]" for a value that
+        is not finite.
         """
         lat = _real_array("lat_deg", lat_deg)
         lon = _real_array("lon_deg", lon_deg)
+        h = _real_array("h_m", h_m)
         for name, a in (("lat_deg", lat), ("lon_deg", lon)):
             if a.ndim != 1:
                 raise InputError(f"must be 1-D for grid(), got shape {a.shape}", field=name)
-        return self.deflection(lat[:, None], lon[None, :], h_m, geoid=geoid)
+        if h.ndim != 0:
+            return self.deflection(lat[:, None], lon[None, :], h, geoid=geoid)
+        xi, eta, n = self._core.grid(np.ascontiguousarray(lat), np.ascontiguousarray(lon), float(h), bool(geoid))
+        return Deflection(xi, eta, n)
 
 
 def _reopen(recipe):

@@ -7,7 +7,12 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <cstdio>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -21,6 +26,7 @@
 #include "bindings.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/gravity/gravity_circle.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/points.hpp"
@@ -39,13 +45,15 @@ struct Model {
   mg::ModelInfo info;
   std::vector<std::string> warnings;
   std::shared_ptr<const mg::GravityField> field;
+  unsigned threads = 1;  ///< threads of a batch (FieldOptions::threads resolved)
 };
 
 Model make_model(const mg::GravityModelData& data, unsigned threads) {
   auto field = std::make_shared<const mg::GravityField>(data, mg::FieldOptions{false, threads});
   mg::ModelInfo info = mg::model_info(data, *field);
   std::vector<std::string> warnings = mg::model_warnings(info);
-  return {std::move(info), std::move(warnings), std::move(field)};
+  return {std::move(info), std::move(warnings), std::move(field),
+          threads ? threads : std::max(1u, std::thread::hardware_concurrency())};
 }
 
 // Points per call of the batch evaluation: bounds the FieldValues buffer (88 bytes a
@@ -117,6 +125,72 @@ py::tuple evaluate(const Model& model, const Array& lat_deg, const Array& lon_de
   return py::make_tuple(xi, eta, geoid ? py::object(*geoid_m) : py::object(py::none()));
 }
 
+// ξ, η (″) and, when `geoid`, N (m) on the grid lat_deg (rows) × lon_deg (columns) at
+// one height: a GravityCircle per row (gravity/gravity_circle.hpp: the Legendre sums once
+// per latitude, then O(max order) per longitude; the same values as GravityField::evaluate
+// to rounding), rows spread over the model's threads. Arrays of shape (rows, columns).
+// Errors: InputError "lat_deg[i]", "lon_deg[j]", "h_m" for bad input (checked before any
+// work); NumericalError "points[i, j]" for a value that is not finite.
+py::tuple grid(const Model& model, const Array& lat_deg, const Array& lon_deg, double h_m, bool geoid) {
+  if (lat_deg.ndim() != 1 || lon_deg.ndim() != 1) throw InputError("lat_deg and lon_deg must be 1-D here");
+  const auto rows = static_cast<std::size_t>(lat_deg.shape(0)), cols = static_cast<std::size_t>(lon_deg.shape(0));
+  const std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)};
+  Array xi(shape), eta(shape);
+  std::optional<Array> geoid_m;
+  if (geoid) geoid_m.emplace(shape);
+  const double *lat = lat_deg.data(), *lon = lon_deg.data();
+  double *xo = xi.mutable_data(), *eo = eta.mutable_data(), *no = geoid ? geoid_m->mutable_data() : nullptr;
+  const mg::Quantities what = geoid ? mg::Quantities::All : mg::Quantities::Deflection;
+  {
+    py::gil_scoped_release released;
+    auto check = [&](const mg::GeodeticPoint& p, const char* name, std::size_t i) {
+      try {
+        mg::GravityField::check_point(p);
+      } catch (const Error& e) {
+        const std::string arg = argument_name(e.context().field);
+        throw InputError(e.message(), {"", std::nullopt, arg == "h_m" ? arg : fmt::format("{}[{}]", name, i)});
+      }
+    };
+    for (std::size_t i = 0; i < rows; ++i) check({units::deg_to_rad(lat[i]), 0.0, h_m}, "lat_deg", i);
+    for (std::size_t j = 0; j < cols; ++j) check({0.0, units::deg_to_rad(lon[j]), h_m}, "lon_deg", j);
+    std::vector<double> lon_rad(cols);
+    for (std::size_t j = 0; j < cols; ++j) lon_rad[j] = units::deg_to_rad(lon[j]);
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    auto work = [&] {
+      try {
+        for (std::size_t i; (i = next.fetch_add(1)) < rows;) {
+          const mg::GravityCircle circle(*model.field, units::deg_to_rad(lat[i]), h_m, what);
+          for (std::size_t j = 0; j < cols; ++j) {
+            const mg::FieldValues v = circle.evaluate(lon_rad[j]);
+            const std::size_t k = i * cols + j;
+            xo[k] = units::rad_to_arcsec(v.xi_rad);
+            eo[k] = units::rad_to_arcsec(v.eta_rad);
+            if (no) no[k] = v.geoid_m;
+            if (!std::isfinite(xo[k]) || !std::isfinite(eo[k]) || (no && !std::isfinite(no[k])))
+              throw NumericalError("the model gives a value that is not finite here: its coefficients, GM or "
+                                   "reference radius are out of range",
+                                   {"", std::nullopt, fmt::format("points[{}, {}]", i, j)});
+          }
+        }
+      } catch (...) {
+        next = rows;  // the others stop at their next row
+        const std::lock_guard lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+      }
+    };
+    const std::size_t nthreads = std::min<std::size_t>(model.threads, rows);
+    {
+      std::vector<std::jthread> pool;
+      for (std::size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
+      work();
+    }
+    if (failure) std::rethrow_exception(failure);
+  }
+  return py::make_tuple(xi, eta, geoid ? py::object(*geoid_m) : py::object(py::none()));
+}
+
 py::dict info_dict(const Model& m) {
   py::dict d;
   d["name"] = m.info.name;
@@ -140,7 +214,10 @@ void bind_gravity(py::module_& m) {
                              "What a user must know about the metadata (gravity/points.hpp model_warnings)")
       .def_property_readonly("max_degree", [](const Model& x) { return x.info.max_degree; })
       .def("evaluate", &evaluate, py::arg("lat_deg"), py::arg("lon_deg"), py::arg("h_m"), py::arg("geoid"),
-           "(xi_arcsec, eta_arcsec, geoid_m or None) at the points of three 1-D float64 arrays of one length");
+           "(xi_arcsec, eta_arcsec, geoid_m or None) at the points of three 1-D float64 arrays of one length")
+      .def("grid", &grid, py::arg("lat_deg"), py::arg("lon_deg"), py::arg("h_m"), py::arg("geoid"),
+           "(xi_arcsec, eta_arcsec, geoid_m or None) on the grid of 1-D lat_deg x 1-D lon_deg at one height, "
+           "a GravityCircle per row");
 
   m.def(
       "open",

@@ -58,6 +58,11 @@ def test_errors_cross_the_worker_boundary(client, model):
     with pytest.raises(meridian.InputError) as e:
         dask.compute(*d)
     assert e.value.field == "lat_deg[4, 3]"  # the index in the whole array, not in its chunk
+    lat = np.linspace(-80, 80, 20)
+    lat[13] = np.nan
+    with pytest.raises(meridian.InputError) as e:
+        dask.compute(*mdask.grid(model, lat, np.arange(0.0, 360.0, 30.0), chunks=(5, 4)))
+    assert e.value.field == "lat_deg[13]"
     with pytest.raises(meridian.InputError) as e:
         mdask.deflection(model, np.zeros(3), np.zeros(4))
     assert e.value.field == "lat_deg, lon_deg, h_m"

@@ -114,15 +114,28 @@ def test_dtypes_and_layouts(model):
 def test_grid_is_the_deflection_on_the_mesh(model):
     lat = np.linspace(-89.5, 89.5, 7)
     lon = np.linspace(-180, 179, 9)
-    g = model.grid(lat, lon, 100.0)
-    assert g.xi_arcsec.shape == (7, 9)
+    g = model.grid(lat, lon, 100.0)  # the parallel path: one GravityCircle per row
+    assert g.xi_arcsec.shape == g.geoid_m.shape == (7, 9) and g.xi_arcsec.dtype == np.float64
     la, lo = np.meshgrid(lat, lon, indexing="ij")
     d = model.deflection(la, lo, 100.0)
-    for got, ref in zip(g, d):
-        np.testing.assert_array_equal(got, ref)
+    for got, ref in zip(g, d):  # the same quantities to rounding (gravity_circle.hpp)
+        np.testing.assert_allclose(got, ref, rtol=0, atol=1e-10)
+    # Sub-grids give the same bits as the whole (meridian.dask relies on it).
+    part = model.grid(lat[2:5], lon[3:8], 100.0)
+    np.testing.assert_array_equal(part.xi_arcsec, g.xi_arcsec[2:5, 3:8])
+    np.testing.assert_array_equal(part.geoid_m, g.geoid_m[2:5, 3:8])
+    assert model.grid(lat, lon, 100.0, geoid=False).geoid_m is None
+    # Heights per node: the batch path on the mesh.
+    hh = np.full((7, 9), 100.0)
+    np.testing.assert_array_equal(model.grid(lat, lon, hh).xi_arcsec, d.xi_arcsec)
     with pytest.raises(meridian.InputError) as e:
         model.grid(la, lon)
     assert e.value.field == "lat_deg"
+    for args, field in [((np.array([0.0, 90.5]), lon), "lat_deg[1]"), ((lat, np.array([0.0, np.nan])), "lon_deg[1]"),
+                        ((lat, lon, -1e5), "h_m")]:
+        with pytest.raises(meridian.InputError) as e:
+            model.grid(*args)
+        assert e.value.field == field
 
 
 @pytest.mark.parametrize(
