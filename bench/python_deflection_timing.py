@@ -6,8 +6,8 @@
     PYTHONPATH=build-bench/python /usr/bin/python3 bench/python_deflection_timing.py \
         build-bench/bench/bench_gravity [rounds]
 
-Alternates the two, `rounds` times each (default 3), so a change in the machine's load
-hits both alike; prints every wall-clock and process CPU time (all threads: Google
+Alternates the two, `rounds` times each (default 3), C++ first in even rounds and
+Python first in odd ones, so a change in the machine's load hits both alike; prints every wall-clock and process CPU time (all threads: Google
 Benchmark's MeasureProcessCPUTime, Python's time.process_time) and the medians. Both evaluate ξ, η only
 (Quantities::Deflection / geoid=False) on all cores, the model loaded beforehand.
 """
@@ -34,18 +34,27 @@ def main():
     lon = np.fmod(i * 137.508, 360.0)
     model = mg.GravityModel.open(model_name)
     py, cpp, py_cpu, cpp_cpu = [], [], [], []
-    for _ in range(rounds):
+    def run_cpp():
         r = subprocess.run([bench, "--benchmark_filter=BM_Meridian_DeflectionModelFile",
                             "--benchmark_format=json"], capture_output=True, text=True, check=True)
         b = json.loads(r.stdout)["benchmarks"][0]
         cpp.append(b["real_time"])  # seconds (Unit kSecond)
         cpp_cpu.append(b["cpu_time"])
+
+    def run_py():
         t, c = time.perf_counter(), time.process_time()
         model.deflection(lat, lon, 0.0, geoid=False)
         py.append(time.perf_counter() - t)
         py_cpu.append(time.process_time() - c)
-        print(f"C++ batch {cpp[-1]:.2f} s (CPU {cpp_cpu[-1]:.2f} s)   "
-              f"meridian.gravity {py[-1]:.2f} s (CPU {py_cpu[-1]:.2f} s)   load {os.getloadavg()[0]:.1f}", flush=True)
+
+    for k in range(rounds):
+        # Counterbalanced: C++ first in even rounds, Python first in odd ones.
+        first, second = (run_cpp, run_py) if k % 2 == 0 else (run_py, run_cpp)
+        first()
+        second()
+        print(f"round {k + 1} ({'C++' if k % 2 == 0 else 'Python'} first): C++ batch {cpp[-1]:.2f} s "
+              f"(CPU {cpp_cpu[-1]:.2f} s)   meridian.gravity {py[-1]:.2f} s (CPU {py_cpu[-1]:.2f} s)   "
+              f"load {os.getloadavg()[0]:.1f}", flush=True)
     print(f"model {model.name} degree {model.max_degree}, {n} points; median C++ {statistics.median(cpp):.2f} s, "
           f"Python {statistics.median(py):.2f} s, ratio {statistics.median(py) / statistics.median(cpp):.3f}; "
           f"CPU median C++ {statistics.median(cpp_cpu):.2f} s, Python {statistics.median(py_cpu):.2f} s, "
