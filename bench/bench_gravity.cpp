@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -22,6 +24,7 @@
 #include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/gravity_circle.hpp"
 #include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/synthetic.hpp"
 
 namespace {
@@ -145,6 +148,26 @@ void BM_Meridian_DeflectionThreads(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts, mg::Quantities::Deflection));
   st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(1)));
 }
+// The C++ side of the Python binding's overhead figure (bench/python_deflection_timing.py,
+// docs/benchmarks.md): ξ, η of the model MERIDIAN_BENCH_MODEL (a file or a name, e.g.
+// EGM96) at range(0) points in one batch on all cores, the points that script passes to
+// meridian.gravity: lat_i = -89.9 + 179.8 i/(n-1), lon_i = fmod(137.508 i, 360), h = 0.
+void BM_Meridian_DeflectionModelFile(benchmark::State& st) {
+  const char* model = std::getenv("MERIDIAN_BENCH_MODEL");
+  if (!model) {
+    st.SkipWithError("set MERIDIAN_BENCH_MODEL to a model file or name");
+    return;
+  }
+  const mg::GravityField f(mg::load_model(model));
+  const auto n = static_cast<std::size_t>(st.range(0));
+  std::vector<mg::GeodeticPoint> pts(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double k = static_cast<double>(i);
+    pts[i] = {(-89.9 + 179.8 * k / static_cast<double>(n - 1)) * kDeg, std::fmod(k * 137.508, 360.0) * kDeg, 0.0};
+  }
+  for (auto _ : st) benchmark::DoNotOptimize(f.evaluate(pts, mg::Quantities::Deflection));
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * st.range(0)));
+}
 // Points on a parallel: per-longitude cost (circle built once, outside the loop).
 void BM_Meridian_CirclePerPoint(benchmark::State& st) {
   const mg::GravityCircle c(*models(static_cast<int>(st.range(0))).meridian, 47.3 * kDeg, 500, mg::Quantities::Deflection);
@@ -202,6 +225,8 @@ BENCHMARK(BM_Meridian_DeflectionKernel)
 BENCHMARK(BM_Meridian_DeflectionSinglePoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Meridian_DeflectionThreads)->Args({360, 1024, 1})->Args({360, 1024, 2})->Args({2190, 64, 1})->Args({2190, 64, 2})
     ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Meridian_DeflectionModelFile)->Arg(1000000)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime()
+    ->MeasureProcessCPUTime();
 BENCHMARK(BM_Meridian_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_GeographicLib_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Meridian_CircleSetup)->Arg(360)->Arg(2190)->Unit(benchmark::kMillisecond);

@@ -10,6 +10,9 @@ packages=(
   libeigen3-dev libgeographiclib-dev geographiclib-tools
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # The Python package (MERIDIAN_PYTHON=ON, docs/python.md) and its tests.
+  python3-dev pybind11-dev python3-pybind11 python3-pytest python3-yaml python3-dask python3-distributed
+  python3-netcdf4
   chromium fonts-dejavu-core fonts-liberation fonts-noto-cjk
   # libFuzzer harnesses (scripts/fuzz.sh): clang and its fuzzer/sanitizer runtimes.
   clang libclang-rt-14-dev

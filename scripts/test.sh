@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is needed, builds everything with -Werror and runs the whole
-# test suite: unit, CLI and validation tests, the find_package(Meridian)
-# consumer check, unless MERIDIAN_SKIP_SANITIZERS=1 the suite again under
+# test suite: unit, CLI and validation tests (with the Python package's pytest
+# suite, ctest label python), the find_package(Meridian) consumer check and
+# `import meridian` from the installed package, unless MERIDIAN_SKIP_SANITIZERS=1 the suite again under
 # AddressSanitizer + UndefinedBehaviorSanitizer, and unless MERIDIAN_FUZZ=0 each
 # libFuzzer harness for FUZZ_SECONDS (scripts/fuzz.sh).
 set -euo pipefail
@@ -10,7 +11,8 @@ bash scripts/setup.sh
 jobs=$(nproc)
 
 echo "== Release build and tests"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DMERIDIAN_BUILD_TESTS=ON -DMERIDIAN_HTML_REPORTS=ON
+# MERIDIAN_PYTHON only here: the extension is not built (nor its tests run) under the sanitizers.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DMERIDIAN_BUILD_TESTS=ON -DMERIDIAN_HTML_REPORTS=ON -DMERIDIAN_PYTHON=ON
 cmake --build build -j"$jobs"
 ctest --test-dir build -j"$jobs" --output-on-failure
 
@@ -20,6 +22,10 @@ cmake --install build --prefix build/install > /dev/null
 cmake -S tests/package -B build/consumer -DCMAKE_PREFIX_PATH="$PWD/build/install"
 cmake --build build/consumer -j"$jobs"
 ./build/consumer/meridian_consumer
+# The installed Python package, with Debian's interpreter (python/CMakeLists.txt) and nothing
+# of the build tree on the path.
+(cd build/install && PYTHONPATH="$PWD/lib/python3/dist-packages" /usr/bin/python3 -c \
+  'import meridian, meridian.gravity as g; print("import meridian:", g.synthetic_model(4, 1))')
 
 if [ "${MERIDIAN_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"

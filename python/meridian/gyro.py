@@ -1,0 +1,100 @@
+"""Gyro-theodolite reductions: `meridian gyro reduce` and `gyro campaign` from Python.
+
+A determination file (docs/file-formats.md) or the same content as a dict is
+read, checked and reduced by the library exactly as the CLI does; the result is
+a Result whose attributes are the keys of the CLI's ``--json`` output (angles in
+decimal degrees ``*_deg`` or arc-seconds ``*_arcsec``; a σ that cannot be stated
+is None), and whose to_dict() gives that JSON as plain Python data.
+
+>>> from meridian import gyro
+>>> r = gyro.reduce("determination.yaml")            # doctest: +SKIP
+>>> r.determinations[0].north_reading_deg            # doctest: +SKIP
+"""
+
+import copy
+import json
+import os
+import tempfile
+
+from . import _core
+from .errors import Error
+
+__all__ = ["Result", "reduce", "campaign"]
+
+
+class Result:
+    """A JSON object with attribute access: nested objects are Results, arrays lists.
+    to_dict() returns the plain data (a copy)."""
+
+    __slots__ = ("_data",)
+
+    def __init__(self, data: dict):
+        object.__setattr__(self, "_data", data)
+
+    def __getattr__(self, name):
+        try:
+            return _wrap(self._data[name])
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def __setattr__(self, name, value):
+        raise AttributeError("results are read-only")
+
+    def __getitem__(self, key):
+        return _wrap(self._data[key])
+
+    def __dir__(self):
+        return list(self._data)
+
+    def keys(self):
+        return self._data.keys()
+
+    def to_dict(self) -> dict:
+        return copy.deepcopy(self._data)
+
+    def __repr__(self):
+        return "Result(" + ", ".join(self._data) + ")"
+
+
+def _wrap(v):
+    if isinstance(v, dict):
+        return Result(v)
+    if isinstance(v, list):
+        return [_wrap(x) for x in v]
+    return v
+
+
+def _run(run, source):
+    """run(path) on a file, or on a dict written to a temporary JSON file; errors about a
+    dict name "<dict>" (and the field) instead of the temporary file and its line."""
+    if isinstance(source, dict):
+        fd, path = tempfile.mkstemp(suffix=".json", prefix="meridian_gyro_")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as f:
+                json.dump(source, f)
+            try:
+                return run(path)
+            except Error as e:
+                if e.file == path:
+                    e.file, e.line = "<dict>", None
+                raise
+        finally:
+            os.unlink(path)
+    return run(os.fspath(source))
+
+
+def reduce(source) -> Result:
+    """Reduce the determinations of one station (`meridian gyro reduce FILE --json`).
+
+    source: a path to a YAML/JSON reduce file, or a dict with its content (instrument,
+    station, determinations, optional angle_unit and options; docs/file-formats.md).
+    Raises ParseError/InputError naming file (or "<dict>"), line and field."""
+    return Result(json.loads(_run(_core.gyro.reduce_file, source)))
+
+
+def campaign(source) -> Result:
+    """Process a campaign (`meridian gyro campaign FILE --json`): a path or a dict.
+    A gravity_model it names is looked up as by the CLI (relative paths from the
+    file's directory; for a dict, from the current directory's view of a temporary
+    file, so give absolute paths or names)."""
+    return Result(json.loads(_run(_core.gyro.campaign_file, source)))
