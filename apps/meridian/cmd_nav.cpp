@@ -185,7 +185,14 @@ void add_nav_commands(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"A", "B", "C", "D", "a", "b", "c", "d"}))
       ->capture_default_str();
   sim->add_option("--seed", sa->seed, "Random seed (>= 0)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            std::int64_t n = 0;
+            return CLI::detail::lexical_cast(v, n) && n >= 0
+                       ? std::string()
+                       : fmt::format("must be an integer >= 0, not {}", v);
+          },
+          "INTEGER >= 0"))
       ->capture_default_str();
   sim->add_option("--out", sa->out, "Directory to write (created when missing)")->required();
   sim->add_option("--stations", sa->stations, "Shore stations (2 or 3)")

@@ -121,7 +121,9 @@ TEST_F(NavCli, SimulateRejectsBadOptions) {
     EXPECT_EQ(r.code, 2) << d;
     EXPECT_NE(r.err.find("must be a number of seconds >= 5"), std::string::npos) << r.err;
   }
-  EXPECT_EQ(run("nav simulate --seed -1 --out d").code, 2);  // wrapped to 2^64 − 1 before
+  const CmdResult seed = run("nav simulate --seed -1 --out d");  // wrapped to 2^64 − 1 before
+  EXPECT_EQ(seed.code, 2);
+  EXPECT_NE(seed.err.find("--seed: must be an integer >= 0, not -1"), std::string::npos) << seed.err;
   EXPECT_EQ(run("nav simulate --scenario A").code, 2);  // --out is required
   EXPECT_FALSE(std::filesystem::exists(dir_ / "d"));
 }
