@@ -189,7 +189,8 @@ struct RejectedObservation {
   std::string source;
 };
 
-/// An observation no method could use (outside the DR span, station at the ship, …).
+/// An observation no method could use (more than max_reduction_s from every epoch), or the fix
+/// that gave the initial position (Input::initial_fix).
 struct SkippedObservation {
   RejectedObservation::Kind kind = RejectedObservation::Kind::Lop;
   std::size_t index = 0;
