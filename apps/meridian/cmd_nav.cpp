@@ -51,7 +51,7 @@ int run_inspect(const InspectArgs& a) {
 
 struct SimulateArgs {
   std::string scenario = "A";
-  std::uint64_t seed = 1;
+  std::int64_t seed = 1;  // ≥ 0 (checked): an unsigned option would wrap -1 silently
   std::string out;
   int stations = 3;
   double duration_s = 1800.0;
@@ -61,7 +61,7 @@ struct SimulateArgs {
 int run_simulate(const SimulateArgs& a) {
   nav::SimulationOptions so;
   so.scenario = nav::scenario_from_string(a.scenario);
-  so.seed = a.seed;
+  so.seed = static_cast<std::uint64_t>(a.seed);
   so.stations = a.stations;
   so.duration_s = a.duration_s;
   so.fix_interval_s = a.fixes_every_s;
@@ -184,13 +184,31 @@ void add_nav_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--scenario", sa->scenario, "A bias, B no bias, C bias change, D bad start")
       ->check(CLI::IsMember({"A", "B", "C", "D", "a", "b", "c", "d"}))
       ->capture_default_str();
-  sim->add_option("--seed", sa->seed, "Random seed")->capture_default_str();
+  sim->add_option("--seed", sa->seed, "Random seed (>= 0)")
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            std::int64_t n = 0;
+            return CLI::detail::lexical_cast(v, n) && n >= 0
+                       ? std::string()
+                       : fmt::format("must be an integer >= 0, not {}", v);
+          },
+          "INTEGER >= 0"))
+      ->capture_default_str();
   sim->add_option("--out", sa->out, "Directory to write (created when missing)")->required();
   sim->add_option("--stations", sa->stations, "Shore stations (2 or 3)")
       ->check(CLI::IsMember({2, 3}))
       ->capture_default_str();
-  sim->add_option("--duration-s", sa->duration_s, "Length of the line (s)")
-      ->check(CLI::PositiveNumber)
+  sim->add_option("--duration-s", sa->duration_s, "Length of the line (s; at least one DR step, 5 s)")
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            double d = 0.0;
+            if (!CLI::detail::lexical_cast(v, d) || !(d >= nav::SimulationOptions{}.step_s))
+              return fmt::format("must be a number of seconds >= {:g} (one DR step: a line needs 2 DR "
+                                 "samples), not {}",
+                                 nav::SimulationOptions{}.step_s, v);
+            return std::string();
+          },
+          "SECONDS >= 5"))
       ->capture_default_str();
   sim->add_option("--fixes-every-s", sa->fixes_every_s, "A satellite fix every this many seconds (0: none)")
       ->check(CLI::NonNegativeNumber)

@@ -91,11 +91,23 @@ std::ifstream open_or_throw(const std::string& path, const char* what) {
   return f;
 }
 
+// Every record, after checking that it has no field beyond the header's columns (a value
+// there would be silently ignored; empty trailing fields, as spreadsheets write, are fine).
 template <class Fn>
 void for_each_record(RecordReader& rr, Fn&& fn) {
   RecordChunk chunk;
+  const std::size_t columns = rr.header().size();
   while (rr.next(chunk, 16384))
-    for (std::size_t k = 0; k < chunk.size(); ++k) fn(chunk[k]);
+    for (std::size_t k = 0; k < chunk.size(); ++k) {
+      const Record r = chunk[k];
+      for (std::size_t c = columns; c < r.size(); ++c)
+        if (!r.field(c).empty())
+          throw InputError(fmt::format("{} fields, but the header (line {}) names {} columns: \"{}\" in field {} "
+                                       "has no column",
+                                       r.size(), rr.header_line(), columns, r.field(c), c + 1),
+                           r.context());
+      fn(r);
+    }
 }
 
 std::string comment_line(const std::string& settings) {

@@ -107,9 +107,10 @@ NavConfig read_nav_config(const std::string& path) {
   const Node root = Node::load_file(path);
   root.allow_only({"dr", "stations", "lops", "fixes", "truth", "nmea", "initial", "projection",
                    "sigma_speed_m_s", "sigma_heading_deg", "sigma_velocity_m_s", "chains", "rejection",
-                   "threshold_m", "alpha", "segment_s", "backward_window_s", "fix_tolerance_m",
-                   "max_reduction_s", "max_dr_gap_s", "bias_model", "bias_sigma_m_s",
-                   "bias_random_walk_m_s_per_sqrt_s", "bias_correlation_time_s", "statistics_bin_s"});
+                   "threshold_m", "alpha", "segment_s", "bias_start_s", "backward_window_s", "fix_tolerance_m",
+                   "max_reduction_s", "max_dr_gap_s", "sequential_sigma_velocity_m_s", "bias_model",
+                   "bias_sigma_m_s", "bias_random_walk_m_s_per_sqrt_s", "bias_correlation_time_s",
+                   "statistics_bin_s", "warn_gap_s"});
   NavConfig c;
   c.file = path;
   const auto file_key = [&](const char* key, std::string& out) {
@@ -201,10 +202,13 @@ NavConfig read_nav_config(const std::string& path) {
     if (!(o.alpha < 1.0)) n->fail("alpha must be in (0, 1)");
   }
   if (auto n = root.get("segment_s")) o.segment_s = n->positive_number();
+  if (auto n = root.get("bias_start_s")) o.bias_start_s = n->non_negative_number();
   if (auto n = root.get("backward_window_s")) o.backward_window_s = n->non_negative_number();
   if (auto n = root.get("fix_tolerance_m")) o.fix_tolerance_m = n->positive_number();
   if (auto n = root.get("max_reduction_s")) o.max_reduction_s = n->non_negative_number();
   if (auto n = root.get("max_dr_gap_s")) o.max_dr_gap_s = n->positive_number();
+  if (auto n = root.get("sequential_sigma_velocity_m_s"))
+    o.sequential_sigma_velocity_m_s = n->non_negative_number();
   if (auto n = root.get("bias_model")) {
     const std::string v = n->string();
     if (v == "random-walk")
@@ -219,6 +223,7 @@ NavConfig read_nav_config(const std::string& path) {
     o.bias_random_walk_m_s_per_sqrt_s = n->non_negative_number();
   if (auto n = root.get("bias_correlation_time_s")) o.bias_correlation_time_s = n->positive_number();
   if (auto n = root.get("statistics_bin_s")) o.statistics_bin_s = n->positive_number();
+  if (auto n = root.get("warn_gap_s")) o.warn_gap_s = n->positive_number();
   c.lines = root.visited_lines();
   // The numerics' own range checks, at the key's line ("options.<name>" is the key <name>).
   try {
@@ -248,16 +253,17 @@ std::string nav_simulation_config(const nav::SimulatedLine& line, const nav::Sim
   out += fmt::format("sigma_speed_m_s: {}\nsigma_heading_deg: {}\n", so.sigma_speed_m_s,
                      so.sigma_heading_rad / navj::kDeg);
   const nav::Options& o = in.options;
-  out += fmt::format("rejection: {}\nthreshold_m: {}\nalpha: {}\nsegment_s: {}\n"
+  out += fmt::format("rejection: {}\nthreshold_m: {}\nalpha: {}\nsegment_s: {}\nbias_start_s: {}\n"
                      "backward_window_s: {}\nfix_tolerance_m: {}\nmax_reduction_s: {}\n"
-                     "max_dr_gap_s: {}\nbias_model: {}\nbias_sigma_m_s: {}\n"
+                     "max_dr_gap_s: {}\nsequential_sigma_velocity_m_s: {}\nbias_model: {}\nbias_sigma_m_s: {}\n"
                      "bias_random_walk_m_s_per_sqrt_s: {}\nbias_correlation_time_s: {}\n"
-                     "statistics_bin_s: {}\n",
+                     "statistics_bin_s: {}\nwarn_gap_s: {}\n",
                      o.rejection == nav::Rejection::WTest ? "w-test" : "threshold", o.threshold_m, o.alpha,
-                     o.segment_s, o.backward_window_s, o.fix_tolerance_m, o.max_reduction_s, o.max_dr_gap_s,
+                     o.segment_s, o.bias_start_s, o.backward_window_s, o.fix_tolerance_m, o.max_reduction_s,
+                     o.max_dr_gap_s, o.sequential_sigma_velocity_m_s,
                      o.bias_model == nav::BiasModel::GaussMarkov ? "gauss-markov" : "random-walk",
                      o.bias_sigma_m_s, o.bias_random_walk_m_s_per_sqrt_s, o.bias_correlation_time_s,
-                     o.statistics_bin_s);
+                     o.statistics_bin_s, o.warn_gap_s);
   if (!in.chains.empty()) {
     out += "chains:\n";
     for (const nav::Chain& ch : in.chains)
@@ -445,6 +451,50 @@ std::string count_text(long n, const char* one, const char* many) {
   return fmt::format("{} {}", n, n == 1 ? one : many);
 }
 
+std::string first_lines(const std::vector<int>& lines) {
+  std::string out;
+  for (std::size_t i = 0; i < std::min<std::size_t>(lines.size(), 3); ++i)
+    out += (i ? ", " : "") + std::to_string(lines[i]);
+  return fmt::format("{} {}", lines.size() == 1 ? "line" : "first lines", out);
+}
+
+// "; 1666 GPVTG sentences without a checksum were rejected (…)" when the sentences of `type`
+// that a job needs were all dropped for that; empty otherwise.
+std::string missing_checksum_hint(const nmea::Summary& s, const std::string& type) {
+  if (s.accept_missing_checksum) return {};
+  long n = 0;
+  std::string names;
+  for (const auto& [key, count] : s.no_checksum_by_type)
+    if (key.size() == 5 && key.compare(2, 3, type) == 0) n += count, names += (names.empty() ? "" : "/") + key;
+  if (n == 0) return {};
+  return fmt::format("; {} {} {} without a checksum, rejected ({} of the file's {} without one): set "
+                     "accept_missing_checksum: true in the nmea: block when the logger strips the checksums",
+                     n, names, n == 1 ? "sentence" : "sentences", first_lines(s.no_checksum_lines),
+                     s.no_checksum);
+}
+
+// What the NMEA reader dropped from a file (nothing is skipped silently): a warning with the
+// counts by reason and the first lines; empty when nothing was dropped.
+std::string dropped_lines_warning(const nmea::Summary& s) {
+  std::vector<std::string> parts;
+  if (s.bad_checksum > 0)
+    parts.push_back(fmt::format("{} with a bad checksum ({})", s.bad_checksum, first_lines(s.bad_checksum_lines)));
+  if (s.no_checksum > 0 && !s.accept_missing_checksum)
+    parts.push_back(fmt::format("{} without a checksum ({}; accept_missing_checksum: true reads them)", s.no_checksum,
+                                first_lines(s.no_checksum_lines)));
+  if (s.malformed > 0) {
+    std::string first;
+    for (std::size_t i = 0; i < std::min<std::size_t>(s.malformed_lines.size(), 3); ++i)
+      first += fmt::format("{}line {}: {}", i ? "; " : "", s.malformed_lines[i].first, s.malformed_lines[i].second);
+    parts.push_back(fmt::format("{} malformed ({})", s.malformed, first));
+  }
+  if (parts.empty()) return {};
+  long total = s.bad_checksum + s.malformed + (s.accept_missing_checksum ? 0 : s.no_checksum);
+  std::string out = fmt::format("{}: {} not read: ", s.file, count_text(total, "line", "lines"));
+  for (std::size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + parts[i];
+  return out + " (meridian nav inspect lists them)";
+}
+
 }  // namespace navj
 }  // namespace
 
@@ -486,6 +536,10 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
   }
   out.dated = !any_bare;
   for (auto& f : files) {
+    if (std::string w = navj::dropped_lines_warning(f.summary); !w.empty()) out.warnings.push_back(std::move(w));
+    if (f.summary.accept_missing_checksum && f.summary.no_checksum > 0)
+      out.notes.push_back(fmt::format("{}: {} without a checksum read (accept_missing_checksum: true)", f.path,
+                                      navj::count_text(f.summary.no_checksum, "sentence", "sentences")));
     if (f.rollover_corrected > 0)
       out.notes.push_back(fmt::format("{}: {} corrected for a GPS week rollover (dates 1024 weeks before the "
                                       "logger stamps)",
@@ -510,6 +564,7 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
     for (const auto& [what, e] : skips.by_reason)
       if (what.rfind(c.heading_path + ": ", 0) == 0)
         why += fmt::format("; {} skipped: {} (first line {})", e.first, what.substr(c.heading_path.size() + 2), e.second);
+    why += navj::missing_checksum_hint(files[index.at(c.heading_path)].summary, "HDT");
     throw InputError(fmt::format("no usable HDT heading (the nmea: block's heading file){}",
                                  why.empty() ? std::string("; the file has no HDT sentence") : why),
                      {c.heading_path, std::nullopt, {}});
@@ -560,6 +615,7 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
     for (const auto& [what, e] : skips.by_reason)
       if (what.rfind(c.speed_path + ": ", 0) == 0)
         why += fmt::format("; {} skipped: {} (first line {})", e.first, what.substr(c.speed_path.size() + 2), e.second);
+    why += navj::missing_checksum_hint(files[index.at(c.speed_path)].summary, sname);
     if (why.empty())
       why = fmt::format("; the file has no {} sentence{}", sname,
                         c.speed_sentence == NavSpeedSentence::Vtg ? " (speed_sentence: vbw reads VBW)"
@@ -581,14 +637,19 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
     }
     std::stable_sort(positions.begin(), positions.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
   }
-  // The time origin: 00:00 UTC of the day of the first epoch.
-  double first = speeds.empty() ? 0.0 : speeds.front().t;
-  if (!positions.empty()) first = speeds.empty() ? positions.front().t : std::min(first, positions.front().t);
+  // The time origin: 00:00 UTC of the day of the earliest sample, a speed (the first DR epoch)
+  // or a GGA position before it.
+  const bool gga_first = !positions.empty() && positions.front().t < speeds.front().t;
+  const double first = gga_first ? positions.front().t : speeds.front().t;
   out.origin_unix_s = std::floor(first / navj::kDay_s) * navj::kDay_s;
-  out.notes.push_back(out.dated ? fmt::format("NMEA times: seconds since {} (00:00 UTC of the first epoch's day)",
-                                              nmea::iso8601_utc(out.origin_unix_s))
-                                : "NMEA times: seconds of the day of the first sentence (the logs have no date and "
-                                  "no logger stamps), unwrapped over midnight");
+  out.notes.push_back(
+      out.dated ? fmt::format("NMEA times: seconds since {} (00:00 UTC of the day of the earliest sample: {} of {} "
+                              "line {}, {})",
+                              nmea::iso8601_utc(out.origin_unix_s), gga_first ? "the GGA position" : "the speed",
+                              gga_first ? c.positions_path : c.speed_path,
+                              gga_first ? positions.front().line : speeds.front().line, nmea::iso8601_utc(first))
+                : "NMEA times: seconds of the day of the first sentence (the logs have no date and "
+                  "no logger stamps), unwrapped over midnight");
   out.dr.source = c.speed_path;
   out.dr.speed_heading = true;
   for (const SpeedSample& s : speeds) {
@@ -703,6 +764,7 @@ NavRun read_nav_job(const NavConfig& c) {
     if (!c.nmea->positions_path.empty()) fixes = std::move(d.fixes);
     if (c.nmea->fix_interval_s > 0.0) truth = std::move(d.truth);
     notes.insert(notes.end(), d.notes.begin(), d.notes.end());
+    run.warnings.insert(run.warnings.end(), d.warnings.begin(), d.warnings.end());
     nmea_job = true;
   } else {
     dr = read_nav_dr_file(c.dr_path);
@@ -891,16 +953,39 @@ NavRun read_nav_job(const NavConfig& c) {
       throw e;
     }
     const nav::Fix& f = in.fixes[*best];
+    // nav::process moves it by the DR to the first epoch; here it only starts the walk of the
+    // grid convergence along the DR below.
+    in.initial_fix = *best;
     in.initial.x_north_m = f.x_north_m, in.initial.y_east_m = f.y_east_m;
-    in.initial.sigma_m = c.initial_sigma_m.value_or(std::sqrt(std::max(f.covariance(0, 0), f.covariance(1, 1))));
     run.initial_line = NavSourceLine{fixes.source, fixes.lines[*best]};
-    notes.push_back(fmt::format("initial position: the fix of {} line {} (t = {:.3f} s; the first DR epoch is t = "
-                                "{:.3f} s), sigma {:.3g} m (default: no initial: in the configuration)",
-                                fixes.source, fixes.lines[*best], f.time_s, t0, in.initial.sigma_m));
+    notes.push_back(fmt::format("initial position: the fix of {} line {} (t = {:.3f} s, sigma {:.3g} m) moved by the "
+                                "dead reckoning to the first DR epoch (t = {:.3f} s), its covariance grown by the DR's "
+                                "over those {:.3f} s; that fix is not used again as an observation (default: no "
+                                "initial: in the configuration)",
+                                fixes.source, fixes.lines[*best], f.time_s,
+                                std::sqrt(std::max(f.covariance(0, 0), f.covariance(1, 1))), t0,
+                                std::abs(f.time_s - t0)));
   }
 
   // 6. Dead reckoning in the plane: with a projection, true headings and velocities turned by −γ
   // and scaled by k at the dead-reckoned position.
+  // A σ key of the other DR kind would be silently ignored: an error, like an unknown key.
+  const auto not_for_this_dr = [&](const char* key, const std::string& what) {
+    const auto it = c.lines.find(key);
+    throw InputError(fmt::format("{} does not apply here: {}", key, what),
+                     {c.file, it == c.lines.end() ? std::optional<int>() : it->second, key});
+  };
+  if (dr.speed_heading && c.sigma_velocity_m_s)
+    not_for_this_dr("sigma_velocity_m_s",
+                    fmt::format("{} gives speed and heading{} (set sigma_speed_m_s and sigma_heading_deg); "
+                                "sigma_velocity_m_s is for a DR file of v_north_m_s, v_east_m_s",
+                                dr.source, nmea_job ? " (NMEA VTG/VBW with HDT)" : ""));
+  if (!dr.speed_heading && (c.sigma_speed_m_s || c.sigma_heading_rad))
+    not_for_this_dr(c.sigma_speed_m_s ? "sigma_speed_m_s" : "sigma_heading_deg",
+                    fmt::format("{} gives velocity components v_north_m_s, v_east_m_s (set sigma_velocity_m_s); "
+                                "sigma_speed_m_s and sigma_heading_deg are for a DR file of speed_m_s, "
+                                "heading_deg",
+                                dr.source));
   const double sigma_v = c.sigma_speed_m_s.value_or(kNavDefaultSigmaSpeed_m_s);
   const double sigma_h = c.sigma_heading_rad.value_or(kNavDefaultSigmaHeading_deg * navj::kDeg);
   const double sigma_c = c.sigma_velocity_m_s.value_or(kNavDefaultSigmaSpeed_m_s);
@@ -1102,7 +1187,16 @@ NavRun run_nav(const NavConfig& config, Progress* progress) {
     if (progress) progress->finish();
     throw_located_nav_error(e, run, config);
   }
+  // Name the rejected and skipped observations by their file and line ("lops.csv:14").
+  const auto source = [&](nav::RejectedObservation::Kind kind, std::size_t index) {
+    const std::vector<NavSourceLine>& t = kind == nav::RejectedObservation::Kind::Lop ? run.lop_lines : run.fix_lines;
+    if (index >= t.size()) return std::string();
+    return fmt::format("{}:{}", std::filesystem::path(t[index].file).filename().string(), t[index].line);
+  };
+  for (nav::RejectedObservation& o : run.result.rejected) o.source = source(o.kind, o.index);
+  for (nav::SkippedObservation& o : run.result.skipped) o.source = source(o.kind, o.index);
   run.result.notes.insert(run.result.notes.end(), run.notes.begin(), run.notes.end());
+  run.result.warnings.insert(run.result.warnings.end(), run.warnings.begin(), run.warnings.end());
   return run;
 }
 

@@ -276,7 +276,7 @@ class Inspector {
         return;
       }
     } else if (!options_.accept_missing_checksum) {
-      count_no_checksum(n);  // rejected here
+      count_no_checksum(n, content.substr(0, content.find(',')));  // rejected here
       return;
     } else {
       st.has_checksum = false;  // counted once it is accepted: a malformed one is only malformed
@@ -296,7 +296,7 @@ class Inspector {
       return malformed(n, fmt::format("{}: {}", address, e.reason));
     }
     const std::string key(address);
-    if (!st.has_checksum) count_no_checksum(n);
+    if (!st.has_checksum) count_no_checksum(n, address);
     ++s_.sentences[key];
     if (std::holds_alternative<std::monostate>(st.data)) ++s_.unknown;
     // Only a repeated time is a duplicate: an untimed sentence repeats whenever the value is
@@ -336,9 +336,17 @@ class Inspector {
     if (!hi || *t > *hi) hi = t;
   }
 
-  void count_no_checksum(int n) {
+  void count_no_checksum(int n, std::string_view address) {
     ++s_.no_checksum;
     if (s_.no_checksum_lines.size() < kMaxLinesListed) s_.no_checksum_lines.push_back(n);
+    bool ok = address.size() == 5;
+    for (char c : address) ok = ok && ((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9'));
+    if (!ok) return;
+    const std::string key(address);
+    if (auto it = s_.no_checksum_by_type.find(key); it != s_.no_checksum_by_type.end())
+      ++it->second;
+    else if (s_.no_checksum_by_type.size() < kMaxTrackedKeys)
+      s_.no_checksum_by_type.emplace(key, 1);
   }
 
   void malformed(int n, std::string reason) {

@@ -47,11 +47,16 @@ std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
   const int size = layout.size;
   filter::Estimate<N> init;
   init.x = filter::Vector<N>::Zero(size);
-  init.x(0) = in.initial.x_north_m;
-  init.x(1) = in.initial.y_east_m;
+  init.x.template head<2>() = p.initial_x;
   init.P = filter::Matrix<N, N>::Zero(size, size);
-  init.P(0, 0) = init.P(1, 1) = in.initial.sigma_m * in.initial.sigma_m;
-  init.P(2, 2) = init.P(3, 3) = o.bias_sigma_m_s * o.bias_sigma_m_s;
+  // x₀ = x_fix − D − (t_fix − t₀)·W for an initial fix (initial_dt_s = 0 otherwise): the
+  // bias's prior enters the position's and their cross-covariance.
+  const double wb = o.bias_sigma_m_s * o.bias_sigma_m_s;
+  const double dt0 = p.initial_dt_s;
+  init.P.template topLeftCorner<2, 2>() =
+      p.initial_cov + dt0 * dt0 * wb * Eigen::Matrix2d::Identity();
+  init.P(0, 2) = init.P(2, 0) = init.P(1, 3) = init.P(3, 1) = -dt0 * wb;
+  init.P(2, 2) = init.P(3, 3) = wb;
   if constexpr (N == Eigen::Dynamic)
   for (int i = 0; i < p.n_params; ++i)
     init.P(4 + i, 4 + i) = p.param_prior_sigma[static_cast<std::size_t>(i)] *
@@ -91,7 +96,7 @@ std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
   if constexpr (N == Eigen::Dynamic)
   for (int i = 0; i < p.n_params; ++i) {
     const auto c = static_cast<std::size_t>(i);
-    ekf.parameters.push_back({p.param_chain[c], p.param_names[c], kf.estimate().x(4 + i),
+    ekf.parameters.push_back({p.param_chain[c], p.input->chains[p.param_chain[c]].name, p.param_names[c], kf.estimate().x(4 + i),
                               kf.estimate().sigma(4 + i)});
   }
   MethodResult rts;
@@ -106,7 +111,7 @@ std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
     if (i == 0)
       for (int j = 0; j < p.n_params; ++j) {
         const auto c = static_cast<std::size_t>(j);
-        rts.parameters.push_back({p.param_chain[c], p.param_names[c], s.x(4 + j), s.sigma(4 + j)});
+        rts.parameters.push_back({p.param_chain[c], p.input->chains[p.param_chain[c]].name, p.param_names[c], s.x(4 + j), s.sigma(4 + j)});
       }
     if (progress && (++done % 4096 == 0)) progress->update(n + done, 2 * n, "smoother");
   });

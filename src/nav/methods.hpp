@@ -121,6 +121,7 @@ unsigned update_epoch(const Prepared& p, std::size_t k, filter::KalmanFilter<N>&
       rej.method = method;
       rej.time_s = lop.time_s;
       if (!ev.ok) {
+        rej.misclosure_m = lop.value_m - ev.computed_m;
         rej.reason = fmt::format("the ship is within {:g} m of a station", kMinStationDistance_m);
         rejected.push_back(std::move(rej));
         flags |= kRejectedLop;
@@ -137,7 +138,7 @@ unsigned update_epoch(const Prepared& p, std::size_t k, filter::KalmanFilter<N>&
       // solved by least squares alone) is screened by the w-test, which weighs the prior σ.
       if (sc.rejection == Rejection::Threshold && !ekf && k > 0) {
         if (std::abs(v) > sc.threshold_m) {
-          rej.reason = fmt::format("misclosure {:.1f} m > {:g} m", v, sc.threshold_m);
+          rej.reason = fmt::format("|misclosure| {:.1f} m > {:g} m", std::abs(v), sc.threshold_m);
           rejected.push_back(std::move(rej));
           flags |= kRejectedLop;
           continue;

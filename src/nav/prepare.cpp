@@ -37,8 +37,9 @@ std::optional<Reduced> reduce(const Prepared& p, double time, double max_reducti
                               std::string& reason) {
   const auto& t = p.t;
   if (time < t.front() - max_reduction_s || time > t.back() + max_reduction_s) {
-    reason = fmt::format("time {:.3f} s is outside the dead-reckoning span {:.3f} … {:.3f} s",
-                         time, t.front(), t.back());
+    reason = fmt::format("time {:.3f} s is more than max_reduction_s ({:g} s) outside the "
+                         "dead-reckoning span {:.3f} … {:.3f} s",
+                         time, max_reduction_s, t.front(), t.back());
     return std::nullopt;
   }
   const auto it = std::lower_bound(t.begin(), t.end(), time);
@@ -67,6 +68,39 @@ std::optional<Reduced> reduce(const Prepared& p, double time, double max_reducti
   return r;
 }
 
+// The DR displacement from epoch 0 to `time` with its covariance under the white DR noise
+// (q) and with the sequential methods' σ (q_seq): the increments of the epochs up to `time`
+// and the part of the interval that contains it (before t₀: the first sample's velocity;
+// after the last epoch: the last sample's), as reduce() moves an observation.
+struct Displacement {
+  Eigen::Vector2d d = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d q = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d q_seq = Eigen::Matrix2d::Zero();
+};
+Displacement dr_displacement(const Prepared& p, double time) {
+  Displacement out;
+  const auto& dr = p.input->dr;
+  const double sv = p.input->options.sequential_sigma_velocity_m_s;
+  const auto part = [&](double dt, const DrSample& s) {
+    out.d += dt * Eigen::Vector2d(s.v_north_m_s, s.v_east_m_s);
+    out.q += dt * dt * s.covariance;
+    out.q_seq += dt * dt * (s.covariance + sv * sv * Eigen::Matrix2d::Identity());
+  };
+  if (time < p.t[0]) {
+    part(time - p.t[0], dr[0]);
+    return out;
+  }
+  std::size_t k = 0;
+  while (k + 1 < p.epochs && p.t[k + 1] <= time) {
+    ++k;
+    out.d += p.incr[k];
+    out.q += p.q_incr[k];
+    out.q_seq += p.q_incr_seq[k];
+  }
+  if (time > p.t[k]) part(time - p.t[k], dr[std::min(k + 1, p.epochs - 1)]);
+  return out;
+}
+
 }  // namespace
 
 Prepared prepare(const Input& in) {
@@ -76,10 +110,14 @@ Prepared prepare(const Input& in) {
   p.input = &in;
   const std::size_t n = in.dr.size();
   if (n < 2) fail("dr", fmt::format("needs at least 2 dead-reckoning samples, got {}", n));
-  require_finite(in.initial.x_north_m, "initial.x_north_m");
-  require_finite(in.initial.y_east_m, "initial.y_east_m");
-  if (!(std::isfinite(in.initial.sigma_m) && in.initial.sigma_m > 0.0))
-    fail("initial.sigma_m", "must be finite and > 0");
+  if (!in.initial_fix) {
+    require_finite(in.initial.x_north_m, "initial.x_north_m");
+    require_finite(in.initial.y_east_m, "initial.y_east_m");
+    if (!(std::isfinite(in.initial.sigma_m) && in.initial.sigma_m > 0.0))
+      fail("initial.sigma_m", "must be finite and > 0");
+  } else if (*in.initial_fix >= in.fixes.size()) {
+    fail("initial_fix", fmt::format("no fix {} (there are {})", *in.initial_fix, in.fixes.size()));
+  }
 
   p.epochs = n;
   p.t.resize(n);
@@ -88,8 +126,7 @@ Prepared prepare(const Input& in) {
   p.q_incr.assign(n, Eigen::Matrix2d::Zero());
   p.q_incr_seq.assign(n, Eigen::Matrix2d::Zero());
   const double sv2 = o.sequential_sigma_velocity_m_s * o.sequential_sigma_velocity_m_s;
-  p.dr.assign(n, Eigen::Vector2d::Zero());
-  p.dr[0] = Eigen::Vector2d(in.initial.x_north_m, in.initial.y_east_m);
+  p.dr.assign(n, Eigen::Vector2d::Zero());  // from 0 here; the initial position is added below
   for (std::size_t k = 0; k < n; ++k) {
     const DrSample& d = in.dr[k];
     require_finite(d.time_s, at("dr", k, "time_s"));
@@ -114,6 +151,15 @@ Prepared prepare(const Input& in) {
     p.q_incr_seq[k] = p.q_incr[k] + dt * dt * sv2 * Eigen::Matrix2d::Identity();
     p.dr[k] = p.dr[k - 1] + p.incr[k];
   }
+
+  // The statistics bins are allocated per line: bounded, whatever statistics_bin_s says.
+  const double span = p.t.back() - p.t.front();
+  if (span / o.statistics_bin_s + 1.0 > kMaxStatisticsBins)
+    fail("options.statistics_bin_s",
+         fmt::format("{:g} s makes {:.3g} bins of the error statistics over the line of {:g} s; at most "
+                     "{:g} (statistics_bin_s >= {:.3g} s)",
+                     o.statistics_bin_s, std::floor(span / o.statistics_bin_s) + 1.0, span,
+                     kMaxStatisticsBins, span / (kMaxStatisticsBins - 1.0)));
 
   for (std::size_t i = 0; i < in.stations.size(); ++i) {
     require_finite(in.stations[i].x_north_m, at("stations", i, "x_north_m"));
@@ -164,7 +210,7 @@ Prepared prepare(const Input& in) {
     std::string reason;
     auto r = reduce(p, l.time_s, o.max_reduction_s, reason);
     if (!r) {
-      p.skipped.push_back({RejectedObservation::Kind::Lop, i, l.time_s, reason});
+      p.skipped.push_back({RejectedObservation::Kind::Lop, i, l.time_s, reason, {}});
       continue;
     }
     r->index = i;
@@ -179,13 +225,39 @@ Prepared prepare(const Input& in) {
       fail(at("fixes", i, "covariance"), "is not a symmetric positive definite covariance");
     std::string reason;
     auto r = reduce(p, f.time_s, o.max_reduction_s, reason);
+    if (in.initial_fix && *in.initial_fix == i) {
+      if (!r)
+        fail(at("fixes", i, "time_s"), "the fix that gives the initial position cannot be moved to "
+                                       "the first epoch: " + reason);
+      continue;  // its information is the prior (below)
+    }
     if (!r) {
-      p.skipped.push_back({RejectedObservation::Kind::Fix, i, f.time_s, reason});
+      p.skipped.push_back({RejectedObservation::Kind::Fix, i, f.time_s, reason, {}});
       continue;
     }
     r->index = i;
     p.fixes.push_back(*r);
   }
+  // The initial position: given, or the initial fix moved back by the DR to epoch 0.
+  if (in.initial_fix) {
+    const Fix& f = in.fixes[*in.initial_fix];
+    const Displacement d = dr_displacement(p, f.time_s);
+    p.initial_x = Eigen::Vector2d(f.x_north_m, f.y_east_m) - d.d;
+    p.initial_cov = f.covariance + d.q;
+    p.initial_cov_seq = f.covariance + d.q_seq;
+    p.initial_dt_s = f.time_s - p.t[0];
+    p.skipped.push_back({RejectedObservation::Kind::Fix, *in.initial_fix, f.time_s,
+                         fmt::format("gives the initial position (moved by the dead reckoning "
+                                     "to the first epoch, t = {:.3f} s); not used again as an "
+                                     "observation",
+                                     p.t[0]),
+                         {}});
+  } else {
+    p.initial_x = Eigen::Vector2d(in.initial.x_north_m, in.initial.y_east_m);
+    p.initial_cov = p.initial_cov_seq =
+        in.initial.sigma_m * in.initial.sigma_m * Eigen::Matrix2d::Identity();
+  }
+  for (Eigen::Vector2d& x : p.dr) x += p.initial_x;
   const auto by_epoch = [](const Reduced& a, const Reduced& b) {
     return a.epoch != b.epoch ? a.epoch < b.epoch : a.index < b.index;
   };
@@ -249,8 +321,8 @@ LopEvaluation evaluate_geometry(const Prepared& p, const Lop& lop, const Eigen::
     g -= unit(lop.station2, d2);
     geometric -= d2;
   }
+  e.computed_m = (1.0 + chain.scale) * geometric + chain.offset;  // defined even at a station
   if (!e.ok) return e;
-  e.computed_m = (1.0 + chain.scale) * geometric + chain.offset;
   e.h_position = (1.0 + chain.scale) * g;
   e.scale_state = chain.scale_state;
   e.h_scale = geometric;

@@ -40,6 +40,15 @@ struct Prepared {
   std::vector<Eigen::Matrix2d> q_incr;   ///< its covariance
   std::vector<Eigen::Matrix2d> q_incr_seq;  ///< with Options::sequential_sigma_velocity_m_s
   std::vector<Eigen::Vector2d> dr;       ///< pure DR position from the initial position
+  /// The initial position at epoch 0 (Input::initial, or Input::initial_fix moved there) and
+  /// its covariance under each DR model: the samples' white noise (dead reckoning, EKF) and
+  /// with sequential_sigma_velocity_m_s (the sequential methods).
+  Eigen::Vector2d initial_x = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d initial_cov = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d initial_cov_seq = Eigen::Matrix2d::Zero();
+  /// t_fix − t₀ of an initial fix (0 otherwise): the EKF's prior position depends on the bias
+  /// by −initial_dt_s·W.
+  double initial_dt_s = 0.0;
   std::vector<Reduced> lops;             ///< sorted by epoch
   std::vector<std::size_t> lop_begin;    ///< lops of epoch k: [lop_begin[k], lop_begin[k+1])
   std::vector<Reduced> fixes;            ///< sorted by epoch
@@ -62,7 +71,7 @@ Prepared prepare(const Input& input);
 /// A LOP's computed value and its partial derivatives at a ship position (spec §2).
 struct LopEvaluation {
   bool ok = true;                  ///< false: the ship is within 1 m of a station
-  double computed_m = 0.0;         ///< (1 + scale)·d + offset
+  double computed_m = 0.0;         ///< (1 + scale)·d + offset (also when not ok)
   Eigen::RowVector2d h_position = Eigen::RowVector2d::Zero();  ///< ∂L/∂(x, y)
   int scale_state = -1;            ///< state index of the chain's scale, or −1
   double h_scale = 0.0;            ///< ∂L/∂scale = d

@@ -25,10 +25,9 @@ ForwardRun<N> run_sequential(const Prepared& p, Method method, BiasMethod bias_m
   layout.params = 2;
   Est init;
   init.x = filter::Vector<N>::Zero(layout.size);
-  init.x(0) = in.initial.x_north_m;
-  init.x(1) = in.initial.y_east_m;
+  init.x.template head<2>() = p.initial_x;
   init.P = filter::Matrix<N, N>::Zero(layout.size, layout.size);
-  init.P(0, 0) = init.P(1, 1) = in.initial.sigma_m * in.initial.sigma_m;
+  init.P.template topLeftCorner<2, 2>() = p.initial_cov_seq;
   if constexpr (N == Eigen::Dynamic)
   for (int i = 0; i < p.n_params; ++i)
     init.P(2 + i, 2 + i) = p.param_prior_sigma[static_cast<std::size_t>(i)] *
@@ -122,7 +121,7 @@ ForwardRun<N> run_sequential(const Prepared& p, Method method, BiasMethod bias_m
   if constexpr (N == Eigen::Dynamic)
   for (int i = 0; i < p.n_params; ++i) {
     const auto c = static_cast<std::size_t>(i);
-    run.result.parameters.push_back({p.param_chain[c], p.param_names[c],
+    run.result.parameters.push_back({p.param_chain[c], p.input->chains[p.param_chain[c]].name, p.param_names[c],
                                      kf.estimate().x(2 + i), kf.estimate().sigma(2 + i)});
   }
   return run;
@@ -210,7 +209,7 @@ MethodResult run_backward(const Prepared& p, const ForwardRun<N>& fw) {
     if (k + 1 == n)
       for (int i = 0; i < size - 2; ++i) {
         const auto c = static_cast<std::size_t>(i);
-        out.parameters.push_back({p.param_chain[c], p.param_names[c], combined.x(2 + i),
+        out.parameters.push_back({p.param_chain[c], p.input->chains[p.param_chain[c]].name, p.param_names[c], combined.x(2 + i),
                                   combined.sigma(2 + i)});
       }
   }

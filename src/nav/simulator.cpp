@@ -56,6 +56,11 @@ SimulatedLine simulate(const SimulationOptions& o) {
   check(std::isfinite(o.duration_s) && o.duration_s > 0.0, "duration_s", "must be > 0");
   check(std::isfinite(o.step_s) && o.step_s > 0.0, "step_s", "must be > 0");
   check(o.duration_s / o.step_s <= 1e7, "duration_s", "more than 10^7 samples");
+  // nav::process needs at least 2 DR samples (at 0 and step_s): a shorter line would write a
+  // job that cannot be processed.
+  check(o.duration_s >= o.step_s - 1e-9, "duration_s",
+        fmt::format("must be at least one DR step ({:g} s, for 2 DR samples), got {:g}", o.step_s,
+                    o.duration_s));
   check(std::isfinite(o.speed_m_s) && o.speed_m_s > 0.0, "speed_m_s", "must be > 0");
   check(std::isfinite(o.heading_rad), "heading_rad", "must be finite");
   check(std::isfinite(o.sigma_range_m) && o.sigma_range_m > 0.0, "sigma_range_m", "must be > 0");

@@ -272,9 +272,9 @@ Section nav_summary_section(const nav::Result& r, bool truth) {
                  "final bias E (m/s)", "rejected LOPs", "flagged fixes"};
     t.numeric = {false, true, true, true, true, true, true, true};
   } else {
-    t.columns = {"method", "final bias N (m/s)", "final bias E (m/s)", "rejected LOPs",
-                 "flagged fixes"};
-    t.numeric = {false, true, true, true, true};
+    t.columns = {"method", "final σx (m)", "final σy (m)", "mean σ (m)", "max σ (m)",
+                 "final bias N (m/s)", "final bias E (m/s)", "rejected LOPs", "flagged fixes"};
+    t.numeric = {false, true, true, true, true, true, true, true, true};
   }
   for (const auto& m : r.methods) {
     std::vector<std::string> row{nav::to_string(m.method)};
@@ -282,19 +282,26 @@ Section nav_summary_section(const nav::Result& r, bool truth) {
       row.push_back(m.errors ? num(m.errors->rms_m, 2) : "n/a");
       row.push_back(m.errors ? num(m.errors->max_error_m, 2) : "n/a");
       row.push_back(m.errors ? num(m.errors->mean_nees, 2) : "n/a");
+    } else {
+      const SigmaSummary sg = sigma_summary(m);
+      for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(num(v, 2));
     }
     row.push_back(nav_bias_cell(m, true));
     row.push_back(nav_bias_cell(m, false));
     const RejectionCounts c = rejection_counts(r, m.method);
-    row.push_back(std::to_string(c.lops));
-    row.push_back(std::to_string(c.fixes));
+    const auto from = observations_of(m.method);
+    row.push_back(from ? "as " + nav::to_string(*from) : std::to_string(c.lops));
+    row.push_back(from ? "as " + nav::to_string(*from) : std::to_string(c.fixes));
     t.rows.push_back(row);
   }
-  t.note = truth ? "RMS and max: horizontal position error against truth. Mean NEES of (x, y): 2 "
-                   "when σ is consistent with the errors. Bias: the correction to the DR "
-                   "velocity at the last epoch, ± σ where the method states one."
-                 : "No truth: no error statistics. Bias: the correction to the DR velocity at "
-                   "the last epoch, ± σ where the method states one.";
+  t.note = std::string(truth ? "RMS and max: horizontal position error against truth. Mean NEES of (x, y): 2 "
+                               "when σ is consistent with the errors. "
+                             : "No truth: no error statistics. σ: the final σ of x and y; mean and max "
+                               "over the line of the horizontal σ = √(σx² + σy²); the notes say which "
+                               "methods' σ are rigorous. ") +
+           "Bias: the correction to the DR velocity at the last epoch, ± σ where the method states "
+           "one. Rejected: by the method's own screening; backward and fix-closure use the "
+           "observations sequential-bias-I accepted, rts those the ekf accepted.";
   sec.blocks.push_back(t);
   KeyValueList kv{"Observations", {}};
   kv.items.push_back({"epochs", std::to_string(r.epochs)});
@@ -306,11 +313,12 @@ Section nav_summary_section(const nav::Result& r, bool truth) {
   Table p;
   p.title = "Chain parameters";
   p.columns = {"method", "chain", "parameter", "value", "σ"};
-  p.numeric = {false, true, false, true, true};
+  p.numeric = {false, false, false, true, true};
   for (const auto& m : r.methods)
     for (const auto& q : m.parameters) {
       const bool scale = q.name == "scale";
-      p.rows.push_back({nav::to_string(m.method), std::to_string(q.chain), q.name,
+      p.rows.push_back({nav::to_string(m.method), q.chain_name.empty() ? std::to_string(q.chain) : q.chain_name,
+                        q.name,
                         !std::isfinite(q.value) ? "n/a"
                         : scale                 ? fmt::format("{:+.3e}", q.value)
                                                 : fmt::format("{:+.3f}", q.value),
@@ -333,15 +341,17 @@ Section nav_rejected_section(const nav::Result& r) {
   } else {
     Table t;
     t.title = "Rejected by a method";
-    t.columns = {"kind", "index", "method", "time (s)", "misclosure (m)", "statistic", "reason"};
-    t.numeric = {false, true, false, true, true, true, false};
+    t.columns = {"kind", "index", "source", "method", "time (s)", "misclosure (m)", "statistic", "reason"};
+    t.numeric = {false, true, false, false, true, true, true, false};
     for (std::size_t i = 0; i < std::min(r.rejected.size(), kNavMaxRejectedRows); ++i) {
       const auto& o = r.rejected[i];
-      t.rows.push_back({kind_name(o.kind), std::to_string(o.index), nav::to_string(o.method),
-                        num(o.time_s, 1), num(o.misclosure_m, 1), num(o.statistic, 2), o.reason});
+      t.rows.push_back({kind_name(o.kind), std::to_string(o.index), o.source.empty() ? "n/a" : o.source,
+                        nav::to_string(o.method), num(o.time_s, 1), num(o.misclosure_m, 1), num(o.statistic, 2),
+                        o.reason});
     }
-    t.note = "index: 0-based into the input's LOPs or fixes. statistic: |w| of a LOP's w-test, "
-             "√χ² of a fix, 0 under the misclosure threshold.";
+    t.note = "index: 0-based into the input's LOPs or fixes; source: its file and line. misclosure: "
+             "observed − computed (a fix: its distance from the track). statistic: |w| of a LOP's "
+             "w-test, √χ² of a fix, 0 under the misclosure threshold.";
     if (r.rejected.size() > kNavMaxRejectedRows)
       t.note += fmt::format(" The first {} of {} rows are shown; the rejected CSV lists all.",
                             kNavMaxRejectedRows, r.rejected.size());
@@ -350,11 +360,12 @@ Section nav_rejected_section(const nav::Result& r) {
   if (!r.skipped.empty()) {
     Table s;
     s.title = "Skipped (no method could use them)";
-    s.columns = {"kind", "index", "time (s)", "reason"};
-    s.numeric = {false, true, true, false};
+    s.columns = {"kind", "index", "source", "time (s)", "reason"};
+    s.numeric = {false, true, false, true, false};
     for (std::size_t i = 0; i < std::min(r.skipped.size(), kNavMaxSkippedRows); ++i) {
       const auto& o = r.skipped[i];
-      s.rows.push_back({kind_name(o.kind), std::to_string(o.index), num(o.time_s, 1), o.reason});
+      s.rows.push_back({kind_name(o.kind), std::to_string(o.index), o.source.empty() ? "n/a" : o.source,
+                        num(o.time_s, 1), o.reason});
     }
     if (r.skipped.size() > kNavMaxSkippedRows)
       s.note = fmt::format("The first {} of {} are shown; the JSON lists all.", kNavMaxSkippedRows,

@@ -11,6 +11,11 @@ nlohmann::json nav_time_or_null(const std::optional<double>& t) {
 
 std::vector<std::string> nav_warnings(const io::nmea::Summary& s) {
   std::vector<std::string> w;
+  long accepted = 0;
+  for (const auto& [key, n] : s.sentences) accepted += n;
+  if (accepted == 0 && s.proprietary == 0)
+    w.push_back(s.lines == 0 ? std::string("the file is empty: no NMEA sentence")
+                             : fmt::format("no valid NMEA sentence in {} line{}", s.lines, s.lines == 1 ? "" : "s"));
   if (s.gps_week_rollover_suspected)
     w.push_back(fmt::format("dates look like a GPS week rollover (1024 weeks early), first at line {}; "
                             "sentence times are as logged",

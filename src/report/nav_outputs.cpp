@@ -149,7 +149,8 @@ std::string nav_summary_text(const nav::Result& r) {
     rows.push_back({"method", "RMS (m)", "max (m)", "mean NEES", "final bias N (m/s)",
                     "final bias E (m/s)", "rejected"});
   else
-    rows.push_back({"method", "final bias N (m/s)", "final bias E (m/s)", "rejected"});
+    rows.push_back({"method", "final σx (m)", "final σy (m)", "mean σ (m)", "max σ (m)",
+                    "final bias N (m/s)", "final bias E (m/s)", "rejected"});
   for (const auto& m : r.methods) {
     std::vector<std::string> row{nav::to_string(m.method)};
     if (truth) {
@@ -160,6 +161,9 @@ std::string nav_summary_text(const nav::Result& r) {
       } else {
         row.insert(row.end(), {"n/a", "n/a", "n/a"});
       }
+    } else {
+      const SigmaSummary sg = sigma_summary(m);
+      for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(fmtx::num(v, 2));
     }
     if (!estimates_bias(m.method) || m.track.empty()) {
       row.insert(row.end(), {"not estimated", "not estimated"});
@@ -168,7 +172,8 @@ std::string nav_summary_text(const nav::Result& r) {
       row.push_back(nav_value_sigma(last.bias_north_m_s, last.sigma_bias_north_m_s, 4));
       row.push_back(nav_value_sigma(last.bias_east_m_s, last.sigma_bias_east_m_s, 4));
     }
-    row.push_back(nav_rejected_text(rejection_counts(r, m.method)));
+    const auto from = observations_of(m.method);
+    row.push_back(from ? "as " + nav_short_name(*from) : nav_rejected_text(rejection_counts(r, m.method)));
     rows.push_back(row);
   }
   t += "\n" + nav_columns(rows, "");
@@ -176,15 +181,17 @@ std::string nav_summary_text(const nav::Result& r) {
     t += "RMS and max: horizontal position error against truth; mean NEES of (x, y): 2 for a "
          "consistent σ.\n";
   else
-    t += "No truth: no error statistics.\n";
+    t += "No truth: no error statistics. σ: the final σ of x and y; mean and max over the line of "
+         "the horizontal σ = √(σx² + σy²) (the notes say which methods' σ are rigorous).\n";
   t += "Bias: the correction to the DR velocity at the last epoch (± σ where the method states "
        "one).\n";
+  t += "Rejected: by the method's own screening; backward and fix-closure use the observations "
+       "sequential-bias-I accepted, rts those the ekf accepted.\n";
 
   std::vector<std::vector<std::string>> params;
   for (const auto& m : r.methods)
     for (const auto& p : m.parameters)
-      params.push_back({nav::to_string(m.method), fmt::format("chain {}", p.chain), p.name,
-                        nav_parameter_text(p)});
+      params.push_back({nav::to_string(m.method), chain_label(p), p.name, nav_parameter_text(p)});
   if (!params.empty()) t += "\nchain parameters (value ± σ)\n" + nav_columns(params, "  ", 3);
 
   if (truth) {
@@ -241,10 +248,8 @@ std::string nav_summary_text(const nav::Result& r) {
     t += fmt::format("\nskipped (no method used them): {}\n", r.skipped.size());
     for (std::size_t i = 0; i < std::min(r.skipped.size(), kMaxTextListed); ++i) {
       const auto& s = r.skipped[i];
-      t += fmt::format("  {} {} at {:.1f} s: {}\n", s.kind == nav::RejectedObservation::Kind::Lop
-                                                         ? "LOP"
-                                                         : "fix",
-                       s.index, s.time_s, s.reason);
+      t += fmt::format("  {} at {:.1f} s: {}\n", observation_label(s.kind, s.index, s.source), s.time_s,
+                       s.reason);
     }
     if (r.skipped.size() > kMaxTextListed)
       t += fmt::format("  … and {} more (see the JSON)\n", r.skipped.size() - kMaxTextListed);
@@ -275,6 +280,11 @@ json nav_to_json(const nav::Result& r) {
       j["per_minute_rms_m"] = json::array();
     }
     j["estimates_bias"] = estimates_bias(m.method);
+    const SigmaSummary sg = sigma_summary(m);
+    j["sigma_horizontal_mean_m"] = json_number(sg.mean_h);
+    j["sigma_horizontal_max_m"] = json_number(sg.max_h);
+    const auto from = observations_of(m.method);
+    j["observations_of"] = from ? json(nav::to_string(*from)) : json(nullptr);
     if (m.track.empty()) {
       j["bias_north_m_s"] = j["bias_east_m_s"] = j["sigma_bias_north_m_s"] =
           j["sigma_bias_east_m_s"] = j["final_position"] = nullptr;
@@ -294,6 +304,7 @@ json nav_to_json(const nav::Result& r) {
     json params = json::array();
     for (const auto& q : m.parameters)
       params.push_back({{"chain", q.chain},
+                        {"chain_name", q.chain_name},
                         {"name", q.name},
                         {"value", json_number(q.value)},
                         {"sigma", json_number(q.sigma)}});
@@ -312,13 +323,15 @@ json nav_to_json(const nav::Result& r) {
                         {"time_s", json_number(o.time_s)},
                         {"misclosure_m", json_number(o.misclosure_m)},
                         {"statistic", json_number(o.statistic)},
-                        {"reason", o.reason}});
+                        {"reason", o.reason},
+                        {"source", o.source}});
   json skipped = json::array();
   for (const auto& s : r.skipped)
     skipped.push_back({{"kind", kind_name(s.kind)},
                        {"index", s.index},
                        {"time_s", json_number(s.time_s)},
-                       {"reason", s.reason}});
+                       {"reason", s.reason},
+                       {"source", s.source}});
   return {{"epochs", r.epochs},       {"lops_used", r.lops_used}, {"fixes_used", r.fixes_used},
           {"method_order", order},    {"methods", methods},       {"rejected", rejected},
           {"skipped", skipped},       {"notes", r.notes},         {"warnings", r.warnings}};
@@ -430,19 +443,20 @@ std::string nav_track_geojson(const nav::Result& r, const std::vector<nav::Metho
 }
 
 std::string nav_rejected_csv(const nav::Result& r) {
-  std::string out = "kind,index,method,time_s,misclosure_m,statistic,reason\n";
-  for (const auto& o : r.rejected) {
-    std::string reason = "\"";
-    for (char c : o.reason) {
-      if (c == '"') reason += "\"\"";
-      else if (c == '\n' || c == '\r') reason += ' ';
-      else reason += c;
+  std::string out = "kind,index,method,time_s,misclosure_m,statistic,reason,source\n";
+  const auto quoted = [](const std::string& text) {
+    std::string q = "\"";
+    for (char c : text) {
+      if (c == '"') q += "\"\"";
+      else if (c == '\n' || c == '\r') q += ' ';
+      else q += c;
     }
-    reason += '"';
-    out += fmt::format("{},{},{},{},{},{},{}\n", kind_name(o.kind), o.index, nav::to_string(o.method),
+    return q + '"';
+  };
+  for (const auto& o : r.rejected)
+    out += fmt::format("{},{},{},{},{},{},{},{}\n", kind_name(o.kind), o.index, nav::to_string(o.method),
                        nav_csv_number(o.time_s), nav_csv_number(o.misclosure_m),
-                       nav_csv_number(o.statistic), reason);
-  }
+                       nav_csv_number(o.statistic), quoted(o.reason), quoted(o.source));
   return out;
 }
 

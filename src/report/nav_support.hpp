@@ -2,8 +2,10 @@
 // Private to report_nav (not installed): what the navigation text, JSON, CSV and HTML writers
 // share, so the unity batch of the target sees one definition.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -41,6 +43,48 @@ inline const nav::MethodResult& require_method(const nav::Result& r, nav::Method
   for (const auto& mr : r.methods) have += (have.empty() ? "" : ", ") + nav::to_string(mr.method);
   throw InputError(fmt::format("method \"{}\" is not in the navigation result (it holds: {})",
                                nav::to_string(m), have.empty() ? "no method" : have));
+}
+
+/// The forward run whose accepted observations a method reuses (backward and fix-closure:
+/// sequential-bias-I; rts: ekf); nullopt for a method that screens its own.
+inline std::optional<nav::Method> observations_of(nav::Method m) {
+  if (m == nav::Method::Backward || m == nav::Method::FixClosure) return nav::Method::SequentialBiasI;
+  if (m == nav::Method::Rts) return nav::Method::Ekf;
+  return std::nullopt;
+}
+
+/// The position σ of a track: the final σ_x, σ_y and the mean and max over the line of the
+/// horizontal σ_h = √(σ_x² + σ_y²) (m); NaN for an empty track.
+struct SigmaSummary {
+  double final_x = std::nan(""), final_y = std::nan("");
+  double mean_h = std::nan(""), max_h = std::nan("");
+};
+inline SigmaSummary sigma_summary(const nav::MethodResult& m) {
+  SigmaSummary s;
+  if (m.track.empty()) return s;
+  s.final_x = m.track.back().sigma_x_m();
+  s.final_y = m.track.back().sigma_y_m();
+  double sum = 0.0, mx = 0.0;
+  for (const nav::TrackPoint& p : m.track) {
+    const double h = std::sqrt(p.covariance(0, 0) + p.covariance(1, 1));
+    sum += h;
+    mx = std::max(mx, h);
+  }
+  s.mean_h = sum / static_cast<double>(m.track.size());
+  s.max_h = mx;
+  return s;
+}
+
+/// "chain \"Syledis\"" (its index when it has no name).
+inline std::string chain_label(const nav::ChainParameter& p) {
+  return p.chain_name.empty() ? fmt::format("chain {}", p.chain) : fmt::format("chain \"{}\"", p.chain_name);
+}
+
+/// "lops.csv:14" when the reader named it, else "LOP 12" / "fix 3" (0-based index).
+inline std::string observation_label(nav::RejectedObservation::Kind k, std::size_t index,
+                                     const std::string& source) {
+  const char* kind = k == nav::RejectedObservation::Kind::Lop ? "LOP" : "fix";
+  return source.empty() ? fmt::format("{} {}", kind, index) : fmt::format("{} {}", kind, source);
 }
 
 /// A σ as the writers state it: NaN (null, empty, "n/a") when not positive and finite.

@@ -61,6 +61,11 @@ TEST_F(NavCli, InspectReportsEveryProblemWithLines) {
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("bad checksum: 1 (lines 2)"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("line 5:"), std::string::npos) << t.out;
+  // an empty log says so (it printed nothing to worry about before)
+  write("empty.nmea", "");
+  const CmdResult e = run("nav inspect empty.nmea");
+  EXPECT_EQ(e.code, 0) << e.err;
+  EXPECT_NE(e.out.find("warning: the file is empty: no NMEA sentence"), std::string::npos) << e.out;
 }
 
 TEST_F(NavCli, UnreadableFileFailsNamingIt) {
@@ -110,6 +115,15 @@ TEST_F(NavCli, SimulateRejectsBadOptions) {
   EXPECT_EQ(run("nav simulate --scenario E --out d").code, 2);
   EXPECT_EQ(run("nav simulate --stations 4 --out d").code, 2);
   EXPECT_EQ(run("nav simulate --duration-s -5 --out d").code, 2);
+  // Shorter than one DR step: the job written would have 1 DR sample (process refuses it).
+  for (const char* d : {"0", "1"}) {
+    const CmdResult r = run(std::string("nav simulate --duration-s ") + d + " --out d");
+    EXPECT_EQ(r.code, 2) << d;
+    EXPECT_NE(r.err.find("must be a number of seconds >= 5"), std::string::npos) << r.err;
+  }
+  const CmdResult seed = run("nav simulate --seed -1 --out d");  // wrapped to 2^64 − 1 before
+  EXPECT_EQ(seed.code, 2);
+  EXPECT_NE(seed.err.find("--seed: must be an integer >= 0, not -1"), std::string::npos) << seed.err;
   EXPECT_EQ(run("nav simulate --scenario A").code, 2);  // --out is required
   EXPECT_FALSE(std::filesystem::exists(dir_ / "d"));
 }

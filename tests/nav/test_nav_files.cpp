@@ -124,6 +124,13 @@ TEST(NavDrReader, ErrorsNameFileLineColumn) {
   EXPECT_HAS(msg("time_s,speed_m_s,heading_deg,v_north_m_s,v_east_m_s\n0,1,2,3,4\n"), "not both");
   EXPECT_HAS(msg("0,5,30\n"), "header line");
   EXPECT_HAS(msg("time_s,speed_m_s,heading_deg\n0,5\n"), "dr.csv:2");        // short line
+  // a value beyond the header's columns (was ignored); empty trailing fields are fine
+  EXPECT_HAS(msg("time_s,speed_m_s,heading_deg\n0,5,30\n5,5,30,7\n"),
+             "dr.csv:3: 4 fields, but the header (line 1) names 3 columns: \"7\" in field 4");
+  EXPECT_EQ(msg("time_s,speed_m_s,heading_deg\n0,5,30,,\n5,5,30\n"), "");
+  // DMS with spaces in a comma-separated field (docs/file-formats.md's example); no quoting
+  EXPECT_NEAR(read_text(io::read_nav_dr, "time_s,speed_m_s,heading_deg\n5,5.01,60 06 30\n", "dr.csv").records[0].b,
+              (60.0 + 6.0 / 60.0 + 30.0 / 3600.0) * kDeg, 1e-15);
   EXPECT_HAS(error_of<meridian::IoError>([] { io::read_nav_dr_file("/nonexistent/dr.csv"); }),
              "/nonexistent/dr.csv");
 }
@@ -373,7 +380,8 @@ TEST_F(NavFilesDir, ConfigDefaultsAndEveryOption) {
                               "backward_window_s: 30\nfix_tolerance_m: 100\nmax_reduction_s: 3\n"
                               "max_dr_gap_s: 20\nbias_model: gauss-markov\nbias_sigma_m_s: 0.5\n"
                               "bias_random_walk_m_s_per_sqrt_s: 0.001\nbias_correlation_time_s: 300\n"
-                              "statistics_bin_s: 30\n");
+                              "statistics_bin_s: 30\nbias_start_s: 90\nsequential_sigma_velocity_m_s: 0.25\n"
+                              "warn_gap_s: 120\n");
   const io::NavConfig a = io::read_nav_config(q);
   EXPECT_EQ(a.dr_path, (dir_ / "sub" / "dr.csv").string());
   ASSERT_TRUE(a.initial);
@@ -402,6 +410,9 @@ TEST_F(NavFilesDir, ConfigDefaultsAndEveryOption) {
   EXPECT_EQ(o.bias_random_walk_m_s_per_sqrt_s, 0.001);
   EXPECT_EQ(o.bias_correlation_time_s, 300.0);
   EXPECT_EQ(o.statistics_bin_s, 30.0);
+  EXPECT_EQ(o.bias_start_s, 90.0);
+  EXPECT_EQ(o.sequential_sigma_velocity_m_s, 0.25);
+  EXPECT_EQ(o.warn_gap_s, 120.0);
   // JSON too
   const io::NavConfig j = io::read_nav_config(write("nav.json", "{\"dr\": \"dr.csv\", \"threshold_m\": 80}"));
   EXPECT_EQ(j.options.threshold_m, 80.0);
@@ -432,6 +443,24 @@ TEST_F(NavFilesDir, ConfigErrorsNameFileLineKey) {
   EXPECT_HAS(msg("nmea: {heading: h.nmea, speed_sentence: rmc}\n"), "is not a speed sentence");
   EXPECT_HAS(msg("nmea: {heading: h.nmea, positions: none, fix_interval_s: 120}\n"), "needs positions");
   EXPECT_HAS(msg("nmea: {heading: h.nmea}\nfixes: f.csv\n"), "positions: none");
+}
+
+TEST_F(NavFilesDir, SigmaKeysOfTheOtherDrKindAreErrors) {
+  // Before, these were accepted and silently had no effect.
+  write("sh.csv", "time_s,speed_m_s,heading_deg\n0,5,90\n5,5,90\n");
+  write("v.csv", "time_s,v_north_m_s,v_east_m_s\n0,0,5\n5,0,5\n");
+  const auto msg = [&](const std::string& text) {
+    const std::string p = write("k.yaml", text);
+    return error_of<InputError>([&] { io::read_nav_job(io::read_nav_config(p)); });
+  };
+  const std::string a = msg("dr: sh.csv\ninitial: {x_m: 0, y_m: 0}\nsigma_velocity_m_s: 0.1\n");
+  EXPECT_HAS(a, "k.yaml:3: sigma_velocity_m_s: sigma_velocity_m_s does not apply here");
+  EXPECT_HAS(a, "set sigma_speed_m_s and sigma_heading_deg");
+  const std::string b = msg("dr: v.csv\ninitial: {x_m: 0, y_m: 0}\nsigma_speed_m_s: 0.1\n");
+  EXPECT_HAS(b, "k.yaml:3: sigma_speed_m_s:");
+  EXPECT_HAS(b, "set sigma_velocity_m_s");
+  EXPECT_HAS(msg("dr: v.csv\ninitial: {x_m: 0, y_m: 0}\nsigma_heading_deg: 1\n"), "k.yaml:3: sigma_heading_deg:");
+  EXPECT_EQ(msg("dr: v.csv\ninitial: {x_m: 0, y_m: 0}\nsigma_velocity_m_s: 0.1\n"), "");
 }
 
 // --- the job: plane, projection, names, initial position ----------------------------------------
@@ -500,9 +529,9 @@ TEST_F(NavFilesDir, InitialFromTheFirstFixAndMixedCoordinates) {
   write("dr.csv", "time_s,speed_m_s,heading_deg\n100,5,90\n105,5,90\n");
   write("f.csv", "time_s,x_m,y_m,sigma_x_m,sigma_y_m\n500,9,9,1,1\n103,50,60,3,4\n");
   const io::NavRun r = io::read_nav_job(io::read_nav_config(write("nav.yaml", "dr: dr.csv\nfixes: f.csv\n")));
-  EXPECT_EQ(r.input.initial.x_north_m, 50.0);
-  EXPECT_EQ(r.input.initial.y_east_m, 60.0);
-  EXPECT_EQ(r.input.initial.sigma_m, 4.0);
+  // the fix of line 3 (nav::process moves it by the DR to t = 100 s and does not use it again)
+  ASSERT_TRUE(r.input.initial_fix.has_value());
+  EXPECT_EQ(*r.input.initial_fix, 1u);
   EXPECT_EQ(r.fix_lines[1].line, 3);
   // a fix 6 s after the first epoch is too late
   write("f2.csv", "time_s,x_m,y_m,sigma_m\n106,1,1,1\n");
@@ -641,8 +670,11 @@ TEST_F(NavFilesDir, GeographicFixCovarianceTurnsIntoTheGrid) {
   const double angle = 0.5 * std::atan2(2 * cov(0, 1), cov(0, 0) - cov(1, 1));  // of the major axis from x
   EXPECT_NEAR(std::abs(std::remainder(angle - (90 * kDeg - p.convergence_rad), std::numbers::pi)), 0.0, 1e-9);
   EXPECT_NEAR(cov.trace(), p.scale * p.scale * 101.0, 1e-9);
-  // the initial position from this fix: σ the larger of the grid σx, σy
-  EXPECT_DOUBLE_EQ(r.input.initial.sigma_m, std::sqrt(std::max(cov(0, 0), cov(1, 1))));
+  // the initial position from this fix (at the first epoch: not moved): its whole grid
+  // covariance is dead reckoning's at epoch 0 (it was reduced to the larger σ before)
+  ASSERT_TRUE(r.input.initial_fix.has_value());
+  const nav::Result res = nav::process(r.input);
+  EXPECT_TRUE(res.find(nav::Method::DeadReckoning)->track[0].covariance.isApprox(cov, 1e-12));
 }
 
 // --- NMEA --------------------------------------------------------------------------------------
@@ -708,7 +740,7 @@ TEST_F(NavFilesDir, NmeaMidnightThinningTruthAndSkippedSpeed) {
   EXPECT_EQ(r.input.fixes.size(), 5u);
   EXPECT_EQ(r.input.truth.size(), 16u);
   EXPECT_NEAR(r.input.initial.y_east_m, 0.0, 1e-6);
-  EXPECT_EQ(r.input.initial.sigma_m, 5.0);
+  EXPECT_EQ(r.input.initial_fix, std::optional<std::size_t>(0));
   EXPECT_EQ(r.dr_lines[0].file, log);
 }
 
@@ -758,6 +790,28 @@ TEST_F(NavFilesDir, NmeaWithoutHeadingsOrSpeedsIsAnError) {
   c.speed_sentence = io::NavSpeedSentence::Vtg;
   EXPECT_HAS(error_of<InputError>([&] { io::read_nav_nmea(c); }),
              "1 skipped: VTG speed samples with no HDT within 2 s (first line 1)");
+  // every VTG without a checksum: the message says so and names the option (it said "the
+  // file has no VTG sentence")
+  write("gyro.nmea", "2014-08-01T10:00:00.000Z " + nmea_line("HEHDT,1.0,T"));
+  write("gps.nmea", "2014-08-01T10:00:00.000Z $GPVTG,10.0,T,,M,,N,36.0,K\n2014-08-01T10:00:01.000Z $GPVTG,10.0,T,,M,,N,36.0,K\n");
+  const std::string nochk = error_of<InputError>([&] { io::read_nav_nmea(c); });
+  EXPECT_HAS(nochk, "2 GPVTG sentences without a checksum, rejected (first lines 1, 2 of the file's 2 without one)");
+  EXPECT_HAS(nochk, "accept_missing_checksum: true");
+  EXPECT_EQ(nochk.find("has no VTG sentence"), std::string::npos) << nochk;
+}
+
+TEST_F(NavFilesDir, NmeaLinesDroppedByTheReaderAreWarnedAbout) {
+  // The midnight log with a bad checksum (line 3), a line without one (line 4) and two joined
+  // sentences (line 5) inserted: nav::process gets a warning with the counts and the first lines.
+  std::string log = midnight_log();
+  const std::size_t second = log.find('\n', log.find('\n') + 1) + 1;  // after line 2
+  log.insert(second, "$HEHDT,1.0,T*00\n$HEHDT,1.0,T\n$HEHDT,1.0,$GPVTG,0.0,T*12\n");
+  write("ship.nmea", log);
+  const io::NavRun r = io::run_nav(io::read_nav_config(write("n.yaml", "nmea: {heading: ship.nmea}\n")));
+  std::string all;
+  for (const std::string& w : r.result.warnings) all += w + "\n";
+  EXPECT_HAS(all, "ship.nmea: 3 lines not read: 1 with a bad checksum (line 3), 1 without a checksum (line 4; "
+                  "accept_missing_checksum: true reads them), 1 malformed (line 5: ");
 }
 
 // Errors of nav::process about an element are given its file, line and column.
@@ -788,6 +842,11 @@ TEST_F(NavFilesDir, ProcessErrorsAreLocated) {
   // the class is kept
   EXPECT_THROW(io::throw_located_nav_error(meridian::NumericalError("n", {"", std::nullopt, "epoch 1"}), run, c),
                meridian::NumericalError);
+  // statistics bins beyond nav::kMaxStatisticsBins over the line (std::bad_alloc before)
+  const std::string bins = error_of<InputError>([&] {
+    io::run_nav(io::read_nav_config(write("b.yaml", "dr: dr.csv\ninitial: {x_m: 0, y_m: 0}\nstatistics_bin_s: 1e-9\n")));
+  });
+  EXPECT_HAS(bins, "b.yaml:3: statistics_bin_s:");
 }
 
 // A whole run on a small plane line. Needs nav::process (a placeholder that throws until the
@@ -808,6 +867,32 @@ TEST_F(NavFilesDir, RunNavProcessesAPlaneLine) {
   const io::NavRun r = io::run_nav(c);
   EXPECT_EQ(r.result.epochs, 61u);
   EXPECT_NE(r.result.find(nav::Method::Rts), nullptr);
+}
+
+TEST_F(NavFilesDir, AnInitialFixBeforeTheFirstEpochIsMovedThereAndUsedOnce) {
+  // The trial's j9 job: exact DR 5.5 m/s east from t = 0, exact fixes at t = −4 s (0, −22)
+  // and t = 600 s (0, 3300), σ 1 m, no initial: → the fix moved to t = 0 is (0, 0), the truth:
+  // every method exact, nothing rejected (before: DR 22 m off, the fix rejected by χ²).
+  std::string dr = "time_s,speed_m_s,heading_deg\n", truth = "time_s,x_m,y_m\n";
+  for (int k = 0; k <= 240; ++k) {
+    dr += std::to_string(5 * k) + ",5.5,90\n";
+    truth += std::to_string(5 * k) + ",0," + std::to_string(27.5 * k) + "\n";
+  }
+  write("dr.csv", dr);
+  write("t.csv", truth);
+  write("f.csv", "time_s,x_m,y_m,sigma_m\n-4,0,-22,1\n600,0,3300,1\n");
+  const io::NavRun r = io::run_nav(io::read_nav_config(
+      write("nav.yaml", "dr: dr.csv\nfixes: f.csv\ntruth: t.csv\nsigma_speed_m_s: 0.01\nsigma_heading_deg: 0.01\n")));
+  EXPECT_TRUE(r.result.rejected.empty());
+  for (const nav::MethodResult& m : r.result.methods) {
+    ASSERT_TRUE(m.errors);
+    EXPECT_LT(m.errors->rms_m, 1e-6) << nav::to_string(m.method);
+  }
+  bool noted = false;
+  for (const std::string& n : r.result.notes)
+    noted |= n.find("line 2 (t = -4.000 s, sigma 1 m) moved by the dead reckoning to the first DR epoch") !=
+             std::string::npos;
+  EXPECT_TRUE(noted);
 }
 
 // --- the real logs of ../shared/data/nmea (skipped when absent) ---------------------------------
@@ -872,6 +957,13 @@ TEST(NavNmeaRealLogs, RolloverCorrectedAndMidnightStraddled) {
   bool noted = false;
   for (const auto& n : d.notes) noted |= n.find("GPS week rollover") != std::string::npos;
   EXPECT_TRUE(noted);
+  // The origin's note says what it is (it said "the first epoch's day": the DR starts on 1 August).
+  bool origin = false;
+  for (const auto& n : d.notes)
+    origin |= n.find("NMEA times: seconds since 2014-07-31T00:00:00.000Z (00:00 UTC of the day of the earliest "
+                     "sample: the GGA position of ") != std::string::npos &&
+              n.find("line 2, 2014-07-31T23:59:59.226Z)") != std::string::npos;
+  EXPECT_TRUE(origin);
 }
 
 // --- robustness: mutated files give meridian::Error or a result, nothing else -----------------

@@ -100,7 +100,8 @@ TEST(NavSequential, EqualsBatchLeastSquaresOfTheWholeLineWithExactDr) {
   // The backward correction over the whole line gives every epoch the same information.
   Input whole = in;
   whole.options.backward_window_s = 1e6;
-  const TrackPoint& first = method(process(whole), Method::Backward).track.front();
+  const Result rw = process(whole);  // kept: a reference into a temporary result dangled here
+  const TrackPoint& first = method(rw, Method::Backward).track.front();
   EXPECT_NEAR(first.x_north_m, p0(0), 0.02);
   EXPECT_NEAR(first.y_east_m, p0(1), 0.02);
   EXPECT_NEAR(first.covariance(0, 0), Q(0, 0), 1e-3 * Q(0, 0));
@@ -240,6 +241,64 @@ std::string field_of(const Input& in) {
   return "(no error)";
 }
 
+TEST(NavInitialFix, IsMovedByTheDrToTheFirstEpochAndNotUsedTwice) {
+  // Exact DR at 5.5 m/s east from (0, 0) at t = 0; exact fixes at t = −4 s (0, −22) and
+  // t = 600 s (0, 3300), σ 1 m; no initial position but the first fix. Moved by the DR to
+  // t = 0 the fix is (0, 0): every method is exact and no fix is rejected. The σ at epoch 0
+  // are the fix's grown by the DR over 4 s (hand-computed below), not halved by using the
+  // fix a second time.
+  Input in;
+  const double sv = 0.01;  // white σ per velocity component (m/s)
+  for (int i = 0; i <= 240; ++i) {
+    DrSample d;
+    d.time_s = 5.0 * i;
+    d.v_east_m_s = 5.5;
+    d.covariance = sv * sv * Eigen::Matrix2d::Identity();
+    in.dr.push_back(d);
+    in.truth.push_back({d.time_s, 0.0, 5.5 * d.time_s});
+  }
+  in.fixes.push_back({-4.0, 0.0, -22.0, Eigen::Matrix2d::Identity()});
+  in.fixes.push_back({600.0, 0.0, 3300.0, Eigen::Matrix2d::Identity()});
+  in.initial = {500.0, 500.0, 1.0};  // not used
+  in.initial_fix = 0;
+  const Result r = process(in);
+  EXPECT_TRUE(r.rejected.empty()) << r.rejected.front().reason;
+  ASSERT_EQ(r.skipped.size(), 1u);
+  EXPECT_EQ(r.skipped[0].index, 0u);
+  EXPECT_EQ(r.fixes_used, 1u);
+  for (const MethodResult& m : r.methods) {
+    ASSERT_TRUE(m.errors) << to_string(m.method);
+    EXPECT_LT(m.errors->max_error_m, 1e-6) << to_string(m.method);
+  }
+  const double dr_var = 1.0 + 16.0 * sv * sv;
+  const double seq_var = 1.0 + 16.0 * (sv * sv + 0.4 * 0.4);
+  const double ekf_var = dr_var + 16.0 * 1.0;  // + (4 s · σ_W = 1 m/s)²: the bias's share
+  EXPECT_NEAR(method(r, Method::DeadReckoning).track[0].covariance(0, 0), dr_var, 1e-12);
+  EXPECT_NEAR(method(r, Method::SequentialNoBias).track[0].covariance(1, 1), seq_var, 1e-12);
+  EXPECT_NEAR(method(r, Method::Ekf).track[0].covariance(1, 1), ekf_var, 1e-9);
+  // A fix after the first epoch is moved back over the DR increments that precede it.
+  Input late = in;
+  late.fixes[0] = {7.0, 0.0, 38.5, Eigen::Matrix2d::Identity()};
+  const Result rl = process(late);
+  EXPECT_NEAR(method(rl, Method::DeadReckoning).track[0].y_east_m, 0.0, 1e-12);
+  // the increment over (0, 5] s and 2 s of the next interval: independent white noise
+  EXPECT_NEAR(method(rl, Method::DeadReckoning).track[0].covariance(1, 1),
+              1.0 + (25.0 + 4.0) * sv * sv, 1e-12);
+  // Farther before the first epoch than max_reduction_s: an error naming the fix.
+  Input early = in;
+  early.fixes[0].time_s = -11.0;
+  EXPECT_THROW(
+      {
+        try {
+          process(early);
+        } catch (const InputError& e) {
+          EXPECT_EQ(e.context().field, "fixes[0].time_s");
+          throw;
+        }
+      },
+      InputError);
+}
+
 TEST(NavBadInput, NamesTheFieldOfEveryInvalidValue) {
   const Input good = [] {
     Input in = straight_line(20, 5.0);
@@ -271,6 +330,9 @@ TEST(NavBadInput, NamesTheFieldOfEveryInvalidValue) {
   Input h = good;
   h.fixes.push_back({10.0, 0.0, 0.0, -Eigen::Matrix2d::Identity()});
   EXPECT_EQ(field_of(h), "fixes[0].covariance");
+  Input i = good;  // 95 s / 1e-9 s: 9.5e10 bins (std::bad_alloc before)
+  i.options.statistics_bin_s = 1e-9;
+  EXPECT_EQ(field_of(i), "options.statistics_bin_s");
 }
 
 TEST(NavBadInput, SkipsRejectsAndWarnsWhereItCanContinue) {
@@ -281,12 +343,17 @@ TEST(NavBadInput, SkipsRejectsAndWarnsWhereItCanContinue) {
   for (const Lop& l : in.lops)
     if (l.time_s < 300.0 || l.time_s >= 900.0) kept.push_back(l);
   in.lops = kept;
-  // A station on the ship: at the initial position, observed at t = 0 (the direction to it
-  // is undefined there).
+  // A station on the ship: 0.5 m from the initial position, observed at t = 0 (the
+  // direction to it is undefined there); observed 100 m: misclosure 100 − 0.5 m.
   in.initial = {0.0, 0.0, 10.0};
-  in.stations.push_back({"ship", 0.0, 0.0});
-  in.lops.push_back({0.0, LopType::Range, 3, 0, 0.0, 50.0, Lop::kNoChain});
-  // A LOP after the end of the DR, a fix 2 km off the track.
+  in.stations.push_back({"ship", 0.5, 0.0});
+  in.lops.push_back({0.0, LopType::Range, 3, 0, 100.0, 50.0, Lop::kNoChain});
+  // A LOP 3 s before the DR (within max_reduction_s: reduced to epoch 0 with the first
+  // sample's velocity, not skipped), one after the end of the DR, a fix 2 km off the track.
+  in.lops.push_back({-3.0, LopType::Range, 0, 0,
+                     std::hypot(-3.0 * in.dr[0].v_north_m_s - in.stations[0].x_north_m,
+                                -3.0 * in.dr[0].v_east_m_s - in.stations[0].y_east_m),
+                     50.0, Lop::kNoChain});
   in.lops.push_back({5000.0, LopType::Range, 0, 0, 20000.0, 50.0, Lop::kNoChain});
   in.fixes.push_back({600.0, in.truth[120].x_north_m + 2000.0, in.truth[120].y_east_m,
                       25.0 * Eigen::Matrix2d::Identity()});
@@ -297,8 +364,12 @@ TEST(NavBadInput, SkipsRejectsAndWarnsWhereItCanContinue) {
   bool ship = false;
   bool fix = false;
   for (const RejectedObservation& x : r.rejected) {
-    ship |= x.kind == RejectedObservation::Kind::Lop && x.index == in.lops.size() - 2 &&
-            x.reason.find("within 1 m of a station") != std::string::npos;
+    EXPECT_FALSE(x.kind == RejectedObservation::Kind::Lop && x.index == in.lops.size() - 2) << x.reason;
+    const bool at_station = x.kind == RejectedObservation::Kind::Lop && x.index == in.lops.size() - 3;
+    if (at_station) {
+      EXPECT_NEAR(x.misclosure_m, 99.5, 1e-9) << "observed − computed, not 0";
+    }
+    ship |= at_station && x.reason.find("within 1 m of a station") != std::string::npos;
     fix |= x.kind == RejectedObservation::Kind::Fix && x.index == 0 && x.misclosure_m > 1900.0;
   }
   EXPECT_TRUE(ship);
@@ -307,6 +378,33 @@ TEST(NavBadInput, SkipsRejectsAndWarnsWhereItCanContinue) {
   bool gap = false;
   for (const std::string& w : r.warnings) gap |= w.find("no observation used by") != std::string::npos;
   EXPECT_TRUE(gap);
+}
+
+TEST(NavPresentation, ThresholdReasonsAndWhatTheSigmaMean) {
+  // A LOP 432.9 m short at t = 300 s, exact DR and σ 1 m ranges otherwise: the threshold
+  // rejects it with |misclosure| in the reason and the signed value in misclosure_m.
+  Input in = straight_line(121, 5.0);
+  add_ranges(in, 1.0, 5, 30.0);
+  in.options.rejection = Rejection::Threshold;
+  in.initial = {0.0, 0.0, 1.0};
+  for (Lop& l : in.lops)
+    if (l.time_s == 300.0 && l.station == 0) l.value_m -= 432.9;
+  const Result r = process(in);
+  bool seen = false;
+  for (const RejectedObservation& x : r.rejected) {
+    if (x.method != Method::SequentialBiasI) continue;
+    seen = true;
+    EXPECT_NEAR(x.misclosure_m, -432.9, 5.0);
+    EXPECT_EQ(x.reason.rfind("|misclosure| 43", 0), 0u) << x.reason;
+    EXPECT_NE(x.reason.find(" m > 100 m"), std::string::npos) << x.reason;
+  }
+  EXPECT_TRUE(seen);
+  // The notes say which σ are rigorous.
+  std::string notes;
+  for (const std::string& n : r.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("σ of dead-reckoning: the white noise of the DR samples only"), std::string::npos);
+  EXPECT_NE(notes.find("-bias-II, backward and fix-closure: not rigorous"), std::string::npos);
+  EXPECT_NE(notes.find("σ of ekf and rts: rigorous under their model"), std::string::npos);
 }
 
 }  // namespace

@@ -82,8 +82,8 @@ nav::Result make_result(std::size_t epochs = 12, bool truth = true) {
                               m == nav::Method::DeadReckoning ? std::numeric_limits<double>::infinity()
                                                               : 1.5 + offset / 10.0);
     if (m == nav::Method::SequentialBiasI) {
-      mr.parameters.push_back({0, "scale", 1.5e-5, 2.0e-6});
-      mr.parameters.push_back({0, "offset_m", 12.25, 1.5});
+      mr.parameters.push_back({0, "Syledis", "scale", 1.5e-5, 2.0e-6});
+      mr.parameters.push_back({0, "Syledis", "offset_m", 12.25, 1.5});
     }
     r.methods.push_back(mr);
   }
@@ -95,6 +95,7 @@ nav::Result make_result(std::size_t epochs = 12, bool truth = true) {
   a.misclosure_m = 153.21;
   a.statistic = 0.0;
   a.reason = "misclosure 153.2 m > 100 m, \"lane slip\"?";
+  a.source = "lops.csv:9";
   r.rejected.push_back(a);
   nav::RejectedObservation b = a;
   b.method = nav::Method::Ekf;
@@ -110,7 +111,7 @@ nav::Result make_result(std::size_t epochs = 12, bool truth = true) {
   f.statistic = 6.5;
   f.reason = "fix 250 m from the forward solution > 200 m";
   r.rejected.push_back(f);
-  r.skipped.push_back({nav::RejectedObservation::Kind::Lop, 29, 99999.0, "outside the DR span"});
+  r.skipped.push_back({nav::RejectedObservation::Kind::Lop, 29, 99999.0, "outside the DR span", "lops.csv:31"});
   r.notes = {"initial position sigma 100 m (default)"};
   r.warnings = {"no LOP between 36020 s and 36040 s"};
   return r;
@@ -251,6 +252,7 @@ TEST(NavJson, HasEveryMethodWithItsStatisticsAndNullForNaN) {
   EXPECT_EQ(b1["flagged_fixes"], 0);
   ASSERT_EQ(b1["parameters"].size(), 2u);
   EXPECT_EQ(b1["parameters"][0]["chain"], 0);
+  EXPECT_EQ(b1["parameters"][0]["chain_name"], "Syledis");
   EXPECT_EQ(b1["parameters"][0]["name"], "scale");
   EXPECT_DOUBLE_EQ(b1["parameters"][0]["value"].get<double>(), 1.5e-5);
   EXPECT_DOUBLE_EQ(b1["parameters"][0]["sigma"].get<double>(), 2.0e-6);
@@ -286,6 +288,7 @@ TEST(NavJson, HasEveryMethodWithItsStatisticsAndNullForNaN) {
   EXPECT_EQ(j["skipped"][0]["kind"], "lop");
   EXPECT_EQ(j["skipped"][0]["index"], 29);
   EXPECT_EQ(j["skipped"][0]["reason"], "outside the DR span");
+  EXPECT_EQ(j["skipped"][0]["source"], "lops.csv:31");
   EXPECT_EQ(j["notes"], json(r.notes));
   EXPECT_EQ(j["warnings"], json(r.warnings));
   // The text parses back as the same document, with no NaN or Infinity token.
@@ -313,6 +316,11 @@ TEST(NavJson, WithoutTruthTheErrorStatisticsAreNull) {
   EXPECT_EQ(fc["epochs"], 0);
   EXPECT_TRUE(fc["bias_north_m_s"].is_null());
   EXPECT_TRUE(fc["final_position"].is_null());
+  EXPECT_TRUE(fc["sigma_horizontal_mean_m"].is_null());
+  EXPECT_NEAR(j["methods"]["ekf"]["sigma_horizontal_max_m"].get<double>(), std::sqrt(41.9), 1e-12);
+  EXPECT_EQ(j["methods"]["rts"]["observations_of"], "ekf");
+  EXPECT_EQ(j["methods"]["backward"]["observations_of"], "sequential-bias-I");
+  EXPECT_TRUE(j["methods"]["ekf"]["observations_of"].is_null());
 }
 
 // ---- track CSV -----------------------------------------------------------------------------
@@ -530,10 +538,10 @@ TEST(NavRejectedCsv, HeaderRowsAndQuotedReasons) {
   const auto lines = lines_of(nav_rejected_csv(r));
   ASSERT_EQ(lines.size(), 1u + r.rejected.size()) << "one line per row (the line break of a "
                                                      "reason written as a space)";
-  EXPECT_EQ(lines[0], "kind,index,method,time_s,misclosure_m,statistic,reason");
+  EXPECT_EQ(lines[0], "kind,index,method,time_s,misclosure_m,statistic,reason,source");
   for (std::size_t i = 0; i < r.rejected.size(); ++i) {
     const auto f = parse_rfc4180(lines[i + 1]);
-    ASSERT_EQ(f.size(), 7u) << lines[i + 1];
+    ASSERT_EQ(f.size(), 8u) << lines[i + 1];
     const auto& o = r.rejected[i];
     EXPECT_EQ(f[0], o.kind == nav::RejectedObservation::Kind::Lop ? "lop" : "fix");
     EXPECT_EQ(f[1], std::to_string(o.index));
@@ -544,6 +552,7 @@ TEST(NavRejectedCsv, HeaderRowsAndQuotedReasons) {
     std::string reason = o.reason;
     std::replace(reason.begin(), reason.end(), '\n', ' ');
     EXPECT_EQ(f[6], reason);
+    EXPECT_EQ(f[7], o.source);
   }
   EXPECT_NE(lines[1].find("\"misclosure 153.2 m > 100 m, \"\"lane slip\"\"?\""), std::string::npos)
       << lines[1];
@@ -565,12 +574,15 @@ TEST(NavText, NamesEveryMethodWithItsFigures) {
                                0.05 / 12.0)),
             std::string::npos)
       << t;
-  EXPECT_NE(t.find("chain 0"), std::string::npos);
+  EXPECT_NE(t.find("chain \"Syledis\""), std::string::npos) << "chains by name";
   EXPECT_NE(t.find("+1.500e-05 ± 2.000e-06"), std::string::npos) << t;
   EXPECT_NE(t.find("+12.250 ± 1.500 m"), std::string::npos) << t;
   EXPECT_NE(t.find("30 LOPs"), std::string::npos);
   EXPECT_NE(t.find("skipped"), std::string::npos);
-  EXPECT_NE(t.find("outside the DR span"), std::string::npos);
+  EXPECT_NE(t.find("LOP lops.csv:31 at 99999.0 s: outside the DR span"), std::string::npos) << t;
+  // backward, fix-closure and rts reuse the observations of their forward runs
+  EXPECT_NE(t.find("as bias-I"), std::string::npos) << t;
+  EXPECT_NE(t.find("as ekf"), std::string::npos) << t;
   EXPECT_NE(t.find("per minute"), std::string::npos);
   EXPECT_NE(t.find("note: initial position sigma 100 m (default)"), std::string::npos);
   EXPECT_NE(t.find("warning: no LOP between"), std::string::npos);
@@ -590,6 +602,18 @@ TEST(NavText, WithoutTruthSaysSo) {
   const std::string t = nav_summary_text(make_result(3, false));
   EXPECT_NE(t.find("No truth"), std::string::npos);
   EXPECT_EQ(t.find("RMS (m)"), std::string::npos);
+  // Each method's position σ without truth (make_track: var x 25 + 0.1k, var y 16 + 0.2k):
+  // final √25.2 = 5.02, √16.4 = 4.05; σ_h = √(41 + 0.3k): mean 6.43, max √41.6 = 6.45.
+  EXPECT_NE(t.find("final σx (m)"), std::string::npos) << t;
+  const auto lines = lines_of(t);
+  const auto row = std::find_if(lines.begin(), lines.end(),
+                                [](const std::string& l) { return l.rfind("ekf ", 0) == 0; });
+  ASSERT_NE(row, lines.end()) << t;
+  std::size_t at = 0;
+  for (const char* v : {" 5.02 ", " 4.05 ", " 6.43 ", " 6.45 "}) {
+    at = row->find(v, at);
+    ASSERT_NE(at, std::string::npos) << v << " in " << *row;
+  }
   EXPECT_NO_THROW((void)nav_summary_text(nav::Result{}));
 }
 
@@ -689,7 +713,8 @@ TEST(NavDocument, WithoutTruthHasNoErrorCurves) {
   EXPECT_TRUE(blocks<Plot>(*find_section(d, "errors")).empty());
   EXPECT_EQ(blocks<Paragraph>(*find_section(d, "errors")).size(), 1u);
   EXPECT_EQ(plot_count(d), 3u);
-  EXPECT_EQ(blocks<Table>(*find_section(d, "summary"))[0]->columns[1], "final bias N (m/s)");
+  EXPECT_EQ(blocks<Table>(*find_section(d, "summary"))[0]->columns[1], "final σx (m)");
+  EXPECT_EQ(blocks<Table>(*find_section(d, "summary"))[0]->columns[5], "final bias N (m/s)");
   const Document empty = nav_document(nav::Result{}, "empty");
   EXPECT_NE(find_section(empty, "notes"), nullptr);
   if (html_reports_available()) {

@@ -260,6 +260,9 @@ struct NavNmeaData {
   double origin_unix_s = 0.0;
   bool dated = true;  ///< false: no dates or logger stamps, times of day (from day 0)
   std::vector<std::string> notes;
+  /// Per file, the lines the NMEA reader dropped (bad or missing checksum, malformed) with
+  /// their counts and first line numbers.
+  std::vector<std::string> warnings;
 };
 NavNmeaData read_nav_nmea(const NavNmeaConfig& config);
 
@@ -271,6 +274,9 @@ struct NavRun {
   nav::Result result;
   /// What the reader did: defaults used, samples skipped with their counts and first lines.
   std::vector<std::string> notes;
+  /// What the reader dropped from the input (NMEA lines with a bad or missing checksum,
+  /// malformed ones): appended to result.warnings by run_nav.
+  std::vector<std::string> warnings;
   NavToGeographic to_geographic;
   std::optional<geodesy::GridDefinition> projection;
   /// File and line of every input element (same indices as input.dr, .lops, .fixes, …).
@@ -291,7 +297,8 @@ NavRun read_nav_job(const NavConfig& config);
 /// class of `e` is kept.
 [[noreturn]] void throw_located_nav_error(const Error& e, const NavRun& run, const NavConfig& config);
 
-/// read_nav_job, then nav::process. The reader's notes are also appended to result.notes.
+/// read_nav_job, then nav::process. The reader's notes and warnings are also appended to
+/// result.notes and result.warnings.
 /// Errors of nav::process about an element ("lops[12].value_m", "dr[5].time_s", "epoch 5")
 /// get the file, line and column of that element; about options and the initial position the
 /// configuration's file, line and key.

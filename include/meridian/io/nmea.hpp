@@ -127,6 +127,9 @@ struct Summary {
   long unknown = 0;       ///< accepted sentences of types not decoded
   long bad_checksum = 0;  ///< rejected
   long no_checksum = 0;   ///< rejected unless accept_missing_checksum
+  /// no_checksum by talker+type ("GPVTG"; a line whose address is not 5 letters or digits
+  /// counts only in no_checksum; at most 1024 keys).
+  std::map<std::string, long> no_checksum_by_type;
   long malformed = 0;     ///< truncated, corrupt, non-ASCII, too few fields, overlong; rejected
   /// A sentence with a time of day (GGA, GLL, RMC, ZDA) byte-identical, logger prefix
   /// included, to the previous one of its talker+type: counted in `sentences` and here, not

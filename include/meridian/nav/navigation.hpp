@@ -10,8 +10,9 @@
 /// Epochs: one per DR sample (its time_s); epoch 0 is the first sample, where the initial
 /// position applies. Every LOP and fix is reduced to the DR epoch nearest in time (spec §3: the
 /// DR increment between them is added to the computed value and its variance to the
-/// observation's). Observations more than Options::max_reduction_s from every epoch, or
-/// outside the DR span, are skipped and listed in Result::skipped.
+/// observation's). An observation up to Options::max_reduction_s before the first or after
+/// the last epoch is reduced to that epoch with the first or last sample's velocity; one
+/// farther than max_reduction_s from every epoch is skipped and listed in Result::skipped.
 ///
 /// The state of the sequential methods is the position (x, y) plus the chain parameters
 /// (spec §4.3); of the EKF also the velocity bias W = (W_N, W_E) (m/s), the correction to add
@@ -41,6 +42,10 @@ inline constexpr double kTruthMaxGap_s = 10.0;
 /// A LOP whose station lies closer than this to the ship is not used (m): its direction is
 /// undefined there.
 inline constexpr double kMinStationDistance_m = 1.0;
+
+/// Most bins of the per-minute error statistics (Options::statistics_bin_s over the line): a
+/// smaller bin is an InputError, not an allocation that cannot succeed.
+inline constexpr double kMaxStatisticsBins = 100000.0;
 
 /// How the sequential methods reject a gross LOP error (spec §4.4).
 enum class Rejection {
@@ -80,8 +85,8 @@ struct Options {
   double bias_sigma_m_s = 1.0;             ///< prior σ of each bias component (m/s), > 0
   double bias_random_walk_m_s_per_sqrt_s = 0.005;  ///< random-walk density (m/s/√s), ≥ 0
   double bias_correlation_time_s = 600.0;  ///< Gauss–Markov τ (s), > 0
-  /// Time from the first epoch over which the per-minute statistics bins run (s): bin j holds
-  /// epochs with j·60 ≤ t − t₀ < (j+1)·60.
+  /// Length of the per-minute statistics bins (s): bin j holds the epochs with
+  /// j·bin ≤ t − t₀ < (j+1)·bin; > 0 and at most kMaxStatisticsBins bins over the line.
   double statistics_bin_s = 60.0;
   /// A stretch longer than this without any used observation gets a warning (s), > 0.
   double warn_gap_s = 300.0;
@@ -89,7 +94,7 @@ struct Options {
 };
 
 /// Initial position at the first DR epoch: the start of dead reckoning and the prior of the
-/// sequential methods and the EKF.
+/// sequential methods and the EKF (unless Input::initial_fix gives it).
 struct InitialPosition {
   double x_north_m = 0.0;
   double y_east_m = 0.0;
@@ -104,6 +109,16 @@ struct Input {
   std::vector<Fix> fixes;    ///< any time order
   std::vector<TruthPoint> truth;  ///< empty, or strictly increasing times (interpolated)
   InitialPosition initial;
+  /// When set, the initial position is this fix (index into `fixes`) moved by the dead
+  /// reckoning to the first epoch, and `initial` is not used: x₀ = x_fix − D, D the DR
+  /// displacement from t₀ to the fix's time (the first sample's velocity before t₀, as in the
+  /// reduction of an observation), covariance the fix's plus that of D (each method's own DR
+  /// model: the samples' white noise for dead reckoning and the EKF — whose prior also holds
+  /// the bias's share −(t_fix − t₀)·W —, with sequential_sigma_velocity_m_s for the
+  /// sequential methods). The fix is then not used again as an observation (it is listed in
+  /// Result::skipped): its information is in the prior. The fix must lie within
+  /// max_reduction_s before t₀ or after the last epoch, like any observation.
+  std::optional<std::size_t> initial_fix;
   Options options;
 };
 
@@ -145,6 +160,7 @@ struct ErrorStatistics {
 /// A time-invariant parameter of a chain (spec §4.3) as estimated by one method.
 struct ChainParameter {
   std::size_t chain = 0;
+  std::string chain_name;  ///< Chain::name
   std::string name;      ///< "scale" or "offset_m"
   double value = 0.0;    ///< dimensionless or m
   double sigma = 0.0;
@@ -164,17 +180,23 @@ struct RejectedObservation {
   std::size_t index = 0;   ///< into Input::lops or Input::fixes
   Method method = Method::SequentialNoBias;
   double time_s = 0.0;
-  double misclosure_m = 0.0;  ///< observed − computed against the predicted position (m)
+  /// observed − computed against the predicted position (m); for a fix its distance from it
+  double misclosure_m = 0.0;
   double statistic = 0.0;     ///< |w| for a LOP (w-test), √(χ²) for a fix (0 for the threshold)
-  std::string reason;         ///< "misclosure 153.2 m > 100 m", "w = 4.1 > 3.29", …
+  std::string reason;         ///< "|misclosure| 153.2 m > 100 m", "|w| = 4.10 > 3.29", …
+  /// Where the observation came from ("lops.csv:14"): filled by a reader (io::run_nav), empty
+  /// from nav::process.
+  std::string source;
 };
 
-/// An observation no method could use (outside the DR span, station at the ship, …).
+/// An observation no method could use (more than max_reduction_s from every epoch), or the fix
+/// that gave the initial position (Input::initial_fix).
 struct SkippedObservation {
   RejectedObservation::Kind kind = RejectedObservation::Kind::Lop;
   std::size_t index = 0;
   double time_s = 0.0;
   std::string reason;
+  std::string source;  ///< as RejectedObservation::source
 };
 
 struct Result {
