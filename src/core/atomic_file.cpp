@@ -51,6 +51,28 @@ void AtomicFileWriter::write(std::string_view chunk) {
     }
     p += n;
     left -= static_cast<std::size_t>(n);
+    written_ += static_cast<std::uint64_t>(n);
+  }
+}
+
+void AtomicFileWriter::write_at(std::uint64_t offset, std::string_view bytes) {
+  if (fd_ < 0) throw IoError("write after commit", {path_.string(), std::nullopt, {}});
+  if (offset > written_ || bytes.size() > written_ - offset)
+    throw IoError(fmt::format("write_at({}, {} bytes) beyond the {} bytes written", offset,
+                              bytes.size(), written_),
+                  {path_.string(), std::nullopt, {}});
+  const char* p = bytes.data();
+  std::size_t left = bytes.size();
+  auto at = static_cast<off_t>(offset);
+  while (left > 0) {
+    const ssize_t n = ::pwrite(fd_, p, left, at);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail(path_, "cannot write", errno);
+    }
+    p += n;
+    at += n;
+    left -= static_cast<std::size_t>(n);
   }
 }
 
