@@ -17,6 +17,7 @@
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/dov/euler.hpp"
 #include "meridian/dov/streaming.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/track.hpp"
@@ -38,6 +39,9 @@ struct LineColumns {
   std::optional<std::size_t> eta, xi;  // the model columns (absent: a gravity model gives them)
   std::array<std::size_t, 9> lgu{}, ins{};
   std::array<std::string, 9> lgu_names, ins_names;
+  // Euler angles instead of a matrix (dov/euler.hpp): heading, pitch, roll columns
+  bool lgu_euler = false, ins_euler = false;
+  std::array<std::size_t, 3> lgu_hpr{}, ins_hpr{};
   std::optional<std::size_t> truth_eta, truth_xi;
 };
 
@@ -57,13 +61,33 @@ LineColumns find_columns(RecordReader& rr) {
     throw InputError("give both model_eta_arcsec and model_xi_arcsec, or neither (and a gravity "
                      "model in the configuration)",
                      ErrorContext{rr.source(), rr.header_line(), {}});
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      c.lgu_names[3 * i + j] = element_name("lgu", i, j);
-      c.ins_names[3 * i + j] = element_name("ins", i, j);
-      c.lgu[3 * i + j] = rr.require_column(c.lgu_names[3 * i + j]);
-      c.ins[3 * i + j] = rr.require_column(c.ins_names[3 * i + j]);
+  // Each attitude as a matrix (p_11 … p_33) or as Euler angles (p_heading_deg, p_pitch_deg,
+  // p_roll_deg), never both.
+  for (const char* p : {"lgu", "ins"}) {
+    const bool lgu = std::string(p) == "lgu";
+    const std::string prefix(p);
+    const auto matrix = rr.find_column(prefix + "_11");
+    const auto heading = rr.find_column(prefix + "_heading_deg");
+    if (matrix && heading)
+      throw InputError(fmt::format("give {0}_11…{0}_33 or {0}_heading_deg, {0}_pitch_deg, "
+                                   "{0}_roll_deg, not both",
+                                   prefix),
+                       ErrorContext{rr.source(), rr.header_line(), {}});
+    if (heading) {
+      (lgu ? c.lgu_euler : c.ins_euler) = true;
+      std::array<std::size_t, 3>& hpr = lgu ? c.lgu_hpr : c.ins_hpr;
+      hpr[0] = *heading;
+      hpr[1] = rr.require_column(prefix + "_pitch_deg");
+      hpr[2] = rr.require_column(prefix + "_roll_deg");
+      continue;
     }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        std::string& name = (lgu ? c.lgu_names : c.ins_names)[3 * i + j];
+        name = element_name(p, i, j);
+        (lgu ? c.lgu : c.ins)[3 * i + j] = rr.require_column(name);
+      }
+  }
   c.truth_eta = rr.find_column("truth_eta_arcsec");
   c.truth_xi = rr.find_column("truth_xi_arcsec");
   if (c.truth_eta.has_value() != c.truth_xi.has_value())
@@ -73,15 +97,21 @@ LineColumns find_columns(RecordReader& rr) {
 }
 
 /// The CSV column(s) of a dov::Sample member, as the user wrote them: "model_eta_rad" →
-/// "model_eta_arcsec", "ins_body_to_nav" → "ins_11…ins_33" (a matrix check concerns all nine).
-std::string sample_column(const std::string& member) {
+/// "model_eta_arcsec", "ins_body_to_nav" → "ins_11…ins_33" (a matrix check concerns all nine)
+/// or "ins_heading_deg, ins_pitch_deg, ins_roll_deg" for Euler angles.
+std::string sample_column(const std::string& member, bool lgu_euler, bool ins_euler) {
+  const auto attitude = [](const char* p, bool euler) {
+    return euler ? fmt::format("{0}_heading_deg, {0}_pitch_deg, {0}_roll_deg", p)
+                 : fmt::format("{0}_11…{0}_33", p);
+  };
   if (member == "lat_rad") return "lat_deg";
   if (member == "lon_rad") return "lon_deg";
   if (member == "model_eta_rad") return "model_eta_arcsec";
   if (member == "model_xi_rad") return "model_xi_arcsec";
-  if (member == "lgu_body_to_nav") return "lgu_11…lgu_33";
-  if (member == "ins_body_to_nav") return "ins_11…ins_33";
-  if (member == "attitude_difference") return "lgu_11…lgu_33, ins_11…ins_33";
+  if (member == "lgu_body_to_nav") return attitude("lgu", lgu_euler);
+  if (member == "ins_body_to_nav") return attitude("ins", ins_euler);
+  if (member == "attitude_difference")
+    return attitude("lgu", lgu_euler) + ", " + attitude("ins", ins_euler);
   return member;  // time_s, height_m, speed_m_s: the same name
 }
 
@@ -149,6 +179,10 @@ void DovLineReader::start_csv(std::istream& in, const std::string& source) {
 }
 
 const std::string& DovLineReader::source() const { return impl_->source; }
+std::string DovLineReader::column_of(const std::string& member) const {
+  if (impl_->bin) return binary_column(member);
+  return sample_column(member, impl_->columns.lgu_euler, impl_->columns.ins_euler);
+}
 bool DovLineReader::binary() const { return impl_->bin != nullptr; }
 bool DovLineReader::has_model_values() const {
   return impl_->bin ? impl_->bin->has_model() : impl_->columns.eta.has_value();
@@ -186,11 +220,18 @@ bool DovLineReader::next(DovLine& chunk, std::size_t max) {
     s.lon_rad = r.angle(c.lon).rad();
     s.height_m = r.number(c.height);
     s.speed_m_s = r.number(c.speed);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        s.lgu_body_to_nav(i, j) = r.number(c.lgu[3 * i + j]);
-        s.ins_body_to_nav(i, j) = r.number(c.ins[3 * i + j]);
+    for (const bool lgu : {true, false}) {
+      Eigen::Matrix3d& m = lgu ? s.lgu_body_to_nav : s.ins_body_to_nav;
+      if (lgu ? c.lgu_euler : c.ins_euler) {
+        const auto& hpr = lgu ? c.lgu_hpr : c.ins_hpr;
+        m = dov::body_to_nav_from_euler(r.angle(hpr[0]).rad(), r.angle(hpr[1]).rad(),
+                                        r.angle(hpr[2]).rad());
+        continue;
       }
+      const auto& col = lgu ? c.lgu : c.ins;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m(i, j) = r.number(col[3 * i + j]);
+    }
     if (c.eta) {
       s.model_eta_rad = r.number(*c.eta) * kAs;
       s.model_xi_rad = r.number(*c.xi) * kAs;
@@ -424,14 +465,12 @@ class LineSource final : public dov::SampleSource {
     if (reader_.binary() || offsets_.empty() || k < offsets_.front().first)
       return {reader_.source(), std::nullopt,
               member.empty() ? fmt::format("sample {}", k)
-                             : fmt::format("sample {}: {}", k,
-                                           reader_.binary() ? binary_column(member)
-                                                            : sample_column(member))};
+                             : fmt::format("sample {}: {}", k, reader_.column_of(member))};
     auto it = std::upper_bound(offsets_.begin(), offsets_.end(), k,
                                [](std::size_t v, const auto& e) { return v < e.first; });
     --it;
     return {reader_.source(), static_cast<int>(static_cast<long long>(k) + it->second),
-            sample_column(member)};
+            reader_.column_of(member)};
   }
 
  private:

@@ -13,11 +13,15 @@
 ///   speed_m_s                  speed over ground (m/s)
 ///   lgu_11 … lgu_33            C_b^n of LGU/GNSS, element (row, column), 1-based, E-N-U rows
 ///   ins_11 … ins_33            C_b^{n′} of INS/GNSS, likewise
+///   or, for either attitude instead of its matrix (never both):
+///   lgu_heading_deg, lgu_pitch_deg, lgu_roll_deg   (and ins_…) Euler angles, DMS or decimal
+///                              degrees, by the convention of dov/euler.hpp: ENU, body
+///                              right-forward-up, C_b^n = R_z(−ψ)·R_x(θ)·R_y(φ)
 ///   model_eta_arcsec, model_xi_arcsec   η_G, ξ_G of the global model (″)
 ///   truth_eta_arcsec, truth_xi_arcsec   optional (simulations): the true η, ξ (″), both or none
 ///
-/// Frames and signs: attitude_difference.hpp and geodesy/frames.hpp. Euler angles are not read
-/// yet; the compact binary format is dov_binary.hpp (read_dov_line_file tells them by content). The whole line is read into memory (about 300 bytes per
+/// Frames and signs: attitude_difference.hpp and geodesy/frames.hpp. The compact binary format
+/// is dov_binary.hpp (read_dov_line_file tells them by content); it holds matrices only. The whole line is read into memory (about 300 bytes per
 /// sample). Errors: ParseError/InputError with the source, the line and the column
 /// ("line.csv:17: lgu_23: \"x\" is not a number"), InputError naming the header line for a
 /// missing column, IoError when the file cannot be opened.
@@ -65,6 +69,10 @@ class DovLineReader {
   DovLineReader(DovLineReader&&) noexcept;
 
   const std::string& source() const;
+  /// The column(s) a dov::Sample member came from, for errors: "lat_rad" → "lat_deg",
+  /// "ins_body_to_nav" → "ins_11…ins_33" or "ins_heading_deg, ins_pitch_deg, ins_roll_deg";
+  /// a binary line's record field names.
+  std::string column_of(const std::string& member) const;
   bool binary() const;
   bool has_model_values() const;
   bool has_truth() const;
