@@ -70,24 +70,18 @@ void rate(benchmark::State& state, std::size_t n) {
                                                       benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void DovProcessBinary(benchmark::State& state) {
-  const io::DovConfig c = io::read_dov_config(line().bin_config);
+// The streaming runner on the line a configuration names, without a sink (no profile).
+void run_config(benchmark::State& state, const std::string& config) {
+  const io::DovConfig c = io::read_dov_config(config);
   for (auto _ : state) {
     dov::LineResult r = io::run_dov_stream(c, {});
     benchmark::DoNotOptimize(r.summary.mean_nis);
   }
   rate(state, line().input.samples.size());
 }
+void DovProcessBinary(benchmark::State& state) { run_config(state, line().bin_config); }
+void DovProcessCsv(benchmark::State& state) { run_config(state, line().csv_config); }
 BENCHMARK(DovProcessBinary)->Unit(benchmark::kMillisecond);
-
-void DovProcessCsv(benchmark::State& state) {
-  const io::DovConfig c = io::read_dov_config(line().csv_config);
-  for (auto _ : state) {
-    dov::LineResult r = io::run_dov_stream(c, {});
-    benchmark::DoNotOptimize(r.summary.mean_nis);
-  }
-  rate(state, line().input.samples.size());
-}
 BENCHMARK(DovProcessCsv)->Unit(benchmark::kMillisecond);
 
 // The numerics alone (samples from memory, no sink).

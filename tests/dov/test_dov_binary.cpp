@@ -31,24 +31,17 @@ namespace dov_binary_test {
 
 using namespace meridian;
 using meridian_test::kAs;
+using meridian_test::write;
+
+std::filesystem::path temp_dir(const std::string& name) {
+  return meridian_test::temp_dir("dov_binary_" + name);
+}
 
 dov::Input small_line(double seconds = 120.0) {
   dov::SimulationOptions so;
   so.duration_s = seconds;
   so.seed = 11;
   return dov::simulate(so);
-}
-
-std::filesystem::path temp_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("meridian_test_dov_binary_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
-
-void write(const std::filesystem::path& p, const std::string& bytes) {
-  std::ofstream f(p, std::ios::binary);
-  f << bytes;
 }
 
 // Little-endian decoding by hand, as the documentation states the layout.

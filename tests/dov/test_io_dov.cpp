@@ -26,24 +26,17 @@ namespace {
 
 using namespace meridian;
 using meridian_test::kAs;
+using meridian_test::write;
+
+std::filesystem::path temp_dir(const std::string& name) {
+  return meridian_test::temp_dir("io_dov_" + name);
+}
 
 dov::Input small_line() {
   dov::SimulationOptions so;
   so.duration_s = 120.0;  // these cases run under ASan + UBSan too
   so.seed = 8;
   return dov::simulate(so);
-}
-
-std::filesystem::path temp_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("meridian_test_io_dov_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
-
-void write(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::binary);
-  f << text;
 }
 
 TEST(DovFiles, LineRoundTrip) {
