@@ -96,7 +96,8 @@ void run_deflection(const fs::path& out, std::vector<fs::path>& written) {
   if (report::html_reports_available()) {
     written.push_back(out / "dov-demo.html");
     emit(written.back().string(),
-         report::render_html(report::dov_document(r, in.options, title)));
+         report::render_html(report::dov_document(
+                               r, in.options, title, "made in memory by the simulator, not written")));
   }
 }
 
