@@ -90,7 +90,7 @@ void run_deflection(const fs::path& out, std::vector<fs::path>& written) {
   const std::string title = "simulated half-hour line (dov simulate --hours 0.5 --seed 4 "
                             "--phi-e-arcsec 1.5 --phi-n-arcsec -2 --phi-u-arcsec 4)";
   std::cout << "\nmeridian demo: dynamic deflection of the vertical, " << title << "\n\n"
-            << report::dov_summary_text(r);
+            << report::dov_summary_text(r, in.options);
   written.push_back(out / "dov-demo.json");
   emit(written.back().string(), report::dov_summary_to_json(r, in.options).dump(2) + "\n");
   if (report::html_reports_available()) {

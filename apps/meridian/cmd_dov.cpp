@@ -211,7 +211,7 @@ int run_process(const ProcessArgs& a) {
   r.notes = line.notes;
   r.warnings = line.warnings;
   const std::string text = a.json ? report::dov_summary_to_json(r, c.options).dump(2) + "\n"
-                                  : report::dov_summary_text(r);
+                                  : report::dov_summary_text(r, c.options);
   std::string html;
   if (!a.report.empty()) {
     r.epochs = std::move(drawn.kept());

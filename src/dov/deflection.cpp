@@ -530,7 +530,10 @@ LineResult process_stream(SampleSource& source, const Options& o, const EpochSin
   }
   if (fw.stationary_steps() > 0)
     out.notes.push_back(fmt::format(
-        "{} of {} steps stationary (V < {} m/s): δη, δξ held constant, x_E, x_N frozen",
+        "{} of {} steps stationary (V < {} m/s): δη, δξ held constant, x_E, x_N frozen; "
+        "standing still η is not observable (the direction (φ_N, φ_U, δη) += c·(1, tan L, 1) "
+        "leaves every observation unchanged), so while the carrier stands its σ(η) stays near "
+        "the model's and η̂ may be no better than η_G",
         fw.stationary_steps(), n - 1, o.model.stationary_speed_m_s));
   if (progress) progress->finish();
   return out;

@@ -43,9 +43,16 @@ json dov_summary_to_json(const dov::Result& r, const dov::Options& o) {
   return j;
 }
 
-std::string dov_summary_text(const dov::Result& r) {
+std::string dov_summary_text(const dov::Result& r, const dov::Options& o) {
   const dov::Summary& s = r.summary;
   std::string t = fmt::format("epochs: {} (statistics over {})\n", s.epochs, s.statistics_epochs);
+  t += fmt::format(
+      "model: sigma_model {}\", zeta {}, correlation length {} m; r: east {}\", north {}\"; "
+      "discretisation {}, extraction {}\n",
+      units::rad_to_arcsec(o.model.sigma_model_rad), o.model.zeta, o.model.correlation_length_m,
+      units::rad_to_arcsec(o.sigma_obs_east_rad), units::rad_to_arcsec(o.sigma_obs_north_rad),
+      o.discretisation == dov::DiscretisationMethod::Exact ? "exact" : "published_first_order",
+      o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric");
   if (s.rms_model)
     t += fmt::format(
         "RMS error (″)       eta      xi\n  model     {:9.4f} {:7.4f}\n  filtered  {:9.4f} "

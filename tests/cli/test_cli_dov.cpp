@@ -89,6 +89,11 @@ TEST_F(DovCli, SimulateAndProcessAHalfHourLine) {
   const CmdResult t = run("dov process dov.yaml -q");
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("smoothed"), std::string::npos) << t.out;
+  // the settings the result depends on are echoed (a trial finding)
+  EXPECT_NE(t.out.find("sigma_model 3\", zeta 0.05, correlation length 10000 m; r: east 0.5\", "
+                       "north 0.5\"; discretisation exact, extraction exact"),
+            std::string::npos)
+      << t.out;
 }
 
 TEST_F(DovCli, SimulateRecordsItsSettingsAndWritesBothFilesOrNeither) {

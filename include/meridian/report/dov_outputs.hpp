@@ -22,8 +22,9 @@ namespace meridian::report {
 /// The JSON summary of `result`, computed with `options`.
 nlohmann::json dov_summary_to_json(const dov::Result& result, const dov::Options& options);
 
-/// A few lines of text: RMS and σ figures, NIS, ε̂_U, notes and warnings.
-std::string dov_summary_text(const dov::Result& result);
+/// A few lines of text: the model settings of `options` (σ_model, ζ, λ, r, discretisation,
+/// extraction), RMS and σ figures, NIS, ε̂_U, notes and warnings.
+std::string dov_summary_text(const dov::Result& result, const dov::Options& options);
 
 /// The profile CSV, one line per epoch: time_s, lat_deg, lon_deg (the sample's geodetic
 /// position, 10 decimals of a degree ≈ 0.01 mm), model_eta_arcsec, model_xi_arcsec,
