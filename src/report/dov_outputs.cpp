@@ -104,11 +104,4 @@ void append_dov_profile_line(std::string& out, const dov::EpochResult& e) {
   out += '\n';
 }
 
-std::string dov_profile_csv(const dov::Result& r) {
-  const bool truth = !r.epochs.empty() && r.epochs.front().truth.has_value();
-  std::string out = dov_profile_csv_header(truth);
-  for (const dov::EpochResult& e : r.epochs) append_dov_profile_line(out, e);
-  return out;
-}
-
 }  // namespace meridian::report
