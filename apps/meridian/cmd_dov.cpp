@@ -1,5 +1,6 @@
 // meridian dov simulate | process
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -55,7 +56,25 @@ int run_simulate(const SimulateArgs& a) {
   so.initial_attitude_error_rad =
       Eigen::Vector3d(a.phi_e_arcsec, a.phi_n_arcsec, a.phi_u_arcsec) * units::kArcsecond;
   so.seed = a.seed;
-  const dov::Input in = dov::simulate(so);
+  // The simulator's own checks name its members in radians; say it in the options' terms
+  // (a user trial found "simulation.start_lat_rad … 1.658" for --latitude 95).
+  if (!(std::abs(so.start_lat_rad) < 89.0 * units::kDegree))
+    throw InputError(fmt::format("--latitude must be within ±89°, is {:.6g}°",
+                                 so.start_lat_rad / units::kDegree));
+  if (!(a.rate_hz > 0.0) || !std::isfinite(a.rate_hz))
+    throw InputError(fmt::format("--rate-hz must be > 0 (samples per second), is {}", a.rate_hz));
+  if (!(a.hours * 3600.0 * a.rate_hz >= 1.0))
+    throw InputError(fmt::format("--hours {} at --rate-hz {} gives less than one step", a.hours,
+                                 a.rate_hz));
+  dov::Input in;
+  try {
+    in = dov::simulate(so);
+  } catch (const InputError& e) {
+    if (e.context().field != "simulation.duration_s") throw;
+    throw InputError(fmt::format("the track leaves ±89° of latitude within --hours {} ({}): "
+                                 "shorten the line or change --heading or --speed-m-s",
+                                 a.hours, e.message()));
+  }
   // The truth of the simulation, as gyro simulate records it: what produced this line.
   const std::string settings = fmt::format(
       "Simulated: seed {}, start {} {}, heading {}, height {} m, speed {} m/s, {} Hz, {} h, "
@@ -251,9 +270,7 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--speed-m-s", sa->speed_m_s, "Speed V (m/s)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  sim->add_option("--rate-hz", sa->rate_hz, "Sample rate (Hz)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  sim->add_option("--rate-hz", sa->rate_hz, "Sample rate (Hz), > 0")->capture_default_str();
   sim->add_option("--hours", sa->hours, "Duration (h)")->check(CLI::PositiveNumber)->capture_default_str();
   sim->add_option("--sigma-model-arcsec", sa->sigma_model_arcsec,
                   "Sigma of the global model's error (arcsec)")

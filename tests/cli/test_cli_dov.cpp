@@ -210,6 +210,22 @@ TEST_F(DovCli, BinaryLineConvertedOrSimulatedGivesTheSameProfile) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.bin"));
 }
 
+TEST_F(DovCli, SimulateOptionErrorsInTheOptionsTerms) {
+  // user-trial findings: CLI11's range message, radians and internal member names
+  const CmdResult r = run("dov simulate --rate-hz 0 --out x.csv");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--rate-hz must be > 0 (samples per second), is 0"), std::string::npos)
+      << r.err;
+  const CmdResult l = run("dov simulate --latitude 95 --hours 0.01 --out x.csv");
+  EXPECT_EQ(l.code, 1);
+  EXPECT_NE(l.err.find("--latitude must be within ±89°, is 95°"), std::string::npos) << l.err;
+  const CmdResult t = run("dov simulate --latitude 79 --heading 0 --speed-m-s 50 --hours 100 --out x.csv");
+  EXPECT_EQ(t.code, 1);
+  EXPECT_NE(t.err.find("the track leaves ±89° of latitude within --hours 100"), std::string::npos)
+      << t.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.csv"));
+}
+
 TEST_F(DovCli, TruncatedBinaryLineNamesTheSample) {
   ASSERT_EQ(run("dov simulate --hours 0.05 --seed 5 --binary --out line.bin").code, 0);
   const std::string full = slurp(dir_ / "line.bin");
