@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-20}
 rss=${FUZZ_RSS_MB:-1024}
 harnesses=(fuzz_gyro_reduce fuzz_gyro_campaign fuzz_icgem fuzz_egm fuzz_grid_gtx fuzz_grid_pgm fuzz_points_csv
-  fuzz_dov_line fuzz_nmea fuzz_nav_csv)
+  fuzz_dov_line fuzz_dov_binary fuzz_nmea fuzz_nav_csv)
 (($#)) && harnesses=("$@")
 command -v clang++ > /dev/null || { echo "fuzz.sh: clang++ is missing (scripts/setup.sh installs it)" >&2; exit 1; }
 if [ ! -f build-fuzz/CMakeCache.txt ]; then

@@ -1,9 +1,15 @@
 // meridian dov simulate | process
 
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -14,6 +20,8 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/dov/simulator.hpp"
+#include "meridian/dov/streaming.hpp"
+#include "meridian/io/dov_binary.hpp"
 #include "meridian/io/dov_files.hpp"
 #include "meridian/report/dov_html.hpp"
 #include "meridian/report/dov_outputs.hpp"
@@ -30,6 +38,7 @@ struct SimulateArgs {
   std::uint64_t seed = 1;
   std::string out = "dov-line.csv";
   std::string config;
+  bool binary = false;
 };
 
 int run_simulate(const SimulateArgs& a) {
@@ -47,7 +56,25 @@ int run_simulate(const SimulateArgs& a) {
   so.initial_attitude_error_rad =
       Eigen::Vector3d(a.phi_e_arcsec, a.phi_n_arcsec, a.phi_u_arcsec) * units::kArcsecond;
   so.seed = a.seed;
-  const dov::Input in = dov::simulate(so);
+  // The simulator's own checks name its members in radians; say it in the options' terms
+  // (a user trial found "simulation.start_lat_rad … 1.658" for --latitude 95).
+  if (!(std::abs(so.start_lat_rad) < 89.0 * units::kDegree))
+    throw InputError(fmt::format("--latitude must be within ±89°, is {:.6g}°",
+                                 so.start_lat_rad / units::kDegree));
+  if (!(a.rate_hz > 0.0) || !std::isfinite(a.rate_hz))
+    throw InputError(fmt::format("--rate-hz must be > 0 (samples per second), is {}", a.rate_hz));
+  if (!(a.hours * 3600.0 * a.rate_hz >= 1.0))
+    throw InputError(fmt::format("--hours {} at --rate-hz {} gives less than one step", a.hours,
+                                 a.rate_hz));
+  dov::Input in;
+  try {
+    in = dov::simulate(so);
+  } catch (const InputError& e) {
+    if (e.context().field != "simulation.duration_s") throw;
+    throw InputError(fmt::format("the track leaves ±89° of latitude within --hours {} ({}): "
+                                 "shorten the line or change --heading or --speed-m-s",
+                                 a.hours, e.message()));
+  }
   // The truth of the simulation, as gyro simulate records it: what produced this line.
   const std::string settings = fmt::format(
       "Simulated: seed {}, start {} {}, heading {}, height {} m, speed {} m/s, {} Hz, {} h, "
@@ -55,7 +82,9 @@ int run_simulate(const SimulateArgs& a) {
       a.seed, a.latitude, a.longitude, a.heading, a.height_m, a.speed_m_s, a.rate_hz, a.hours,
       a.sigma_model_arcsec, a.sigma_ins_arcsec, a.eps_u_deg_per_h, a.phi_e_arcsec, a.phi_n_arcsec,
       a.phi_u_arcsec);
-  const std::string csv = io::dov_line_csv(in, settings);
+  if (a.binary && (a.out.empty() || a.out == "-"))
+    throw InputError("--binary needs --out to name a file (no binary on standard output)");
+  const std::string csv = a.binary ? io::dov_line_binary(in) : io::dov_line_csv(in, settings);
   if (a.config.empty()) {
     emit(a.out, csv);
     return kOk;
@@ -93,6 +122,65 @@ struct ProcessArgs {
   bool json = false, quiet = false;
 };
 
+// The epochs a report draws, kept while the line streams by: every `every`-th epoch, the
+// spacing doubled whenever more than 2·kReportEpochs are held, so memory stays bounded.
+class ReportEpochs {
+ public:
+  static constexpr std::size_t kReportEpochs = 2000;
+  void add(const dov::EpochResult& e) {
+    if (seen_++ % every_ != 0) return;
+    kept_.push_back(e);
+    if (kept_.size() > 2 * kReportEpochs) {
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < kept_.size(); i += 2) kept_[j++] = kept_[i];
+      kept_.resize(j);
+      every_ *= 2;
+    }
+  }
+  std::vector<dov::EpochResult>& kept() { return kept_; }
+  std::size_t every() const { return every_; }
+
+ private:
+  std::vector<dov::EpochResult> kept_;
+  std::size_t every_ = 1;
+  std::size_t seen_ = 0;
+};
+
+struct ConvertArgs {
+  std::string input, output;
+};
+
+// A line CSV (or binary) to the binary format, a block at a time: the header's count is
+// written last (AtomicFileWriter::write_at), the file renamed into place only when complete.
+int run_convert(const ConvertArgs& a) {
+  if (a.output.empty() || a.output == "-")
+    throw InputError("the binary line needs a file to go to, not standard output");
+  std::error_code ec;
+  if (same_path(a.input, a.output) || std::filesystem::equivalent(a.input, a.output, ec))
+    throw InputError(fmt::format("the output would overwrite the input {}", a.input));
+  io::DovLineReader reader(a.input);
+  const bool model = reader.has_model_values(), truth = reader.has_truth();
+  AtomicFileWriter out(a.output);
+  out.write(io::dov_binary_header(0, model, truth));
+  io::DovLine chunk;
+  std::string bytes;
+  std::uint64_t count = 0;
+  while (reader.next(chunk, 65536)) {
+    bytes.clear();
+    for (std::size_t k = 0; k < chunk.samples.size(); ++k)
+      io::append_dov_binary_record(bytes, chunk.samples[k], truth ? &chunk.truth[k] : nullptr,
+                                   model, truth);
+    out.write(bytes);
+    count += chunk.samples.size();
+  }
+  out.write_at(0, io::dov_binary_header(count, model, truth));
+  out.commit();
+  std::cerr << fmt::format("{}: {} samples{}{}\n", a.output, count,
+                           model ? ", model values" : ", no model values",
+                           truth ? ", truth" : "");
+  return kOk;
+}
+
 int run_process(const ProcessArgs& a) {
   require_html_reports_for(a.report);
   const io::DovConfig c = io::read_dov_config(a.config);
@@ -113,15 +201,49 @@ int run_process(const ProcessArgs& a) {
                          {"", std::nullopt, o.option});
   }
   TerminalProgress progress(a.quiet);
-  const dov::Result r = io::run_dov(c, &progress);
-  // Everything is computed before anything is written (atomic outputs).
+  // The profile streams into a temporary file beside its path while the epochs come, and is
+  // renamed into place only when everything is computed (atomic outputs).
+  std::optional<AtomicFileWriter> profile;
+  if (!a.output.empty() && a.output != "-") profile.emplace(a.output);
+  std::string buffer;
+  bool header = false;
+  ReportEpochs drawn;
+  const auto flush = [&] {
+    if (profile) profile->write(buffer);
+    buffer.clear();
+  };
+  dov::EpochSink sink;
+  if (!a.output.empty() || !a.report.empty())
+    sink = [&](const dov::EpochResult& e) {
+      if (!a.report.empty()) drawn.add(e);
+      if (a.output.empty()) return;
+      if (!header) {
+        buffer = report::dov_profile_csv_header(e.truth.has_value());
+        header = true;
+      }
+      report::append_dov_profile_line(buffer, e);
+      if (profile && buffer.size() > (std::size_t{1} << 20)) flush();
+    };
+  const dov::LineResult line = io::run_dov_stream(c, sink, &progress);
+  dov::Result r;
+  r.summary = line.summary;
+  r.notes = line.notes;
+  r.warnings = line.warnings;
   const std::string text = a.json ? report::dov_summary_to_json(r, c.options).dump(2) + "\n"
-                                  : report::dov_summary_text(r);
-  const std::string html =
-      a.report.empty() ? std::string() : report::render_html(report::dov_document(
-                             r, c.options, a.config, c.line_path,
-                             c.gravity_model ? model_text(*c.gravity_model) : std::string()));
-  if (!a.output.empty()) emit(a.output, report::dov_profile_csv(r));
+                                  : report::dov_summary_text(r, c.options);
+  std::string html;
+  if (!a.report.empty()) {
+    r.epochs = std::move(drawn.kept());
+    html = report::render_html(report::dov_document(
+        r, c.options, a.config, c.line_path,
+        c.gravity_model ? model_text(*c.gravity_model) : std::string(), drawn.every()));
+  }
+  if (profile) {
+    flush();
+    profile->commit();
+  } else if (!a.output.empty()) {
+    emit(a.output, buffer);  // "-": standard output
+  }
   if (!a.report.empty()) emit(a.report, html);
   emit("", text);
   return kOk;
@@ -148,9 +270,7 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--speed-m-s", sa->speed_m_s, "Speed V (m/s)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  sim->add_option("--rate-hz", sa->rate_hz, "Sample rate (Hz)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  sim->add_option("--rate-hz", sa->rate_hz, "Sample rate (Hz), > 0")->capture_default_str();
   sim->add_option("--hours", sa->hours, "Duration (h)")->check(CLI::PositiveNumber)->capture_default_str();
   sim->add_option("--sigma-model-arcsec", sa->sigma_model_arcsec,
                   "Sigma of the global model's error (arcsec)")
@@ -167,6 +287,8 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--seed", sa->seed, "Random seed")->capture_default_str();
   sim->add_option("--out", sa->out, "Line CSV to write")->capture_default_str();
   sim->add_option("--config", sa->config, "Also write a configuration naming the line");
+  sim->add_flag("--binary", sa->binary,
+                "Write the line in the compact binary format (docs/file-formats.md)");
   sim->callback([sa, &exit_code] { exit_code = guarded([&] { return run_simulate(*sa); }); });
 
   auto pa = std::make_shared<ProcessArgs>();
@@ -178,6 +300,13 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
   pro->add_option("-o,--output", pa->output, "Write the per-epoch profile CSV here");
   pro->add_option("--report", pa->report, "Write an HTML report (profile with ±σ, innovations)");
   pro->add_flag("-q,--quiet", pa->quiet, "No progress bar");
+
+  auto ca = std::make_shared<ConvertArgs>();
+  CLI::App* conv = dv->add_subcommand(
+      "convert", "Convert a line CSV to the compact binary line format (docs/file-formats.md)");
+  conv->add_option("IN", ca->input, "Line CSV (or binary line)")->required();
+  conv->add_option("OUT", ca->output, "Binary line to write (atomically)")->required();
+  conv->callback([ca, &exit_code] { exit_code = guarded([&] { return run_convert(*ca); }); });
   pro->callback([pa, &exit_code] { exit_code = guarded([&] { return run_process(*pa); }); });
 }
 

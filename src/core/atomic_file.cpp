@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -39,19 +40,40 @@ AtomicFileWriter::~AtomicFileWriter() {
   }
 }
 
-void AtomicFileWriter::write(std::string_view chunk) {
-  if (fd_ < 0) throw IoError("write after commit", {path_.string(), std::nullopt, {}});
-  const char* p = chunk.data();
-  std::size_t left = chunk.size();
+namespace {
+
+// All of `bytes` to fd: at the file position (write), or at `offset` (pwrite) when given.
+void write_fully(int fd, const std::filesystem::path& path, std::string_view bytes,
+                 std::optional<off_t> offset) {
+  const char* p = bytes.data();
+  std::size_t left = bytes.size();
   while (left > 0) {
-    const ssize_t n = ::write(fd_, p, left);
+    const ssize_t n = offset ? ::pwrite(fd, p, left, *offset) : ::write(fd, p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
-      fail(path_, "cannot write", errno);
+      fail(path, "cannot write", errno);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
+    if (offset) *offset += n;
   }
+}
+
+}  // namespace
+
+void AtomicFileWriter::write(std::string_view chunk) {
+  if (fd_ < 0) throw IoError("write after commit", {path_.string(), std::nullopt, {}});
+  write_fully(fd_, path_, chunk, std::nullopt);
+  written_ += chunk.size();
+}
+
+void AtomicFileWriter::write_at(std::uint64_t offset, std::string_view bytes) {
+  if (fd_ < 0) throw IoError("write after commit", {path_.string(), std::nullopt, {}});
+  if (offset > written_ || bytes.size() > written_ - offset)
+    throw IoError(fmt::format("write_at({}, {} bytes) beyond the {} bytes written", offset,
+                              bytes.size(), written_),
+                  {path_.string(), std::nullopt, {}});
+  write_fully(fd_, path_, bytes, static_cast<off_t>(offset));
 }
 
 void AtomicFileWriter::commit() {

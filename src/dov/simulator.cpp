@@ -146,7 +146,9 @@ Input simulate(const SimulationOptions& o) {
       lat += o.speed_m_s * std::cos(o.heading_rad) * dt / m_radius;
       lon += o.speed_m_s * std::sin(o.heading_rad) * dt / (n_radius * std::cos(lat_prev));
       if (!(std::abs(lat) < max_lat))
-        throw InputError(fmt::format("the track reaches latitude {} rad at sample {}", lat, k),
+        throw InputError(fmt::format("the track reaches latitude {:.4f}° at sample {} (limit "
+                                     "±89°)",
+                                     lat / units::kDegree, k),
                          ErrorContext{{}, {}, "simulation.duration_s"});
       phi = attitude_step(phi, 0.5 * (lat + lat_prev), tm.omega_ie_rad_s, o.eps_u_rad_s, dt);
       east = gm.step(east, rng, nd);

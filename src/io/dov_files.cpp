@@ -8,14 +8,20 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/dov/euler.hpp"
+#include "meridian/dov/streaming.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/track.hpp"
+#include "meridian/io/dov_binary.hpp"
 #include "meridian/io/record_reader.hpp"
 #include "gravity_model_ref.hpp"
 
@@ -33,6 +39,9 @@ struct LineColumns {
   std::optional<std::size_t> eta, xi;  // the model columns (absent: a gravity model gives them)
   std::array<std::size_t, 9> lgu{}, ins{};
   std::array<std::string, 9> lgu_names, ins_names;
+  // Euler angles instead of a matrix (dov/euler.hpp): heading, pitch, roll columns
+  bool lgu_euler = false, ins_euler = false;
+  std::array<std::size_t, 3> lgu_hpr{}, ins_hpr{};
   std::optional<std::size_t> truth_eta, truth_xi;
 };
 
@@ -52,13 +61,33 @@ LineColumns find_columns(RecordReader& rr) {
     throw InputError("give both model_eta_arcsec and model_xi_arcsec, or neither (and a gravity "
                      "model in the configuration)",
                      ErrorContext{rr.source(), rr.header_line(), {}});
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      c.lgu_names[3 * i + j] = element_name("lgu", i, j);
-      c.ins_names[3 * i + j] = element_name("ins", i, j);
-      c.lgu[3 * i + j] = rr.require_column(c.lgu_names[3 * i + j]);
-      c.ins[3 * i + j] = rr.require_column(c.ins_names[3 * i + j]);
+  // Each attitude as a matrix (p_11 … p_33) or as Euler angles (p_heading_deg, p_pitch_deg,
+  // p_roll_deg), never both.
+  for (const char* p : {"lgu", "ins"}) {
+    const bool lgu = std::string(p) == "lgu";
+    const std::string prefix(p);
+    const auto matrix = rr.find_column(prefix + "_11");
+    const auto heading = rr.find_column(prefix + "_heading_deg");
+    if (matrix && heading)
+      throw InputError(fmt::format("give {0}_11…{0}_33 or {0}_heading_deg, {0}_pitch_deg, "
+                                   "{0}_roll_deg, not both",
+                                   prefix),
+                       ErrorContext{rr.source(), rr.header_line(), {}});
+    if (heading) {
+      (lgu ? c.lgu_euler : c.ins_euler) = true;
+      std::array<std::size_t, 3>& hpr = lgu ? c.lgu_hpr : c.ins_hpr;
+      hpr[0] = *heading;
+      hpr[1] = rr.require_column(prefix + "_pitch_deg");
+      hpr[2] = rr.require_column(prefix + "_roll_deg");
+      continue;
     }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        std::string& name = (lgu ? c.lgu_names : c.ins_names)[3 * i + j];
+        name = element_name(p, i, j);
+        (lgu ? c.lgu : c.ins)[3 * i + j] = rr.require_column(name);
+      }
+  }
   c.truth_eta = rr.find_column("truth_eta_arcsec");
   c.truth_xi = rr.find_column("truth_xi_arcsec");
   if (c.truth_eta.has_value() != c.truth_xi.has_value())
@@ -68,16 +97,30 @@ LineColumns find_columns(RecordReader& rr) {
 }
 
 /// The CSV column(s) of a dov::Sample member, as the user wrote them: "model_eta_rad" →
-/// "model_eta_arcsec", "ins_body_to_nav" → "ins_11…ins_33" (a matrix check concerns all nine).
-std::string sample_column(const std::string& member) {
+/// "model_eta_arcsec", "ins_body_to_nav" → "ins_11…ins_33" (a matrix check concerns all nine)
+/// or "ins_heading_deg, ins_pitch_deg, ins_roll_deg" for Euler angles.
+std::string sample_column(const std::string& member, bool lgu_euler, bool ins_euler) {
+  const auto attitude = [](const char* p, bool euler) {
+    return euler ? fmt::format("{0}_heading_deg, {0}_pitch_deg, {0}_roll_deg", p)
+                 : fmt::format("{0}_11…{0}_33", p);
+  };
   if (member == "lat_rad") return "lat_deg";
   if (member == "lon_rad") return "lon_deg";
   if (member == "model_eta_rad") return "model_eta_arcsec";
   if (member == "model_xi_rad") return "model_xi_arcsec";
+  if (member == "lgu_body_to_nav") return attitude("lgu", lgu_euler);
+  if (member == "ins_body_to_nav") return attitude("ins", ins_euler);
+  if (member == "attitude_difference")
+    return attitude("lgu", lgu_euler) + ", " + attitude("ins", ins_euler);
+  return member;  // time_s, height_m, speed_m_s: the same name
+}
+
+/// The binary format's name of a dov::Sample member (the record's fields, dov_binary.hpp).
+std::string binary_column(const std::string& member) {
   if (member == "lgu_body_to_nav") return "lgu_11…lgu_33";
   if (member == "ins_body_to_nav") return "ins_11…ins_33";
   if (member == "attitude_difference") return "lgu_11…lgu_33, ins_11…ins_33";
-  return member;  // time_s, height_m, speed_m_s: the same name
+  return member;  // the record's fields carry the member names
 }
 
 /// "samples[12].time_s" → 12; the filter's "epoch 12" (= samples[12]) → 12.
@@ -94,54 +137,145 @@ std::optional<std::size_t> sample_index(const std::string& field) {
 
 }  // namespace
 
-DovLine read_dov_line(std::istream& in, const std::string& source) {
-  RecordReader rr(in, source);
-  const LineColumns c = find_columns(rr);
-  DovLine out;
-  out.source = source;
-  out.has_model_values = c.eta.has_value();
+struct DovLineReader::Impl {
+  std::ifstream file;
+  std::unique_ptr<RecordReader> csv;
+  LineColumns columns;
   RecordChunk chunk;
-  while (rr.next(chunk, 16384)) {
-    for (std::size_t k = 0; k < chunk.size(); ++k) {
-      const Record r = chunk[k];
-      dov::Sample s;
-      s.time_s = r.number(c.time);
-      s.lat_rad = r.angle(c.lat).rad();
-      if (!(std::abs(s.lat_rad) <= units::kPi / 2))  // found by fuzz_dov_line
-        throw InputError(fmt::format("latitude {}° is beyond ±90°", s.lat_rad / units::kDegree),
-                         r.context(c.lat));
-      s.lon_rad = r.angle(c.lon).rad();
-      s.height_m = r.number(c.height);
-      s.speed_m_s = r.number(c.speed);
+  std::unique_ptr<DovBinaryReader> bin;
+  std::string source;
+};
+
+DovLineReader::DovLineReader(std::istream& in, const std::string& source)
+    : impl_(std::make_unique<Impl>()) {
+  start_csv(in, source);
+}
+
+DovLineReader::DovLineReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  impl_->file.open(path, std::ios::binary);
+  if (!impl_->file)
+    throw IoError(fmt::format("cannot open line file {}", path), ErrorContext{path, {}, {}});
+  // By content: the binary format's magic, else the CSV.
+  char head[kDovBinaryMagic.size()] = {};
+  impl_->file.read(head, sizeof head);
+  const auto got = static_cast<std::size_t>(impl_->file.gcount());
+  impl_->file.clear();
+  impl_->file.seekg(0);
+  if (is_dov_binary(head, got)) {
+    impl_->source = path;
+    impl_->bin = std::make_unique<DovBinaryReader>(impl_->file, path);
+  } else {
+    start_csv(impl_->file, path);
+  }
+}
+
+DovLineReader::~DovLineReader() = default;
+DovLineReader::DovLineReader(DovLineReader&&) noexcept = default;
+
+void DovLineReader::start_csv(std::istream& in, const std::string& source) {
+  impl_->source = source;
+  impl_->csv = std::make_unique<RecordReader>(in, source);
+  impl_->columns = find_columns(*impl_->csv);
+}
+
+const std::string& DovLineReader::source() const { return impl_->source; }
+std::string DovLineReader::column_of(const std::string& member) const {
+  if (impl_->bin) return binary_column(member);
+  return sample_column(member, impl_->columns.lgu_euler, impl_->columns.ins_euler);
+}
+bool DovLineReader::binary() const { return impl_->bin != nullptr; }
+bool DovLineReader::has_model_values() const {
+  return impl_->bin ? impl_->bin->has_model() : impl_->columns.eta.has_value();
+}
+bool DovLineReader::has_truth() const {
+  return impl_->bin ? impl_->bin->has_truth() : impl_->columns.truth_eta.has_value();
+}
+std::optional<std::uint64_t> DovLineReader::count() const {
+  if (impl_->bin) return impl_->bin->count();
+  return std::nullopt;
+}
+
+bool DovLineReader::next(DovLine& chunk, std::size_t max) {
+  chunk.source = impl_->source;
+  chunk.binary = binary();
+  chunk.has_model_values = has_model_values();
+  chunk.samples.clear();
+  chunk.truth.clear();
+  chunk.lines.clear();
+  max = std::max<std::size_t>(max, 1);
+  if (impl_->bin) return impl_->bin->next(chunk.samples, &chunk.truth, max) > 0;
+  const LineColumns& c = impl_->columns;
+  if (!impl_->csv->next(impl_->chunk, max)) return false;
+  const RecordChunk& records = impl_->chunk;
+  chunk.samples.reserve(records.size());
+  chunk.lines.reserve(records.size());
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    const Record r = records[k];
+    dov::Sample& s = chunk.samples.emplace_back();
+    s.time_s = r.number(c.time);
+    s.lat_rad = r.angle(c.lat).rad();
+    if (!(std::abs(s.lat_rad) <= units::kPi / 2))  // found by fuzz_dov_line
+      throw InputError(fmt::format("latitude {}° is beyond ±90°", s.lat_rad / units::kDegree),
+                       r.context(c.lat));
+    s.lon_rad = r.angle(c.lon).rad();
+    s.height_m = r.number(c.height);
+    s.speed_m_s = r.number(c.speed);
+    for (const bool lgu : {true, false}) {
+      Eigen::Matrix3d& m = lgu ? s.lgu_body_to_nav : s.ins_body_to_nav;
+      if (lgu ? c.lgu_euler : c.ins_euler) {
+        const auto& hpr = lgu ? c.lgu_hpr : c.ins_hpr;
+        m = dov::body_to_nav_from_euler(r.angle(hpr[0]).rad(), r.angle(hpr[1]).rad(),
+                                        r.angle(hpr[2]).rad());
+        continue;
+      }
+      const auto& col = lgu ? c.lgu : c.ins;
       for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          s.lgu_body_to_nav(i, j) = r.number(c.lgu[3 * i + j]);
-          s.ins_body_to_nav(i, j) = r.number(c.ins[3 * i + j]);
-        }
-      if (c.eta) {
-        s.model_eta_rad = r.number(*c.eta) * kAs;
-        s.model_xi_rad = r.number(*c.xi) * kAs;
-      } else {
-        s.model_eta_rad = s.model_xi_rad = std::numeric_limits<double>::quiet_NaN();
-      }
-      out.samples.push_back(s);
-      out.lines.push_back(r.line());
-      if (c.truth_eta) {
-        dov::Truth t;
-        t.eta_rad = r.number(*c.truth_eta) * kAs;
-        t.xi_rad = r.number(*c.truth_xi) * kAs;
-        out.truth.push_back(t);
-      }
+        for (int j = 0; j < 3; ++j) m(i, j) = r.number(col[3 * i + j]);
     }
+    if (c.eta) {
+      s.model_eta_rad = r.number(*c.eta) * kAs;
+      s.model_xi_rad = r.number(*c.xi) * kAs;
+    } else {
+      s.model_eta_rad = s.model_xi_rad = std::numeric_limits<double>::quiet_NaN();
+    }
+    chunk.lines.push_back(r.line());
+    if (c.truth_eta) {
+      dov::Truth& t = chunk.truth.emplace_back();
+      t.eta_rad = r.number(*c.truth_eta) * kAs;
+      t.xi_rad = r.number(*c.truth_xi) * kAs;
+    }
+  }
+  return true;
+}
+
+namespace {
+
+// The whole line of `reader`, chunk by chunk.
+DovLine read_all(DovLineReader& reader) {
+  DovLine out, chunk;
+  out.source = reader.source();
+  out.binary = reader.binary();
+  out.has_model_values = reader.has_model_values();
+  while (reader.next(chunk, 65536)) {
+    out.samples.insert(out.samples.end(), chunk.samples.begin(), chunk.samples.end());
+    out.truth.insert(out.truth.end(), chunk.truth.begin(), chunk.truth.end());
+    out.lines.insert(out.lines.end(), chunk.lines.begin(), chunk.lines.end());
   }
   return out;
 }
 
-DovLine read_dov_line_file(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw IoError(fmt::format("cannot open line file {}", path), ErrorContext{path, {}, {}});
-  return read_dov_line(f, path);
+}  // namespace
+
+DovLine read_dov_line(std::istream& in, const std::string& source) {
+  DovLineReader reader(in, source);
+  return read_all(reader);
 }
+
+DovLine read_dov_line_file(const std::string& path) {
+  DovLineReader reader(path);
+  return read_all(reader);
+}
+
 
 std::string dov_line_csv(const dov::Input& input, const std::string& settings) {
   std::string out = "# meridian dov line: C_b^n (lgu_ij) and C_b^n' (ins_ij), rows E, N, U\n";
@@ -255,87 +389,163 @@ DovConfig read_dov_config(const std::string& path) {
 
 namespace {
 
-// η_G, ξ_G of every sample from the model: the astronomic deflection along the line, in chunks
-// (the track evaluator keeps its values per point). Returns the note for the result.
-std::string fill_model_values(DovLine& line, const DovConfig& config) {
-  const DovGravityModel& ref = *config.gravity_model;
+/// The global model that gives η_G, ξ_G (loaded once) and the note that says so.
+struct ModelValues {
   gravity::GravityModelData data;
+  std::optional<gravity::GravityField> field;
+  gravity::TrackOptions track;
+  std::string note;
+};
+
+std::unique_ptr<ModelValues> load_model_values(const DovConfig& config) {
+  const DovGravityModel& ref = *config.gravity_model;
+  auto m = std::make_unique<ModelValues>();
   try {
-    data = detail::load_named_model(ref.lookup, ref.max_degree);
+    m->data = detail::load_named_model(ref.lookup, ref.max_degree);
   } catch (Error& e) {
     if (e.context().file.empty()) locate_error(e, config.file, config.lines);
     throw;
   }
-  const gravity::GravityField field(data);
-  gravity::TrackOptions track;
-  constexpr std::size_t kChunk = 1 << 16;
-  std::vector<gravity::GeodeticPoint> points;
-  for (std::size_t start = 0; start < line.samples.size(); start += kChunk) {
-    const std::size_t n = std::min(kChunk, line.samples.size() - start);
-    points.resize(n);
+  m->field.emplace(m->data);
+  m->note = fmt::format(
+      "model values eta_G, xi_G from the gravity model {} (degree {}): the astronomic deflection "
+      "of its plumb line at each sample, evaluated along the line within {}\"",
+      m->data.name.empty() ? ref.source : m->data.name, m->data.coefficients.max_degree(),
+      m->track.tolerance_rad / kAs);
+  return m;
+}
+
+/// A DovLineReader as the workflow's sample source: reads blocks of kBlock samples (the
+/// track evaluator's chunk), fills in the model values when a gravity model gives them, and
+/// remembers where each sample is in the file (for a CSV, line = k + offset with the offset
+/// stored only where it changes: flat memory for the usual file).
+class LineSource final : public dov::SampleSource {
+ public:
+  static constexpr std::size_t kBlock = std::size_t{1} << 16;
+
+  LineSource(DovLineReader& reader, const ModelValues* model) : reader_(reader), model_(model) {}
+
+  std::size_t next(std::vector<dov::Sample>& samples, std::vector<dov::Truth>& truth,
+                   std::size_t max) override {
+    if (at_ == block_.samples.size()) {
+      if (!reader_.next(block_, kBlock)) {
+        samples.clear();
+        truth.clear();
+        return 0;
+      }
+      first_ += block_size_;
+      block_size_ = block_.samples.size();
+      at_ = 0;
+      for (std::size_t i = 0; i < block_.lines.size(); ++i) {
+        const long long offset = static_cast<long long>(block_.lines[i]) -
+                                 static_cast<long long>(first_ + i);
+        if (offsets_.empty() || offsets_.back().second != offset)
+          offsets_.emplace_back(first_ + i, offset);
+      }
+      if (model_) fill_model_values();
+    }
+    const std::size_t n = std::min(std::max<std::size_t>(max, 1), block_size_ - at_);
+    const auto from = static_cast<std::ptrdiff_t>(at_);
+    const auto to = static_cast<std::ptrdiff_t>(at_ + n);
+    samples.assign(block_.samples.begin() + from, block_.samples.begin() + to);
+    truth.clear();
+    if (!block_.truth.empty()) truth.assign(block_.truth.begin() + from, block_.truth.begin() + to);
+    at_ += n;
+    return n;
+  }
+  bool has_truth() const override { return reader_.has_truth(); }
+  std::optional<std::size_t> size_hint() const override {
+    if (const auto c = reader_.count()) return static_cast<std::size_t>(*c);
+    return std::nullopt;
+  }
+
+  /// Where sample k (of the whole line) is: "line.csv:LINE: column" or "line.bin: sample k:
+  /// member".
+  ErrorContext context(std::size_t k, const std::string& member) const {
+    if (reader_.binary() || offsets_.empty() || k < offsets_.front().first)
+      return {reader_.source(), std::nullopt,
+              member.empty() ? fmt::format("sample {}", k)
+                             : fmt::format("sample {}: {}", k, reader_.column_of(member))};
+    auto it = std::upper_bound(offsets_.begin(), offsets_.end(), k,
+                               [](std::size_t v, const auto& e) { return v < e.first; });
+    --it;
+    return {reader_.source(), static_cast<int>(static_cast<long long>(k) + it->second),
+            reader_.column_of(member)};
+  }
+
+ private:
+  // η_G, ξ_G of the block from the model: the astronomic deflection along the line.
+  void fill_model_values() {
+    const std::size_t n = block_.samples.size();
+    points_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const dov::Sample& s = line.samples[start + i];
-      points[i] = {s.lat_rad, s.lon_rad, s.height_m};
+      const dov::Sample& s = block_.samples[i];
+      points_[i] = {s.lat_rad, s.lon_rad, s.height_m};
     }
     gravity::TrackResult values;
     try {
-      values = gravity::evaluate_track(field, points, gravity::Quantities::Deflection, track);
+      values = gravity::evaluate_track(*model_->field, points_, gravity::Quantities::Deflection,
+                                       model_->track);
     } catch (Error& e) {
-      // "points[i]": the sample's line in the line file
+      // "points[i]": the sample's place in the line file
       const std::string& f = e.context().field;
       std::size_t i = 0;
       if (f.rfind("points[", 0) == 0) i = std::strtoull(f.c_str() + 7, nullptr, 10);
-      throw InputError(e.message(), {line.source, line.lines[start + std::min(i, n - 1)],
-                                     "lat_deg, lon_deg, height_m"});
+      ErrorContext c = context(first_ + std::min(i, n - 1), {});
+      c.field = reader_.binary() ? c.field + ": lat_rad, lon_rad, height_m"
+                                 : std::string("lat_deg, lon_deg, height_m");
+      throw InputError(e.message(), c);
     }
     for (std::size_t i = 0; i < n; ++i) {
-      dov::Sample& s = line.samples[start + i];
+      dov::Sample& s = block_.samples[i];
       s.model_eta_rad = values.values[i].eta_astro_rad;
       s.model_xi_rad = values.values[i].xi_astro_rad;
     }
   }
-  return fmt::format(
-      "model values eta_G, xi_G from the gravity model {} (degree {}): the astronomic deflection "
-      "of its plumb line at each sample, evaluated along the line within {}\"",
-      data.name.empty() ? ref.source : data.name, data.coefficients.max_degree(),
-      track.tolerance_rad / kAs);
-}
+
+  DovLineReader& reader_;
+  const ModelValues* model_;
+  DovLine block_;
+  std::size_t first_ = 0;       // index of block_'s first sample in the line
+  std::size_t block_size_ = 0;  // samples in block_
+  std::size_t at_ = 0;          // next sample of block_ to hand out
+  std::vector<std::pair<std::size_t, long long>> offsets_;  // (first sample, line − k)
+  std::vector<gravity::GeodeticPoint> points_;
+};
 
 }  // namespace
 
-dov::Result run_dov(const DovConfig& config, Progress* progress) {
-  DovLine line = read_dov_line_file(config.line_path);
-  std::string model_note;
-  if (config.gravity_model && line.has_model_values) {
+dov::LineResult run_dov_stream(const DovConfig& config, const dov::EpochSink& sink,
+                               Progress* progress) {
+  DovLineReader reader(config.line_path);
+  if (config.gravity_model && reader.has_model_values()) {
     InputError e(fmt::format("{} has model_eta_arcsec, model_xi_arcsec columns and the "
                              "configuration names a gravity model: give one source of eta_G, xi_G",
-                             line.source),
+                             reader.source()),
                  {"", std::nullopt, "gravity_model"});
     locate_error(e, config.file, config.lines);
     throw e;
   }
-  if (!config.gravity_model && !line.has_model_values)
+  if (!config.gravity_model && !reader.has_model_values())
     throw InputError("no model_eta_arcsec, model_xi_arcsec columns and no gravity_model in the "
                      "configuration: the filter needs the global model's eta_G, xi_G",
-                     {line.source, std::nullopt, {}});
-  if (config.gravity_model) model_note = fill_model_values(line, config);
-  dov::Input in;
-  in.samples = line.samples;
-  in.truth = line.truth;
-  in.options = config.options;
+                     {reader.source(), std::nullopt, {}});
+  const std::unique_ptr<ModelValues> model =
+      config.gravity_model ? load_model_values(config) : nullptr;
+  LineSource source(reader, model.get());
   try {
-    dov::Result r = dov::process(in, progress);
-    if (!model_note.empty()) r.notes.push_back(model_note);
+    dov::LineResult r = dov::process_stream(source, config.options, sink, progress);
+    if (model) r.notes.push_back(model->note);
     return r;
   } catch (Error& e) {
     if (progress) progress->finish();
     const auto k = sample_index(e.context().field);
-    if (k && *k < line.lines.size()) {
-      // "samples[k].member" → "line.csv:LINE: column"
+    if (k) {
+      // "samples[k].member" → "line.csv:LINE: column" (binary: "line.bin: sample k: member")
       const std::string& f = e.context().field;
       const auto dot = f.find("].");
-      ErrorContext c{line.source, line.lines[*k],
-                     dot == std::string::npos ? std::string() : sample_column(f.substr(dot + 2))};
+      const std::string member = dot == std::string::npos ? std::string() : f.substr(dot + 2);
+      const ErrorContext c = source.context(*k, member);
       const std::string msg = e.message();
       if (dynamic_cast<ParseError*>(&e)) throw ParseError(msg, c);
       if (dynamic_cast<InputError*>(&e)) throw InputError(msg, c);
@@ -343,9 +553,19 @@ dov::Result run_dov(const DovConfig& config, Progress* progress) {
       if (dynamic_cast<IoError*>(&e)) throw IoError(msg, c);
       throw Error(msg, c);
     }
-    locate_error(e, config.file, config.lines);
+    if (e.context().file.empty()) locate_error(e, config.file, config.lines);
     throw;
   }
+}
+
+dov::Result run_dov(const DovConfig& config, Progress* progress) {
+  dov::Result r;
+  dov::LineResult line = run_dov_stream(
+      config, [&](const dov::EpochResult& e) { r.epochs.push_back(e); }, progress);
+  r.summary = line.summary;
+  r.notes = std::move(line.notes);
+  r.warnings = std::move(line.warnings);
+  return r;
 }
 
 }  // namespace meridian::io

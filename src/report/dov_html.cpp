@@ -29,7 +29,7 @@ json axis(const char* field, const std::string& title, bool zero = true) {
 }
 
 // η or ξ against time: model, filtered, smoothed with its ±σ band.
-Plot component_plot(const dov::Result& r, bool eta) {
+Plot component_plot(const dov::Result& r, bool eta, std::size_t thinned) {
   const char* name = eta ? "η (east)" : "ξ (north)";
   const std::size_t step = stride(r.epochs.size());
   json band = json::array(), lines = json::array();
@@ -44,6 +44,17 @@ Plot component_plot(const dov::Result& r, bool eta) {
     lines.push_back({{"t", t_min}, {"v", arcsec(eta ? e.filtered.eta_rad : e.filtered.xi_rad)},
                      {"series", "filtered"}});
     lines.push_back({{"t", t_min}, {"v", arcsec(s)}, {"series", "smoothed"}});
+    if (e.truth)
+      lines.push_back({{"t", t_min},
+                       {"v", arcsec(eta ? e.truth->eta_rad : e.truth->xi_rad)},
+                       {"series", "truth"}});
+  }
+  const bool truth = !r.epochs.empty() && r.epochs.front().truth.has_value();
+  json domain = {"global model", "filtered", "smoothed"};
+  json colours = {"#999999", "#f58518", "#4c78a8"};
+  if (truth) {
+    domain.push_back("truth");
+    colours.push_back("#000000");
   }
   json layers = json::array();
   layers.push_back({{"data", {{"values", band}}},
@@ -63,14 +74,14 @@ Plot component_plot(const dov::Result& r, bool eta) {
            {"type", "nominal"},
            {"title", ""},
            {"scale",
-            {{"domain", {"global model", "filtered", "smoothed"}},
-             {"range", {"#999999", "#f58518", "#4c78a8"}}}}}}}}});
-  return {fmt::format("{}: global model, filtered and smoothed", name),
+            {{"domain", domain}, {"range", colours}}}}}}}});
+  return {fmt::format("{}: global model, filtered and smoothed{}", name,
+                      truth ? ", and the truth" : ""),
           json{{"width", 700}, {"height", 240}, {"layer", layers}},
-          "Band: smoothed ± σ. " + drawn(step)};
+          "Band: smoothed ± σ. " + drawn(step * thinned)};
 }
 
-Plot innovation_plot(const dov::Result& r) {
+Plot innovation_plot(const dov::Result& r, std::size_t thinned) {
   const std::size_t step = stride(r.epochs.size());
   json values = json::array(), band = json::array();
   for (std::size_t k = 0; k < r.epochs.size(); k += step) {
@@ -97,7 +108,7 @@ Plot innovation_plot(const dov::Result& r) {
   return {"Innovations of the attitude-difference observations",
           json{{"width", 700}, {"height", 200}, {"layer", layers}},
           "ν = y − H·x̂⁻ per epoch, east and north. Grey band: ±2√S, the filter's own 2σ of the "
-          "innovation (the larger of east and north). " + drawn(step)};
+          "innovation (the larger of east and north). " + drawn(step * thinned)};
 }
 
 std::string pair_text(const dov::EtaXi& v) {
@@ -107,7 +118,9 @@ std::string pair_text(const dov::EtaXi& v) {
 }  // namespace
 
 Document dov_document(const dov::Result& r, const dov::Options& o, const std::string& input,
-                      const std::string& line_file, const std::string& model_source) {
+                      const std::string& line_file, const std::string& model_source,
+                      std::size_t epochs_per_result) {
+  const std::size_t thinned = std::max<std::size_t>(1, epochs_per_result);
   const dov::Summary& s = r.summary;
   Document doc;
   doc.title = "Dynamic deflection of the vertical";
@@ -161,12 +174,12 @@ Document dov_document(const dov::Result& r, const dov::Options& o, const std::st
   doc.sections.push_back(summary);
 
   Section profile{"profile", "Profile", {}, 2};
-  profile.blocks.push_back(component_plot(r, true));
-  profile.blocks.push_back(component_plot(r, false));
+  profile.blocks.push_back(component_plot(r, true, thinned));
+  profile.blocks.push_back(component_plot(r, false, thinned));
   doc.sections.push_back(profile);
 
   Section innov{"innovations", "Innovations", {}, 2};
-  innov.blocks.push_back(innovation_plot(r));
+  innov.blocks.push_back(innovation_plot(r, thinned));
   doc.sections.push_back(innov);
 
   Section notes{"notes", "Notes", {}, 2};

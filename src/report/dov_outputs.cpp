@@ -1,5 +1,7 @@
 #include "meridian/report/dov_outputs.hpp"
 
+#include <iterator>
+
 #include <fmt/format.h>
 
 #include "meridian/core/units.hpp"
@@ -41,9 +43,16 @@ json dov_summary_to_json(const dov::Result& r, const dov::Options& o) {
   return j;
 }
 
-std::string dov_summary_text(const dov::Result& r) {
+std::string dov_summary_text(const dov::Result& r, const dov::Options& o) {
   const dov::Summary& s = r.summary;
   std::string t = fmt::format("epochs: {} (statistics over {})\n", s.epochs, s.statistics_epochs);
+  t += fmt::format(
+      "model: sigma_model {}\", zeta {}, correlation length {} m; r: east {}\", north {}\"; "
+      "discretisation {}, extraction {}\n",
+      units::rad_to_arcsec(o.model.sigma_model_rad), o.model.zeta, o.model.correlation_length_m,
+      units::rad_to_arcsec(o.sigma_obs_east_rad), units::rad_to_arcsec(o.sigma_obs_north_rad),
+      o.discretisation == dov::DiscretisationMethod::Exact ? "exact" : "published_first_order",
+      o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric");
   if (s.rms_model)
     t += fmt::format(
         "RMS error (″)       eta      xi\n  model     {:9.4f} {:7.4f}\n  filtered  {:9.4f} "
@@ -67,25 +76,32 @@ std::string dov_summary_text(const dov::Result& r) {
   return t;
 }
 
-std::string dov_profile_csv(const dov::Result& r) {
-  std::string out =
-      "time_s,model_eta_arcsec,model_xi_arcsec,filtered_eta_arcsec,filtered_xi_arcsec,"
-      "filtered_sigma_eta_arcsec,filtered_sigma_xi_arcsec,smoothed_eta_arcsec,smoothed_xi_arcsec,"
-      "smoothed_sigma_eta_arcsec,smoothed_sigma_xi_arcsec,filtered_eps_u_deg_per_h,"
-      "innovation_east_arcsec,innovation_north_arcsec,nis,accepted\n";
-  for (const dov::EpochResult& e : r.epochs)
-    out += fmt::format(
-        "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
-        "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}\n",
-        e.time_s, units::rad_to_arcsec(e.model_eta_rad), units::rad_to_arcsec(e.model_xi_rad),
-        units::rad_to_arcsec(e.filtered.eta_rad), units::rad_to_arcsec(e.filtered.xi_rad),
-        units::rad_to_arcsec(e.filtered.sigma_eta_rad),
-        units::rad_to_arcsec(e.filtered.sigma_xi_rad), units::rad_to_arcsec(e.smoothed.eta_rad),
-        units::rad_to_arcsec(e.smoothed.xi_rad), units::rad_to_arcsec(e.smoothed.sigma_eta_rad),
-        units::rad_to_arcsec(e.smoothed.sigma_xi_rad), deg_h(e.filtered.eps_u_rad_s),
-        units::rad_to_arcsec(e.innovation_east_rad), units::rad_to_arcsec(e.innovation_north_rad),
-        e.nis, e.accepted ? 1 : 0);
-  return out;
+std::string dov_profile_csv_header(bool truth) {
+  std::string h =
+      "time_s,lat_deg,lon_deg,model_eta_arcsec,model_xi_arcsec,filtered_eta_arcsec,"
+      "filtered_xi_arcsec,filtered_sigma_eta_arcsec,filtered_sigma_xi_arcsec,smoothed_eta_arcsec,"
+      "smoothed_xi_arcsec,smoothed_sigma_eta_arcsec,smoothed_sigma_xi_arcsec,"
+      "filtered_eps_u_deg_per_h,innovation_east_arcsec,innovation_north_arcsec,nis,accepted";
+  if (truth) h += ",truth_eta_arcsec,truth_xi_arcsec";
+  return h + "\n";
+}
+
+void append_dov_profile_line(std::string& out, const dov::EpochResult& e) {
+  const auto as = [](double rad) { return units::rad_to_arcsec(rad); };
+  fmt::format_to(std::back_inserter(out),
+                 "{:.10g},{:.10f},{:.10f},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},"
+                 "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}",
+                 e.time_s, e.lat_rad / units::kDegree, e.lon_rad / units::kDegree,
+                 as(e.model_eta_rad), as(e.model_xi_rad), as(e.filtered.eta_rad),
+                 as(e.filtered.xi_rad), as(e.filtered.sigma_eta_rad), as(e.filtered.sigma_xi_rad),
+                 as(e.smoothed.eta_rad), as(e.smoothed.xi_rad), as(e.smoothed.sigma_eta_rad),
+                 as(e.smoothed.sigma_xi_rad), deg_h(e.filtered.eps_u_rad_s),
+                 as(e.innovation_east_rad), as(e.innovation_north_rad), e.nis,
+                 e.accepted ? 1 : 0);
+  if (e.truth)
+    fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g}", as(e.truth->eta_rad),
+                   as(e.truth->xi_rad));
+  out += '\n';
 }
 
 }  // namespace meridian::report

@@ -31,6 +31,7 @@ REQUIRED = {
     "tracking.html": ["summary", "determination-1"],
     "gravity-points.html": ["summary", "maps", "definitions"],
     "dov.html": ["summary", "profile", "innovations", "notes"],
+    "dov-demo.html": ["summary", "profile", "innovations", "notes"],
     "nav-scenario-c.html": ["summary", "track", "errors", "bias", "rejected", "notes"],
     "nav-nbp1406.html": ["summary", "track", "errors", "bias", "notes"],
 }

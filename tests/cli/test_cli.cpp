@@ -176,6 +176,12 @@ TEST_F(Cli, CampaignAndDemo) {
   EXPECT_NE(d.out.find("GRID AZIMUTH"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir_ / "demo" / "campaign.json"));
   EXPECT_TRUE(fs::exists(dir_ / "demo" / "campaign.txt"));
+  // the deflection-of-the-vertical part: a simulated line, its summary with truth
+  EXPECT_NE(d.out.find("dynamic deflection of the vertical"), std::string::npos) << d.out;
+  const auto dov = nlohmann::json::parse(slurp(dir_ / "demo" / "dov-demo.json"));
+  EXPECT_EQ(dov["epochs"], 1801);
+  EXPECT_LT(dov["rms_arcsec"]["smoothed"]["xi"].get<double>(),
+            dov["rms_arcsec"]["model"]["xi"].get<double>());
 }
 
 TEST_F(Cli, TransitFactorCalibration) {

@@ -1,9 +1,13 @@
 // Runs `meridian dov ...` as a user would: simulate a line with its configuration, process it
 // (JSON summary, profile CSV), and the errors for bad input (exit codes, file:line:column).
 
+#include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -44,7 +48,35 @@ TEST_F(DovCli, SimulateAndProcessAHalfHourLine) {
   std::size_t lines = 0;
   for (char c : profile) lines += c == '\n';
   EXPECT_EQ(lines, 1802u);
-  EXPECT_EQ(profile.rfind("time_s,model_eta_arcsec,", 0), 0u);
+  EXPECT_EQ(profile.rfind("time_s,lat_deg,lon_deg,model_eta_arcsec,", 0), 0u);
+  // positions and truth in the profile are the line's own, row for row (10 digits)
+  {
+    const auto table = [](const std::string& text) {
+      std::vector<std::vector<std::string>> rows;
+      std::istringstream in(text);
+      for (std::string l; std::getline(in, l);) {
+        if (l.empty() || l[0] == '#') continue;
+        std::vector<std::string> f;
+        std::istringstream ls(l);
+        for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+        rows.push_back(f);
+      }
+      return rows;
+    };
+    const auto line = table(slurp(dir_ / "line.csv"));
+    const auto prof = table(profile);
+    ASSERT_EQ(line.size(), prof.size());
+    const auto col = [](const std::vector<std::string>& header, const std::string& name) {
+      const auto it = std::find(header.begin(), header.end(), name);
+      EXPECT_NE(it, header.end()) << name;
+      return static_cast<std::size_t>(it - header.begin());
+    };
+    for (const char* name : {"lat_deg", "lon_deg", "truth_eta_arcsec", "truth_xi_arcsec"}) {
+      const std::size_t a = col(line[0], name), b = col(prof[0], name);
+      for (std::size_t k = 1; k < line.size(); k += 97)
+        EXPECT_NEAR(std::stod(line[k][a]), std::stod(prof[k][b]), 1e-8) << name << " row " << k;
+    }
+  }
   // the profile never replaces its input (a user trial lost the line this way)
   const std::string line_before = slurp(dir_ / "line.csv");
   for (const char* target : {"line.csv", "dov.yaml"}) {
@@ -57,6 +89,11 @@ TEST_F(DovCli, SimulateAndProcessAHalfHourLine) {
   const CmdResult t = run("dov process dov.yaml -q");
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("smoothed"), std::string::npos) << t.out;
+  // the settings the result depends on are echoed (a trial finding)
+  EXPECT_NE(t.out.find("sigma_model 3\", zeta 0.05, correlation length 10000 m; r: east 0.5\", "
+                       "north 0.5\"; discretisation exact, extraction exact"),
+            std::string::npos)
+      << t.out;
 }
 
 TEST_F(DovCli, SimulateRecordsItsSettingsAndWritesBothFilesOrNeither) {
@@ -122,6 +159,7 @@ TEST_F(DovCli, HtmlReportShowsTheProfileAndTheNisCheck) {
     EXPECT_NE(html.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
   EXPECT_NE(html.find("mean NIS"), std::string::npos);
   EXPECT_NE(html.find("smoothed ± σ"), std::string::npos);
+  EXPECT_NE(html.find("\"truth\""), std::string::npos);  // the simulated truth is drawn
   // the same NIS as the JSON summary, to three decimals
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NE(html.find(fmt::format("{:.3f}", j["nis"]["mean"].get<double>())), std::string::npos);
@@ -135,4 +173,77 @@ TEST_F(DovCli, HtmlReportShowsTheProfileAndTheNisCheck) {
   write("typo.yaml", "line: line.csv\nzetta: 0.05\n");
   EXPECT_NE(run("dov process typo.yaml -q --report bad.html").code, 0);
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.html"));
+}
+
+TEST_F(DovCli, BinaryLineConvertedOrSimulatedGivesTheSameProfile) {
+  ASSERT_EQ(run("dov simulate --hours 0.05 --seed 5 --out line.csv --config csv.yaml").code, 0);
+  const CmdResult c = run("dov convert line.csv line.bin");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_NE(c.err.find("181 samples, model values, truth"), std::string::npos) << c.err;
+  EXPECT_EQ(slurp(dir_ / "line.bin").substr(0, 8), "MRDN-DOV");
+  write("bin.yaml", "line: line.bin\n");
+  const CmdResult a = run("dov process csv.yaml -q --json -o a.csv");
+  const CmdResult b = run("dov process bin.yaml -q --json -o b.csv");
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  // the binary line holds what the CSV reader read: the same numbers, so the same profile
+  EXPECT_EQ(slurp(dir_ / "a.csv"), slurp(dir_ / "b.csv"));
+  EXPECT_EQ(a.out, b.out);
+  // simulate --binary: the simulator's doubles; processed, close to the CSV's (17 digits)
+  ASSERT_EQ(run("dov simulate --hours 0.05 --seed 5 --binary --out sim.bin").code, 0);
+  write("sim.yaml", "line: sim.bin\n");
+  const CmdResult s = run("dov process sim.yaml -q --json");
+  ASSERT_EQ(s.code, 0) << s.err;
+  EXPECT_NEAR(nlohmann::json::parse(s.out)["rms_arcsec"]["smoothed"]["xi"].get<double>(),
+              nlohmann::json::parse(a.out)["rms_arcsec"]["smoothed"]["xi"].get<double>(), 1e-9);
+  // refused: the binary line to standard output, over its input
+  EXPECT_NE(run("dov simulate --hours 0.01 --binary --out -").code, 0);
+  EXPECT_NE(run("dov convert line.csv line.csv").code, 0);
+  EXPECT_EQ(slurp(dir_ / "line.csv").substr(0, 20), "# meridian dov line:");
+  // a convert that fails (a bad CSV) leaves no output
+  std::string bad = slurp(dir_ / "line.csv");
+  bad.replace(bad.rfind("\n", bad.size() - 2) + 1, 3, "xyz");
+  write("bad.csv", bad);
+  const CmdResult f = run("dov convert bad.csv bad.bin");
+  EXPECT_EQ(f.code, 1);
+  EXPECT_NE(f.err.find("bad.csv:"), std::string::npos) << f.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.bin"));
+}
+
+TEST_F(DovCli, SimulateOptionErrorsInTheOptionsTerms) {
+  // user-trial findings: CLI11's range message, radians and internal member names
+  const CmdResult r = run("dov simulate --rate-hz 0 --out x.csv");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--rate-hz must be > 0 (samples per second), is 0"), std::string::npos)
+      << r.err;
+  const CmdResult l = run("dov simulate --latitude 95 --hours 0.01 --out x.csv");
+  EXPECT_EQ(l.code, 1);
+  EXPECT_NE(l.err.find("--latitude must be within ±89°, is 95°"), std::string::npos) << l.err;
+  const CmdResult t = run("dov simulate --latitude 79 --heading 0 --speed-m-s 50 --hours 100 --out x.csv");
+  EXPECT_EQ(t.code, 1);
+  EXPECT_NE(t.err.find("the track leaves ±89° of latitude within --hours 100"), std::string::npos)
+      << t.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.csv"));
+}
+
+TEST_F(DovCli, TruncatedBinaryLineNamesTheSample) {
+  ASSERT_EQ(run("dov simulate --hours 0.05 --seed 5 --binary --out line.bin").code, 0);
+  const std::string full = slurp(dir_ / "line.bin");
+  write("cut.bin", full.substr(0, 32 + 100 * 216 + 17));
+  write("cut.yaml", "line: cut.bin\n");
+  const CmdResult r = run("dov process cut.yaml -q -o profile.csv");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("cut.bin"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("sample 100"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "profile.csv"));  // nothing half-written
+  // a time reversal in a binary line: the workflow's error, with the sample index
+  std::string rev = full;
+  const double t = -5.0;
+  std::memcpy(rev.data() + 32 + 60 * 216, &t, 8);  // time_s of sample 60 (little-endian host)
+  write("rev.bin", rev);
+  write("rev.yaml", "line: rev.bin\n");
+  const CmdResult v = run("dov process rev.yaml -q");
+  EXPECT_EQ(v.code, 1);
+  EXPECT_NE(v.err.find("rev.bin: sample 60: time_s"), std::string::npos) << v.err;
 }

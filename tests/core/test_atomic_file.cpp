@@ -59,3 +59,22 @@ TEST(AtomicFile, StreamingWriterCommitsOrLeavesNothing) {
   EXPECT_EQ(n, 1);
   fs::remove_all(dir);
 }
+
+TEST(AtomicFile, WriteAtPatchesWhatWasWrittenAndNothingBeyond) {
+  fs::path dir = fs::temp_directory_path() / ("meridian_atomic_at_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path f = dir / "out.bin";
+  {
+    meridian::AtomicFileWriter w(f);
+    w.write("count=????\n");
+    w.write("rows\n");
+    w.write_at(6, "0042");  // the header's count, known at the end
+    EXPECT_THROW(w.write_at(14, "xyz"), meridian::IoError);  // past the 16 bytes written
+    w.commit();
+  }
+  std::ifstream in(f);
+  std::stringstream s;
+  s << in.rdbuf();
+  EXPECT_EQ(s.str(), "count=0042\nrows\n");
+  fs::remove_all(dir);
+}

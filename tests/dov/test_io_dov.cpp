@@ -26,24 +26,17 @@ namespace {
 
 using namespace meridian;
 using meridian_test::kAs;
+using meridian_test::write;
+
+std::filesystem::path temp_dir(const std::string& name) {
+  return meridian_test::temp_dir("io_dov_" + name);
+}
 
 dov::Input small_line() {
   dov::SimulationOptions so;
   so.duration_s = 120.0;  // these cases run under ASan + UBSan too
   so.seed = 8;
   return dov::simulate(so);
-}
-
-std::filesystem::path temp_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("meridian_test_io_dov_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
-
-void write(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::binary);
-  f << text;
 }
 
 TEST(DovFiles, LineRoundTrip) {
@@ -263,6 +256,89 @@ TEST(DovFiles, GravityModelGivesTheModelValues) {
   const InputError missing = run_error(dir / "missing.yaml");
   EXPECT_EQ(std::filesystem::path(missing.context().file), dir / "missing.yaml") << missing.what();
   EXPECT_EQ(missing.context().line, 3) << missing.what();
+  std::filesystem::remove_all(dir);
+}
+
+// A line CSV with the matrices replaced by heading, pitch, roll: the angles of each matrix are
+// taken here from the written-out form of dov/euler.hpp (θ = asin C₃₂, ψ = atan2(C₁₂, C₂₂),
+// φ = atan2(−C₃₁, C₃₃)), so reading them back must give the same matrices and results.
+TEST(DovFiles, EulerAngleColumnsGiveTheSameMatricesAndResults) {
+  const auto dir = temp_dir("euler");
+  const dov::Input in = small_line();
+  const std::string csv = io::dov_line_csv(in);
+  std::istringstream lines(csv);
+  std::string out, l;
+  bool header = true;
+  while (std::getline(lines, l)) {
+    if (l.empty() || l[0] == '#') continue;
+    std::vector<std::string> f;
+    std::istringstream ls(l);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    // fields: 5 position/time, 9 lgu, 9 ins, then the rest
+    std::string row = fmt::format("{},{},{},{},{}", f[0], f[1], f[2], f[3], f[4]);
+    for (int a = 0; a < 2; ++a) {
+      if (header) {
+        const char* p = a == 0 ? "lgu" : "ins";
+        row += fmt::format(",{0}_heading_deg,{0}_pitch_deg,{0}_roll_deg", p);
+        continue;
+      }
+      const auto c = [&](int i, int j) { return std::stod(f[5 + 9 * a + 3 * (i - 1) + (j - 1)]); };
+      const double deg = units::kDegree;
+      // fixed notation: angle columns take decimal degrees or DMS, not exponents (core/dms.hpp)
+      row += fmt::format(",{:.15f},{:.15f},{:.15f}", std::atan2(c(1, 2), c(2, 2)) / deg,
+                         std::asin(c(3, 2)) / deg, std::atan2(-c(3, 1), c(3, 3)) / deg);
+    }
+    for (std::size_t i = 23; i < f.size(); ++i) row += "," + f[i];
+    out += row + "\n";
+    header = false;
+  }
+  std::istringstream euler_in(out);
+  const io::DovLine euler = io::read_dov_line(euler_in, "euler.csv");
+  ASSERT_EQ(euler.samples.size(), in.samples.size());
+  for (std::size_t k = 0; k < in.samples.size(); k += 7) {
+    EXPECT_LT((euler.samples[k].lgu_body_to_nav - in.samples[k].lgu_body_to_nav).cwiseAbs().maxCoeff(),
+              1e-15);
+    EXPECT_LT((euler.samples[k].ins_body_to_nav - in.samples[k].ins_body_to_nav).cwiseAbs().maxCoeff(),
+              1e-15);
+  }
+  write(dir / "matrix.csv", csv);
+  write(dir / "euler.csv", out);
+  write(dir / "matrix.yaml", "line: matrix.csv\n");
+  write(dir / "euler.yaml", "line: euler.csv\n");
+  const dov::Result a = io::run_dov(io::read_dov_config((dir / "matrix.yaml").string()));
+  const dov::Result b = io::run_dov(io::read_dov_config((dir / "euler.yaml").string()));
+  for (std::size_t k = 0; k < a.epochs.size(); k += 11)
+    EXPECT_NEAR(a.epochs[k].smoothed.xi_rad / kAs, b.epochs[k].smoothed.xi_rad / kAs, 1e-6);
+  // an Euler line's attitude error names its angle columns
+  std::string bad = out;
+  const std::size_t line4 = [&] {
+    std::size_t pos = 0;
+    for (int i = 0; i < 4; ++i) pos = bad.find('\n', pos) + 1;  // header + 3 samples
+    return pos;
+  }();
+  std::size_t at = line4;
+  for (int comma = 0; comma < 8; ++comma) at = bad.find(',', at) + 1;  // ins_heading_deg
+  bad.replace(at, bad.find(',', at) - at, "45");  // 45° off: beyond the 1° limit
+  write(dir / "euler.csv", bad);
+  try {
+    io::run_dov(io::read_dov_config((dir / "euler.yaml").string()));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().line, 5) << e.what();
+    EXPECT_EQ(e.context().field,
+              "lgu_heading_deg, lgu_pitch_deg, lgu_roll_deg, ins_heading_deg, ins_pitch_deg, "
+              "ins_roll_deg")
+        << e.what();
+  }
+  // both forms of one attitude, or an incomplete set of angles: errors at the header
+  std::string both = csv;
+  both.replace(both.find("lgu_11"), 6, "lgu_heading_deg,lgu_pitch_deg,lgu_roll_deg,lgu_11");
+  std::istringstream both_in(both);
+  EXPECT_THROW(io::read_dov_line(both_in, "both.csv"), InputError);
+  std::string partial = out;
+  partial.replace(partial.find("ins_roll_deg"), 12, "ins_rol_deg");
+  std::istringstream partial_in(partial);
+  EXPECT_THROW(io::read_dov_line(partial_in, "partial.csv"), InputError);
   std::filesystem::remove_all(dir);
 }
 

@@ -193,7 +193,9 @@ TEST(DovProcess, StationarySegmentAndWholeStationaryLine) {
   const Result r = process(in);
   EXPECT_TRUE(all_finite(r));
   bool noted = false;
-  for (const std::string& n : r.notes) noted |= n.find("stationary") != std::string::npos;
+  for (const std::string& n : r.notes)
+    noted |= n.find("stationary") != std::string::npos &&
+             n.find("η is not observable") != std::string::npos;  // a trial finding
   EXPECT_TRUE(noted);
   // while stopped, δη̂, δξ̂ of the smoother are constant (δ is a random constant there)
   const double d0 = r.epochs[120].smoothed.xi_rad - r.epochs[120].model_xi_rad;
@@ -295,7 +297,9 @@ TEST(DovProcess, ReportsProgress) {
   CountingProgress p;
   process(in, &p);
   EXPECT_GE(p.calls, 4);
-  EXPECT_EQ(p.last, 2 * in.samples.size());
+  // three passes of the streaming workflow (dov/streaming.hpp): filter, smoother, the epochs
+  // handed out in time order
+  EXPECT_EQ(p.last, 3 * in.samples.size());
   EXPECT_TRUE(p.finished);
 }
 

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 exe=${1:-../../build/meridian}
 c=corpus
-rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv,fuzz_dov_line,fuzz_nmea,fuzz_nav_csv}
+rm -rf "$c" && mkdir -p "$c"/{fuzz_gyro_reduce,fuzz_gyro_campaign,fuzz_icgem,fuzz_egm,fuzz_grid_gtx,fuzz_grid_pgm,fuzz_points_csv,fuzz_dov_line,fuzz_dov_binary,fuzz_nmea,fuzz_nav_csv}
 tmp=$(mktemp -d) && trap 'rm -rf "$tmp"' EXIT
 for f in tracking nontracking-noisy spec-scenario-2 transit-factor; do cp ../../examples/$f.yaml $c/fuzz_gyro_reduce/; done
 cp ../../examples/campaign.yaml $c/fuzz_gyro_campaign/
@@ -61,6 +61,9 @@ drop = {hdr.index("model_eta_arcsec"), hdr.index("model_xi_arcsec")}
 out = [r if r.startswith("#") else ",".join(f for i, f in enumerate(r.split(",")) if i not in drop) for r in rows]
 open(f"{c}/fuzz_dov_line/no-model-columns.csv", "w").write("\n".join(out) + "\n")
 PY
+# The same 5 s as binary lines (docs/file-formats.md): with model and truth, and without either.
+"$exe" dov simulate --hours 0.0014 --rate-hz 1 --seed 1 --binary --out $c/fuzz_dov_binary/line-5s.bin > /dev/null
+"$exe" dov convert $c/fuzz_dov_line/no-model-columns.csv $c/fuzz_dov_binary/no-model.bin 2> /dev/null
 # NMEA 0183 logs written here (not copies of ../shared/data): the quirks of real loggers —
 # logger stamps, lower-case checksums, proprietary and undecoded types, empty fields, the 1.x
 # GLL without checksum, a comment, CR LF, a day change, no final newline.

@@ -4,6 +4,7 @@
 /// disk, then rename over the target. An interrupted run never leaves a
 /// half-written result; on failure the target is untouched.
 
+#include <cstdint>
 #include <filesystem>
 #include <string_view>
 
@@ -24,12 +25,17 @@ class AtomicFileWriter {
   AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
 
   void write(std::string_view chunk);
+  /// Overwrite bytes already written, at `offset` from the start of the file (a header whose
+  /// count is known only at the end). Throws IoError when offset + size is beyond what was
+  /// written, or the write fails.
+  void write_at(std::uint64_t offset, std::string_view bytes);
   void commit();
 
  private:
   std::filesystem::path path_;
   std::string tmp_;
   int fd_ = -1;
+  std::uint64_t written_ = 0;  // bytes written by write()
 };
 
 }  // namespace meridian

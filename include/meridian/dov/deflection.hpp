@@ -31,8 +31,9 @@
 /// the model, filtered and smoothed deflections and the mean NEES (8 states) when the full true
 /// state is given.
 ///
-/// Memory: the Input and the per-epoch Result are held in memory (≈ 200 bytes per epoch each);
-/// only the smoother's records spill. A streaming form for very long lines is not built yet.
+/// Memory: process(const Input&) holds the Input and the per-epoch Result (≈ 200 bytes per
+/// epoch each); it runs the streaming form, process_stream (streaming.hpp), over them, which
+/// holds neither: use that for very long lines.
 ///
 /// Errors: InputError with field "samples[k].<member>" (time_s, lat_rad, lon_rad, height_m,
 /// speed_m_s, model_eta_rad, model_xi_rad, lgu_body_to_nav, ins_body_to_nav) or
@@ -118,8 +119,16 @@ struct DeflectionEstimate {
   double sigma_eps_u_rad_s = 0.0;
 };
 
+/// η and ξ of one statistic (rad).
+struct EtaXi {
+  double eta_rad = 0.0;
+  double xi_rad = 0.0;
+};
+
 struct EpochResult {
   double time_s = 0.0;
+  double lat_rad = 0.0;        ///< the sample's geodetic latitude
+  double lon_rad = 0.0;        ///< the sample's longitude, east positive
   double model_eta_rad = 0.0;  ///< η_G
   double model_xi_rad = 0.0;   ///< ξ_G
   AttitudeDifference observed;  ///< ΔΦ of the sample
@@ -133,12 +142,7 @@ struct EpochResult {
   bool accepted = true;               ///< false: rejected by the gate (no update)
   std::optional<double> nees_filtered;  ///< with a true state
   std::optional<double> nees_smoothed;
-};
-
-/// η and ξ of one statistic (rad).
-struct EtaXi {
-  double eta_rad = 0.0;
-  double xi_rad = 0.0;
+  std::optional<EtaXi> truth;  ///< the true η, ξ when Input::truth is given (simulations)
 };
 
 struct Summary {

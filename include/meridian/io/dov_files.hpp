@@ -13,22 +13,30 @@
 ///   speed_m_s                  speed over ground (m/s)
 ///   lgu_11 … lgu_33            C_b^n of LGU/GNSS, element (row, column), 1-based, E-N-U rows
 ///   ins_11 … ins_33            C_b^{n′} of INS/GNSS, likewise
+///   or, for either attitude instead of its matrix (never both):
+///   lgu_heading_deg, lgu_pitch_deg, lgu_roll_deg   (and ins_…) Euler angles, DMS or decimal
+///                              degrees, by the convention of dov/euler.hpp: ENU, body
+///                              right-forward-up, C_b^n = R_z(−ψ)·R_x(θ)·R_y(φ)
 ///   model_eta_arcsec, model_xi_arcsec   η_G, ξ_G of the global model (″)
 ///   truth_eta_arcsec, truth_xi_arcsec   optional (simulations): the true η, ξ (″), both or none
 ///
-/// Frames and signs: attitude_difference.hpp and geodesy/frames.hpp. Euler angles and the
-/// binary format are not read yet. The whole line is read into memory (about 300 bytes per
+/// Frames and signs: attitude_difference.hpp and geodesy/frames.hpp. The compact binary format
+/// is dov_binary.hpp (read_dov_line_file tells them by content); it holds matrices only. The whole line is read into memory (about 300 bytes per
 /// sample). Errors: ParseError/InputError with the source, the line and the column
 /// ("line.csv:17: lgu_23: \"x\" is not a number"), InputError naming the header line for a
 /// missing column, IoError when the file cannot be opened.
 
+#include <cstdint>
 #include <istream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "meridian/core/error.hpp"
 #include "meridian/core/progress.hpp"
 #include "meridian/dov/deflection.hpp"
+#include "meridian/dov/streaming.hpp"
 #include "meridian/io/document.hpp"
 
 namespace meridian::io {
@@ -43,12 +51,49 @@ struct DovLine {
   /// false when the file has no model_eta_arcsec, model_xi_arcsec columns (the model values
   /// are then NaN until a gravity model fills them: run_dov).
   bool has_model_values = true;
+  /// true: read from the binary format (dov_binary.hpp); `lines` is then empty and errors
+  /// name "sample k" instead of a file line.
+  bool binary = false;
+};
+
+/// Reads a line a chunk of samples at a time, so a long line never has to be in memory: a
+/// binary line (dov_binary.hpp) or a CSV, told apart by content (the binary magic). Move-only.
+/// Errors as the file comment (CSV) or dov_binary.hpp (binary).
+class DovLineReader {
+ public:
+  /// Opens `path` and reads its header now. IoError when it cannot be opened.
+  explicit DovLineReader(const std::string& path);
+  /// A line CSV from `in` (which must outlive the reader); `source` names it in errors.
+  DovLineReader(std::istream& in, const std::string& source);
+  ~DovLineReader();
+  DovLineReader(DovLineReader&&) noexcept;
+
+  const std::string& source() const;
+  /// The column(s) a dov::Sample member came from, for errors: "lat_rad" → "lat_deg",
+  /// "ins_body_to_nav" → "ins_11…ins_33" or "ins_heading_deg, ins_pitch_deg, ins_roll_deg";
+  /// a binary line's record field names.
+  std::string column_of(const std::string& member) const;
+  bool binary() const;
+  bool has_model_values() const;
+  bool has_truth() const;
+  /// The number of samples when the format states it up front (binary), else nullopt.
+  std::optional<std::uint64_t> count() const;
+  /// Replace the contents of `chunk` by the next up to `max` (≥ 1) samples (with their truth
+  /// and, for a CSV, file lines); false when none are left.
+  bool next(DovLine& chunk, std::size_t max);
+
+ private:
+  struct Impl;
+  void start_csv(std::istream& in, const std::string& source);
+  std::unique_ptr<Impl> impl_;
 };
 
 /// Read a line CSV from `in`; `source` names it in errors. Throws as the file comment says.
 DovLine read_dov_line(std::istream& in, const std::string& source);
-/// Read the line CSV at `path`. IoError when it cannot be opened.
+/// Read the line at `path`, binary when it starts with the binary format's magic ("MRDN-DOV"),
+/// else CSV. IoError when it cannot be opened.
 DovLine read_dov_line_file(const std::string& path);
+
 
 /// The line CSV of `input` (the columns above, truth columns when input.truth is not empty,
 /// every number with 17 significant digits so that a read gives the same doubles back).
@@ -106,5 +151,13 @@ DovConfig read_dov_config(const std::string& path);
 /// get the line file's name, the sample's line and the CSV column, errors about options and
 /// the model the configuration's file, line and key.
 dov::Result run_dov(const DovConfig& config, Progress* progress = nullptr);
+
+/// run_dov for a line of any length (dov/streaming.hpp): the line is read a block of 65 536
+/// samples at a time into the filter (binary or CSV by content), and each epoch's result goes
+/// to `sink` in time order (may be empty). Memory stays flat; errors as run_dov, a binary
+/// line's naming "line.bin: sample k: member". run_dov is this with a sink that keeps the
+/// epochs.
+dov::LineResult run_dov_stream(const DovConfig& config, const dov::EpochSink& sink,
+                               Progress* progress = nullptr);
 
 }  // namespace meridian::io

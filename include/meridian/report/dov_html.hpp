@@ -4,10 +4,11 @@
 /// deflection-of-the-vertical line. Sections (HTML ids): `summary` (the smoothed figures, the
 /// consistency check of the mean NIS against its 95 % interval, RMS errors when truth was
 /// given), `profile` (η and ξ against time: the global model's η_G, ξ_G, the filtered and the
-/// smoothed estimate with its ±σ band), `innovations` (ν_E, ν_N in a ±2√S band), `notes`. Angles in
-/// arcseconds, signs of η, ξ as geodesy/frames.hpp; at most 2000 epochs drawn per plot (every
-/// k-th, said in the caption). The true η, ξ are not drawn (the Result does not carry them).
+/// smoothed estimate with its ±σ band, and the true η, ξ when the line carried them),
+/// `innovations` (ν_E, ν_N in a ±2√S band), `notes`. Angles in arcseconds, signs of η, ξ as
+/// geodesy/frames.hpp; at most 2000 epochs drawn per plot (every k-th, said in the caption).
 
+#include <cstddef>
 #include <string>
 
 #include "meridian/dov/deflection.hpp"
@@ -17,9 +18,10 @@ namespace meridian::report {
 
 /// The report of `result`, computed with `options`; `input` names the configuration,
 /// `line_file` the line and `model_source` the gravity model that gave η_G, ξ_G (empty: the
-/// line's model columns) in the header.
+/// line's model columns) in the header. `epochs_per_result` > 1 says result.epochs is already
+/// thinned to one epoch in that many (a streamed line; the captions count both thinnings).
 Document dov_document(const dov::Result& result, const dov::Options& options,
                       const std::string& input, const std::string& line_file = {},
-                      const std::string& model_source = {});
+                      const std::string& model_source = {}, std::size_t epochs_per_result = 1);
 
 }  // namespace meridian::report

@@ -22,14 +22,24 @@ namespace meridian::report {
 /// The JSON summary of `result`, computed with `options`.
 nlohmann::json dov_summary_to_json(const dov::Result& result, const dov::Options& options);
 
-/// A few lines of text: RMS and σ figures, NIS, ε̂_U, notes and warnings.
-std::string dov_summary_text(const dov::Result& result);
+/// A few lines of text: the model settings of `options` (σ_model, ζ, λ, r, discretisation,
+/// extraction), RMS and σ figures, NIS, ε̂_U, notes and warnings.
+std::string dov_summary_text(const dov::Result& result, const dov::Options& options);
 
-/// The profile CSV, one line per epoch: time_s, model_eta_arcsec, model_xi_arcsec,
+/// The profile CSV is dov_profile_csv_header, then one append_dov_profile_line per epoch in
+/// time order (`dov process` streams them into its output file): time_s, lat_deg, lon_deg
+/// (the sample's geodetic position, 10 decimals of a degree ≈ 0.01 mm), model_eta_arcsec, model_xi_arcsec,
 /// filtered_eta_arcsec, filtered_xi_arcsec, filtered_sigma_eta_arcsec, filtered_sigma_xi_arcsec,
 /// smoothed_eta_arcsec, smoothed_xi_arcsec, smoothed_sigma_eta_arcsec, smoothed_sigma_xi_arcsec,
 /// filtered_eps_u_deg_per_h, innovation_east_arcsec, innovation_north_arcsec, nis, accepted
-/// (1 or 0); 10 significant digits.
-std::string dov_profile_csv(const dov::Result& result);
+/// (1 or 0), and — when the line carried truth — truth_eta_arcsec, truth_xi_arcsec;
+/// 10 significant digits.
+///
+/// The profile's header line (with the two truth columns when `truth`), ending in a newline.
+std::string dov_profile_csv_header(bool truth);
+
+/// Append the profile line of one epoch (its truth columns when e.truth is set), with newline.
+/// Each number with 10 significant digits, positions with 10 decimals.
+void append_dov_profile_line(std::string& out, const dov::EpochResult& e);
 
 }  // namespace meridian::report

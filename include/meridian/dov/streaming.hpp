@@ -1,0 +1,63 @@
+#pragma once
+/// \file streaming.hpp
+/// The deflection workflow over a line of any length with flat memory: samples come from a
+/// SampleSource a chunk at a time into the filter's forward pass, and every epoch's result
+/// goes to an EpochSink in time order after the smoother. This is the one implementation of
+/// the workflow; dov::process(const Input&) (deflection.hpp) runs it over vectors.
+///
+/// Three passes, each streaming (docs/deflection.md, "Memory"):
+///  1. forward: checks, predict, update (deflection.hpp, steps 1–5) per sample; the filter's
+///     records go to filter::SmootherStorage and the epoch's own outputs (time, position, model
+///     values, ΔΦ, filtered estimate, innovations, truth) to a record store beside it, both
+///     spilling to anonymous temporary files beyond Options::storage.memory_limit_bytes;
+///  2. backward: the RTS smoother (filter/rts_smoother.hpp), last epoch first, joined with
+///     the stored outputs of each epoch; the completed epoch results go to a third store;
+///  3. the completed results, read back in time order, to the sink (skipped without a sink).
+/// Memory is O(chunk + buffers), independent of the line length — except a stationary start:
+/// the initial σ of x_E, x_N needs the first moving speed (deflection.hpp), so samples are held
+/// until the carrier first moves (≈ 200 bytes each) or the line ends. Disk: 712 + 2 × 304 bytes
+/// per epoch in the temporary files beyond the memory limit.
+///
+/// Errors: as dov::process (deflection.hpp); errors of the source propagate unchanged.
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meridian/core/progress.hpp"
+#include "meridian/dov/deflection.hpp"
+
+namespace meridian::dov {
+
+/// Where the samples of a line come from, in time order.
+class SampleSource {
+ public:
+  virtual ~SampleSource() = default;
+  /// Replace the contents of `samples` (and of `truth`, one per sample when has_truth(), else
+  /// left empty) by the next up to `max` (≥ 1) samples; return their number, 0 at the end.
+  virtual std::size_t next(std::vector<Sample>& samples, std::vector<Truth>& truth,
+                           std::size_t max) = 0;
+  /// Whether the line carries truth (fixed for the whole line).
+  virtual bool has_truth() const = 0;
+  /// The number of samples if known in advance (for progress), else nullopt.
+  virtual std::optional<std::size_t> size_hint() const { return std::nullopt; }
+};
+
+/// Receives each epoch's result, in time order (epoch 0 first).
+using EpochSink = std::function<void(const EpochResult&)>;
+
+/// What a streamed line gives besides its epochs.
+struct LineResult {
+  Summary summary;
+  std::vector<std::string> notes;     ///< defaults used, stationary epochs
+  std::vector<std::string> warnings;  ///< e.g. NIS outside its interval
+};
+
+/// Filter and smooth the line of `source` with `options` (validated first), handing each
+/// epoch's result to `sink` (may be empty: only the summary). Throws as dov::process.
+LineResult process_stream(SampleSource& source, const Options& options, const EpochSink& sink,
+                          Progress* progress = nullptr);
+
+}  // namespace meridian::dov
