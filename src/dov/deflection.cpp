@@ -257,7 +257,7 @@ class Forward {
     y(Obs::east) = d.east_rad - s.model_xi_rad;
     y(Obs::north) = d.north_rad + s.model_eta_rad;
     const filter::Innovation<Obs::size> in = kf_.update(y, H_, R_);
-    storage_.append(kf_.predicted(), kf_.transition(), kf_.estimate());
+    storage_.append(kf_);  // compact records: P⁻ recomputed when read back
 
     EpochResult e;
     e.time_s = s.time_s;

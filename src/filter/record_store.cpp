@@ -77,8 +77,9 @@ void read_all(int fd, void* data, std::size_t bytes, off_t offset, std::uint64_t
 }  // namespace
 
 RecordStore::RecordStore(const char* magic, std::uint32_t state_size, std::size_t record_doubles,
-                         StorageOptions options)
+                         StorageOptions options, std::uint32_t version)
     : magic_(magic),
+      version_(version),
       state_size_(state_size),
       record_doubles_(record_doubles),
       options_(std::move(options)) {
@@ -92,6 +93,7 @@ RecordStore::~RecordStore() { close(); }
 
 RecordStore::RecordStore(RecordStore&& other) noexcept
     : magic_(other.magic_),
+      version_(other.version_),
       state_size_(other.state_size_),
       record_doubles_(other.record_doubles_),
       options_(std::move(other.options_)),
@@ -115,6 +117,7 @@ RecordStore& RecordStore::operator=(RecordStore&& other) noexcept {
   if (this != &other) {
     close();
     magic_ = other.magic_;
+    version_ = other.version_;
     state_size_ = other.state_size_;
     record_doubles_ = other.record_doubles_;
     options_ = std::move(other.options_);
@@ -208,7 +211,7 @@ void RecordStore::spill(std::uint64_t epoch) {
 
   Header h{};
   std::memcpy(h.magic, magic_, sizeof h.magic);
-  h.version = kSpillVersion;
+  h.version = version_;
   h.state_size = state_size_;
   h.record_count = 0;  // written by flush()
   h.record_bytes = static_cast<std::uint32_t>(record_doubles_ * sizeof(double));
@@ -247,7 +250,7 @@ RecordStore::ReverseReader RecordStore::read_reverse() {
     struct stat st {};
     if (::fstat(fd_, &st) != 0) throw_io(count_, "cannot inspect the smoother's spill file", errno);
     const std::size_t record_bytes = record_doubles_ * sizeof(double);
-    if (std::memcmp(h.magic, magic_, sizeof h.magic) != 0 || h.version != kSpillVersion ||
+    if (std::memcmp(h.magic, magic_, sizeof h.magic) != 0 || h.version != version_ ||
         h.state_size != state_size_ || h.record_count != count_ || h.record_bytes != record_bytes ||
         h.byte_order_mark != kSpillByteOrderMark ||
         static_cast<std::uint64_t>(st.st_size) != kSpillHeaderBytes + count_ * record_bytes)

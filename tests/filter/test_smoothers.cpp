@@ -28,10 +28,12 @@
 namespace {
 
 namespace fs = std::filesystem;
+using meridian::InputError;
 using meridian::IoError;
 using meridian::NumericalError;
 using meridian::filter::BackwardInformationFilter;
 using meridian::filter::DiscreteModel;
+using meridian::filter::EpochRecord;
 using meridian::filter::Estimate;
 using meridian::filter::KalmanFilter;
 using meridian::filter::Matrix;
@@ -75,15 +77,19 @@ void simulate(Line<N, M>& line, Index epochs, const std::vector<double>& dts,
   }
 }
 
-// Forward filter over the line into `storage`.
+// Forward filter over the line into `storage`: full records (P⁻ stored), or compact ones
+// (append(filter): P⁻ recomputed when read back).
 template <int N, int M>
-void forward(const Line<N, M>& line, SmootherStorage<N>& storage) {
+void forward(const Line<N, M>& line, SmootherStorage<N>& storage, bool compact = false) {
   KalmanFilter<N> kf(line.initial);
   for (Index k = 0; k < line.size(); ++k) {
     const auto i = static_cast<std::size_t>(k);
     if (k > 0) kf.predict(line.steps[i]);
     kf.update(line.z[i], line.H, line.R);
-    storage.append(kf.predicted(), kf.transition(), kf.estimate());
+    if (compact)
+      storage.append(kf);
+    else
+      storage.append(kf.predicted(), kf.transition(), kf.estimate());
   }
 }
 
@@ -303,6 +309,193 @@ TEST(SmootherStorage, SpillPathIsBitIdenticalToMemory) {
   EXPECT_TRUE(bit_identical(two_filter(line, memory), two_filter(line, spilled)));
   // A second pass over the same storage reads the same records.
   EXPECT_TRUE(bit_identical(a, rts_smooth(spilled)));
+}
+
+TEST(SmootherStorage, CompactRecordsGiveTheFullRecordsResultsBitForBit) {
+  const ScratchDir dir;
+  const auto line = dov_line(2000, 27);
+  constexpr int n = DovState::size;
+  const std::size_t compact_bytes = SmootherStorage<n>::compact_record_doubles(n) * sizeof(double);
+  EXPECT_EQ(compact_bytes, 424u);  // index of Φ, x̂⁻, x̂, upper P
+  constexpr std::size_t never = std::numeric_limits<std::size_t>::max();
+
+  SmootherStorage<n> full(n, {never, dir.path, 1 << 20});
+  SmootherStorage<n> memory(n, {never, dir.path, 1 << 20});
+  SmootherStorage<n> spilled(n, {0, dir.path, 7 * compact_bytes});
+  SmootherStorage<n> midway(n, {500 * compact_bytes, dir.path, 64 << 10});
+  forward(line, full);
+  forward(line, memory, true);
+  forward(line, spilled, true);
+  forward(line, midway, true);
+  EXPECT_FALSE(full.compact());
+  EXPECT_TRUE(memory.compact());
+  EXPECT_FALSE(memory.spilled());
+  EXPECT_TRUE(spilled.spilled());
+  EXPECT_TRUE(midway.spilled());
+  // Φ and Q_d constant: the identity and zero of epoch 0, then the line's (Φ, Q_d), 2·64 doubles.
+  EXPECT_EQ(spilled.transitions(), 2);
+  EXPECT_EQ(spilled.file_bytes(), 32u + 2000u * compact_bytes + 32u + 2u * 128u * 8u);
+
+  const auto a = rts_smooth(full);
+  EXPECT_TRUE(bit_identical(a, rts_smooth(memory)));
+  EXPECT_TRUE(bit_identical(a, rts_smooth(spilled)));
+  EXPECT_TRUE(bit_identical(a, rts_smooth(midway)));
+  EXPECT_TRUE(bit_identical(a, rts_smooth(spilled)));  // a second pass
+  EXPECT_TRUE(bit_identical(two_filter(line, full), two_filter(line, spilled)));
+  // The reader gives back the forward pass's P⁻ bit for bit, not only the smoothed results.
+  {
+    auto rf = full.read_reverse();
+    auto rc = spilled.read_reverse();
+    EpochRecord<n> x, y;
+    Index epochs = 0;
+    while (rf.next(x)) {
+      ASSERT_TRUE(rc.next(y));
+      ASSERT_EQ(rf.index(), rc.index());
+      EXPECT_EQ(std::memcmp(x.predicted.P.data(), y.predicted.P.data(), sizeof x.predicted.P), 0)
+          << rf.index();
+      EXPECT_EQ(std::memcmp(x.predicted.x.data(), y.predicted.x.data(), sizeof x.predicted.x), 0);
+      EXPECT_EQ(std::memcmp(x.phi.data(), y.phi.data(), sizeof x.phi), 0);
+      ++epochs;
+    }
+    EXPECT_FALSE(rc.next(y));
+    EXPECT_EQ(epochs, 2000);
+  }
+
+  // Φ and Q_d changing at every epoch (an extended filter; a re-discretised model): one
+  // transition per epoch, still bit-identical, in memory and spilled.
+  SmootherStorage<n> full_varying(n, {never, dir.path, 1 << 20});
+  SmootherStorage<n> spilled_varying(n, {0, dir.path, 5 * compact_bytes});
+  for (auto* s : {&full_varying, &spilled_varying}) {
+    KalmanFilter<n> kf(line.initial);
+    for (Index k = 0; k < 300; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      const double f = 1.0 + 1e-9 * static_cast<double>(k);
+      if (k > 0) kf.predict(f * line.steps[i].phi, (2.0 - f) * line.steps[i].q);
+      kf.update(line.z[i], line.H, line.R);
+      if (s == &full_varying)
+        s->append(kf.predicted(), kf.transition(), kf.estimate());
+      else
+        s->append(kf);
+    }
+  }
+  EXPECT_EQ(spilled_varying.transitions(), 300);
+  EXPECT_TRUE(bit_identical(rts_smooth(full_varying), rts_smooth(spilled_varying)));
+
+  // Dynamic sizes: the same operations as the dynamic filter's predict.
+  const auto cv = cv_line(30, 28);
+  Line<Eigen::Dynamic, Eigen::Dynamic> dyn;
+  dyn.initial = {cv.initial.x, cv.initial.P};
+  dyn.H = cv.H;
+  dyn.R = cv.R;
+  for (std::size_t i = 0; i < cv.z.size(); ++i) {
+    dyn.steps.push_back({cv.steps[i].phi, cv.steps[i].q});
+    dyn.z.push_back(cv.z[i]);
+  }
+  SmootherStorage<Eigen::Dynamic> dyn_full(CvState::size);
+  SmootherStorage<Eigen::Dynamic> dyn_compact(CvState::size, {0, dir.path, 1 << 20});
+  forward(dyn, dyn_full);
+  forward(dyn, dyn_compact, true);
+  const auto df = rts_smooth(dyn_full);
+  const auto dc = rts_smooth(dyn_compact);
+  ASSERT_EQ(df.size(), dc.size());
+  for (std::size_t i = 0; i < df.size(); ++i) {
+    EXPECT_TRUE(df[i].x == dc[i].x) << i;
+    EXPECT_TRUE(df[i].P == dc[i].P) << i;
+  }
+  EXPECT_TRUE(dir.empty());
+}
+
+TEST(SmootherStorage, CompactRecordsNeedEveryEpochOfOneLayout) {
+  const auto line = dov_line(4, 29);
+  constexpr int n = DovState::size;
+  KalmanFilter<n> kf(line.initial);
+  {  // an epoch skipped
+    SmootherStorage<n> storage;
+    storage.append(kf);
+    kf.predict(line.steps[1]);
+    kf.predict(line.steps[2]);
+    const auto c = catch_error<InputError>([&] { storage.append(kf); });
+    EXPECT_TRUE(c.thrown);
+    EXPECT_EQ(c.field, "epoch 1");
+    EXPECT_THAT(c.what, ::testing::HasSubstr("the filter is at epoch 2"));
+  }
+  KalmanFilter<n> kf0(line.initial);
+  {  // full, then compact
+    SmootherStorage<n> storage;
+    storage.append(kf0.predicted(), kf0.transition(), kf0.estimate());
+    KalmanFilter<n> kf1 = kf0;
+    kf1.predict(line.steps[1]);
+    const auto c = catch_error<InputError>([&] { storage.append(kf1); });
+    EXPECT_TRUE(c.thrown);
+    EXPECT_THAT(c.what, ::testing::HasSubstr("holds full records"));
+  }
+  {  // compact, then full
+    SmootherStorage<n> storage;
+    storage.append(kf0);
+    const auto c = catch_error<InputError>(
+        [&] { storage.append(kf0.predicted(), kf0.transition(), kf0.estimate()); });
+    EXPECT_TRUE(c.thrown);
+    EXPECT_EQ(c.field, "epoch 1");
+    EXPECT_THAT(c.what, ::testing::HasSubstr("holds compact records"));
+  }
+}
+
+TEST(SmootherStorage, CompactSpillFileHasTheDocumentedFormat) {
+  const ScratchDir dir;
+  const auto line = dov_line(10, 30);
+  constexpr int n = DovState::size;
+  std::vector<Estimate<n>> predicted;
+  std::vector<Estimate<n>> filtered;
+  SmootherStorage<n> storage(n, StorageOptions{0, dir.path, 1 << 20, false});
+  KalmanFilter<n> kf(line.initial);
+  for (Index k = 0; k < line.size(); ++k) {
+    if (k > 0) kf.predict(line.steps[static_cast<std::size_t>(k)]);
+    kf.update(line.z[static_cast<std::size_t>(k)], line.H, line.R);
+    storage.append(kf);
+    predicted.push_back(kf.predicted());
+    filtered.push_back(kf.estimate());
+  }
+  storage.read_reverse();  // flushes and writes the counts
+  std::ifstream in(storage.spill_path(), std::ios::binary);
+  char magic[8];
+  std::uint32_t version, state_size, record_bytes;
+  std::uint64_t count;
+  in.read(magic, 8);
+  in.read(reinterpret_cast<char*>(&version), 4);
+  in.read(reinterpret_cast<char*>(&state_size), 4);
+  in.read(reinterpret_cast<char*>(&count), 8);
+  in.read(reinterpret_cast<char*>(&record_bytes), 4);
+  EXPECT_EQ(std::string(magic, 8), "MRDN-RTS");
+  EXPECT_EQ(version, 2u);
+  EXPECT_EQ(state_size, 8u);
+  EXPECT_EQ(count, 10u);
+  EXPECT_EQ(record_bytes, 8u * (1 + 2 * 8 + 36));
+  // Record 3: index of (Φ_3, Q_3), x̂⁻_3, x̂_3, P_3 upper triangle column by column.
+  std::vector<double> rec(record_bytes / 8);
+  in.seekg(32 + 3 * record_bytes);
+  in.read(reinterpret_cast<char*>(rec.data()), record_bytes);
+  EXPECT_EQ(rec[0], 1.0);
+  EXPECT_EQ(rec[1 + 2], predicted[3].x(2));
+  EXPECT_EQ(rec[9 + 2], filtered[3].x(2));
+  EXPECT_EQ(rec[17 + 0], filtered[3].P(0, 0));
+  EXPECT_EQ(rec[17 + 3], filtered[3].P(0, 2));
+  // Transition 1: Φ then Q_d as the filter used it (½(Q + Qᵀ)), column-major.
+  std::ifstream tin(storage.transition_path(), std::ios::binary);
+  tin.seekg(8);
+  tin.read(reinterpret_cast<char*>(&version), 4);
+  tin.seekg(16);
+  tin.read(reinterpret_cast<char*>(&count), 8);
+  tin.read(reinterpret_cast<char*>(&record_bytes), 4);
+  EXPECT_EQ(version, 2u);
+  EXPECT_EQ(count, 2u);
+  EXPECT_EQ(record_bytes, 8u * 128u);
+  std::vector<double> t(128);
+  tin.seekg(32 + 1024);
+  tin.read(reinterpret_cast<char*>(t.data()), 1024);
+  const auto& step = line.steps[3];
+  EXPECT_EQ(t[1], step.phi(1, 0));
+  EXPECT_EQ(t[64 + 9], 0.5 * (step.q(1, 1) + step.q(1, 1)));
+  EXPECT_EQ(t[64 + 8], 0.5 * (step.q(0, 1) + step.q(1, 0)));
 }
 
 TEST(SmootherStorage, SpillFileHasTheDocumentedFormatAndIsRemoved) {

@@ -109,6 +109,43 @@ class KalmanFilter {
   const Estimate<N>& predicted() const { return predicted_; }
   /// Φ that led to this epoch (identity at epoch 0).
   const Matrix<N, N>& transition() const { return phi_; }
+  /// Q_d of the predict that led to this epoch as the filter used it (zero at epoch 0): for
+  /// fixed N ½(Q_d + Q_dᵀ), for dynamic sizes Q_d as given. With transition() and the filtered
+  /// covariance P of the epoch before, predicted_covariance() reproduces predicted().P bit for
+  /// bit (SmootherStorage's compact records rely on it).
+  const Matrix<N, N>& process_noise() const {
+    if constexpr (N != Eigen::Dynamic)
+      return q_sym_;
+    else
+      return q_last_;
+  }
+
+  /// The exact nonzeros of a Φ, as the fixed-size kernels skip them (small_matrix.hpp); an
+  /// empty stand-in for dynamic sizes.
+  using TransitionPattern = std::conditional_t<N == Eigen::Dynamic, detail::NoPattern,
+                                               detail::RowPattern<N == Eigen::Dynamic ? 1 : N,
+                                                                  N == Eigen::Dynamic ? 1 : N>>;
+  static TransitionPattern pattern_of(const Matrix<N, N>& phi) {
+    TransitionPattern pattern{};
+    if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
+    return pattern;
+  }
+  /// out = Φ·P·Φᵀ + Q exactly as predict() computes P⁻ (the same operations in the same order):
+  /// P the filtered covariance of the epoch before (exactly symmetric), q as process_noise()
+  /// returns it, `pattern` = pattern_of(phi). No checks; out must not alias an operand.
+  static void predicted_covariance(const Matrix<N, N>& phi, const TransitionPattern& pattern,
+                                   const Matrix<N, N>& P, const Matrix<N, N>& q,
+                                   Matrix<N, N>& out) {
+    if constexpr (N != Eigen::Dynamic) {
+      detail::predict_covariance(phi, P, q, pattern, out);
+    } else {
+      Matrix<N, N> phi_p;
+      phi_p.noalias() = phi * P;
+      out = q;
+      out.noalias() += phi_p * phi.transpose();
+      out = (0.5 * (out + out.transpose())).eval();
+    }
+  }
   /// Current epoch, 0-based.
   Eigen::Index epoch() const { return epoch_; }
   /// Number of states.
@@ -141,8 +178,7 @@ class KalmanFilter {
   Innovation<M> apply_update(const Vector<M>& nu, const Matrix<M, N>& H, const Matrix<M, M>& R);
 
   static constexpr int kCache = N == Eigen::Dynamic ? 0 : N;  // size of the fixed-N caches
-  using PhiPattern = std::conditional_t<N == Eigen::Dynamic, detail::NoPattern,
-                                        detail::RowPattern<kCache, kCache>>;
+  using PhiPattern = TransitionPattern;
 
   Estimate<N> estimate_;
   Estimate<N> predicted_;
@@ -156,6 +192,8 @@ class KalmanFilter {
   Matrix<kCache, kCache> q_sym_ = decltype(q_sym_)::Zero();
   // Fixed N: the exact nonzeros of phi_ (small_matrix.hpp), recomputed only when Φ changes.
   PhiPattern phi_pattern_{};
+  // Dynamic sizes: Q_d of the last predict (process_noise()).
+  std::conditional_t<N == Eigen::Dynamic, Matrix<N, N>, detail::NoPattern> q_last_{};
 };
 
 namespace detail {
@@ -191,7 +229,10 @@ KalmanFilter<N>::KalmanFilter(Estimate<N> initial, InnovationGate gate)
   estimate_.P = (0.5 * (estimate_.P + estimate_.P.transpose())).eval();
   predicted_ = estimate_;
   phi_ = Matrix<N, N>::Identity(n, n);
-  if constexpr (N != Eigen::Dynamic) phi_pattern_.assign(phi_);
+  if constexpr (N != Eigen::Dynamic)
+    phi_pattern_.assign(phi_);
+  else
+    q_last_ = Matrix<N, N>::Zero(n, n);
 }
 
 template <int N>
@@ -242,7 +283,7 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
     if (new_phi) pattern.assign(phi);
     const PhiPattern& pat = new_phi ? pattern : phi_pattern_;
     Matrix<N, N> p_new;
-    detail::predict_covariance(phi, estimate_.P, q_sym_, pat, p_new);
+    predicted_covariance(phi, pat, estimate_.P, q_sym_, p_new);
     detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
     p = p_new;
     if (new_phi) {
@@ -250,18 +291,18 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
       phi_pattern_ = pattern;
     }
   } else {
-    Matrix<N, N> phi_p;
-    phi_p.noalias() = phi * estimate_.P;
-    Matrix<N, N> p_new = q;
-    p_new.noalias() += phi_p * phi.transpose();
-    p_new = (0.5 * (p_new + p_new.transpose())).eval();
+    Matrix<N, N> p_new;
+    predicted_covariance(phi, detail::NoPattern{}, estimate_.P, q, p_new);
     detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
     p = std::move(p_new);
   }
   predicted_.x = x;
   estimate_.x = x;
   estimate_.P = p;
-  if constexpr (N == Eigen::Dynamic) phi_ = phi;
+  if constexpr (N == Eigen::Dynamic) {
+    phi_ = phi;
+    q_last_ = q;
+  }
   epoch_ = next;
 }
 

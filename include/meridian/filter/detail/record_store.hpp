@@ -40,7 +40,8 @@ struct StorageOptions {
 /// epoch records' file and of the transitions' file.
 inline constexpr char kSpillMagic[8] = {'M', 'R', 'D', 'N', '-', 'R', 'T', 'S'};
 inline constexpr char kTransitionMagic[8] = {'M', 'R', 'D', 'N', '-', 'P', 'H', 'I'};
-inline constexpr std::uint32_t kSpillVersion = 1;
+inline constexpr std::uint32_t kSpillVersion = 1;         ///< full records (P⁻ stored)
+inline constexpr std::uint32_t kSpillVersionCompact = 2;  ///< compact records (P⁻ recomputed)
 inline constexpr std::size_t kSpillHeaderBytes = 32;
 inline constexpr std::uint32_t kSpillByteOrderMark = 0x01020304u;
 
@@ -49,9 +50,9 @@ namespace detail {
 class RecordStore {
  public:
   /// Records of `record_doubles` doubles for a state of `state_size` (written to the header,
-  /// after the 8 characters of `magic`, which must outlive the store).
+  /// after the 8 characters of `magic`, which must outlive the store, and `version`).
   RecordStore(const char* magic, std::uint32_t state_size, std::size_t record_doubles,
-              StorageOptions options);
+              StorageOptions options, std::uint32_t version = kSpillVersion);
   ~RecordStore();
   RecordStore(const RecordStore&) = delete;
   RecordStore& operator=(const RecordStore&) = delete;
@@ -108,6 +109,7 @@ class RecordStore {
   void close() noexcept;
 
   const char* magic_;
+  std::uint32_t version_;
   std::uint32_t state_size_;
   std::size_t record_doubles_;
   StorageOptions options_;
