@@ -1,7 +1,6 @@
 #include "meridian/filter/detail/record_store.hpp"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -18,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "meridian/core/scratch_array.hpp"
 #include "meridian/filter/detail/checks.hpp"
 
 namespace meridian::filter::detail {
@@ -164,9 +164,7 @@ void RecordStore::add_chunk() {
   if (huge) bytes = (bytes + kChunkBytes - 1) / kChunkBytes * kChunkBytes;
   void* p = huge ? std::aligned_alloc(kChunkBytes, bytes) : std::malloc(bytes);
   if (p == nullptr) throw std::bad_alloc();
-#ifdef MADV_HUGEPAGE
-  if (huge) ::madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure is harmless
-#endif
+  if (huge) advise_huge_pages(p, bytes);  // advice only: failure is harmless
   chunks_.emplace_back(static_cast<double*>(p));
   chunk_fill_ = 0;
 }

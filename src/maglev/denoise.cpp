@@ -112,15 +112,17 @@ double sure_threshold(std::span<const double> x) {
   return best_t;
 }
 
-DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options) {
-  const Wavelet wavelet(options.wavelet_order);
-  WaveletCoefficients c = wavedec(x, wavelet, options.mode, options.level);
-  const int p = c.level();
-  DenoiseResult r;
-  r.noise_sigma = median_abs(c.coefficients[static_cast<std::size_t>(p)]) / 0.6745;
-  const double universal = r.noise_sigma * std::sqrt(2.0 * std::log(static_cast<double>(x.size())));
+namespace {
+
+// The thresholds of denoise() applied to the coefficients in place (wavelet.hpp's order), with
+// σ, λ and the counts recorded in r; n is the series' length.
+void threshold(const CoefficientViews& c, std::size_t n, const DenoiseOptions& options,
+               DenoiseResult& r) {
+  const int p = static_cast<int>(c.size()) - 1;
+  r.noise_sigma = median_abs(c[static_cast<std::size_t>(p)]) / 0.6745;
+  const double universal = r.noise_sigma * std::sqrt(2.0 * std::log(static_cast<double>(n)));
   for (int j = 1; j <= p; ++j) {
-    auto& d = c.coefficients[static_cast<std::size_t>(p - j + 1)];
+    const std::span<double> d = c[static_cast<std::size_t>(p - j + 1)];
     double lambda = universal;
     if (options.rule == ThresholdRule::Sure) {
       if (r.noise_sigma > 0.0) {
@@ -160,8 +162,16 @@ DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options) 
     r.zeroed.push_back(zeroed);
     r.coefficients.push_back(d.size());
   }
-  r.values = waverec(c, wavelet, options.mode);
-  r.values.resize(x.size());
+}
+
+}  // namespace
+
+DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options) {
+  const Wavelet wavelet(options.wavelet_order);
+  DenoiseResult r;
+  // wavedec, the thresholds in place, waverec: one scratch array for all levels.
+  r.values = edit_coefficients(x, wavelet, options.mode, options.level,
+                               [&](const CoefficientViews& c) { threshold(c, x.size(), options, r); });
   return r;
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "meridian/core/scratch_array.hpp"
 
 namespace meridian::maglev {
 namespace {
@@ -197,14 +198,14 @@ int max_level(std::size_t n, const Wavelet& wavelet) {
   return level;
 }
 
-static DwtLevel dwt_unchecked(std::span<const double> x, const Wavelet& wavelet,
-                              ExtensionMode mode) {
+namespace {
+
+// One forward level of x into a and d (dwt_coefficient_length values each).
+void dwt_into(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode,
+              double* approximation, double* detail) {
   const std::size_t n = x.size();
   const std::size_t F = wavelet.filter_length();
   const std::size_t m = dwt_coefficient_length(n, F, mode);
-  DwtLevel out;
-  out.approximation.resize(m);
-  out.detail.resize(m);
   // cA[o] = Σ_j dec_lo[j]·x_e[i_o − j] = Σ_j' rec_lo[j']·x_e[i_o − F + 1 + j'], with
   // i_o = 2o + 1 (symmetric) or F/2 + 2o (periodization). Outputs whose taps all fall inside
   // x are computed straight from x; the few at the ends through the extension.
@@ -230,7 +231,7 @@ static DwtLevel dwt_unchecked(std::span<const double> x, const Wavelet& wavelet,
     if (o == o_lo && o_hi > o_lo) {
 #define MERIDIAN_CALL(N)                                                   \
   correlate_down_fixed<N>(x.data() + (first + 2 * o_lo - (F - 1)), rl, rh, \
-                          out.approximation.data() + o_lo, out.detail.data() + o_lo, o_hi - o_lo)
+                          approximation + o_lo, detail + o_lo, o_hi - o_lo)
       MERIDIAN_MAGLEV_DISPATCH(F, MERIDIAN_CALL)
 #undef MERIDIAN_CALL
       o = o_hi - 1;
@@ -244,38 +245,39 @@ static DwtLevel dwt_unchecked(std::span<const double> x, const Wavelet& wavelet,
       sa += rl[j] * v;
       sd += rh[j] * v;
     }
-    out.approximation[o] = sa;
-    out.detail[o] = sd;
+    approximation[o] = sa;
+    detail[o] = sd;
   }
-  return out;
 }
 
-DwtLevel dwt(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode) {
-  require_finite(x, "series");
-  return dwt_unchecked(x, wavelet, mode);
+// Length of one inverse level from m coefficients.
+std::size_t idwt_length(std::size_t m, std::size_t F, ExtensionMode mode) {
+  return mode == ExtensionMode::Symmetric ? 2 * (m - F / 2 + 1) : 2 * m;
 }
 
-std::vector<double> idwt(std::span<const double> a, std::span<const double> d,
-                         const Wavelet& wavelet, ExtensionMode mode) {
-  if (a.size() != d.size())
-    throw InputError(fmt::format("approximation ({}) and detail ({}) coefficients differ in length",
-                                 a.size(), d.size()));
-  const std::size_t m = a.size();
+void check_idwt_input(std::size_t m, const Wavelet& wavelet, ExtensionMode mode) {
+  if (mode == ExtensionMode::Symmetric) {
+    const std::size_t F2 = wavelet.filter_length() / 2;
+    if (m < F2)
+      throw InputError(fmt::format("{} coefficients are too few to reconstruct with {} ({} needed)",
+                                   m, wavelet.name(), F2));
+  } else if (m == 0) {
+    throw InputError("no coefficients to reconstruct");
+  }
+}
+
+// One inverse level of m coefficients into y (idwt_length values); check_idwt_input first.
+void idwt_into(const double* a, const double* d, std::size_t m, const Wavelet& wavelet,
+               ExtensionMode mode, double* y) {
   const std::size_t F = wavelet.filter_length();
   const double* rl = wavelet.rec_lo().data();
   const double* rh = wavelet.rec_hi().data();
   if (mode == ExtensionMode::Symmetric) {
-    const std::size_t F2 = F / 2;
-    if (m < F2)
-      throw InputError(fmt::format("{} coefficients are too few to reconstruct with {} ({} needed)",
-                                   m, wavelet.name(), F2));
-    std::vector<double> y(2 * (m - F2 + 1));
-#define MERIDIAN_CALL(N) upsample_valid_fixed<N>(a.data(), d.data(), rl, rh, y.data(), m - F2 + 1)
+#define MERIDIAN_CALL(N) upsample_valid_fixed<N>(a, d, rl, rh, y, m - F / 2 + 1)
     MERIDIAN_MAGLEV_DISPATCH(F, MERIDIAN_CALL)
 #undef MERIDIAN_CALL
-    return y;
+    return;
   }
-  if (m == 0) throw InputError("no coefficients to reconstruct");
   // Periodization: the adjoint of the periodic forward transform, z[i_o + j'] +=
   // rec_lo[j']·a[o] + rec_hi[j']·d[o] with i_o = F/2 + 2o, then folded with period 2m.
   const std::size_t np = 2 * m;
@@ -285,7 +287,7 @@ std::vector<double> idwt(std::span<const double> a, std::span<const double> d,
     const double av = a[o], dv = d[o];
     for (std::size_t j = 0; j < F; ++j) p[j] += rl[j] * av + rh[j] * dv;
   }
-  std::vector<double> y(np, 0.0);
+  std::fill(y, y + np, 0.0);
   const auto shift = static_cast<std::ptrdiff_t>(F) - 1;
   const auto period = static_cast<std::ptrdiff_t>(np);
   for (std::size_t t = 0; t < z.size(); ++t) {
@@ -293,11 +295,10 @@ std::vector<double> idwt(std::span<const double> a, std::span<const double> d,
     if (p < 0) p += period;
     y[static_cast<std::size_t>(p)] += z[t];
   }
-  return y;
 }
 
-WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode,
-                            int level) {
+// wavedec's checks of x and the level.
+void check_decomposition(std::span<const double> x, const Wavelet& wavelet, int level) {
   require_finite(x, "series");
   const int top = max_level(x.size(), wavelet);
   if (top < 1)
@@ -312,14 +313,47 @@ WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, E
             "at least {}·2^p samples)",
             level, x.size(), wavelet.name(), top, wavelet.filter_length() - 1),
         ErrorContext{{}, std::nullopt, "level"});
+}
+
+}  // namespace
+
+
+
+DwtLevel dwt(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode) {
+  require_finite(x, "series");
+  const std::size_t m = dwt_coefficient_length(x.size(), wavelet.filter_length(), mode);
+  DwtLevel out;
+  out.approximation.resize(m);
+  out.detail.resize(m);
+  dwt_into(x, wavelet, mode, out.approximation.data(), out.detail.data());
+  return out;
+}
+
+std::vector<double> idwt(std::span<const double> a, std::span<const double> d,
+                         const Wavelet& wavelet, ExtensionMode mode) {
+  if (a.size() != d.size())
+    throw InputError(fmt::format("approximation ({}) and detail ({}) coefficients differ in length",
+                                 a.size(), d.size()));
+  check_idwt_input(a.size(), wavelet, mode);
+  std::vector<double> y(idwt_length(a.size(), wavelet.filter_length(), mode));
+  idwt_into(a.data(), d.data(), a.size(), wavelet, mode, y.data());
+  return y;
+}
+
+WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, ExtensionMode mode,
+                            int level) {
+  check_decomposition(x, wavelet, level);
   WaveletCoefficients out;
   out.coefficients.resize(static_cast<std::size_t>(level) + 1);
   std::vector<double> a;
   std::span<const double> current = x;
   for (int l = 1; l <= level; ++l) {
-    DwtLevel step = dwt_unchecked(current, wavelet, mode);
-    out.coefficients[static_cast<std::size_t>(level - l + 1)] = std::move(step.detail);
-    a = std::move(step.approximation);
+    const std::size_t m = dwt_coefficient_length(current.size(), wavelet.filter_length(), mode);
+    std::vector<double> next(m);
+    auto& d = out.coefficients[static_cast<std::size_t>(level - l + 1)];
+    d.resize(m);
+    dwt_into(current, wavelet, mode, next.data(), d.data());
+    a = std::move(next);
     current = a;
   }
   out.coefficients[0] = std::move(a);
@@ -342,6 +376,65 @@ std::vector<double> waverec(const WaveletCoefficients& c, const Wavelet& wavelet
     a = idwt(a, d, wavelet, mode);
   }
   return a;
+}
+
+std::vector<double> edit_coefficients(std::span<const double> x, const Wavelet& wavelet,
+                                      ExtensionMode mode, int level,
+                                      const std::function<void(const CoefficientViews&)>& edit) {
+  check_decomposition(x, wavelet, level);
+  const std::size_t F = wavelet.filter_length();
+  const auto p = static_cast<std::size_t>(level);
+  // len[l]: coefficients per array at level l (len[0] = n). One scratch array holds every
+  // detail level and every approximation, each approximation slot one longer than needed: the
+  // inverse transform of level l writes the reconstructed approximation of level l − 1 (len[l−1]
+  // or len[l−1] + 1 values) into that level's slot, free by then.
+  std::vector<std::size_t> len(p + 1);
+  len[0] = x.size();
+  std::size_t total = 0;
+  for (std::size_t l = 1; l <= p; ++l) {
+    len[l] = dwt_coefficient_length(len[l - 1], F, mode);
+    total += 2 * len[l] + 1;
+  }
+  ScratchArray scratch(total);
+  std::vector<double*> detail(p + 1), approx(p + 1);
+  double* next = scratch.data();
+  for (std::size_t l = 1; l <= p; ++l) {
+    detail[l] = next;
+    approx[l] = next + len[l];
+    next += 2 * len[l] + 1;
+  }
+  std::span<const double> current = x;
+  for (std::size_t l = 1; l <= p; ++l) {
+    dwt_into(current, wavelet, mode, approx[l], detail[l]);
+    current = {approx[l], len[l]};
+  }
+  CoefficientViews views(p + 1);
+  views[0] = {approx[p], len[p]};
+  for (std::size_t k = 1; k <= p; ++k) views[k] = {detail[p - k + 1], len[p - k + 1]};
+  edit(views);
+
+  std::vector<double> out;
+  const double* a = approx[p];
+  std::size_t a_len = len[p];
+  for (std::size_t l = p; l >= 1; --l) {
+    if (a_len == len[l] + 1) --a_len;  // waverec's trim
+    check_idwt_input(a_len, wavelet, mode);
+    const std::size_t y_len = idwt_length(a_len, F, mode);
+    double* y;
+    if (l > 1) {
+      if (y_len > len[l - 1] + 1)  // cannot happen for wavedec's lengths; never write past a slot
+        throw NumericalError("wavelet reconstruction longer than its level");
+      y = approx[l - 1];
+    } else {
+      out = large_zero_vector(y_len);
+      y = out.data();
+    }
+    idwt_into(a, detail[l], a_len, wavelet, mode, y);
+    a = y;
+    a_len = y_len;
+  }
+  out.resize(x.size());
+  return out;
 }
 
 }  // namespace meridian::maglev

@@ -30,6 +30,7 @@
 /// input, a level < 1 or above max_level, mismatched coefficient lengths.
 
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -110,5 +111,18 @@ WaveletCoefficients wavedec(std::span<const double> x, const Wavelet& wavelet, E
 /// do not fit together.
 std::vector<double> waverec(const WaveletCoefficients& c, const Wavelet& wavelet,
                             ExtensionMode mode);
+
+/// The coefficients of one decomposition as views, in WaveletCoefficients' order: [0] = cA_p,
+/// [k] = cD_{p−k+1} (k = 1 … p; [p] the finest details).
+using CoefficientViews = std::vector<std::span<double>>;
+
+/// wavedec(x, wavelet, mode, level), then `edit` changes the coefficients in place (it must not
+/// change their number or lengths), then waverec trimmed to x.size() — the same arithmetic as the
+/// three calls, bit for bit, but all levels live in one scratch array allocated once (huge pages
+/// for long series, core/scratch_array.hpp) instead of two vectors per level: what denoise() of a
+/// series of millions of samples runs. Throws what wavedec throws, and what `edit` throws.
+std::vector<double> edit_coefficients(std::span<const double> x, const Wavelet& wavelet,
+                                      ExtensionMode mode, int level,
+                                      const std::function<void(const CoefficientViews&)>& edit);
 
 }  // namespace meridian::maglev
