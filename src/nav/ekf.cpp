@@ -87,7 +87,9 @@ std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
     }
     const unsigned flags =
         update_epoch<N>(p, k, kf, layout, no_bias, Method::Ekf, sc, rejected, nullptr);
-    storage.append(kf);  // compact records: P⁻ recomputed when read back
+    // Full records: a navigation line stays in memory, where storing P⁻ is cheaper than
+    // recomputing it (the compact layout pays off only when the records spill, docs/filter.md).
+    storage.append(kf.predicted(), kf.transition(), kf.estimate());
     TrackPoint tp = track_point<N>(p.t[k], kf.estimate(), layout);
     tp.flags = flags;
     ekf.track.push_back(tp);

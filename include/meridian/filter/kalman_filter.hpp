@@ -133,11 +133,15 @@ class KalmanFilter {
   /// out = Φ·P·Φᵀ + Q exactly as predict() computes P⁻ (the same operations in the same order):
   /// P the filtered covariance of the epoch before (exactly symmetric), q as process_noise()
   /// returns it, `pattern` = pattern_of(phi). No checks; out must not alias an operand.
+  /// Fixed N: `p_phit`, when given, receives the intermediate P·Φᵀ (the RTS gain's numerator).
   static void predicted_covariance(const Matrix<N, N>& phi, const TransitionPattern& pattern,
                                    const Matrix<N, N>& P, const Matrix<N, N>& q,
-                                   Matrix<N, N>& out) {
+                                   Matrix<N, N>& out, Matrix<N, N>* p_phit = nullptr) {
     if constexpr (N != Eigen::Dynamic) {
-      detail::predict_covariance(phi, P, q, pattern, out);
+      if (p_phit != nullptr)
+        detail::predict_covariance(phi, P, q, pattern, out, *p_phit);
+      else
+        detail::predict_covariance(phi, P, q, pattern, out);
     } else {
       Matrix<N, N> phi_p;
       phi_p.noalias() = phi * P;

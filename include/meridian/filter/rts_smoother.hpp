@@ -58,7 +58,9 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
     const Estimate<N>& next_smoothed = est[ns];
     Estimate<N>& s = est[1 - ns];  // filtered estimate of epoch k, then smoothed
     const Matrix<N, N>& filtered_p = s.P;
-    if constexpr (N != Eigen::Dynamic)
+    if (const Matrix<N, N>* pphit = reader.filtered_times_next_transition())
+      c = *pphit;  // compact records: the reader formed P_k·Φ_{k+1}ᵀ for P⁻_{k+1}
+    else if constexpr (N != Eigen::Dynamic)
       detail::mul_abt_sparse(filtered_p, phi, pattern, c);  // P_k·Φ_{k+1}ᵀ
     else
       c.noalias() = filtered_p * phi.transpose();

@@ -206,6 +206,12 @@ class SmootherStorage {
     /// Index of transition() in the store of transitions: it changes only when Φ (or, in the
     /// compact layout, Q_d) does.
     std::uint64_t transition_index() const { return phi_reader_.index(); }
+    /// P_k·Φ_{k+1}ᵀ for the epoch k = index() the last next() filled, when the reader already
+    /// computed it (compact records, fixed N: the intermediate of P⁻_{k+1}, bit for bit what
+    /// the product gives); nullptr otherwise (full records, dynamic sizes, the last epoch).
+    const Matrix<N, N>* filtered_times_next_transition() const {
+      return have_pphit_[cur_pphit_] ? &pphit_[cur_pphit_] : nullptr;
+    }
 
    private:
     friend class SmootherStorage;
@@ -265,6 +271,10 @@ class SmootherStorage {
       }
       Slot& now = slots_[cur_];
       index_ = now.epoch;
+      // The product computed at the last call (P_k·Φ_{k+1}ᵀ) is this epoch's; the buffer of the
+      // one before receives P_{k−1}·Φ_kᵀ below.
+      cur_pphit_ = 1 - cur_pphit_;
+      have_pphit_[1 - cur_pphit_] = false;
       load_transition(now.transition);
       filtered = now.filtered;
       predicted.x = now.predicted_x;
@@ -278,7 +288,13 @@ class SmootherStorage {
         throw IoError("the smoother's compact records end before epoch 0",
                       ErrorContext{{}, {}, detail::epoch_field(index_)});
       predicted.P.resize(n_, n_);
-      KalmanFilter<N>::predicted_covariance(phi_, pattern_, before.filtered.P, q_, predicted.P);
+      if constexpr (N != Eigen::Dynamic) {
+        KalmanFilter<N>::predicted_covariance(phi_, pattern_, before.filtered.P, q_, predicted.P,
+                                              &pphit_[1 - cur_pphit_]);
+        have_pphit_[1 - cur_pphit_] = true;
+      } else {
+        KalmanFilter<N>::predicted_covariance(phi_, pattern_, before.filtered.P, q_, predicted.P);
+      }
       cur_ = 1 - cur_;
       return true;
     }
@@ -297,6 +313,9 @@ class SmootherStorage {
     Slot slots_[2];
     int cur_ = 0;
     bool have_slot_ = false;
+    Matrix<N, N> pphit_[2];  // P_k·Φ_{k+1}ᵀ: [cur_pphit_] for epoch index()
+    bool have_pphit_[2] = {false, false};
+    int cur_pphit_ = 0;
   };
   /// Start reading (may be called again for another pass). Throws IoError when a spill file
   /// cannot be flushed or its header or size is not as written.

@@ -189,16 +189,25 @@ struct NoPattern {};
 /// exact nonzeros of Φ. Φ·P is formed as (P·Φᵀ)ᵀ (the same terms in the same order, P being
 /// symmetric) so that both products skip the zeros of Φ; only the upper triangle of
 /// Q + (Φ·P)·Φᵀ is computed, then mirrored. out must not alias an operand.
+/// p_phit receives P·Φᵀ (the RTS smoother's gain numerator, smoother_storage.hpp).
+template <int N>
+inline void predict_covariance(const Eigen::Matrix<double, N, N>& phi,
+                               const Eigen::Matrix<double, N, N>& P,
+                               const Eigen::Matrix<double, N, N>& q_sym,
+                               const RowPattern<N, N>& pattern, Eigen::Matrix<double, N, N>& out,
+                               Eigen::Matrix<double, N, N>& p_phit) {
+  mul_abt_sparse(P, phi, pattern, p_phit);
+  const Eigen::Matrix<double, N, N> phi_p = p_phit.transpose();
+  out = q_sym;
+  add_abt_symmetric_sparse(phi_p, phi, pattern, out);
+}
 template <int N>
 inline void predict_covariance(const Eigen::Matrix<double, N, N>& phi,
                                const Eigen::Matrix<double, N, N>& P,
                                const Eigen::Matrix<double, N, N>& q_sym,
                                const RowPattern<N, N>& pattern, Eigen::Matrix<double, N, N>& out) {
   Eigen::Matrix<double, N, N> p_phit;
-  mul_abt_sparse(P, phi, pattern, p_phit);
-  const Eigen::Matrix<double, N, N> phi_p = p_phit.transpose();
-  out = q_sym;
-  add_abt_symmetric_sparse(phi_p, phi, pattern, out);
+  predict_covariance(phi, P, q_sym, pattern, out, p_phit);
 }
 
 /// Solve A·X = B in place (B ← A⁻¹·B) for a symmetric positive definite A (only its lower
