@@ -21,4 +21,7 @@ void bind_gyro(pybind11::module_& m);
 /// meridian._core.angle: DMS parsing and formatting (core/dms.hpp).
 void bind_angle(pybind11::module_& m);
 
+/// meridian._core.maglev: maglev gyro reduce, denoise, calibrate, simulate.
+void bind_maglev(pybind11::module_& m);
+
 }  // namespace meridian::python

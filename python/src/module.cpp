@@ -12,4 +12,6 @@ PYBIND11_MODULE(_core, m) {
   meridian::python::bind_gyro(gyro);
   auto angle = m.def_submodule("angle", "sexagesimal angles");
   meridian::python::bind_angle(angle);
+  auto maglev = m.def_submodule("maglev", "maglev gyro workflows");
+  meridian::python::bind_maglev(maglev);
 }
