@@ -24,4 +24,7 @@ void bind_angle(pybind11::module_& m);
 /// meridian._core.maglev: maglev gyro reduce, denoise, calibrate, simulate.
 void bind_maglev(pybind11::module_& m);
 
+/// meridian._core.dov: dynamic deflection of the vertical, process and simulate.
+void bind_dov(pybind11::module_& m);
+
 }  // namespace meridian::python

@@ -14,4 +14,6 @@ PYBIND11_MODULE(_core, m) {
   meridian::python::bind_angle(angle);
   auto maglev = m.def_submodule("maglev", "maglev gyro workflows");
   meridian::python::bind_maglev(maglev);
+  auto dov = m.def_submodule("dov", "dynamic deflection of the vertical");
+  meridian::python::bind_dov(dov);
 }
