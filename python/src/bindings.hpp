@@ -27,4 +27,7 @@ void bind_maglev(pybind11::module_& m);
 /// meridian._core.dov: dynamic deflection of the vertical, process and simulate.
 void bind_dov(pybind11::module_& m);
 
+/// meridian._core.nav: marine navigation, process and simulate.
+void bind_nav(pybind11::module_& m);
+
 }  // namespace meridian::python

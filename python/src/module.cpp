@@ -16,4 +16,6 @@ PYBIND11_MODULE(_core, m) {
   meridian::python::bind_maglev(maglev);
   auto dov = m.def_submodule("dov", "dynamic deflection of the vertical");
   meridian::python::bind_dov(dov);
+  auto nav = m.def_submodule("nav", "marine navigation post-processing");
+  meridian::python::bind_nav(nav);
 }
