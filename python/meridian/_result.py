@@ -128,8 +128,24 @@ def degrees(name, value):
     if value is None:
         return None
     if isinstance(value, str):
-        return angle.parse_deg(value)
+        try:
+            return angle.parse_deg(value)
+        except InputError as e:
+            e.field = name
+            raise
     try:
         return float(value)
     except (TypeError, ValueError):
         raise InputError(f"must be an angle in degrees, got {value!r}", field=name) from None
+
+
+def renamed(error, names):
+    """Rename the engine's field of `error` (its C++ member or option, e.g. "latitude",
+    "setups[2].mean1", "simulation.stations") to the Python argument it came from: `names`
+    maps a field, or the part of it before "[" or ".", to the argument's name."""
+    field = error.field or ""
+    for engine, argument in names.items():
+        if field == engine or field.startswith(engine + "[") or field.startswith(engine + "."):
+            error.field = argument + field[len(engine):]
+            return error
+    return error

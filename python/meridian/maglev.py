@@ -25,8 +25,8 @@ import os
 import numpy as np
 
 from . import _core
-from ._result import Result, Table, degrees, real_array
-from .errors import InputError
+from ._result import Result, Table, degrees, real_array, renamed
+from .errors import Error, InputError
 
 __all__ = ["reduce", "reduce_files", "denoise", "calibrate", "simulate", "simulate_calibration",
            "WAVELETS", "MODES", "THRESHOLDS", "RULES"]
@@ -80,6 +80,10 @@ def _reduce_options(kw):
     return o
 
 
+# The engine's names of the constants (maglev/model.hpp) as the keyword arguments call them.
+_CONSTANTS = {"latitude": "latitude_deg", "scale": "scale_A_s_per_rad"}
+
+
 def _series(name, value):
     """(time_s, current_A) of a position: a pair, a mapping or a Table with those keys."""
     if isinstance(value, Table) or hasattr(value, "keys"):
@@ -114,7 +118,10 @@ def reduce(position1, position2, **options) -> Result:
     Errors: InputError naming the argument and sample ("position1.time_s[17]")."""
     t1, c1 = _series("position1", position1)
     t2, c2 = _series("position2", position2)
-    out = _core.maglev.reduce_arrays(t1, c1, t2, c2, _reduce_options(options))
+    try:
+        out = _core.maglev.reduce_arrays(t1, c1, t2, c2, _reduce_options(options))
+    except Error as e:
+        raise renamed(e, _CONSTANTS)
     return _result(out)
 
 
@@ -124,8 +131,11 @@ def reduce_files(file1, file2=None, *, config=None, calibration=None, **options)
     calibration: a stored calibration (`maglev calibrate --json`); keyword options as
     reduce(), overriding the files. Errors name the file, line and column."""
     files = [os.fspath(file1)] + ([os.fspath(file2)] if file2 is not None else [])
-    out = _core.maglev.reduce_files(files, os.fspath(config) if config else "",
-                                    os.fspath(calibration) if calibration else "", _reduce_options(options))
+    try:
+        out = _core.maglev.reduce_files(files, os.fspath(config) if config else "",
+                                        os.fspath(calibration) if calibration else "", _reduce_options(options))
+    except Error as e:
+        raise renamed(e, _CONSTANTS) if not e.file else e
     return _result(out)
 
 
@@ -176,13 +186,18 @@ def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None
             cols = [real_array(k, table[k]) for k in _TABLE]
         except KeyError as e:
             raise InputError(f"needs the columns {', '.join(_TABLE)}", field=f"table[{e.args[0]!r}]") from None
-        text = _core.maglev.calibrate_arrays(*cols, lat, float(alpha), nominal)
+        try:
+            text = _core.maglev.calibrate_arrays(*cols, lat, float(alpha), nominal)
+        except Error as e:
+            raise renamed(e, {"setups": "table", "latitude": "latitude_deg"})
     return Result(json.loads(text))
 
 
 def _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s):
     if not (isinstance(samples, (int, np.integer)) and samples > 0):
         raise InputError(f"must be a positive integer, got {samples!r}", field="samples")
+    if not 0.0 < float(rate_hz) < float("inf"):
+        raise InputError(f"must be > 0 (samples per second), is {rate_hz}", field="rate_hz")
     return {"samples": int(samples), "rate_hz": float(rate_hz), "white_A": float(white_A),
             "ar1_phi": float(ar1_phi), "ar1_sigma_A": float(ar1_sigma_A), "drift_A_per_s": float(drift_A_per_s)}
 

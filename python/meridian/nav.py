@@ -24,8 +24,8 @@ import json
 import os
 
 from . import _core
-from ._result import Result, Table
-from .errors import InputError
+from ._result import Result, Table, renamed
+from .errors import Error, InputError
 
 __all__ = ["process", "simulate", "METHODS", "SCENARIOS"]
 
@@ -52,7 +52,11 @@ def simulate(out, scenario="A", *, seed=1, stations=3, duration_s=1800.0, fixes_
     if int(seed) < 0:
         raise InputError(f"must be >= 0, is {seed}", field="seed")
     out = os.fspath(out)
-    files, blunders, settings = _core.nav.simulate(out, str(scenario), int(seed), int(stations), float(duration_s),
-                                                   float(fixes_every_s))
+    try:
+        files, blunders, settings = _core.nav.simulate(out, str(scenario), int(seed), int(stations),
+                                                       float(duration_s), float(fixes_every_s))
+    except Error as e:
+        raise renamed(e, {"simulation.stations": "stations", "simulation.duration_s": "duration_s",
+                          "simulation.fix_interval_s": "fixes_every_s"})
     return Result({"config": os.path.join(out, "nav.yaml"), "files": list(files), "blunders": list(blunders),
                    "settings": settings})

@@ -129,6 +129,10 @@ def test_bad_input_raises_the_right_error(source_dir, tmp_path):
     with pytest.raises(meridian.InputError) as e:
         maglev.reduce(p1, p2, latitude_deg=35)
     assert e.value.field == "scale_A_s_per_rad"
+    for latitude, error in [(95, meridian.InputError), ("35 70 00", meridian.ParseError)]:
+        with pytest.raises(error) as e:
+            maglev.reduce(p1, p2, scale_A_s_per_rad=8000, latitude_deg=latitude)
+        assert e.value.field == "latitude_deg"
     with pytest.raises(meridian.InputError) as e:
         maglev.reduce((p1.time_s[::-1], p1.current_A), p2, **k)
     assert e.value.field == "position1.time_s[1]"
@@ -151,6 +155,13 @@ def test_bad_input_raises_the_right_error(source_dir, tmp_path):
     with pytest.raises(meridian.InputError) as e:
         maglev.denoise(np.zeros((4, 4)))
     assert e.value.field == "series"
-    with pytest.raises(meridian.InputError):
-        maglev.calibrate({"azimuth_deg": [0, 1], "mean1_A": [1, 2], "sigma1_A": [1, 1], "mean2_A": [1, 2],
-                          "sigma2_A": [1, 1]}, latitude_deg=35)
+    table = {"azimuth_deg": [-1, 0, 1], "mean1_A": [1, 2, 3], "sigma1_A": [1, 1, 1], "mean2_A": [3, 2, 1],
+             "sigma2_A": [1, np.nan, 1]}
+    with pytest.raises(meridian.InputError) as e:
+        maglev.calibrate(table, latitude_deg=35)
+    assert e.value.field.startswith("table[1]")
+    with pytest.raises(meridian.InputError) as e:
+        maglev.calibrate({k: v[:2] for k, v in table.items()}, latitude_deg=35)  # 2 set-ups are too few
+    with pytest.raises(meridian.InputError) as e:
+        maglev.simulate(samples=10, rate_hz=0)
+    assert e.value.field == "rate_hz"
