@@ -49,6 +49,9 @@ class Result:
     def to_dict(self) -> dict:
         return copy.deepcopy(self._data)
 
+    def __reduce__(self):  # picklable (attributes cannot be set one by one)
+        return (Result, (self._data, self._extra))
+
     def __repr__(self):
         return "Result(" + ", ".join(list(self._data) + list(self._extra)) + ")"
 
@@ -100,6 +103,9 @@ class Table:
 
     def to_dict(self) -> dict:
         return {k: v.copy() for k, v in self._columns.items()}
+
+    def __reduce__(self):
+        return (Table, (self._columns,))
 
     def __repr__(self):
         return f"Table({len(self)} rows: " + ", ".join(self._columns) + ")"

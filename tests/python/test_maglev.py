@@ -3,6 +3,7 @@ PyWavelets (pywt.wavedec → pywt.threshold → pywt.waverec) to 1e-10, and bad 
 
 import json
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -67,6 +68,12 @@ def test_reduce_files_and_arrays_match_the_cli(cli, source_dir):
                       latitude_deg="35 00 00")
     assert a.to_dict() == ref
     np.testing.assert_array_equal(a.series2.cleaned_A, r.series2.cleaned_A)
+    # Results and their tables pickle (to cross process boundaries) and stay read-only.
+    b = pickle.loads(pickle.dumps(a))
+    assert b.to_dict() == ref
+    np.testing.assert_array_equal(b.series1.kept, a.series1.kept)
+    with pytest.raises(ValueError):
+        b.series1.cleaned_A[0] = 0.0
 
 
 def test_reduce_options_and_the_azimuth_chain_match_the_cli(cli, source_dir):
