@@ -11,7 +11,6 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
-#include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/io/nav_files.hpp"
 #include "meridian/io/nmea.hpp"
@@ -65,33 +64,7 @@ int run_simulate(const SimulateArgs& a) {
   so.stations = a.stations;
   so.duration_s = a.duration_s;
   so.fix_interval_s = a.fixes_every_s;
-  const nav::SimulatedLine line = nav::simulate(so);
-  const nav::Input& in = line.input;
-  // Every file says what produced it: `# Simulated: <settings>`.
-  const std::string settings =
-      line.settings.rfind("Simulated", 0) == 0 ? line.settings : "Simulated: " + line.settings;
-  // The files a user would bring, every one computed before any is written.
-  std::vector<std::pair<std::string, std::string>> files = {
-      {"dr.csv", io::nav_dr_csv(in.dr, settings)},
-      {"stations.csv", io::nav_stations_csv(in.stations, settings)},
-      {"lops.csv", io::nav_lops_csv(in, settings)},
-      {"truth.csv", io::nav_truth_csv(in.truth, settings)},
-  };
-  if (!in.fixes.empty()) files.emplace_back("fixes.csv", io::nav_fixes_csv(in.fixes, settings));
-  files.emplace_back("nav.yaml", io::nav_simulation_config(line, so));
-  const std::filesystem::path dir = a.out;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
-    throw IoError(fmt::format("cannot create the directory {}{}", a.out, ec ? ": " + ec.message() : ""),
-                  {a.out, std::nullopt, {}});
-  // All or none: every temporary exists before any is renamed into place.
-  std::vector<std::unique_ptr<AtomicFileWriter>> writers;
-  for (const auto& [name, text] : files) {
-    writers.push_back(std::make_unique<AtomicFileWriter>(dir / name));
-    writers.back()->write(text);
-  }
-  for (auto& w : writers) w->commit();
+  io::write_nav_simulation(a.out, nav::simulate(so), so);
   return kOk;
 }
 

@@ -11,57 +11,15 @@ is None), and whose to_dict() gives that JSON as plain Python data.
 >>> r.determinations[0].north_reading_deg            # doctest: +SKIP
 """
 
-import copy
 import json
 import os
 import tempfile
 
 from . import _core
+from ._result import Result
 from .errors import Error
 
 __all__ = ["Result", "reduce", "campaign"]
-
-
-class Result:
-    """A JSON object with attribute access: nested objects are Results, arrays lists.
-    to_dict() returns the plain data (a copy)."""
-
-    __slots__ = ("_data",)
-
-    def __init__(self, data: dict):
-        object.__setattr__(self, "_data", data)
-
-    def __getattr__(self, name):
-        try:
-            return _wrap(self._data[name])
-        except KeyError:
-            raise AttributeError(name) from None
-
-    def __setattr__(self, name, value):
-        raise AttributeError("results are read-only")
-
-    def __getitem__(self, key):
-        return _wrap(self._data[key])
-
-    def __dir__(self):
-        return list(self._data)
-
-    def keys(self):
-        return self._data.keys()
-
-    def to_dict(self) -> dict:
-        return copy.deepcopy(self._data)
-
-    def __repr__(self):
-        return "Result(" + ", ".join(self._data) + ")"
-
-
-def _wrap(v):
-    if isinstance(v, dict):
-        return Result(v)
-    if isinstance(v, list):
-        return [_wrap(x) for x in v]
-    return v
 
 
 def _run(run, source):

@@ -21,4 +21,13 @@ void bind_gyro(pybind11::module_& m);
 /// meridian._core.angle: DMS parsing and formatting (core/dms.hpp).
 void bind_angle(pybind11::module_& m);
 
+/// meridian._core.maglev: maglev gyro reduce, denoise, calibrate, simulate.
+void bind_maglev(pybind11::module_& m);
+
+/// meridian._core.dov: dynamic deflection of the vertical, process and simulate.
+void bind_dov(pybind11::module_& m);
+
+/// meridian._core.nav: marine navigation, process and simulate.
+void bind_nav(pybind11::module_& m);
+
 }  // namespace meridian::python

@@ -12,4 +12,10 @@ PYBIND11_MODULE(_core, m) {
   meridian::python::bind_gyro(gyro);
   auto angle = m.def_submodule("angle", "sexagesimal angles");
   meridian::python::bind_angle(angle);
+  auto maglev = m.def_submodule("maglev", "maglev gyro workflows");
+  meridian::python::bind_maglev(maglev);
+  auto dov = m.def_submodule("dov", "dynamic deflection of the vertical");
+  meridian::python::bind_dov(dov);
+  auto nav = m.def_submodule("nav", "marine navigation post-processing");
+  meridian::python::bind_nav(nav);
 }

@@ -10,12 +10,15 @@
 #include <set>
 #include <tuple>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include <Eigen/Core>
 #include <fmt/format.h>
 
+#include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/ellipsoid.hpp"
@@ -273,6 +276,39 @@ std::string nav_simulation_config(const nav::SimulatedLine& line, const nav::Sim
                          ch.sigma_offset_prior_m);
   }
   return out;
+}
+
+std::vector<std::string> write_nav_simulation(const std::string& dir, const nav::SimulatedLine& line,
+                                              const nav::SimulationOptions& options) {
+  const nav::Input& in = line.input;
+  // Every file says what produced it: `# Simulated: <settings>`.
+  const std::string settings =
+      line.settings.rfind("Simulated", 0) == 0 ? line.settings : "Simulated: " + line.settings;
+  // The files a user would bring, every one computed before any is written.
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"dr.csv", nav_dr_csv(in.dr, settings)},
+      {"stations.csv", nav_stations_csv(in.stations, settings)},
+      {"lops.csv", nav_lops_csv(in, settings)},
+      {"truth.csv", nav_truth_csv(in.truth, settings)},
+  };
+  if (!in.fixes.empty()) files.emplace_back("fixes.csv", nav_fixes_csv(in.fixes, settings));
+  files.emplace_back("nav.yaml", nav_simulation_config(line, options));
+  const std::filesystem::path d = dir;
+  std::error_code ec;
+  std::filesystem::create_directories(d, ec);
+  if (ec || !std::filesystem::is_directory(d))
+    throw IoError(fmt::format("cannot create the directory {}{}", dir, ec ? ": " + ec.message() : ""),
+                  {dir, std::nullopt, {}});
+  // All or none: every temporary exists before any is renamed into place.
+  std::vector<std::unique_ptr<AtomicFileWriter>> writers;
+  std::vector<std::string> names;
+  for (const auto& [name, text] : files) {
+    writers.push_back(std::make_unique<AtomicFileWriter>(d / name));
+    writers.back()->write(text);
+    names.push_back(name);
+  }
+  for (auto& w : writers) w->commit();
+  return names;
 }
 
 

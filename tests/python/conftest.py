@@ -37,3 +37,19 @@ def synth_files(tmp_path_factory, cli):
     d = tmp_path_factory.mktemp("model")
     cli("gravity", "synth-model", "--degree", 60, "--seed", 3, "--out", d / "m")
     return d
+
+
+@pytest.fixture(scope="session")
+def read_csv():
+    """read_csv(path) -> numpy structured array of a CSV the CLI wrote: `#` comment lines
+    skipped, the header's names as field names ("time [s]" → "time_s"), empty fields NaN."""
+    import io
+
+    import numpy as np
+
+    def read(path):
+        text = "".join(ln for ln in open(path, encoding="utf-8") if not ln.lstrip().startswith("#"))
+        return np.genfromtxt(io.StringIO(text), delimiter=",", names=True, dtype=np.float64,
+                             deletechars="[]", missing_values="", filling_values=np.nan)
+
+    return read

@@ -249,6 +249,14 @@ NavConfig read_nav_config(const std::string& path);
 /// the line's settings as a `# Simulated: …` comment.
 std::string nav_simulation_config(const nav::SimulatedLine& line, const nav::SimulationOptions& options);
 
+/// Write the files of a simulated line into the directory `dir` (created when missing), as
+/// `nav simulate --out DIR` does: dr.csv, stations.csv, lops.csv, truth.csv, fixes.csv (with
+/// fixes) and nav.yaml, each CSV starting `# Simulated: <settings>`. All or none: every file
+/// is computed and its temporary written before any is renamed into place. Returns the names
+/// written, in that order. IoError when the directory cannot be created or a file written.
+std::vector<std::string> write_nav_simulation(const std::string& dir, const nav::SimulatedLine& line,
+                                              const nav::SimulationOptions& options);
+
 /// Positions, DR and truth of NMEA 0183 logs (the `nmea:` block), before the plane: DR samples
 /// (speed over ground, true heading interpolated circularly from HDT) with the lines of the
 /// speed file, GGA fixes (geographic) and the withheld GGA positions as truth. Times: seconds

@@ -1,0 +1,145 @@
+"""Dynamic deflection of the vertical (docs/deflection.md): `meridian dov` from Python.
+
+* process(config): the configuration and its line (CSV or binary) as
+  `meridian dov process CONFIG --json -o profile.csv` runs them.
+* process(line, **options): a line given as arrays (a simulate() result, or a
+  mapping of the arrays below) with the configuration's options as keywords.
+* simulate(...): `meridian dov simulate` as arrays.
+
+The Result's attributes are the keys of the CLI's --json summary (epochs,
+rms_arcsec, mean_sigma_arcsec, nis, eps_u_deg_per_h, …; to_dict() gives it), and
+``profile`` is a Table of one row per epoch named like the columns of the CLI's
+profile CSV: time_s, lat_deg, lon_deg, model_eta_arcsec, model_xi_arcsec,
+filtered_eta_arcsec, filtered_xi_arcsec, filtered_sigma_eta_arcsec,
+filtered_sigma_xi_arcsec, smoothed_eta_arcsec, smoothed_xi_arcsec,
+smoothed_sigma_eta_arcsec, smoothed_sigma_xi_arcsec, filtered_eps_u_deg_per_h,
+innovation_east_arcsec, innovation_north_arcsec, nis, accepted (1.0/0.0) and,
+for a line with truth, truth_eta_arcsec, truth_xi_arcsec. Signs as
+geodesy/frames.hpp: ξ positive when the plumb line points north of the normal,
+η positive east.
+
+A line as arrays (n samples): time_s, lat_deg, lon_deg, height_m, speed_m_s,
+lgu_body_to_nav and ins_body_to_nav (n, 3, 3) rotation matrices C_b^n and
+C_b^n′ (rows E, N, U), model_eta_arcsec, model_xi_arcsec, and optionally
+truth_eta_arcsec, truth_xi_arcsec.
+
+>>> from meridian import dov
+>>> line = dov.simulate(hours=0.1, seed=2)
+>>> r = dov.process(line, sigma_model_arcsec=3)      # doctest: +SKIP
+>>> r.profile.smoothed_xi_arcsec                      # doctest: +SKIP
+"""
+
+import json
+import os
+import re
+import tempfile
+
+from . import _core
+from ._result import Result, Table, degrees, real_array
+from .errors import Error, InputError
+
+__all__ = ["process", "simulate", "LINE_COLUMNS"]
+
+#: The arrays of a line (the truth columns are optional).
+LINE_COLUMNS = ("time_s", "lat_deg", "lon_deg", "height_m", "speed_m_s", "lgu_body_to_nav", "ins_body_to_nav",
+                "model_eta_arcsec", "model_xi_arcsec", "truth_eta_arcsec", "truth_xi_arcsec")
+
+# dov::Sample / dov::Truth members (radians) → the arrays they came from.
+_MEMBER = {"time_s": "time_s", "lat_rad": "lat_deg", "lon_rad": "lon_deg", "height_m": "height_m",
+           "speed_m_s": "speed_m_s", "lgu_body_to_nav": "lgu_body_to_nav", "ins_body_to_nav": "ins_body_to_nav",
+           "model_eta_rad": "model_eta_arcsec", "model_xi_rad": "model_xi_arcsec",
+           "eta_rad": "truth_eta_arcsec", "xi_rad": "truth_xi_arcsec"}
+
+
+def _result(out):
+    text, profile = out
+    return Result(json.loads(text), {"profile": Table(profile)})
+
+
+def _line(line):
+    cols = {}
+    for name in LINE_COLUMNS:
+        try:
+            value = line[name]
+        except (KeyError, TypeError):
+            if name.startswith("truth_"):
+                continue
+            raise InputError(f"the line needs the array {name}", field=name) from None
+        ndim = 3 if name.endswith("_body_to_nav") else 1
+        cols[name] = real_array(name, value, ndim)
+    if ("truth_eta_arcsec" in cols) != ("truth_xi_arcsec" in cols):
+        raise InputError("give both truth_eta_arcsec and truth_xi_arcsec, or neither", field="truth_eta_arcsec")
+    return cols
+
+
+def _relocate(e):
+    """samples[k].lat_rad → lat_deg[k] (the argument's array and element)."""
+    m = re.fullmatch(r"(?:samples|truth)\[(\d+)\]\.(\w+)", e.field or "")
+    if m and m.group(2) in _MEMBER:
+        e.field = f"{_MEMBER[m.group(2)]}[{m.group(1)}]"
+
+
+def process(source, **options) -> Result:
+    """Filter and smooth a line (`dov process --json`), from a configuration file or arrays.
+
+    source: the path of a YAML/JSON configuration (its line file, CSV or binary,
+    relative to it; a gravity_model it names is looked up as by the CLI) — or a
+    line as arrays (see the module comment). With arrays, the options are keyword
+    arguments with the configuration's keys (zeta, sigma_model_arcsec,
+    correlation_length_m, stationary_speed_m_s, sigma_obs_arcsec or
+    sigma_obs_east_arcsec/sigma_obs_north_arcsec, initial={…}, discretisation,
+    extraction, max_step_s, gate_alpha, statistics_start_s).
+    Errors: the file, line and column for files; for arrays the array and element
+    ("lat_deg[3]"), or "<options>" and the key."""
+    if isinstance(source, (str, os.PathLike)):
+        if options:
+            raise TypeError("options are the configuration's keys: give them with a line of arrays")
+        return _result(_core.dov.process_file(os.fspath(source)))
+    cols = _line(source)
+    if "line" in options or "gravity_model" in options:
+        raise InputError("not an option of a line given as arrays", field="line" if "line" in options else
+                         "gravity_model")
+    fd, path = tempfile.mkstemp(suffix=".json", prefix="meridian_dov_")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            json.dump({"line": "<arrays>", **options}, f)
+        try:
+            return _result(_core.dov.process_arrays(cols, path))
+        except Error as e:
+            if e.file == path:
+                e.file, e.line = "<options>", None
+            _relocate(e)
+            raise
+    finally:
+        os.unlink(path)
+
+
+def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height_m=0.0, speed_m_s=5.0,
+             rate_hz=1.0, hours=4.0, sigma_model_arcsec=3.0, sigma_ins_arcsec=0.5, eps_u_deg_per_h=0.003,
+             phi_e_arcsec=0.0, phi_n_arcsec=0.0, phi_u_arcsec=0.0, seed=1) -> Table:
+    """Simulate a line (`meridian dov simulate`, the same defaults; the same seed gives the
+    same line): a Table of the line's arrays, with truth. Angles in degrees (numbers or
+    any notation of meridian.angle) and arc-seconds."""
+    o = {"latitude_deg": degrees("latitude_deg", latitude_deg),
+         "longitude_deg": degrees("longitude_deg", longitude_deg),
+         "heading_deg": degrees("heading_deg", heading_deg)}
+    for key, value in [("height_m", height_m), ("speed_m_s", speed_m_s), ("rate_hz", rate_hz), ("hours", hours),
+                       ("sigma_model_arcsec", sigma_model_arcsec), ("sigma_ins_arcsec", sigma_ins_arcsec),
+                       ("eps_u_deg_per_h", eps_u_deg_per_h), ("phi_e_arcsec", phi_e_arcsec),
+                       ("phi_n_arcsec", phi_n_arcsec), ("phi_u_arcsec", phi_u_arcsec)]:
+        o[key] = float(value)
+    o["seed"] = int(seed)
+    # The simulator's own checks name its members in radians; say it in these arguments' terms.
+    if not abs(o["latitude_deg"]) < 89.0:
+        raise InputError(f"must be within ±89°, is {o['latitude_deg']:.6g}°", field="latitude_deg")
+    if not o["rate_hz"] > 0.0 or o["rate_hz"] == float("inf"):
+        raise InputError(f"must be > 0 (samples per second), is {o['rate_hz']}", field="rate_hz")
+    if not o["hours"] * 3600.0 * o["rate_hz"] >= 1.0:
+        raise InputError(f"{o['hours']} h at {o['rate_hz']} Hz gives less than one step", field="hours")
+    try:
+        return Table(_core.dov.simulate(o))
+    except InputError as e:
+        if e.field == "simulation.duration_s":
+            e.field = "hours"
+            e.message = f"the track leaves ±89° of latitude within {o['hours']} h ({e.message})"
+        raise

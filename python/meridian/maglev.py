@@ -1,0 +1,238 @@
+"""Magnetically suspended gyro (docs/maglev-gyro.md): `meridian maglev` from Python.
+
+* reduce(position1, position2, scale_A_s_per_rad=…, latitude_deg=…): a two-position
+  determination from numpy arrays; reduce_files(file1[, file2], config=…): from the
+  files the CLI reads. Both give a Result whose attributes are the keys of
+  `meridian maglev reduce --json` (result.north_deg, result.alpha1_arcsec, …) and
+  series1, series2: Tables of time_s, current_A, cleaned_A, kept per sample.
+* denoise(series, wavelet="db4", level=None, mode, threshold, rule): a numpy array
+  (pywt.wavedec → pywt.threshold → pywt.waverec for the universal rule).
+* calibrate(table, latitude_deg=…): the multi-angle calibration, from a table file
+  or arrays; the Result is `maglev calibrate --json` (the stored calibration).
+* simulate(...), simulate_calibration(...): `maglev simulate` as arrays.
+
+Angles in degrees (`_deg`, numbers or strings in any notation of meridian.angle)
+or arc-seconds (`_arcsec`); currents in A, K in A·s/rad.
+
+>>> from meridian import maglev
+>>> p1, p2 = maglev.simulate(alpha1_deg=1.0, samples=2000, seed=3)
+>>> r = maglev.reduce(p1, p2, scale_A_s_per_rad=8000, latitude_deg=35)   # doctest: +SKIP
+"""
+
+import json
+import os
+
+import numpy as np
+
+from . import _core
+from ._result import Result, Table, degrees, real_array, renamed
+from .errors import Error, InputError
+
+__all__ = ["reduce", "reduce_files", "denoise", "calibrate", "simulate", "simulate_calibration",
+           "WAVELETS", "MODES", "THRESHOLDS", "RULES"]
+
+WAVELETS = tuple(f"db{n}" for n in range(2, 11))
+MODES = ("symmetric", "periodization")
+THRESHOLDS = ("soft", "hard")
+RULES = ("universal", "sure")
+
+
+def _denoise_options(wavelet, level, mode, threshold, rule):
+    if not isinstance(level, (int, np.integer)) or isinstance(level, bool) or level < 0:
+        raise InputError(f"must be a positive integer (or None), got {level!r}", field="level")
+    for name, value, accepted in [("wavelet", wavelet, WAVELETS), ("mode", mode, MODES),
+                                  ("threshold", threshold, THRESHOLDS), ("rule", rule, RULES)]:
+        if value not in accepted:
+            raise InputError(f"{value!r} is not one of {', '.join(accepted)}", field=name)
+    return {"wavelet": str(wavelet), "level": int(level), "mode": str(mode), "threshold": str(threshold),
+            "rule": str(rule)}
+
+
+def _reduce_options(kw):
+    o = {
+        "scale_A_s_per_rad": None, "scale_sigma_A_s_per_rad": 0.0, "latitude_deg": None,
+        "reading1_deg": None, "reading1_sigma_arcsec": 0.0, "prior_bias_A": None, "prior_bias_sigma_A": 0.0,
+        "target_deg": None, "target_sigma_arcsec": 0.0, "instrument_constant_deg": 0.0,
+        "instrument_constant_sigma_arcsec": 0.0, "eta_arcsec": None, "eta_sigma_arcsec": 0.0,
+        "convergence_deg": 0.0, "process": True, "denoise": True, "segment": 0, "alpha": 0.05, "lags": 10,
+    }
+    denoising = {"wavelet": "db4", "level": 6, "mode": "symmetric", "threshold": "soft", "rule": "universal"}
+    for key, value in kw.items():
+        if key in denoising:
+            denoising[key] = value
+        elif key in o:
+            o[key] = value
+        else:
+            raise TypeError(f"unexpected keyword argument {key!r}")
+    for key in ("latitude_deg", "reading1_deg", "target_deg", "instrument_constant_deg"):
+        o[key] = degrees(key, o[key])
+    for key in ("process", "denoise"):
+        o[key] = bool(o[key])
+    if o["segment"] != 0 and o["segment"] < 32:
+        raise InputError(f"{o['segment']} is not 0 (automatic) or at least 32", field="segment")
+    if not 0.0 < o["alpha"] < 1.0:
+        raise InputError(f"{o['alpha']} is not in (0, 1)", field="alpha")
+    if o["lags"] < 1:
+        raise InputError(f"{o['lags']} is not a positive number", field="lags")
+    o.update(_denoise_options(**denoising))
+    if o["level"] < 1:
+        raise InputError("must be at least 1", field="level")
+    return o
+
+
+# The engine's names of the constants (maglev/model.hpp) as the keyword arguments call them.
+_CONSTANTS = {"latitude": "latitude_deg", "scale": "scale_A_s_per_rad"}
+
+
+def _series(name, value):
+    """(time_s, current_A) of a position: a pair, a mapping or a Table with those keys."""
+    if isinstance(value, Table) or hasattr(value, "keys"):
+        try:
+            t, c = value["time_s"], value["current_A"]
+        except KeyError:
+            raise InputError("needs time_s and current_A", field=name) from None
+    else:
+        try:
+            t, c = value
+        except (TypeError, ValueError):
+            raise InputError("must be (time_s, current_A) or a mapping with those keys", field=name) from None
+    return real_array(f"{name}.time_s", t), real_array(f"{name}.current_A", c)
+
+
+def _result(out):
+    text, series1, series2 = out
+    return Result(json.loads(text), {"series1": Table(series1), "series2": Table(series2)})
+
+
+def reduce(position1, position2, **options) -> Result:
+    """Reduce one two-position determination (`maglev reduce --json`) from arrays.
+
+    position1, position2: (time_s, current_A) pairs of 1-D arrays, or mappings/Tables
+    with those keys (a simulate() result). Keyword options (the CLI's, with units):
+    scale_A_s_per_rad (K, needed), scale_sigma_A_s_per_rad, latitude_deg (needed),
+    reading1_deg, reading1_sigma_arcsec, prior_bias_A, prior_bias_sigma_A (symmetry
+    check), target_deg, target_sigma_arcsec, instrument_constant_deg,
+    instrument_constant_sigma_arcsec, eta_arcsec, eta_sigma_arcsec, convergence_deg
+    (azimuth chain), process, denoise, segment, alpha, lags, and the denoising's
+    wavelet, level (6), mode, threshold, rule.
+    Errors: InputError naming the argument and sample ("position1.time_s[17]")."""
+    t1, c1 = _series("position1", position1)
+    t2, c2 = _series("position2", position2)
+    try:
+        out = _core.maglev.reduce_arrays(t1, c1, t2, c2, _reduce_options(options))
+    except Error as e:
+        raise renamed(e, _CONSTANTS)
+    return _result(out)
+
+
+def reduce_files(file1, file2=None, *, config=None, calibration=None, **options) -> Result:
+    """`maglev reduce FILE [FILE2] --json`: one CSV with a position column, or one per
+    position; config: the YAML/JSON constants (K, latitude, circle_reading1, …);
+    calibration: a stored calibration (`maglev calibrate --json`); keyword options as
+    reduce(), overriding the files. Errors name the file, line and column."""
+    files = [os.fspath(file1)] + ([os.fspath(file2)] if file2 is not None else [])
+    try:
+        out = _core.maglev.reduce_files(files, os.fspath(config) if config else "",
+                                        os.fspath(calibration) if calibration else "", _reduce_options(options))
+    except Error as e:
+        raise renamed(e, _CONSTANTS) if not e.file else e
+    return _result(out)
+
+
+def denoise(series, wavelet="db4", level=None, mode="symmetric", threshold="soft", rule="universal",
+            full=False):
+    """Wavelet-denoise a 1-D series (`maglev denoise`): a float64 array of its length.
+
+    wavelet db2 … db10; level p ≥ 1 (None: 6, lowered to the deepest the series
+    allows, as the CLI's default); mode "symmetric" | "periodization"; threshold
+    "soft" | "hard"; rule "universal" (σ·sqrt(2 ln n)) | "sure". With the universal
+    rule the result equals pywt.wavedec → pywt.threshold on every detail level →
+    pywt.waverec, trimmed to n. full=True returns a Result with values and
+    noise_sigma, thresholds (level 1 first), zeroed, coefficients, level.
+    Errors: InputError (field "series", or the option) for an empty or non-finite
+    series, a level too deep for its length, an unknown name."""
+    x = real_array("series", series)
+    if level is not None and (not isinstance(level, (int, np.integer)) or isinstance(level, bool) or level < 1):
+        raise InputError(f"must be a positive integer (or None), got {level!r}", field="level")
+    o = _denoise_options(wavelet, 0 if level is None else level, mode, threshold, rule)
+    values, sigma, thresholds, zeroed, coefficients, used = _core.maglev.denoise(x, o)
+    if not full:
+        return values
+    info = {"noise_sigma": sigma, "thresholds": thresholds, "zeroed": zeroed, "coefficients": coefficients,
+            "level": used, "wavelet": o["wavelet"], "mode": o["mode"], "threshold": o["threshold"],
+            "rule": o["rule"]}
+    return Result(info, {"values": values})
+
+
+_TABLE = ("azimuth_deg", "mean1_A", "sigma1_A", "mean2_A", "sigma2_A")
+
+
+def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None) -> Result:
+    """Multi-angle calibration (`maglev calibrate TABLE --json`): lines per position,
+    trend deviation, best azimuth α*, constant deviation I*, K from the slopes.
+
+    table: the CSV the CLI reads (path), or a mapping/Table with the arrays
+    azimuth_deg, mean1_A, sigma1_A, mean2_A, sigma2_A (a simulate_calibration()
+    result). The Result's to_dict() is also the stored calibration that
+    reduce_files(calibration=…) reads, once written as JSON."""
+    lat = degrees("latitude_deg", latitude_deg)
+    if not 0.0 < alpha < 1.0:
+        raise InputError(f"{alpha} is not in (0, 1)", field="alpha")
+    nominal = None if nominal_scale_A_s_per_rad is None else float(nominal_scale_A_s_per_rad)
+    if isinstance(table, (str, os.PathLike)):
+        text = _core.maglev.calibrate_file(os.fspath(table), lat, float(alpha), nominal)
+    else:
+        try:
+            cols = [real_array(k, table[k]) for k in _TABLE]
+        except KeyError as e:
+            raise InputError(f"needs the columns {', '.join(_TABLE)}", field=f"table[{e.args[0]!r}]") from None
+        try:
+            text = _core.maglev.calibrate_arrays(*cols, lat, float(alpha), nominal)
+        except Error as e:
+            raise renamed(e, {"setups": "table", "latitude": "latitude_deg"})
+    return Result(json.loads(text))
+
+
+def _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s):
+    if not (isinstance(samples, (int, np.integer)) and samples > 0):
+        raise InputError(f"must be a positive integer, got {samples!r}", field="samples")
+    if not 0.0 < float(rate_hz) < float("inf"):
+        raise InputError(f"must be > 0 (samples per second), is {rate_hz}", field="rate_hz")
+    return {"samples": int(samples), "rate_hz": float(rate_hz), "white_A": float(white_A),
+            "ar1_phi": float(ar1_phi), "ar1_sigma_A": float(ar1_sigma_A), "drift_A_per_s": float(drift_A_per_s)}
+
+
+def simulate(*, alpha1_deg=0.5, scale_A_s_per_rad=8000.0, bias_A=2e-4, latitude_deg=35.0, reading1_deg=0.0,
+             samples=20000, rate_hz=100.0, white_A=1e-5, ar1_phi=0.0, ar1_sigma_A=0.0, drift_A_per_s=0.0,
+             bursts=(), seed=1):
+    """Simulate a determination (`maglev simulate`, same defaults and seed → same series):
+    two Tables (time_s, current_A), position 2 starting 30 s after position 1 ends.
+    bursts: (position, begin_s, end_s, amplitude_A, offset_A, f0_hz, f1_hz) tuples,
+    times from the start of that position's series (the CLI's --burst)."""
+    truth = {"alpha1_deg": degrees("alpha1_deg", alpha1_deg), "scale_A_s_per_rad": float(scale_A_s_per_rad),
+             "bias_A": float(bias_A), "latitude_deg": degrees("latitude_deg", latitude_deg),
+             "reading1_deg": degrees("reading1_deg", reading1_deg)}
+    b = []
+    for i, burst in enumerate(bursts):
+        v = [float(x) for x in burst]
+        if len(v) != 7 or v[0] not in (1.0, 2.0):
+            raise InputError("expected (position 1 or 2, begin_s, end_s, amplitude_A, offset_A, f0_hz, f1_hz)",
+                             field=f"bursts[{i}]")
+        b.append(v)
+    p1, p2 = _core.maglev.simulate(truth, _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s),
+                                   b, int(seed))
+    return Table(p1), Table(p2)
+
+
+def simulate_calibration(azimuths_deg, *, scale_A_s_per_rad=8000.0, latitude_deg=35.0, slope_ratio1=1.0,
+                         slope_ratio2=1.0, best_azimuth_deg=0.0, constant_deviation_A=0.0, samples=20000,
+                         rate_hz=100.0, white_A=1e-5, ar1_phi=0.0, ar1_sigma_A=0.0, drift_A_per_s=0.0, seed=1):
+    """Simulate a calibration table (`maglev simulate --calibration-azimuths`): a Table of
+    azimuth_deg, mean1_A, sigma1_A, mean2_A, sigma2_A for calibrate()."""
+    az = real_array("azimuths_deg", [degrees("azimuths_deg", a) for a in azimuths_deg])
+    truth = {"scale_A_s_per_rad": float(scale_A_s_per_rad), "latitude_deg": degrees("latitude_deg", latitude_deg),
+             "slope_ratio1": float(slope_ratio1), "slope_ratio2": float(slope_ratio2),
+             "best_azimuth_deg": degrees("best_azimuth_deg", best_azimuth_deg),
+             "constant_deviation_A": float(constant_deviation_A)}
+    return Table(_core.maglev.simulate_calibration(
+        az, truth, _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s), int(seed)))
