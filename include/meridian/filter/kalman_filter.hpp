@@ -122,34 +122,15 @@ class KalmanFilter {
 
   /// The exact nonzeros of a Φ, as the fixed-size kernels skip them (small_matrix.hpp); an
   /// empty stand-in for dynamic sizes.
-  using TransitionPattern = std::conditional_t<N == Eigen::Dynamic, detail::NoPattern,
-                                               detail::RowPattern<N == Eigen::Dynamic ? 1 : N,
-                                                                  N == Eigen::Dynamic ? 1 : N>>;
-  static TransitionPattern pattern_of(const Matrix<N, N>& phi) {
-    TransitionPattern pattern{};
-    if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
-    return pattern;
-  }
+  using TransitionPattern = typename detail::TransitionPatternFor<N>::type;
+  static TransitionPattern pattern_of(const Matrix<N, N>& phi);
   /// out = Φ·P·Φᵀ + Q exactly as predict() computes P⁻ (the same operations in the same order):
   /// P the filtered covariance of the epoch before (exactly symmetric), q as process_noise()
   /// returns it, `pattern` = pattern_of(phi). No checks; out must not alias an operand.
   /// Fixed N: `p_phit`, when given, receives the intermediate P·Φᵀ (the RTS gain's numerator).
   static void predicted_covariance(const Matrix<N, N>& phi, const TransitionPattern& pattern,
                                    const Matrix<N, N>& P, const Matrix<N, N>& q,
-                                   Matrix<N, N>& out, Matrix<N, N>* p_phit = nullptr) {
-    if constexpr (N != Eigen::Dynamic) {
-      if (p_phit != nullptr)
-        detail::predict_covariance(phi, P, q, pattern, out, *p_phit);
-      else
-        detail::predict_covariance(phi, P, q, pattern, out);
-    } else {
-      Matrix<N, N> phi_p;
-      phi_p.noalias() = phi * P;
-      out = q;
-      out.noalias() += phi_p * phi.transpose();
-      out = (0.5 * (out + out.transpose())).eval();
-    }
-  }
+                                   Matrix<N, N>& out, Matrix<N, N>* p_phit = nullptr);
   /// Current epoch, 0-based.
   Eigen::Index epoch() const { return epoch_; }
   /// Number of states.
@@ -237,6 +218,34 @@ KalmanFilter<N>::KalmanFilter(Estimate<N> initial, InnovationGate gate)
     phi_pattern_.assign(phi_);
   else
     q_last_ = Matrix<N, N>::Zero(n, n);
+}
+
+template <int N>
+typename KalmanFilter<N>::TransitionPattern KalmanFilter<N>::pattern_of(const Matrix<N, N>& phi) {
+  TransitionPattern pattern{};
+  if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
+  return pattern;
+}
+
+template <int N>
+void KalmanFilter<N>::predicted_covariance(const Matrix<N, N>& phi,
+                                           const TransitionPattern& pattern,
+                                           const Matrix<N, N>& P, const Matrix<N, N>& q,
+                                           Matrix<N, N>& out, Matrix<N, N>* p_phit) {
+  if constexpr (N != Eigen::Dynamic) {
+    if (p_phit != nullptr)
+      detail::predict_covariance(phi, P, q, pattern, out, *p_phit);
+    else
+      detail::predict_covariance(phi, P, q, pattern, out);
+  } else {
+    (void)pattern;
+    (void)p_phit;
+    Matrix<N, N> phi_p;
+    phi_p.noalias() = phi * P;
+    out = q;
+    out.noalias() += phi_p * phi.transpose();
+    out = (0.5 * (out + out.transpose())).eval();
+  }
 }
 
 template <int N>

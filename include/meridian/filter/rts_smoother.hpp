@@ -43,9 +43,7 @@ void rts_smooth(SmootherStorage<N>& storage, Sink&& sink) {
   Matrix<N, N> phi = reader.transition();  // Φ_{k+1}, copied only when it changes
   std::uint64_t phi_index = reader.transition_index();
   // Fixed N: the exact nonzeros of Φ, skipped in P_k·Φᵀ (small_matrix.hpp).
-  std::conditional_t<N == Eigen::Dynamic, detail::NoPattern,
-                     detail::RowPattern<N == Eigen::Dynamic ? 1 : N, N == Eigen::Dynamic ? 1 : N>>
-      pattern{};
+  typename detail::TransitionPatternFor<N>::type pattern{};
   if constexpr (N != Eigen::Dynamic) pattern.assign(phi);
   sink(reader.index(), static_cast<const Estimate<N>&>(est[ns]));
   Matrix<N, N> c;

@@ -184,6 +184,20 @@ inline void add_abt_symmetric_sparse(const Eigen::Matrix<double, N, K>& A,
 /// Stand-in for a RowPattern where sizes are dynamic (no pattern is kept).
 struct NoPattern {};
 
+/// The pattern type of an N×N transition: RowPattern<N, N>, NoPattern for Eigen::Dynamic.
+/// A specialisation, not std::conditional_t<N == Eigen::Dynamic, …>: Eigen::Dynamic is a
+/// namespace-scope const (internal linkage), and GCC gives a member whose declared parameter
+/// type names it internal linkage, so the explicit instantiation of KalmanFilter<Dynamic>
+/// did not export KalmanFilter::predicted_covariance.
+template <int N>
+struct TransitionPatternFor {
+  using type = RowPattern<N, N>;
+};
+template <>
+struct TransitionPatternFor<Eigen::Dynamic> {
+  using type = NoPattern;
+};
+
 /// out = Q + Φ·P·Φᵀ for fixed sizes, the predicted covariance of KalmanFilter::predict and of
 /// the smoothers that recompute it: q_sym = ½(Q + Qᵀ), P exactly symmetric, `pattern` the
 /// exact nonzeros of Φ. Φ·P is formed as (P·Φᵀ)ᵀ (the same terms in the same order, P being
