@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cli_support.hpp"
 #include "commands.hpp"
@@ -160,6 +161,11 @@ int run_convert(const ConvertArgs& a) {
     throw InputError(fmt::format("the output would overwrite the input {}", a.input));
   io::DovLineReader reader(a.input);
   const bool model = reader.has_model_values(), truth = reader.has_truth();
+  const std::vector<std::string> ignored = reader.ignored_columns();
+  if (!ignored.empty())  // the binary format has no room for them: say so before dropping them
+    std::cerr << fmt::format("warning: {}: column{} {} not converted (not a line column; a "
+                             "misspelt optional column is not read)\n",
+                             a.input, ignored.size() == 1 ? "" : "s", fmt::join(ignored, ", "));
   AtomicFileWriter out(a.output);
   out.write(io::dov_binary_header(0, model, truth));
   io::DovLine chunk;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
@@ -43,6 +44,7 @@ struct LineColumns {
   bool lgu_euler = false, ins_euler = false;
   std::array<std::size_t, 3> lgu_hpr{}, ins_hpr{};
   std::optional<std::size_t> truth_eta, truth_xi;
+  std::vector<std::string> ignored;  // header columns not used above
 };
 
 LineColumns find_columns(RecordReader& rr) {
@@ -93,6 +95,20 @@ LineColumns find_columns(RecordReader& rr) {
   if (c.truth_eta.has_value() != c.truth_xi.has_value())
     throw InputError("give both truth_eta_arcsec and truth_xi_arcsec, or neither",
                      ErrorContext{rr.source(), rr.header_line(), {}});
+  std::vector<bool> used(rr.header().size(), false);
+  auto use = [&](std::optional<std::size_t> i) {
+    if (i && *i < used.size()) used[*i] = true;
+  };
+  for (auto i : {c.time, c.lat, c.lon, c.height, c.speed}) use(i);
+  for (auto i : {c.eta, c.xi, c.truth_eta, c.truth_xi}) use(i);
+  for (bool lgu : {true, false}) {
+    if (lgu ? c.lgu_euler : c.ins_euler)
+      for (auto i : lgu ? c.lgu_hpr : c.ins_hpr) use(i);
+    else
+      for (auto i : lgu ? c.lgu : c.ins) use(i);
+  }
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (!used[i]) c.ignored.push_back(rr.header()[i].name);
   return c;
 }
 
@@ -189,6 +205,9 @@ bool DovLineReader::has_model_values() const {
 }
 bool DovLineReader::has_truth() const {
   return impl_->bin ? impl_->bin->has_truth() : impl_->columns.truth_eta.has_value();
+}
+std::vector<std::string> DovLineReader::ignored_columns() const {
+  return impl_->bin ? std::vector<std::string>{} : impl_->columns.ignored;
 }
 std::optional<std::uint64_t> DovLineReader::count() const {
   if (impl_->bin) return impl_->bin->count();
@@ -536,6 +555,13 @@ dov::LineResult run_dov_stream(const DovConfig& config, const dov::EpochSink& si
   try {
     dov::LineResult r = dov::process_stream(source, config.options, sink, progress);
     if (model) r.notes.push_back(model->note);
+    const std::vector<std::string> ignored = reader.ignored_columns();
+    if (!ignored.empty())
+      r.warnings.push_back(fmt::format(
+          "{}: column{} {} not used (a misspelt optional column such as model_eta_arcsec or "
+          "truth_eta_arcsec is not read; docs/file-formats.md lists the names)",
+          reader.source(), ignored.size() == 1 ? "" : "s",
+          fmt::format("{} {}", fmt::join(ignored, ", "), ignored.size() == 1 ? "is" : "are")));
     return r;
   } catch (Error& e) {
     if (progress) progress->finish();

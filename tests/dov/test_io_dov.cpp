@@ -210,6 +210,42 @@ InputError run_error(const std::filesystem::path& config) {
   return InputError("");
 }
 
+TEST(DovFiles, ColumnsTheLineDoesNotUseAreWarnedAbout) {
+  const auto dir = temp_dir("extra");
+  const std::string csv = io::dov_line_csv(small_line());
+  // The same line with two more columns: a status flag and a misspelt truth column.
+  std::string extra;
+  bool header = true;
+  std::size_t start = 0;
+  while (start < csv.size()) {
+    const std::size_t end = csv.find('\n', start);
+    std::string line = csv.substr(start, end - start);
+    if (!line.empty() && line[0] != '#') {
+      line += header ? ",status,truth_eta_arcsecs" : ",0,1.5";
+      header = false;
+    }
+    extra += line + "\n";
+    start = end == std::string::npos ? csv.size() : end + 1;
+  }
+  write(dir / "clean.csv", csv);
+  write(dir / "extra.csv", extra);
+  write(dir / "clean.yaml", "line: clean.csv\n");
+  write(dir / "extra.yaml", "line: extra.csv\n");
+  const dov::Result a = io::run_dov(io::read_dov_config((dir / "clean.yaml").string()));
+  const dov::Result b = io::run_dov(io::read_dov_config((dir / "extra.yaml").string()));
+  for (const auto& w : a.warnings) EXPECT_EQ(w.find("not used"), std::string::npos) << w;
+  const auto it = std::find_if(b.warnings.begin(), b.warnings.end(), [](const std::string& w) {
+    return w.find("not used") != std::string::npos;
+  });
+  ASSERT_NE(it, b.warnings.end());
+  EXPECT_NE(it->find("extra.csv"), std::string::npos) << *it;
+  EXPECT_NE(it->find("status, truth_eta_arcsecs are not used"), std::string::npos) << *it;
+  // The columns change nothing else.
+  ASSERT_EQ(a.epochs.size(), b.epochs.size());
+  EXPECT_EQ(a.epochs.back().smoothed.eta_rad, b.epochs.back().smoothed.eta_rad);
+  EXPECT_EQ(b.warnings.size(), a.warnings.size() + 1);
+}
+
 TEST(DovFiles, GravityModelGivesTheModelValues) {
   const auto dir = temp_dir("gravity");
   gravity::SyntheticModelOptions mo;

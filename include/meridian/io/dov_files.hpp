@@ -76,6 +76,10 @@ class DovLineReader {
   bool binary() const;
   bool has_model_values() const;
   bool has_truth() const;
+  /// CSV header columns the line does not use, as written (empty for the binary format): a
+  /// misspelt optional column (model_eta_arcsec, truth_eta_arcsec, …) is not read, and
+  /// run_dov_stream warns about each.
+  std::vector<std::string> ignored_columns() const;
   /// The number of samples when the format states it up front (binary), else nullopt.
   std::optional<std::uint64_t> count() const;
   /// Replace the contents of `chunk` by the next up to `max` (≥ 1) samples (with their truth
