@@ -1,4 +1,5 @@
-"""Gyro-theodolite reductions: `meridian gyro reduce` and `gyro campaign` from Python.
+"""Gyro-theodolite reductions: `meridian gyro reduce`, `gyro campaign` and `gyro stochastic`
+from Python.
 
 A determination file (docs/file-formats.md) or the same content as a dict is
 read, checked and reduced by the library exactly as the CLI does; the result is
@@ -19,7 +20,7 @@ from . import _core
 from ._result import Result
 from .errors import Error
 
-__all__ = ["Result", "reduce", "campaign"]
+__all__ = ["Result", "reduce", "campaign", "stochastic"]
 
 
 def _run(run, source):
@@ -56,3 +57,13 @@ def campaign(source) -> Result:
     file's directory; for a dict, from the current directory's view of a temporary
     file, so give absolute paths or names)."""
     return Result(json.loads(_run(_core.gyro.campaign_file, source)))
+
+
+def stochastic(source) -> Result:
+    """Compare the stochastic models of every reversal-point series of a field book
+    (`meridian gyro stochastic FILE --json`; docs/gyro-stochastic.md): a path to a reduce or
+    campaign file, or a dict with its content. ``result.series[k].models`` lists each model's
+    north reading (or zero position), its σ, the ρ and variance components with their σ,
+    log-likelihood, AIC and BIC; ``result.series[k].recommended`` names the recommended one.
+    Series of fewer than 6 readings are not analysed; a file without any is an InputError."""
+    return Result(json.loads(_run(_core.gyro.stochastic_file, source)))

@@ -1,4 +1,4 @@
-// meridian._core.gyro: a reduce or campaign file run as the CLI runs it
+// meridian._core.gyro: a reduce, campaign or stochastic-analysis file run as the CLI runs it
 // (io/gyro_jobs.hpp), the result as the CLI's --json text (report/gyro_json.hpp,
 // the keys documented in docs/file-formats.md); python/meridian/gyro.py turns it
 // into result objects.
@@ -11,7 +11,9 @@
 
 #include "bindings.hpp"
 #include "meridian/io/gyro_jobs.hpp"
+#include "meridian/io/gyro_stochastic.hpp"
 #include "meridian/report/gyro_json.hpp"
+#include "meridian/report/gyro_stochastic.hpp"
 
 namespace py = pybind11;
 
@@ -41,6 +43,14 @@ void bind_gyro(py::module_& m) {
         return json_text(report::campaign_to_json(job.result));
       },
       py::arg("path"), "`meridian gyro campaign FILE --json` as JSON text");
+  m.def(
+      "stochastic_file",
+      [](const std::string& path) {
+        py::gil_scoped_release released;
+        const io::StochasticJob job = io::run_stochastic_file(path);
+        return json_text(report::stochastic_to_json(job.file, job.result));
+      },
+      py::arg("path"), "`meridian gyro stochastic FILE --json` as JSON text");
 }
 
 }  // namespace meridian::python

@@ -21,5 +21,5 @@ def test_the_tour_runs_as_written(source_dir, monkeypatch, capsys):
                    "-0°00'16.2\" 359°00'00.0\"", "True",
                    "358.8541 0.1 [6, 7, 8, 9, 10]", "3000 (4000,)", "(4000,) float64", "413 8000.0",
                    "(901, 3, 3)", "901 ['filtered', 'model', 'smoothed']", "['ekf', 'rts'] 6.81",
-                   "(361,) 1800.0", "121"]:
+                   "(361,) 1800.0", "121", "7 white-noise ['white-noise', 'c-exponential']"]:
         assert quoted in out, quoted

@@ -35,6 +35,27 @@ def test_campaign_matches_the_cli(cli, source_dir):
     assert gyro.campaign(path).to_dict() == cli_json(cli, "gyro", "campaign", path)
 
 
+def test_stochastic_matches_the_cli_from_a_file_and_a_dict(cli, source_dir):
+    path = source_dir / "examples" / "tracking.yaml"
+    ref = cli_json(cli, "gyro", "stochastic", path)
+    r = gyro.stochastic(path)
+    assert r.to_dict() == ref
+    assert len(r.series) >= 1
+    recommended = [m for m in r.series[0].models if m.recommended]
+    assert len(recommended) == 1 and recommended[0].name == r.series[0].recommended
+    got = gyro.stochastic(yaml.safe_load(path.read_text())).to_dict()
+    assert got["series"] == ref["series"]
+
+
+def test_stochastic_refuses_a_book_without_a_long_enough_series(source_dir):
+    content = yaml.safe_load((source_dir / "examples" / "tracking.yaml").read_text())
+    for d in content["determinations"]:
+        if "reversals" in d:
+            d["reversals"] = d["reversals"][:5]
+    with pytest.raises(meridian.InputError):
+        gyro.stochastic(content)
+
+
 def test_results_are_read_only_views(source_dir):
     r = gyro.reduce(source_dir / "examples" / "tracking.yaml")
     with pytest.raises(AttributeError):
