@@ -40,6 +40,7 @@ struct SimulateArgs {
   std::string out = "dov-line.csv";
   std::string config;
   bool binary = false;
+  bool transport_rate = false;
 };
 
 int run_simulate(const SimulateArgs& a) {
@@ -57,6 +58,7 @@ int run_simulate(const SimulateArgs& a) {
   so.initial_attitude_error_rad =
       Eigen::Vector3d(a.phi_e_arcsec, a.phi_n_arcsec, a.phi_u_arcsec) * units::kArcsecond;
   so.seed = a.seed;
+  so.transport_rate = a.transport_rate;
   // The simulator's own checks name its members in radians; say it in the options' terms
   // (a user trial found "simulation.start_lat_rad … 1.658" for --latitude 95).
   if (!(std::abs(so.start_lat_rad) < 89.0 * units::kDegree))
@@ -82,7 +84,7 @@ int run_simulate(const SimulateArgs& a) {
       "sigma_model {}\", sigma_ins {}\", eps_U {} deg/h, phi(0) E N U = {} {} {}\"",
       a.seed, a.latitude, a.longitude, a.heading, a.height_m, a.speed_m_s, a.rate_hz, a.hours,
       a.sigma_model_arcsec, a.sigma_ins_arcsec, a.eps_u_deg_per_h, a.phi_e_arcsec, a.phi_n_arcsec,
-      a.phi_u_arcsec);
+      a.phi_u_arcsec) + (a.transport_rate ? ", attitude error with transport rate" : "");
   if (a.binary && (a.out.empty() || a.out == "-"))
     throw InputError("--binary needs --out to name a file (no binary on standard output)");
   const std::string csv = a.binary ? io::dov_line_binary(in) : io::dov_line_csv(in, settings);
@@ -100,9 +102,10 @@ int run_simulate(const SimulateArgs& a) {
   const std::string config = fmt::format("# meridian dov process configuration (spec defaults)\n"
                                          "line: {}\n"
                                          "sigma_model_arcsec: {}\n"
-                                         "sigma_obs_arcsec: {}\n",
+                                         "sigma_obs_arcsec: {}\n{}",
                                          line.string(), a.sigma_model_arcsec,
-                                         a.sigma_ins_arcsec > 0.0 ? a.sigma_ins_arcsec : 0.5);
+                                         a.sigma_ins_arcsec > 0.0 ? a.sigma_ins_arcsec : 0.5,
+                                         a.transport_rate ? "transport_rate: true\n" : "");
   // Both files or neither: both temporaries exist before either is renamed into place (a
   // configuration in a missing directory used to leave the line written).
   AtomicFileWriter line_file(a.out), config_file(a.config);
@@ -295,6 +298,9 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--config", sa->config, "Also write a configuration naming the line");
   sim->add_flag("--binary", sa->binary,
                 "Write the line in the compact binary format (docs/file-formats.md)");
+  sim->add_flag("--transport-rate", sa->transport_rate,
+                "The true LGU attitude error also turns with the transport rate (fast carriers; "
+                "--config then sets transport_rate: true)");
   sim->callback([sa, &exit_code] { exit_code = guarded([&] { return run_simulate(*sa); }); });
 
   auto pa = std::make_shared<ProcessArgs>();

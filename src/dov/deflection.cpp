@@ -95,6 +95,7 @@ struct ModelCache {
   bool valid = false;
   double dt_s = 0.0, lat_rad = 0.0, speed_m_s = 0.0;
   bool stationary = false;
+  Eigen::Vector3d transport_rate_rad_s = Eigen::Vector3d::Zero();
   filter::DiscreteModel<State::size> step;
 };
 
@@ -196,6 +197,11 @@ class Forward {
               : std::string("the whole line is stationary: x_E, x_N are decoupled"));
     if (!o.initial.delta_rad)
       out.notes.push_back("initial σ of δη, δξ: σ_model (the model's stationary value)");
+    if (o.transport_rate)
+      out.notes.push_back(fmt::format(
+          "transport rate: ω_en from the track's mean latitude and longitude rates over "
+          "baselines of at least {} s, zero until the first one closes",
+          o.transport_rate_baseline_s));
   }
 
   void add(const Sample& s, const Truth* truth) {
@@ -227,21 +233,36 @@ class Forward {
       const double speed = 0.5 * (s.speed_m_s + prev_speed_);
       const bool stationary = is_stationary(speed, o_.model);
       if (stationary) ++stationary_steps_;
+      if (o_.transport_rate && s.time_s - baseline_time_ >= o_.transport_rate_baseline_s) {
+        // Options::transport_rate: the mean rates over the baseline that closes here.
+        const double span = s.time_s - baseline_time_;
+        const double dlon = std::remainder(s.lon_rad - baseline_lon_, 2.0 * units::kPi);
+        transport_rate_ = transport_rate(0.5 * (s.lat_rad + baseline_lat_),
+                                         (s.lat_rad - baseline_lat_) / span, dlon / span);
+        baseline_time_ = s.time_s;
+        baseline_lat_ = s.lat_rad;
+        baseline_lon_ = s.lon_rad;
+      }
       if (!cache_.valid || std::abs(dt - cache_.dt_s) > o_.step_tolerance * cache_.dt_s ||
           std::abs(lat - cache_.lat_rad) > o_.rediscretise_latitude_rad ||
           std::abs(speed - cache_.speed_m_s) > o_.rediscretise_speed_m_s ||
-          stationary != cache_.stationary) {
-        cache_.step = discrete_model(lat, speed, dt, o_.model, o_.discretisation);
+          stationary != cache_.stationary || transport_rate_ != cache_.transport_rate_rad_s) {
+        cache_.step =
+            discrete_model(lat, speed, dt, o_.model, o_.discretisation, transport_rate_);
         cache_.valid = true;
         cache_.dt_s = dt;
         cache_.lat_rad = lat;
         cache_.speed_m_s = speed;
         cache_.stationary = stationary;
+        cache_.transport_rate_rad_s = transport_rate_;
         ++out_.summary.discretisations;
       }
       kf_.predict(cache_.step);
     } else {
       t0_ = s.time_s;
+      baseline_time_ = s.time_s;
+      baseline_lat_ = s.lat_rad;
+      baseline_lon_ = s.lon_rad;
     }
     const Eigen::Matrix3d c = attitude_difference_matrix(s.lgu_body_to_nav, s.ins_body_to_nav);
     // Both matrices make the difference: the error names neither one alone.
@@ -323,6 +344,9 @@ class Forward {
   std::size_t stationary_steps_ = 0;
   bool have_states_ = false;
   double t0_ = 0.0, prev_time_ = 0.0, prev_lat_ = 0.0, prev_speed_ = 0.0;
+  // Options::transport_rate: the open baseline's first sample and the current ω_en (ENU).
+  double baseline_time_ = 0.0, baseline_lat_ = 0.0, baseline_lon_ = 0.0;
+  Eigen::Vector3d transport_rate_ = Eigen::Vector3d::Zero();
 };
 
 /// The samples of an Input, one chunk.
@@ -368,6 +392,8 @@ void validate(const Options& o) {
                  "rediscretise_latitude_rad", "finite and ≥ 0", o.rediscretise_latitude_rad);
   require_option(std::isfinite(o.rediscretise_speed_m_s) && o.rediscretise_speed_m_s >= 0.0,
                  "rediscretise_speed_m_s", "finite and ≥ 0", o.rediscretise_speed_m_s);
+  require_option(std::isfinite(o.transport_rate_baseline_s) && o.transport_rate_baseline_s > 0.0,
+                 "transport_rate_baseline_s", "finite and > 0", o.transport_rate_baseline_s);
   require_option(o.gate_alpha == 0.0 || (o.gate_alpha > 0.0 && o.gate_alpha < 1.0), "gate_alpha",
                  "0 (no gate) or in (0, 1)", o.gate_alpha);
   require_option(std::isfinite(o.statistics_start_s) && o.statistics_start_s >= 0.0,

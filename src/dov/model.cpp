@@ -52,24 +52,41 @@ double process_noise_density(double speed_m_s, const ModelOptions& options) {
   return s * s * 4.0 * options.zeta * omega0_rad_s(speed_m_s, options);
 }
 
-filter::ContinuousModel<State::size, Noise::size> continuous_model(double lat_rad,
-                                                                  double speed_m_s,
-                                                                  const ModelOptions& options) {
+Eigen::Vector3d transport_rate(double lat_rad, double lat_rate_rad_s, double lon_rate_rad_s) {
+  require(std::isfinite(lat_rad) && std::abs(lat_rad) <= 0.5 * units::kPi, "lat_rad",
+          "finite and within ±90°", lat_rad);
+  require(std::isfinite(lat_rate_rad_s), "lat_rate_rad_s", "finite", lat_rate_rad_s);
+  require(std::isfinite(lon_rate_rad_s), "lon_rate_rad_s", "finite", lon_rate_rad_s);
+  return {-lat_rate_rad_s, lon_rate_rad_s * std::cos(lat_rad), lon_rate_rad_s * std::sin(lat_rad)};
+}
+
+filter::ContinuousModel<State::size, Noise::size> continuous_model(
+    double lat_rad, double speed_m_s, const ModelOptions& options,
+    const Eigen::Vector3d& transport_rate_rad_s) {
   validate(options);
   check_lat_speed(lat_rad, speed_m_s);
+  require(transport_rate_rad_s.allFinite(), "transport_rate_rad_s", "finite",
+          transport_rate_rad_s.norm());
   using S = State;
   using W = Noise;
   filter::ContinuousModel<S::size, W::size> m;
   m.F.setZero();
   m.G.setZero();
   m.q_c.setZero();
-  const double up = options.omega_ie_rad_s * std::sin(lat_rad);     // Ω_U
-  const double north = options.omega_ie_rad_s * std::cos(lat_rad);  // Ω_N
-  // φ̇ = −Ω×φ − ε_U·e_U, Ω = (0, Ω_N, Ω_U).
+  // Ω = ω_ie·(0, cos L, sin L) + ω_en; the sums keep the Earth-rate entries bit for bit when
+  // ω_en = 0.
+  const double east = transport_rate_rad_s.x();                                             // Ω_E
+  const double north = options.omega_ie_rad_s * std::cos(lat_rad) + transport_rate_rad_s.y();  // Ω_N
+  const double up = options.omega_ie_rad_s * std::sin(lat_rad) + transport_rate_rad_s.z();     // Ω_U
+  // φ̇ = −Ω×φ − ε_U·e_U.
   m.F(S::phi_e, S::phi_n) = up;
   m.F(S::phi_e, S::phi_u) = -north;
   m.F(S::phi_n, S::phi_e) = -up;
   m.F(S::phi_u, S::phi_e) = north;
+  if (east != 0.0) {  // (no −0.0 entries in the Earth-rate model's F)
+    m.F(S::phi_n, S::phi_u) = east;
+    m.F(S::phi_u, S::phi_n) = -east;
+  }
   m.F(S::phi_u, S::eps_u) = -1.0;
   m.G(S::delta_eta, W::w_e) = 1.0;
   m.G(S::delta_xi, W::w_n) = 1.0;
@@ -89,9 +106,10 @@ filter::ContinuousModel<State::size, Noise::size> continuous_model(double lat_ra
 
 filter::DiscreteModel<State::size> discrete_model(double lat_rad, double speed_m_s, double dt_s,
                                                   const ModelOptions& options,
-                                                  DiscretisationMethod method) {
+                                                  DiscretisationMethod method,
+                                                  const Eigen::Vector3d& transport_rate_rad_s) {
   require(std::isfinite(dt_s) && dt_s > 0.0, "dt_s", "finite and > 0", dt_s);
-  const auto m = continuous_model(lat_rad, speed_m_s, options);
+  const auto m = continuous_model(lat_rad, speed_m_s, options, transport_rate_rad_s);
   switch (method) {
     case DiscretisationMethod::Exact:
       return filter::discretise(m, dt_s, filter::Discretisation::VanLoan);

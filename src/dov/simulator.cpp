@@ -58,13 +58,12 @@ class GaussMarkov2 {
   Eigen::Matrix2d phi_, chol_, p_inf_;
 };
 
-/// The exact step of φ̇ = −Ω×φ − ε·e_U over dt (file comment).
-Eigen::Vector3d attitude_step(const Eigen::Vector3d& phi, double lat_rad, double omega_ie,
+/// The exact step of φ̇ = −Ω×φ − ε·e_U over dt (file comment); Ω = w·u in ENU, u a unit
+/// vector, w ≥ 0 (rad/s).
+Eigen::Vector3d attitude_step(const Eigen::Vector3d& phi, const Eigen::Vector3d& u, double w,
                               double eps_u, double dt) {
-  if (omega_ie == 0.0) return phi - Eigen::Vector3d(0.0, 0.0, eps_u * dt);
-  const Eigen::Vector3d u(0.0, std::cos(lat_rad), std::sin(lat_rad));
+  if (w == 0.0) return phi - Eigen::Vector3d(0.0, 0.0, eps_u * dt);
   const Eigen::Matrix3d k = cross_matrix(u);
-  const double w = omega_ie;
   const double wt = w * dt;
   const Eigen::Matrix3d e =
       Eigen::Matrix3d::Identity() - std::sin(wt) * k + (1.0 - std::cos(wt)) * (k * k);
@@ -150,7 +149,24 @@ Input simulate(const SimulationOptions& o) {
                                      "±89°)",
                                      lat / units::kDegree, k),
                          ErrorContext{{}, {}, "simulation.duration_s"});
-      phi = attitude_step(phi, 0.5 * (lat + lat_prev), tm.omega_ie_rad_s, o.eps_u_rad_s, dt);
+      const double lat_mid = 0.5 * (lat + lat_prev);
+      Eigen::Vector3d u(0.0, std::cos(lat_mid), std::sin(lat_mid));
+      double rate = tm.omega_ie_rad_s;  // |Ω|
+      if (o.transport_rate) {
+        // ω_en at the step's mid-point, from the velocity (model.hpp's transport_rate with
+        // L̇ = V·cos α/M, λ̇ = V·sin α/(N·cos L)).
+        const double sm = std::sin(lat_mid);
+        const double wm = std::sqrt(1.0 - e2 * sm * sm);
+        const double n_mid = ell.a_m / wm + o.height_m;
+        const double m_mid = ell.a_m * (1.0 - e2) / (wm * wm * wm) + o.height_m;
+        const Eigen::Vector3d omega =
+            rate * u + transport_rate(lat_mid, o.speed_m_s * std::cos(o.heading_rad) / m_mid,
+                                   o.speed_m_s * std::sin(o.heading_rad) /
+                                       (n_mid * std::cos(lat_mid)));
+        rate = omega.norm();
+        if (rate > 0.0) u = omega / rate;
+      }
+      phi = attitude_step(phi, u, rate, o.eps_u_rad_s, dt);
       east = gm.step(east, rng, nd);
       north = gm.step(north, rng, nd);
     }

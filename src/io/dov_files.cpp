@@ -334,7 +334,8 @@ DovConfig read_dov_config(const std::string& path) {
   root.allow_only({"line", "zeta", "sigma_model_arcsec", "correlation_length_m",
                    "stationary_speed_m_s", "sigma_obs_arcsec", "sigma_obs_east_arcsec",
                    "sigma_obs_north_arcsec", "initial", "discretisation", "extraction",
-                   "max_step_s", "gate_alpha", "statistics_start_s", "gravity_model"});
+                   "max_step_s", "gate_alpha", "statistics_start_s", "gravity_model",
+                   "transport_rate", "transport_rate_baseline_s"});
   DovConfig c;
   c.file = path;
   dov::Options& o = c.options;
@@ -384,6 +385,11 @@ DovConfig read_dov_config(const std::string& path) {
       n->fail(fmt::format("\"{}\" is not an extraction (exact, skew_symmetric)", v));
   }
   if (auto n = root.get("max_step_s")) o.max_step_s = n->positive_number();
+  if (auto n = root.get("transport_rate")) o.transport_rate = n->boolean();
+  if (auto n = root.get("transport_rate_baseline_s")) {
+    if (!o.transport_rate) n->fail("transport_rate_baseline_s needs transport_rate: true");
+    o.transport_rate_baseline_s = n->positive_number();
+  }
   if (auto n = root.get("gate_alpha")) {
     const double a = n->non_negative_number();
     if (!(a == 0.0 || a < 1.0)) n->fail("gate_alpha must be 0 (no gate) or in (0, 1)");

@@ -139,7 +139,11 @@ Document dov_document(const dov::Result& r, const dov::Options& o, const std::st
       {"discretisation", o.discretisation == dov::DiscretisationMethod::Exact
                              ? "exact (Van Loan)"
                              : "published first order"},
-      {"extraction", o.extraction == dov::Extraction::Exact ? "exact (log map)" : "skew part"}};
+      {"extraction", o.extraction == dov::Extraction::Exact ? "exact (log map)" : "skew part"},
+      {"attitude dynamics",
+       o.transport_rate ? fmt::format("Earth rate + transport rate from the track ({} s baselines)",
+                                      o.transport_rate_baseline_s)
+                        : std::string("Earth rate only")}};
 
   Section summary{"summary", "Summary", {}, 2};
   summary.blocks.push_back(

@@ -32,6 +32,8 @@ json dov_summary_to_json(const dov::Result& r, const dov::Options& o) {
                                    ? "exact"
                                    : "published_first_order"},
             {"extraction", o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric"},
+            {"transport_rate_baseline_s",
+             o.transport_rate ? json(o.transport_rate_baseline_s) : json(nullptr)},
             {"notes", r.notes},
             {"warnings", r.warnings}};
   if (s.rms_model)
@@ -53,6 +55,10 @@ std::string dov_summary_text(const dov::Result& r, const dov::Options& o) {
       units::rad_to_arcsec(o.sigma_obs_east_rad), units::rad_to_arcsec(o.sigma_obs_north_rad),
       o.discretisation == dov::DiscretisationMethod::Exact ? "exact" : "published_first_order",
       o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric");
+  if (o.transport_rate)
+    t += fmt::format("attitude dynamics: Earth rate + transport rate from the track ({} s "
+                     "baselines)\n",
+                     o.transport_rate_baseline_s);
   if (s.rms_model)
     t += fmt::format(
         "RMS error (″)       eta      xi\n  model     {:9.4f} {:7.4f}\n  filtered  {:9.4f} "

@@ -115,6 +115,28 @@ TEST_F(DovCli, SimulateRecordsItsSettingsAndWritesBothFilesOrNeither) {
   EXPECT_NE(d.err.find("--config needs --out"), std::string::npos) << d.err;
 }
 
+TEST_F(DovCli, TransportRateFromSimulationToSummary) {
+  // --transport-rate puts it in the truth, in the line's settings comment and in the
+  // configuration, and the summary says the processing used it.
+  ASSERT_EQ(run("dov simulate --hours 0.05 --speed-m-s 200 --transport-rate --out line.csv "
+                "--config dov.yaml").code,
+            0);
+  EXPECT_NE(slurp(dir_ / "dov.yaml").find("transport_rate: true"), std::string::npos);
+  EXPECT_NE(slurp(dir_ / "line.csv").find("attitude error with transport rate"), std::string::npos);
+  const CmdResult text = run("dov process dov.yaml -q");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("transport rate from the track (10 s baselines)"), std::string::npos)
+      << text.out;
+  const CmdResult json = run("dov process dov.yaml -q --json");
+  ASSERT_EQ(json.code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"transport_rate_baseline_s\": 10.0"), std::string::npos) << json.out;
+  // without the flag: the spec's Earth-rate model, said as null
+  ASSERT_EQ(run("dov simulate --hours 0.05 --out plain.csv --config plain.yaml").code, 0);
+  EXPECT_EQ(slurp(dir_ / "plain.yaml").find("transport_rate"), std::string::npos);
+  const CmdResult plain = run("dov process plain.yaml -q --json");
+  EXPECT_NE(plain.out.find("\"transport_rate_baseline_s\": null"), std::string::npos) << plain.out;
+}
+
 TEST_F(DovCli, BadSampleNamesFileLineAndColumn) {
   ASSERT_EQ(run("dov simulate --hours 0.05 --out line.csv --config dov.yaml").code, 0);
   // line 4 is the first sample (two comments, header): make its lgu_11 unreadable

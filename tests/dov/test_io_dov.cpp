@@ -169,6 +169,20 @@ TEST(DovFiles, ConfigAndRunner) {
   }
   write(dir / "bad2.yaml", "line: line.csv\ndiscretisation: second_order\n");
   EXPECT_THROW(io::read_dov_config((dir / "bad2.yaml").string()), InputError);
+  // the transport rate: off by default, on with its baseline, a baseline alone is an error
+  EXPECT_FALSE(c.options.transport_rate);
+  write(dir / "tr.yaml", "line: line.csv\ntransport_rate: true\ntransport_rate_baseline_s: 30\n");
+  const io::DovConfig tr = io::read_dov_config((dir / "tr.yaml").string());
+  EXPECT_TRUE(tr.options.transport_rate);
+  EXPECT_DOUBLE_EQ(tr.options.transport_rate_baseline_s, 30.0);
+  EXPECT_FALSE(io::run_dov(tr).notes.empty());
+  write(dir / "bad3.yaml", "line: line.csv\ntransport_rate_baseline_s: 30\n");
+  try {
+    io::read_dov_config((dir / "bad3.yaml").string());
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().line, 2) << e.what();
+  }
   std::filesystem::remove_all(dir);
 }
 

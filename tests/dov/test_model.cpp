@@ -64,6 +64,51 @@ TEST(DovModel, AttitudeBlockIsTheRotationAboutTheEarthRate) {
   EXPECT_DOUBLE_EQ(c.F(State::phi_u, State::eps_u), -1.0);
 }
 
+TEST(DovModel, TransportRateOfARhumbLineIsTheTextbooksOmegaEn) {
+  // ω_en in ENU from the velocity (Titterton & Weston §3.5, NED there, axes swapped here):
+  // (−v_N/(M + h), v_E/(N + h), v_E·tan L/(N + h)), against transport_rate(L, L̇, λ̇) with
+  // L̇ = v_N/(M + h), λ̇ = v_E/((N + h)·cos L) — the GRS80 radii written out here.
+  const double a = 6378137.0, f = 1.0 / 298.257222101, e2 = f * (2.0 - f), h = 120.0;
+  for (double lat_deg : {-71.0, 0.0, 23.5, 60.0}) {
+    const double lat = lat_deg * units::kDegree;
+    const double w = std::sqrt(1.0 - e2 * std::sin(lat) * std::sin(lat));
+    const double n = a / w, m = a * (1.0 - e2) / (w * w * w);
+    const double v_e = 180.0, v_n = -95.0;  // m/s
+    const Eigen::Vector3d book(-v_n / (m + h), v_e / (n + h), v_e * std::tan(lat) / (n + h));
+    const Eigen::Vector3d got =
+        transport_rate(lat, v_n / (m + h), v_e / ((n + h) * std::cos(lat)));
+    EXPECT_LT((got - book).norm(), 1e-15 * book.norm() + 1e-22) << lat_deg;
+  }
+  EXPECT_THROW(transport_rate(2.0, 0.0, 0.0), InputError);
+  EXPECT_THROW(transport_rate(0.1, std::nan(""), 0.0), InputError);
+}
+
+TEST(DovModel, TransportRateAddsToTheEarthRateInMinusOmegaCross) {
+  // φ̇ = −Ω×φ with Ω = ω_ie(0, cos L, sin L) + ω_en: the attitude block of F is −[Ω×], and the
+  // exact Φ block is the rotation R(Ω, −|Ω|Δt) (Eigen's AngleAxis as the reference).
+  ModelOptions o;
+  const double lat = -42.0 * units::kDegree;
+  const Eigen::Vector3d en(3.1e-5, -2.2e-5, 4.7e-5);  // a fast aircraft's size (rad/s)
+  const Eigen::Vector3d omega =
+      o.omega_ie_rad_s * Eigen::Vector3d(0.0, std::cos(lat), std::sin(lat)) + en;
+  Eigen::Matrix3d cross;
+  cross << 0.0, -omega.z(), omega.y(), omega.z(), 0.0, -omega.x(), -omega.y(), omega.x(), 0.0;
+  const auto c = continuous_model(lat, 120.0, o, en);
+  EXPECT_LT((Eigen::Matrix3d(c.F.topLeftCorner<3, 3>()) + cross).cwiseAbs().maxCoeff(), 1e-20);
+  EXPECT_EQ(c.F(State::phi_u, State::eps_u), -1.0);
+  const double dt = 1800.0;
+  const auto d = discrete_model(lat, 120.0, dt, o, DiscretisationMethod::Exact, en);
+  const Eigen::Matrix3d rot =
+      Eigen::AngleAxisd(-omega.norm() * dt, omega.normalized()).toRotationMatrix();
+  EXPECT_LT((Eigen::Matrix3d(d.phi.topLeftCorner<3, 3>()) - rot).cwiseAbs().maxCoeff(), 1e-12);
+  // ω_en = 0 is the spec's Earth-rate model, bit for bit.
+  const auto plain = continuous_model(lat, 120.0, o);
+  const auto zero = continuous_model(lat, 120.0, o, Eigen::Vector3d::Zero());
+  EXPECT_EQ(plain.F, zero.F);
+  EXPECT_THROW(continuous_model(lat, 120.0, o, Eigen::Vector3d(std::nan(""), 0.0, 0.0)),
+               InputError);
+}
+
 TEST(DovModel, GaussMarkovBlockAgainstTheDampedOscillator) {
   ModelOptions o;
   const double v = 5.0, dt = 1.0;

@@ -98,6 +98,15 @@ struct Options {
   double step_tolerance = 1e-6;             ///< relative change of Δt that re-discretises
   double rediscretise_latitude_rad = 0.01 * units::kDegree;  ///< ≥ 0
   double rediscretise_speed_m_s = 0.01;                      ///< ≥ 0
+  /// Transport rate ω_en in the attitude dynamics (model.hpp): false is the spec's Earth-rate
+  /// model. When true, ω_en = (−L̇, λ̇·cos L, λ̇·sin L) from the track itself: the mean rates of
+  /// latitude and longitude between the sample that closes a baseline of at least
+  /// transport_rate_baseline_s and the sample that opened it, held until the next baseline
+  /// closes (zero until the first one does). A baseline rather than consecutive samples because
+  /// GNSS position noise differentiated over 0.01 s would dwarf ω_en; 10 s of a moving carrier
+  /// give its mean over 10 s, lagging by about half of it.
+  bool transport_rate = false;
+  double transport_rate_baseline_s = 10.0;  ///< > 0 (s)
   double gate_alpha = 0.0;  ///< χ² innovation gate at significance α in (0, 1); 0: no gate
   double statistics_start_s = 0.0;  ///< summary over t − t₀ ≥ this (s), ≥ 0
   filter::StorageOptions storage;   ///< where the smoother's records spill

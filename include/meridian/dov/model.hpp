@@ -23,7 +23,15 @@
 ///   ẋ_E = δη,  δη̇ = −ω₀²·x_E − 2ζω₀·δη + w_E     (x_N, δξ, w_N likewise)
 /// with ω₀ = 2π·V/λ (λ = ModelOptions::correlation_length_m, 10 km) and E[w_E(t)w_E(τ)] =
 /// q·δ(t − τ), q = σ²·4ζω₀, so that δη, δξ are stationary with standard deviation σ (the
-/// stationary covariance of (x, δ) is diag(σ²/ω₀², σ²)). Transport-rate terms are not modelled.
+/// stationary covariance of (x, δ) is diag(σ²/ω₀², σ²)).
+///
+/// Transport rate (optional, Options::transport_rate): Ω = ω_ie + ω_en with
+/// ω_en = (−L̇, λ̇·cos L, λ̇·sin L) in ENU — the rotation of the ENU frame as the carrier moves
+/// over the ellipsoid, equal to (−v_N/(M + h), v_E/(N + h), v_E·tan L/(N + h)) with M, N the
+/// meridian and prime-vertical radii (Titterton & Weston, Strapdown Inertial Navigation
+/// Technology, 2nd ed., §3.5, in ENU axes). Then with Ω = (Ω_E, Ω_N, Ω_U):
+///   φ̇_E =  Ω_U·φ_N − Ω_N·φ_U,   φ̇_N = −Ω_U·φ_E + Ω_E·φ_U,   φ̇_U = Ω_N·φ_E − Ω_E·φ_N − ε_U,
+/// which for ω_en = 0 is the Earth-rate model above.
 ///
 /// Stationary carrier (V < ModelOptions::stationary_speed_m_s, in particular V = 0): ω₀ → 0
 /// makes q → 0 and the stationary variance σ²/ω₀² of x_E, x_N infinite. The model is then
@@ -48,6 +56,8 @@
 /// Estimation, MIT Press 1974, ch. 3, for the process); Van Loan: filter/discretisation.hpp.
 
 #include <optional>
+
+#include <Eigen/Core>
 
 #include "meridian/core/units.hpp"
 #include "meridian/filter/discretisation.hpp"
@@ -120,18 +130,24 @@ double omega0_rad_s(double speed_m_s, const ModelOptions& options);
 /// q = σ²·4ζω₀ (rad²/s); 0 in the stationary case.
 double process_noise_density(double speed_m_s, const ModelOptions& options);
 
+/// The transport rate ω_en = (−L̇, λ̇·cos L, λ̇·sin L) (rad/s, ENU; file comment) of a carrier
+/// whose geodetic latitude changes at lat_rate_rad_s and longitude at lon_rate_rad_s (east
+/// positive) at latitude lat_rad. Throws InputError unless all are finite and |L| ≤ π/2.
+Eigen::Vector3d transport_rate(double lat_rad, double lat_rate_rad_s, double lon_rate_rad_s);
+
 /// The continuous model at geodetic latitude lat_rad (|L| ≤ π/2) and speed speed_m_s (≥ 0),
-/// moving or stationary (file comment). Throws InputError for values out of range.
-filter::ContinuousModel<State::size, Noise::size> continuous_model(double lat_rad,
-                                                                  double speed_m_s,
-                                                                  const ModelOptions& options);
+/// moving or stationary (file comment); transport_rate_rad_s is ω_en in ENU (rad/s, zero: the
+/// Earth-rate-only model of the spec). Throws InputError for values out of range.
+filter::ContinuousModel<State::size, Noise::size> continuous_model(
+    double lat_rad, double speed_m_s, const ModelOptions& options,
+    const Eigen::Vector3d& transport_rate_rad_s = Eigen::Vector3d::Zero());
 
 /// The model discretised over dt_s (> 0) by `method`. Throws InputError as continuous_model or
 /// for dt_s not finite and > 0; NumericalError when the exponential is not finite.
-filter::DiscreteModel<State::size> discrete_model(double lat_rad, double speed_m_s, double dt_s,
-                                                  const ModelOptions& options,
-                                                  DiscretisationMethod method =
-                                                      DiscretisationMethod::Exact);
+filter::DiscreteModel<State::size> discrete_model(
+    double lat_rad, double speed_m_s, double dt_s, const ModelOptions& options,
+    DiscretisationMethod method = DiscretisationMethod::Exact,
+    const Eigen::Vector3d& transport_rate_rad_s = Eigen::Vector3d::Zero());
 
 /// H of the file comment.
 ObservationMatrix observation_matrix();

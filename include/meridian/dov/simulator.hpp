@@ -20,7 +20,10 @@
 ///   drawn N(0, (σ·1 s)²) (initial_estimate's convention);
 /// * LGU/GNSS attitude error φ (psi-angle, attitude_difference.hpp) from φ(0) =
 ///   initial_attitude_error_rad by the exact solution of φ̇ = −Ω×φ − ε_U·e_U over each step
-///   (Ω = ω_ie(0, cos L, sin L), L at the step's mid-point; with u = Ω/ω and Rodrigues:
+///   (Ω = ω_ie(0, cos L, sin L), L at the step's mid-point, plus with
+///   SimulationOptions::transport_rate the track's exact transport rate
+///   ω_en = (−L̇, λ̇·cos L, λ̇·sin L) = (−V·cos α/M, V·sin α/N, V·sin α·tan L/N) at that point
+///   (model.hpp); with ω = |Ω|, u = Ω/ω and Rodrigues:
 ///   φ_{k+1} = exp(−[Ω×]Δt)·φ_k − J·ε_U·e_U, J = Δt·I − ((1 − cos ωΔt)/ω)[u×] +
 ///   (Δt − sin(ωΔt)/ω)[u×]²); ε_U constant;
 /// * body attitude C_b^n: heading α about up, a 1° pitch oscillation (period 37 s) about east
@@ -76,6 +79,9 @@ struct SimulationOptions {
   Eigen::Vector3d initial_attitude_error_rad = Eigen::Vector3d::Zero();  ///< φ(0), (E, N, U)
   double sigma_ins_rad = 0.5 * units::kArcsecond;  ///< σ of v_E, v_N, v_U (white), ≥ 0
   ModelField model_field;                          ///< empty: synthetic_model_deflection
+  /// The true attitude error also turns with the transport rate (file comment); false: Earth
+  /// rate only, the spec's model. Options::transport_rate is the processing side.
+  bool transport_rate = false;
   std::uint64_t seed = 1;
 };
 
