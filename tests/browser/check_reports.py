@@ -36,6 +36,10 @@ REQUIRED = {
     "nav-nbp1406.html": ["summary", "track", "errors", "bias", "notes"],
 }
 
+# Pages of jobs on real data outside the project (examples/nav-nbp1406.yaml reads
+# ../shared/data/nmea): the demo skips them, saying so, when the data is absent.
+REAL_DATA_JOBS = {"nav-nbp1406.html": "nav-nbp1406.yaml"}
+
 # The gravity points page: a 20 x 20 grid of points over a region.
 GRAVITY_POINTS = 400
 
@@ -175,6 +179,12 @@ def main():
     # Every page must be one the check knows, so new reports get section checks.
     for name in REQUIRED:
         if not os.path.exists(os.path.join(args.out, name)):
+            # A real-data job the demo skips on a fresh clone (its logs live in ../shared/data,
+            # never in the project): absent only when the demo said it skipped that job.
+            job = REAL_DATA_JOBS.get(name)
+            if job and re.search(re.escape(job) + r" skipped: .* is not there", demo.stdout):
+                print(f"skip {name}: the demo skipped {job} (its real logs are not on this machine)")
+                continue
             failed += 1
             print(f"FAIL {name} was not written")
     # The campaign report prints to a PDF.
