@@ -88,7 +88,8 @@ def process(source, **options) -> Result:
     arguments with the configuration's keys (zeta, sigma_model_arcsec,
     correlation_length_m, stationary_speed_m_s, sigma_obs_arcsec or
     sigma_obs_east_arcsec/sigma_obs_north_arcsec, initial={…}, discretisation,
-    extraction, max_step_s, gate_alpha, statistics_start_s).
+    extraction, max_step_s, gate_alpha, statistics_start_s, transport_rate,
+    transport_rate_baseline_s).
     Errors: the file, line and column for files; for arrays the array and element
     ("lat_deg[3]"), or "<options>" and the key."""
     if isinstance(source, (str, os.PathLike)):
@@ -116,10 +117,12 @@ def process(source, **options) -> Result:
 
 def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height_m=0.0, speed_m_s=5.0,
              rate_hz=1.0, hours=4.0, sigma_model_arcsec=3.0, sigma_ins_arcsec=0.5, eps_u_deg_per_h=0.003,
-             phi_e_arcsec=0.0, phi_n_arcsec=0.0, phi_u_arcsec=0.0, seed=1) -> Table:
+             phi_e_arcsec=0.0, phi_n_arcsec=0.0, phi_u_arcsec=0.0, seed=1, transport_rate=False) -> Table:
     """Simulate a line (`meridian dov simulate`, the same defaults; the same seed gives the
     same line): a Table of the line's arrays, with truth. Angles in degrees (numbers or
-    any notation of meridian.angle) and arc-seconds."""
+    any notation of meridian.angle) and arc-seconds. transport_rate=True: the true attitude
+    error also turns with the transport rate (`--transport-rate`; process it with
+    transport_rate=True)."""
     o = {"latitude_deg": degrees("latitude_deg", latitude_deg),
          "longitude_deg": degrees("longitude_deg", longitude_deg),
          "heading_deg": degrees("heading_deg", heading_deg)}
@@ -129,6 +132,7 @@ def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height
                        ("phi_n_arcsec", phi_n_arcsec), ("phi_u_arcsec", phi_u_arcsec)]:
         o[key] = float(value)
     o["seed"] = int(seed)
+    o["transport_rate"] = bool(transport_rate)
     # The simulator's own checks name its members in radians; say it in these arguments' terms.
     if not abs(o["latitude_deg"]) < 89.0:
         raise InputError(f"must be within ±89°, is {o['latitude_deg']:.6g}°", field="latitude_deg")

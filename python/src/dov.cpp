@@ -201,6 +201,7 @@ py::dict simulate(const py::dict& o) {
                       o["phi_u_arcsec"].cast<double>()) *
       units::kArcsecond;
   so.seed = o["seed"].cast<std::uint64_t>();
+  so.transport_rate = o["transport_rate"].cast<bool>();
   md::Input in;
   {
     py::gil_scoped_release released;
