@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <cctype>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -154,14 +155,52 @@ struct ConvertArgs {
   std::string input, output;
 };
 
+bool names_csv(const std::string& path) {
+  if (path == "-") return true;
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return ext == ".csv";
+}
+
+// A binary line (or a CSV) to a line CSV, a block at a time, atomically (or to stdout).
+int convert_to_csv(const ConvertArgs& a) {
+  io::DovLineReader reader(a.input);
+  const bool model = reader.has_model_values(), truth = reader.has_truth();
+  std::optional<AtomicFileWriter> file;
+  if (a.output != "-") file.emplace(a.output);
+  const auto put = [&](const std::string& text) {
+    if (file)
+      file->write(text);
+    else
+      std::cout << text;
+  };
+  put(io::dov_line_csv_header(model, truth, "Converted from " + a.input));
+  io::DovLine chunk;
+  std::string text;
+  std::uint64_t count = 0;
+  while (reader.next(chunk, 65536)) {
+    text.clear();
+    io::append_dov_line_csv_rows(text, chunk.samples, chunk.truth, model, truth);
+    put(text);
+    count += chunk.samples.size();
+  }
+  if (file) file->commit();
+  std::cerr << fmt::format("{}: {} samples{}{}\n", a.output == "-" ? "stdout" : a.output, count,
+                           model ? ", model values" : ", no model values",
+                           truth ? ", truth" : "");
+  return kOk;
+}
+
 // A line CSV (or binary) to the binary format, a block at a time: the header's count is
 // written last (AtomicFileWriter::write_at), the file renamed into place only when complete.
+// An OUT ending in .csv (or "-") is the other direction: convert_to_csv.
 int run_convert(const ConvertArgs& a) {
-  if (a.output.empty() || a.output == "-")
-    throw InputError("the binary line needs a file to go to, not standard output");
+  if (a.output.empty())
+    throw InputError("give the output file (OUT ending in .csv, or -, for a CSV)");
   std::error_code ec;
   if (same_path(a.input, a.output) || std::filesystem::equivalent(a.input, a.output, ec))
     throw InputError(fmt::format("the output would overwrite the input {}", a.input));
+  if (names_csv(a.output)) return convert_to_csv(a);
   io::DovLineReader reader(a.input);
   const bool model = reader.has_model_values(), truth = reader.has_truth();
   const std::vector<std::string> ignored = reader.ignored_columns();
@@ -315,9 +354,14 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
 
   auto ca = std::make_shared<ConvertArgs>();
   CLI::App* conv = dv->add_subcommand(
-      "convert", "Convert a line CSV to the compact binary line format (docs/file-formats.md)");
-  conv->add_option("IN", ca->input, "Line CSV (or binary line)")->required();
-  conv->add_option("OUT", ca->output, "Binary line to write (atomically)")->required();
+      "convert",
+      "Convert a line CSV to the compact binary line format, or (OUT ending in .csv, or -) a "
+      "binary line to CSV (docs/file-formats.md)");
+  conv->add_option("IN", ca->input, "Line CSV or binary line")->required();
+  conv->add_option("OUT", ca->output,
+                   "Binary line to write (atomically); a name ending in .csv gets a line CSV, - "
+                   "standard output")
+      ->required();
   conv->callback([ca, &exit_code] { exit_code = guarded([&] { return run_convert(*ca); }); });
   pro->callback([pa, &exit_code] { exit_code = guarded([&] { return run_process(*pa); }); });
 }

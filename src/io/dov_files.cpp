@@ -296,7 +296,7 @@ DovLine read_dov_line_file(const std::string& path) {
 }
 
 
-std::string dov_line_csv(const dov::Input& input, const std::string& settings) {
+std::string dov_line_csv_header(bool model, bool truth, const std::string& settings) {
   std::string out = "# meridian dov line: C_b^n (lgu_ij) and C_b^n' (ins_ij), rows E, N, U\n";
   if (!settings.empty()) {
     std::string one_line = settings;
@@ -308,24 +308,34 @@ std::string dov_line_csv(const dov::Input& input, const std::string& settings) {
   for (const char* p : {"lgu", "ins"})
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) out += "," + element_name(p, i, j);
-  out += ",model_eta_arcsec,model_xi_arcsec";
-  const bool truth = !input.truth.empty();
+  if (model) out += ",model_eta_arcsec,model_xi_arcsec";
   if (truth) out += ",truth_eta_arcsec,truth_xi_arcsec";
   out += "\n";
-  for (std::size_t k = 0; k < input.samples.size(); ++k) {
-    const dov::Sample& s = input.samples[k];
+  return out;
+}
+
+void append_dov_line_csv_rows(std::string& out, const std::vector<dov::Sample>& samples,
+                              const std::vector<dov::Truth>& truth, bool model,
+                              bool truth_columns) {
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const dov::Sample& s = samples[k];
     out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", s.time_s,
                        s.lat_rad / units::kDegree, s.lon_rad / units::kDegree, s.height_m,
                        s.speed_m_s);
     for (const Eigen::Matrix3d* m : {&s.lgu_body_to_nav, &s.ins_body_to_nav})
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) out += fmt::format(",{:.17g}", (*m)(i, j));
-    out += fmt::format(",{:.17g},{:.17g}", s.model_eta_rad / kAs, s.model_xi_rad / kAs);
-    if (truth)
-      out += fmt::format(",{:.17g},{:.17g}", input.truth[k].eta_rad / kAs,
-                         input.truth[k].xi_rad / kAs);
+    if (model) out += fmt::format(",{:.17g},{:.17g}", s.model_eta_rad / kAs, s.model_xi_rad / kAs);
+    if (truth_columns)
+      out += fmt::format(",{:.17g},{:.17g}", truth[k].eta_rad / kAs, truth[k].xi_rad / kAs);
     out += "\n";
   }
+}
+
+std::string dov_line_csv(const dov::Input& input, const std::string& settings) {
+  const bool truth = !input.truth.empty();
+  std::string out = dov_line_csv_header(true, truth, settings);
+  append_dov_line_csv_rows(out, input.samples, input.truth, true, truth);
   return out;
 }
 

@@ -232,6 +232,56 @@ TEST_F(DovCli, BinaryLineConvertedOrSimulatedGivesTheSameProfile) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.bin"));
 }
 
+TEST_F(DovCli, BinaryLineConvertsBackToTheSameCsv) {
+  // CSV → binary → CSV gives the same rows (17 digits read back to the same doubles), and
+  // the comment says where it came from; "-" writes it to standard output.
+  ASSERT_EQ(run("dov simulate --hours 0.05 --seed 6 --out line.csv").code, 0);
+  ASSERT_EQ(run("dov convert line.csv line.bin").code, 0);
+  const CmdResult c = run("dov convert line.bin back.csv");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_NE(c.err.find("back.csv: 181 samples, model values, truth"), std::string::npos) << c.err;
+  const auto rows = [](const std::string& text) {
+    std::string out;
+    std::size_t at = 0;
+    while (at < text.size()) {
+      const std::size_t end = text.find('\n', at);
+      const std::string line = text.substr(at, end - at);
+      if (line.rfind("#", 0) != 0) out += line + "\n";
+      at = end == std::string::npos ? text.size() : end + 1;
+    }
+    return out;
+  };
+  const std::string original = slurp(dir_ / "line.csv"), back = slurp(dir_ / "back.csv");
+  EXPECT_EQ(rows(back), rows(original));
+  EXPECT_NE(back.find("# Converted from line.bin"), std::string::npos);
+  const CmdResult out = run("dov convert line.bin -");
+  ASSERT_EQ(out.code, 0) << out.err;
+  EXPECT_EQ(rows(out.out), rows(original));
+  // a line without model columns stays without them
+  ASSERT_EQ(run("dov simulate --hours 0.01 --out full.csv").code, 0);
+  std::string text = slurp(dir_ / "full.csv"), stripped;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = text.find('\n', at);
+    std::string line = text.substr(at, end - at);
+    if (line.rfind("#", 0) != 0) {  // drop fields 24 and 25 (model_eta/xi_arcsec)
+      std::size_t a = 0;
+      for (int k = 0; k < 23; ++k) a = line.find(',', a) + 1;
+      const std::size_t b = line.find(',', line.find(',', a) + 1);
+      line.erase(a - 1, b == std::string::npos ? std::string::npos : b - a + 1);
+    }
+    stripped += line + "\n";
+    at = end == std::string::npos ? text.size() : end + 1;
+  }
+  write("nomodel.csv", stripped);
+  ASSERT_EQ(run("dov convert nomodel.csv nomodel.bin").code, 0);
+  const CmdResult n = run("dov convert nomodel.bin nomodel-back.csv");
+  ASSERT_EQ(n.code, 0) << n.err;
+  EXPECT_NE(n.err.find("no model values"), std::string::npos) << n.err;
+  EXPECT_EQ(rows(slurp(dir_ / "nomodel-back.csv")), rows(stripped));
+  EXPECT_EQ(slurp(dir_ / "nomodel-back.csv").find("model_eta"), std::string::npos);
+}
+
 TEST_F(DovCli, SimulateOptionErrorsInTheOptionsTerms) {
   // user-trial findings: CLI11's range message, radians and internal member names
   const CmdResult r = run("dov simulate --rate-hz 0 --out x.csv");

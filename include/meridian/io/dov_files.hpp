@@ -105,6 +105,14 @@ DovLine read_dov_line_file(const std::string& path);
 /// simulator's settings; the reader skips comments).
 std::string dov_line_csv(const dov::Input& input, const std::string& settings = {});
 
+/// The comment and header lines of a line CSV as dov_line_csv writes them; `model`: the
+/// model_eta_arcsec, model_xi_arcsec columns, `truth`: truth_eta_arcsec, truth_xi_arcsec.
+std::string dov_line_csv_header(bool model, bool truth, const std::string& settings = {});
+/// Append the rows of samples[k] (and truth[k] when `truth`; truth.size() == samples.size()
+/// then) under a dov_line_csv_header(model, truth), 17 significant digits.
+void append_dov_line_csv_rows(std::string& out, const std::vector<dov::Sample>& samples,
+                              const std::vector<dov::Truth>& truth, bool model, bool truth_columns);
+
 /// The global gravity model a configuration names (`gravity_model: {model: …, max_degree: …}`).
 struct DovGravityModel {
   std::string source;   ///< name or path as written (e.g. "egm2008", "models/x.gfc")
