@@ -26,6 +26,11 @@ namespace {
 constexpr std::size_t kProgressStride = 1024;  // epochs between progress reports
 constexpr std::size_t kChunk = 4096;           // samples asked of the source at a time
 
+// Field names of the per-sample checks (built once; the index is added on failure).
+const std::string kLguField = "lgu_body_to_nav";
+const std::string kInsField = "ins_body_to_nav";
+const std::string kDifferenceField = "attitude_difference";
+
 std::string sample_field(std::size_t k, const char* member) {
   return fmt::format("samples[{}].{}", k, member);
 }
@@ -75,8 +80,15 @@ void check_sample(const Sample& s, std::size_t k, const Options& o) {
                  fmt::format("model value {} = {:.1f}″ is beyond ±{:.0f}″ (a unit error?)", name,
                              v / units::kArcsecond,
                              geodesy::kMaxDeflection_rad / units::kArcsecond));
-  check_rotation(s.lgu_body_to_nav, sample_field(k, "lgu_body_to_nav"), o.orthogonality_tolerance);
-  check_rotation(s.ins_body_to_nav, sample_field(k, "ins_body_to_nav"), o.orthogonality_tolerance);
+  // The sample's index goes into the field only when a check fails: formatting
+  // "samples[k].member" for every sample cost about 5 % of the workflow (perf).
+  try {
+    check_rotation(s.lgu_body_to_nav, kLguField, o.orthogonality_tolerance);
+    check_rotation(s.ins_body_to_nav, kInsField, o.orthogonality_tolerance);
+  } catch (Error& e) {
+    e.add_context({}, {}, fmt::format("samples[{}]", k));
+    throw;
+  }
 }
 
 DeflectionEstimate deflection_of(const filter::Estimate<State::size>& e, const Sample& s) {
@@ -266,7 +278,13 @@ class Forward {
     }
     const Eigen::Matrix3d c = attitude_difference_matrix(s.lgu_body_to_nav, s.ins_body_to_nav);
     // Both matrices make the difference: the error names neither one alone.
-    const AttitudeDifference d = extract(c, o_.extraction, sample_field(k, "attitude_difference"));
+    AttitudeDifference d;
+    try {
+      d = extract(c, o_.extraction, kDifferenceField);
+    } catch (Error& e) {
+      e.add_context({}, {}, fmt::format("samples[{}]", k));
+      throw;
+    }
     const double size = d.vector().norm();
     if (!(size <= o_.max_attitude_difference_rad))
       bad_sample(k, "attitude_difference",
