@@ -73,6 +73,40 @@ TEST_F(CliStochastic, StochasticJsonContract) {
   EXPECT_EQ(s.at("tests").size(), 2u);
 }
 
+TEST_F(CliStochastic, EveryModelCarriesTheGlsOfR1) {
+  // The simulated book follows (R1) with κ = 0.002 and white noise of 3": every model's (R1)
+  // centre is the truth within 3σ, its decay near 0.002, the text and JSON show it.
+  const auto f = write("book.yaml", kBook);
+  const CmdResult r = run("gyro stochastic " + f.string() + " --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const auto& m : j.at("series")[0].at("models")) {
+    SCOPED_TRACE(m.at("name").get<std::string>());
+    ASSERT_TRUE(m.contains("r1"));
+    if (m.at("degenerate").get<bool>() && m.at("r1").is_null()) continue;
+    ASSERT_TRUE(m.at("r1").is_object());
+    const auto& r1 = m.at("r1");
+    for (const char* k : {"north_reading_deg", "north_reading_dms", "sigma_north_arcsec",
+                          "amplitude_arcsec", "sigma_amplitude_arcsec", "decay_per_half_period",
+                          "sigma_decay_per_half_period", "iterations"})
+      EXPECT_TRUE(r1.contains(k)) << k;
+    if (m.at("degenerate").get<bool>()) continue;
+    const double n = r1.at("north_reading_deg");
+    const double sig = r1.at("sigma_north_arcsec");
+    EXPECT_GT(sig, 0.0);
+    EXPECT_LT(std::fabs((n - (12.0 / 60.0 + 34.0 / 3600.0)) * 3600.0), 3.0 * std::max(sig, 0.5));
+    const double kappa = r1.at("decay_per_half_period");
+    const double sk = r1.at("sigma_decay_per_half_period");
+    EXPECT_LT(std::fabs(kappa - 0.002), 3.0 * sk + 1e-4);
+    // A of (R1) has the sign of A′ of (R2).
+    EXPECT_GT(r1.at("amplitude_arcsec").get<double>() * m.at("amplitude_arcsec").get<double>(),
+              0.0);
+  }
+  const CmdResult t = run("gyro stochastic " + f.string() + " -q");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("north (R1)"), std::string::npos) << t.out;
+}
+
 TEST_F(CliStochastic, StochasticTextAndBadInput) {
   const auto f = write("book.yaml", kBook);
   const CmdResult t = run("gyro stochastic " + f.string() + " -q");
