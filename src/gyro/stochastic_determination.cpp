@@ -159,6 +159,14 @@ DeterminationResult with_stochastic_model(DeterminationResult reduced, const Det
       fit->shape.empty() ? "" : fmt::format(", shape {:.3g}", fmt::join(fit->shape, ", ")),
       fit->sigma1.value,
       std::isfinite(fit->sigma2.value) ? fmt::format(", sigma2 = {:.3g}\"", fit->sigma2.value) : "");
+  // The white-noise warning "… the larger, a-posteriori sigma is used" no longer says what
+  // gives σ(N_G): say so.
+  if (const std::string w = reading_sigma_warning(*r.primary.reversal, units::kArcsecond, "\"", 1);
+      !w.empty())
+    for (auto& x : r.warnings)
+      if (x.size() >= w.size() && x.compare(x.size() - w.size(), w.size(), w) == 0)
+        x += fmt::format(" for white noise; N_G and its sigma are from the GLS under {} instead",
+                         to_string(fit->model));
   const auto update = [&](MethodResult& m) {
     ReversalResult& rv = *m.reversal;
     rv.centre = centre_rad;
@@ -172,6 +180,7 @@ DeterminationResult with_stochastic_model(DeterminationResult reduced, const Det
     for (Eigen::Index i = 0; i < g.residuals.size(); ++i)
       rv.residuals.push_back(units::arcsec_to_rad(g.residuals(i)));
     rv.sigma_is_aposteriori = false;
+    rv.sigma_from_gls = true;
     rv.notes.push_back(note);
     m.north = north_from_tracking(centre_rad, inst, r.zero_position_used);
   };

@@ -51,7 +51,8 @@ Table methods_table(const gyro::DeterminationResult& r, const AngleFormat& f) {
       const auto& fit = *m.reversal;
       t.rows.push_back({name(m), f.dir(m.north.north_rad, 2), f.sig(m.north.sigma_rad, 2),
                         std::to_string(fit.dof), num(fit.sigma0 / units::kArcsecond, 2),
-                        std::isfinite(fit.centre.sigma)
+                        fit.sigma_from_gls ? "GLS, correlated readings"
+                        : std::isfinite(fit.centre.sigma)
                             ? (fit.sigma_is_aposteriori ? "a posteriori" : "a priori")
                             : "n/a"});
     }

@@ -134,6 +134,27 @@ TEST(StochasticCampaign, Markov1IsTheGlsOfR1WithTheReportedCovariance) {
               1e-6);
 }
 
+TEST(StochasticCampaign, WhiteNoiseSigmaWarningSaysWhatGivesSigma) {
+  // Booked σ 0.5" against readings scattering by more: the global test of the white-noise fit
+  // rejects; under markov1 the warning says that N_G's σ comes from the GLS instead, and the
+  // reports' sigma basis says GLS.
+  CampaignInput in = sc_tracking_campaign(20, 0.6, 8);
+  in.line.determinations[0].tracking.sigma_reading_rad = 0.5 * units::kArcsecond;
+  const CampaignResult w = process(in);
+  ASSERT_TRUE(w.determinations[0].primary.reversal->reading_sigma_test->rejected);
+  in.stochastic_model = StochasticChoice::Markov1;
+  const CampaignResult m = process(in);
+  const auto& d = m.determinations[0];
+  ASSERT_FALSE(d.stochastic.fallback) << d.stochastic.reason;
+  EXPECT_TRUE(d.primary.reversal->sigma_from_gls);
+  EXPECT_FALSE(w.determinations[0].primary.reversal->sigma_from_gls);
+  bool said = false;
+  for (const auto& x : d.warnings)
+    said = said || (x.find("a-posteriori sigma is used for white noise; N_G and its sigma are from "
+                           "the GLS under markov1-ml instead") != std::string::npos);
+  EXPECT_TRUE(said);
+}
+
 TEST(StochasticCampaign, LinearMethodUsesTheGlsOfR2) {
   CampaignInput in = sc_tracking_campaign(20, 0.6, 4);
   in.line.determinations[0].method = ReversalMethod::LinearLsq;
