@@ -105,6 +105,10 @@ TEST_F(CliStochastic, EveryModelCarriesTheGlsOfR1) {
   const CmdResult t = run("gyro stochastic " + f.string() + " -q");
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("north (R1)"), std::string::npos) << t.out;
+  const CmdResult h = run("gyro stochastic " + f.string() + " -q -o out.txt --report r.html");
+  if (h.code != 0 && h.err.find("without HTML reports") != std::string::npos) return;
+  ASSERT_EQ(h.code, 0) << h.err;
+  EXPECT_NE(slurp(dir_ / "r.html").find("north reading (R1)"), std::string::npos);
 }
 
 TEST_F(CliStochastic, StochasticTextAndBadInput) {
