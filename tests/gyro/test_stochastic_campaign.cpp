@@ -155,6 +155,72 @@ TEST(StochasticCampaign, WhiteNoiseSigmaWarningSaysWhatGivesSigma) {
   EXPECT_TRUE(said);
 }
 
+// The series of the campaign's line determination in arcsec from the first reading's degree.
+std::vector<double> sc_series_arcsec(const CampaignInput& in, double* ref_rad) {
+  const std::vector<double> un = unwrap_circle_readings(in.line.determinations[0].tracking.reversals_rad);
+  *ref_rad = std::floor(un.front() / units::kDegree) * units::kDegree;
+  std::vector<double> arcsec;
+  for (double x : un) arcsec.push_back((x - *ref_rad) / units::kArcsecond);
+  return arcsec;
+}
+
+TEST(StochasticCampaign, Markov2AndRecommended) {
+  int markov2_used = 0, recommended_other = 0, recommended_white = 0;
+  for (std::uint64_t seed = 40; seed < 48; ++seed) {
+    CampaignInput in = sc_tracking_campaign(20, 0.6, seed);
+    double ref = 0.0;
+    const std::vector<double> arcsec = sc_series_arcsec(in, &ref);
+    // markov2: the GLS of (R1) under the reported Markov-2 covariance, or a fallback that says
+    // why (a degenerate fit).
+    in.stochastic_model = StochasticChoice::Markov2;
+    const CampaignResult m2 = process(in);
+    const auto& d2 = m2.determinations[0];
+    if (d2.stochastic.fallback) {
+      EXPECT_THAT(d2.stochastic.reason, HasSubstr("markov2-ml"));
+    } else {
+      ++markov2_used;
+      EXPECT_EQ(d2.stochastic.used, "markov2-ml");
+      ASSERT_EQ(d2.stochastic.rho.size(), 2u);
+      const double s1 = d2.stochastic.sigma1_arcsec, s2 = d2.stochastic.sigma2_arcsec;
+      const Eigen::MatrixXd D = markov2_factors(20, d2.stochastic.rho[0], d2.stochastic.rho[1])
+                                    .covariance(s1 * s1, s2 * s2);
+      const R1GlsFit g = reversal_gls_nonlinear(arcsec, D);
+      EXPECT_NEAR(sc_arcsec(d2.primary.north.north_rad, ref + g.centre.value * units::kArcsecond),
+                  0.0, 1e-6);
+      EXPECT_NEAR(d2.primary.north.sigma_rad / units::kArcsecond, g.centre.sigma, 1e-9);
+    }
+    // recommended: the model the full comparison of the same series recommends.
+    in.stochastic_model = StochasticChoice::Recommended;
+    const CampaignResult rc = process(in);
+    const auto& dr = rc.determinations[0];
+    StochasticInput si;
+    si.readings = arcsec;
+    si.booked_sigma = 2.0;
+    const StochasticResult full = analyse_stochastic(si);
+    const ModelFit& rec = full.models[static_cast<std::size_t>(full.recommended)];
+    EXPECT_FALSE(dr.stochastic.fallback);
+    if (rec.model == StochasticModel::WhiteNoise) {
+      ++recommended_white;
+      EXPECT_EQ(dr.stochastic.used, "white");
+      EXPECT_EQ(dr.stochastic.reason, "the comparison recommends white noise");
+      const CampaignResult w = process(sc_tracking_campaign(20, 0.6, seed));
+      EXPECT_EQ(dr.primary.north.north_rad, w.determinations[0].primary.north.north_rad);
+      EXPECT_EQ(dr.primary.north.sigma_rad, w.determinations[0].primary.north.sigma_rad);
+    } else {
+      ++recommended_other;
+      EXPECT_EQ(dr.stochastic.used, to_string(rec.model));
+      ASSERT_TRUE(rec.r1.has_value());
+      EXPECT_NEAR(sc_arcsec(dr.primary.north.north_rad, ref + rec.r1->centre.value * units::kArcsecond),
+                  0.0, 1e-9);
+      EXPECT_NEAR(dr.primary.north.sigma_rad / units::kArcsecond, rec.r1->centre.sigma, 1e-12);
+    }
+  }
+  std::printf("markov2 used %d of 8; recommended: white %d, other %d\n", markov2_used,
+              recommended_white, recommended_other);
+  EXPECT_GT(markov2_used, 0);
+  EXPECT_GT(recommended_other, 0);
+}
+
 TEST(StochasticCampaign, LinearMethodUsesTheGlsOfR2) {
   CampaignInput in = sc_tracking_campaign(20, 0.6, 4);
   in.line.determinations[0].method = ReversalMethod::LinearLsq;

@@ -237,6 +237,30 @@ TEST(ReversalGlsR1, BadInputRaises) {
   EXPECT_THROW(reversal_gls_nonlinear(r, I, zero), InputError);
 }
 
+TEST(ReversalGlsR1, RoutesOfTheComparisonAgree) {
+  // Whitening against normal equations for the (R2) fits: the (R1) fits under the models'
+  // covariances agree to 1e-9 as well (spec §5).
+  const int n = 20;
+  const MatrixXd Dtrue = markov1_factors(n, 0.6).covariance(4.0, 25.0);
+  const auto r = r1t_series(Eigen::Vector3d(754.0, 4800.0, 0.005), n, Dtrue, 11);
+  StochasticInput a, b;
+  a.readings = b.readings = r;
+  b.options.route = GlsRoute::NormalEquations;
+  const auto ra = analyse_stochastic(a);
+  const auto rb = analyse_stochastic(b);
+  ASSERT_EQ(ra.models.size(), rb.models.size());
+  for (std::size_t i = 0; i < ra.models.size(); ++i) {
+    SCOPED_TRACE(to_string(ra.models[i].model));
+    ASSERT_EQ(ra.models[i].r1.has_value(), rb.models[i].r1.has_value());
+    if (!ra.models[i].r1) continue;
+    const auto& x = *ra.models[i].r1;
+    const auto& y = *rb.models[i].r1;
+    EXPECT_LT(r1t_rel(x.centre.value, y.centre.value), 1e-9);
+    EXPECT_LT(r1t_rel(x.centre.sigma, y.centre.sigma), 1e-9);
+    EXPECT_LT(r1t_rel(x.decay.value, y.decay.value), 1e-9);
+  }
+}
+
 TEST(ReversalGlsR1, EveryModelOfTheComparisonCarriesItsR1Fit) {
   // Each model's (R1) fit is the GLS of (R1) with that model's covariance, rebuilt here from the
   // reported parameters.
