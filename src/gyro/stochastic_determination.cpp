@@ -41,8 +41,8 @@ StochasticChoice stochastic_choice_from_string(const std::string& name) {
 
 namespace {
 
-// The GLS centre of the model `fit` for the method of the determination, with A and the decay
-// of the same functional model; none (and why) when it cannot be given.
+// The GLS under the chosen model of the functional model of the determination's method ((R1)
+// for lsq, (R2) for lsq-linear): centre, amplitude and decay (κ of (R1), c of (R2)).
 struct GlsCentre {
   Uncertain centre, amplitude, decay;  // arcsec relative to the series' reference; κ or c
   Eigen::VectorXd residuals;           // arcsec
