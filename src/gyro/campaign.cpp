@@ -11,6 +11,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/laplace.hpp"
 #include "meridian/geodesy/sight.hpp"
+#include "meridian/gyro/stochastic_determination.hpp"
 
 namespace meridian::gyro {
 
@@ -100,10 +101,17 @@ class CampaignRun {
     res_.name = in_.name;
     res_.limits = limits_;
     res_.record = in_.record;
+    res_.stochastic_model = in_.stochastic_model;
     res_.instrument_name = in_.instrument.name;
     res_.instrument_serial = in_.instrument.serial;
     warn_looser_limits();
     res_.notes.push_back("grid: " + geodesy::describe(in_.grid));
+    if (in_.stochastic_model != StochasticChoice::White)
+      res_.notes.push_back(fmt::format(
+          "stochastic_model {}: N_G of every tracking determination by generalised least squares "
+          "under that model of its reversal readings, where it can be used (else white noise, "
+          "with a warning)",
+          to_string(in_.stochastic_model)));
     resolve_station();
     if (in_.known_line) calibrate_on_known_line();
     else use_given_instrument_constant();
@@ -146,6 +154,11 @@ class CampaignRun {
       const std::string f = fmt::format("{}[{}]", field, i);
       try {
         out.push_back(reduce_determination(dets[i], inst, options_));
+        // The stochastic model of the reversal readings: the determination's own request (an
+        // error when it cannot be used), else the campaign's (white noise when it cannot).
+        const StochasticChoice choice = dets[i].stochastic_model.value_or(in_.stochastic_model);
+        out.back() = with_stochastic_model(std::move(out.back()), dets[i], inst, choice,
+                                           dets[i].stochastic_model.has_value());
         gyro_azimuths.push_back(gyro_azimuth(out.back(), dets[i]));
       } catch (Error& e) {
         e.add_context("", std::nullopt, f);

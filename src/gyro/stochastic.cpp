@@ -12,6 +12,7 @@
 #include <fmt/ranges.h>
 
 #include "meridian/adjust/likelihood.hpp"
+#include "meridian/adjust/nonlinear.hpp"
 #include "meridian/adjust/statistics.hpp"
 #include "meridian/adjust/two_component_reml.hpp"
 #include "meridian/core/error.hpp"
@@ -109,6 +110,13 @@ void finish_fit(ModelFit& f, const std::vector<double>& readings, const MatrixXd
   f.aic = -2.0 * f.log_likelihood + 2.0 * k;
   f.bic = -2.0 * f.log_likelihood + k * std::log(r);
   f.implied_autocorrelation = implied_autocorrelation(D);
+  // The non-linear model (R1) under the same D; a failure leaves it out with the reason.
+  try {
+    f.r1 = reversal_gls_nonlinear(readings, D);
+  } catch (const Error& e) {
+    f.r1.reset();
+    f.notes.push_back(fmt::format("(R1) GLS not computed: {}", e.message()));
+  }
 }
 
 // The inverse of a Fisher information (the covariance of the estimates it is the information
@@ -566,6 +574,90 @@ GlsFit reversal_gls(const std::vector<double>& readings, const MatrixXd& D, GlsR
   f.covariance = nl.solve(Eigen::Matrix3d::Identity());
   f.residuals = G * f.y - l;
   return f;
+}
+
+R1GlsFit reversal_gls_nonlinear(const std::vector<double>& readings, const MatrixXd& D,
+                                const R1GlsOptions& options) {
+  const auto n = static_cast<Index>(readings.size());
+  if (n < 4)
+    throw InputError(
+        fmt::format("(R1) GLS: needs at least 4 readings (3 unknowns M, A, kappa + 1), got {}", n));
+  if (D.rows() != n || D.cols() != n)
+    throw InputError(
+        fmt::format("(R1) GLS: covariance is {}x{} for {} readings", D.rows(), D.cols(), n),
+        ErrorContext{"", std::nullopt, "covariance"});
+  for (Index i = 0; i < n; ++i)
+    if (!std::isfinite(readings[static_cast<std::size_t>(i)]))
+      throw InputError(fmt::format("(R1) GLS: reading {} is not finite", i + 1),
+                       ErrorContext{"", std::nullopt, fmt::format("readings[{}]", i)});
+  if (!D.allFinite())
+    throw InputError("(R1) GLS: the covariance of the readings is not finite",
+                     ErrorContext{"", std::nullopt, "covariance"});
+  if (options.max_iterations < 1 || !(options.step_tolerance > 0.0))
+    throw InputError(fmt::format("(R1) GLS: invalid options (max_iterations {} must be >= 1, "
+                                 "step_tolerance {} > 0)",
+                                 options.max_iterations, options.step_tolerance));
+  const VectorXd l = to_vector(readings);
+  // Start: OLS of (R2) mapped onto (R1) to first order: A = A′ + c, κ = 2c/A.
+  const MatrixXd G = reversal_design(static_cast<int>(n));
+  const Eigen::Vector3d lin = G.colPivHouseholderQr().solve(l);
+  const double a0 = lin(1) + lin(2);
+  // An amplitude at rounding level of the readings: no oscillation, κ is not determined.
+  if (!(std::fabs(a0) > 1e-12 * l.cwiseAbs().maxCoeff()) || !std::isfinite(a0))
+    throw NumericalError(fmt::format(
+        "(R1) GLS: the amplitude of the starting (R2) fit is zero ({:.3g}): the readings do not "
+        "oscillate and the decay kappa is not determined",
+        a0));
+  R1GlsFit out;
+  out.start = Eigen::Vector3d(lin(0), a0, 2.0 * lin(2) / a0);
+  adjust::NonlinearModel model;
+  model.predict = [n](const VectorXd& x) {
+    VectorXd f(n);
+    for (Index k = 0; k < n; ++k) {
+      const auto i = static_cast<double>(k + 1);
+      const double s = (k + 1) % 2 == 0 ? 1.0 : -1.0;  // (−1)^i
+      f(k) = x(0) + s * x(1) * std::exp(-i * x(2));
+    }
+    return f;
+  };
+  model.jacobian = [n](const VectorXd& x) {
+    MatrixXd J(n, 3);
+    for (Index k = 0; k < n; ++k) {
+      const auto i = static_cast<double>(k + 1);
+      const double s = (k + 1) % 2 == 0 ? 1.0 : -1.0;
+      const double e = std::exp(-i * x(2));
+      J(k, 0) = 1.0;
+      J(k, 1) = s * e;
+      J(k, 2) = -s * i * x(1) * e;
+    }
+    return J;
+  };
+  adjust::NonlinearOptions o;
+  o.max_iterations = options.max_iterations;
+  o.step_tolerance = options.step_tolerance;
+  o.step_scale = Eigen::Vector3d(std::fabs(lin(0)) + std::fabs(a0), std::fabs(a0), 1.0);
+  adjust::NonlinearResult nl;
+  try {
+    nl = adjust::solve_nonlinear(model, l, D, out.start, o);
+  } catch (const Error& e) {
+    const std::string msg = "(R1) GLS: " + e.message();
+    if (dynamic_cast<const InputError*>(&e)) throw InputError(msg, e.context());
+    throw NumericalError(msg, e.context());
+  }
+  out.y = nl.x;
+  out.covariance = nl.cofactor;
+  out.residuals = nl.residuals;
+  out.vtpv = nl.vtpv;
+  out.iterations = nl.iterations;
+  out.converged = nl.converged;
+  if (!out.y.allFinite() || !out.covariance.allFinite() || !(out.covariance.diagonal().array() >= 0.0).all())
+    throw NumericalError(fmt::format(
+        "(R1) GLS: the solution or its covariance is not finite (M = {}, A = {}, kappa = {})",
+        out.y(0), out.y(1), out.y(2)));
+  out.centre = {out.y(0), std::sqrt(out.covariance(0, 0))};
+  out.amplitude = {out.y(1), std::sqrt(out.covariance(1, 1))};
+  out.decay = {out.y(2), std::sqrt(out.covariance(2, 2))};
+  return out;
 }
 
 StochasticResult analyse_stochastic(const StochasticInput& input, Progress* progress) {

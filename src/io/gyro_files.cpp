@@ -111,6 +111,15 @@ int read_direction(const Node& n) {
   n.fail(fmt::format("expected east or west, got \"{}\"", s));
 }
 
+// `stochastic_model:` (campaign files).
+gyro::StochasticChoice read_stochastic_choice(const Node& v) {
+  try {
+    return gyro::stochastic_choice_from_string(v.string());
+  } catch (const InputError& e) {
+    v.fail(e.message());
+  }
+}
+
 // Circle angles (clamp, reversals, target) are in the file's `unit`.
 gyro::DeterminationInput read_determination(const Node& n, const gyro::InstrumentSpec& inst,
                                             AngleUnit unit) {
@@ -118,11 +127,12 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
                 "zero_position_div", "zero_position_sigma_div", "zero_position", "crossings",
                 "reversals_div", "reversal_times_s", "sigma_time_s", "sigma_reading_div",
                 "reversals", "sigma_reading_arcsec", "target_reading", "target_sigma_arcsec", "target_rounds",
-                "time", "observer"});
+                "time", "observer", "stochastic_model"});
   gyro::DeterminationInput d;
   if (auto v = n.get("label")) d.label = v->string();
   if (auto v = n.get("time")) d.time = v->string();
   if (auto v = n.get("observer")) d.observer = v->string();
+  if (auto v = n.get("stochastic_model")) d.stochastic_model = read_stochastic_choice(*v);
   const Node mode = n.require("mode");
   const std::string m = mode.string();
   if (m == "non-tracking" || m == "nontracking")
@@ -400,6 +410,10 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
   const Node dets = root.require("determinations");
   in.determinations = read_determinations(dets, in.instrument, in.angle_unit);
   if (in.determinations.empty()) dets.fail("no determinations");
+  for (const Node& d : dets.elements())
+    if (auto v = d.get("stochastic_model"))
+      v->fail("stochastic_model is a campaign option (gyro campaign); gyro reduce assumes "
+              "independent readings, and gyro stochastic compares the models");
   // Check that the constants resolve at this latitude, so the error points at the file.
   with_location(lat, [&] {
     gyro::check_latitude(in.latitude_rad, in.instrument.latitude_limit_rad);
@@ -413,13 +427,14 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
 CampaignFile read_campaign_file(const std::filesystem::path& path) {
   const Node root = Node::load_file(path);
   root.allow_only({"campaign", "angle_unit", "record", "instrument", "grid", "known_line", "instrument_constant",
-                   "line", "tolerances", "options", "gravity_model"});
+                   "line", "tolerances", "options", "gravity_model", "stochastic_model"});
   CampaignFile f;
   f.file = path.string();
   gyro::CampaignInput& c = f.campaign;
   c.angle_unit = read_angle_unit(root);
   if (auto v = root.get("campaign")) c.name = v->string();
   if (auto r = root.get("record")) c.record = read_record(*r);
+  if (auto v = root.get("stochastic_model")) c.stochastic_model = read_stochastic_choice(*v);
   c.instrument = read_instrument(root.require("instrument"));
   c.grid = read_grid(root.require("grid"));
   if (auto k = root.get("known_line")) {

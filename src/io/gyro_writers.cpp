@@ -344,6 +344,11 @@ record:                             # the record sheet (free text, printed on th
   weather: "surface overcast, wind 2 m/s; underground 1.2 m/s at the station"
   temperature: "surface 6 C, underground 24 C"
   # remarks: "..."
+# stochastic_model: white           # how the reversal readings of tracking runs are weighted for N_G:
+                                    # white (the default: independent readings) | markov1 | markov2 |
+                                    # recommended (correlated errors fitted to the run's own readings;
+                                    # needs >= 6 reversals per run, else white with a warning). A run
+                                    # may give its own. See docs/gyro-stochastic.md
 )yaml";
 
 constexpr const char* kCampaignRest = R"yaml(grid:                               # the plane grid of the coordinates below

@@ -51,7 +51,8 @@ Table methods_table(const gyro::DeterminationResult& r, const AngleFormat& f) {
       const auto& fit = *m.reversal;
       t.rows.push_back({name(m), f.dir(m.north.north_rad, 2), f.sig(m.north.sigma_rad, 2),
                         std::to_string(fit.dof), num(fit.sigma0 / units::kArcsecond, 2),
-                        std::isfinite(fit.centre.sigma)
+                        fit.sigma_from_gls ? "GLS, correlated readings"
+                        : std::isfinite(fit.centre.sigma)
                             ? (fit.sigma_is_aposteriori ? "a posteriori" : "a priori")
                             : "n/a"});
     }
@@ -268,6 +269,11 @@ std::string point_text(const gyro::PointResult& p, const AngleFormat& f) {
                      f.dms(p.grid.convergence_rad, 2));
 }
 
+// The stochastic model behind N_G: "white", "markov1-ml", "white (markov1 not usable)".
+std::string stochastic_cell(const gyro::StochasticUse& u) {
+  return u.fallback ? fmt::format("{} ({} not usable)", u.used, gyro::to_string(u.requested)) : u.used;
+}
+
 std::string label_of(const gyro::DeterminationResult& d, std::size_t i) {
   return d.label.empty() ? fmt::format("#{} ({})", i + 1, gyro::to_string(d.primary.method)) : d.label;
 }
@@ -425,14 +431,15 @@ Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignR
        {"known astronomic azimuth used",
         f.dir(r.known_astronomic_azimuth_rad->value, 2) + "  sigma " + f.sig(r.known_astronomic_azimuth_rad->sigma, 1)}}});
   Table t;
-  t.columns = {"when", "label", "method", "N_G", "sigma", "A_G", "E", "sigma E"};
-  t.numeric = {false, false, false, true, true, true, true, true};
+  t.columns = {"when", "label", "method", "stochastic model", "N_G", "sigma", "A_G", "E", "sigma E"};
+  t.numeric = {false, false, false, false, true, true, true, true, true};
   std::vector<std::string> labels;
   std::vector<gyro::Uncertain> es;
   auto rows = [&](const char* when, const std::vector<gyro::DeterminationResult>& d,
                   const std::vector<gyro::Uncertain>& ag, const std::vector<gyro::Uncertain>& e) {
     for (std::size_t i = 0; i < d.size(); ++i) {
-      t.rows.push_back({when, d[i].label, gyro::to_string(d[i].primary.method), f.dir(d[i].primary.north.north_rad, 2),
+      t.rows.push_back({when, d[i].label, gyro::to_string(d[i].primary.method), stochastic_cell(d[i].stochastic),
+                        f.dir(d[i].primary.north.north_rad, 2),
                         f.sig(d[i].primary.north.sigma_rad, 1), f.dir(ag[i].value, 2), f.sec(e[i].value, 2), f.sig(e[i].sigma, 1)});
       labels.push_back(d[i].label.empty() ? std::string(when) + " " + label_of(d[i], i) : d[i].label);
       es.push_back(e[i]);
@@ -453,14 +460,14 @@ Section calibration_section(const gyro::KnownLineInput& k, const gyro::CampaignR
 Section line_section(const gyro::CampaignInput& in, const gyro::CampaignResult& r, const AngleFormat& f) {
   Section line{"line", "Determinations on the line " + line_name(r), {}, 2};
   Table t;
-  t.columns = {"#", "label", "mode", "method", "N_G", "sigma", "target reading", "A_G", "sigma A_G"};
-  t.numeric = {true, false, false, false, true, true, true, true, true};
+  t.columns = {"#", "label", "mode", "method", "stochastic model", "N_G", "sigma", "target reading", "A_G", "sigma A_G"};
+  t.numeric = {true, false, false, false, false, true, true, true, true, true};
   std::vector<std::string> labels;
   for (std::size_t i = 0; i < r.determinations.size(); ++i) {
     const auto& d = r.determinations[i];
     const auto& din = in.line.determinations[i];
     t.rows.push_back({std::to_string(i + 1), d.label, gyro::to_string(d.mode), gyro::to_string(d.primary.method),
-                      f.dir(d.primary.north.north_rad, 2), f.sig(d.primary.north.sigma_rad, 1),
+                      stochastic_cell(d.stochastic), f.dir(d.primary.north.north_rad, 2), f.sig(d.primary.north.sigma_rad, 1),
                       din.target_reading_rad ? f.dir(din.target_reading_rad->value, 1) : "",
                       f.dir(r.gyro_azimuths[i].value, 2), f.sig(r.gyro_azimuths[i].sigma, 1)});
     labels.push_back(label_of(d, i));

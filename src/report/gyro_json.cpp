@@ -187,6 +187,23 @@ json transit_factor_to_json(const gyro::TransitFactorCalibration& c) {
           {"notes", c.notes}};
 }
 
+namespace {
+
+// The stochastic model behind a determination's N_G (campaign option stochastic_model).
+json stochastic_use_json(const gyro::StochasticUse& u) {
+  json rho = json::array();
+  for (double x : u.rho) rho.push_back(json_number(x));
+  return {{"requested", gyro::to_string(u.requested)},
+          {"used", u.used},
+          {"fallback", u.fallback},
+          {"reason", u.reason.empty() ? json(nullptr) : json(u.reason)},
+          {"rho", rho},
+          {"sigma1_arcsec", json_number(u.sigma1_arcsec)},
+          {"sigma2_arcsec", json_number(u.sigma2_arcsec)}};
+}
+
+}  // namespace
+
 json campaign_to_json(const gyro::CampaignResult& r) {
   auto point = [](const gyro::PointResult& p) {
     return json{{"name", p.name},
@@ -199,6 +216,7 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   };
   json j;
   j["campaign"] = r.name;
+  j["stochastic_model"] = gyro::to_string(r.stochastic_model);
   j["record"] = {{"observer", r.record.observer},       {"booker", r.record.booker},
                  {"computed_by", r.record.computed_by}, {"checked_by", r.record.checked_by},
                  {"date", r.record.date},               {"weather", r.record.weather},
@@ -213,6 +231,7 @@ json campaign_to_json(const gyro::CampaignResult& r) {
     for (std::size_t i = 0; i < d.size(); ++i) {
       json e = determination_to_json(d[i]);
       if (i < ag.size()) e["gyro_azimuth"] = az(ag[i]);
+      e["stochastic_model"] = stochastic_use_json(d[i].stochastic);
       a.push_back(e);
     }
     return a;

@@ -92,6 +92,26 @@ nlohmann::json stochastic_to_json(const std::string& file, const gyro::Stochasti
       jm["degenerate"] = m.degenerate;
       jm["degenerate_reason"] =
           m.degenerate ? nlohmann::json(m.degenerate_reason) : nlohmann::json();
+      if (m.r1) {
+        const auto& r1 = *m.r1;
+        nlohmann::json jr;
+        if (s.tracking) {
+          jr["north_reading_deg"] = north_deg(s, r1.centre.value);
+          jr["north_reading_dms"] = north_dms(s, r1.centre.value);
+          jr["sigma_north_arcsec"] = json_number(r1.centre.sigma);
+        } else {
+          jr["zero_position_div"] = json_number(r1.centre.value);
+          jr["sigma_zero_position_div"] = json_number(r1.centre.sigma);
+        }
+        jr["amplitude_" + u] = json_number(r1.amplitude.value);
+        jr["sigma_amplitude_" + u] = json_number(r1.amplitude.sigma);
+        jr["decay_per_half_period"] = json_number(r1.decay.value);
+        jr["sigma_decay_per_half_period"] = json_number(r1.decay.sigma);
+        jr["iterations"] = r1.iterations;
+        jm["r1"] = jr;
+      } else {
+        jm["r1"] = nullptr;
+      }
       jm["notes"] = m.notes;
       js["models"].push_back(jm);
     }
@@ -116,8 +136,10 @@ std::string stochastic_text(const std::string& file, const gyro::StochasticBookR
     o += fmt::format("\n{} — {} readings ({})\n", s.label, s.result.readings,
                      s.tracking ? "circle, arcsec" : "scale, div");
     o += fmt::format(
-        "{:<16} {:>16} {:>8} {:>10} {:>8} {:>17} {:>13} {:>13} {:>8} {:>9} {:>8} {:>8}\n", "model",
-        s.tracking ? "north reading" : "centre [div]", "m", "amplitude", "m", "rho | shape", "sigma1",
+        "{:<16} {:>16} {:>8} {:>16} {:>8} {:>10} {:>8} {:>17} {:>13} {:>13} {:>8} {:>9} {:>8} "
+        "{:>8}\n",
+        "model", s.tracking ? "north reading" : "centre [div]", "m",
+        s.tracking ? "north (R1)" : "centre (R1)", "m", "amplitude", "m", "rho | shape", "sigma1",
         "sigma2", "signal", "lnL", "AIC", "BIC");
     for (const auto& m : s.result.models) {
       std::string rho;
@@ -128,10 +150,13 @@ std::string stochastic_text(const std::string& file, const gyro::StochasticBookR
       }
       const std::string centre =
           s.tracking ? north_dms(s, m.north.value) : f(m.north.value, 4);
+      const std::string centre_r1 =
+          !m.r1 ? "-" : (s.tracking ? north_dms(s, m.r1->centre.value) : f(m.r1->centre.value, 4));
       o += fmt::format(
-          "{:<16} {:>16} {:>8} {:>10} {:>8} {:>17} {:>13} {:>13} {:>8} {:>9} {:>8} {:>8}{}\n",
-          gyro::to_string(m.model), centre, f(m.north.sigma, s.tracking ? 2 : 4),
-          f(m.amplitude.value, 2), f(m.amplitude.sigma, 2), rho.empty() ? "-" : rho,
+          "{:<16} {:>16} {:>8} {:>16} {:>8} {:>10} {:>8} {:>17} {:>13} {:>13} {:>8} {:>9} {:>8} "
+          "{:>8}{}\n",
+          gyro::to_string(m.model), centre, f(m.north.sigma, s.tracking ? 2 : 4), centre_r1,
+          m.r1 ? f(m.r1->centre.sigma, s.tracking ? 2 : 4) : "-", f(m.amplitude.value, 2), f(m.amplitude.sigma, 2), rho.empty() ? "-" : rho,
           f(m.sigma1.value, 2) + "±" + f(m.sigma1.sigma, 2),
           f(m.sigma2.value, 2) + "±" + f(m.sigma2.sigma, 2), f(m.signal_influence(0), 2),
           f(m.log_likelihood, 2), f(m.aic, 2), f(m.bic, 2),
@@ -139,7 +164,9 @@ std::string stochastic_text(const std::string& file, const gyro::StochasticBookR
     }
     o += fmt::format(
         "(m, sigma1, sigma2 and signal, the influence of the predicted signal on M, in {}; "
-        "rho of the Markov models; shape b [lags] and w [rad/lag] of the covariance functions)\n",
+        "rho of the Markov models; shape b [lags] and w [rad/lag] of the covariance functions; "
+        "north/centre and amplitude of the linearised model (R2); (R1): the centre of the "
+        "non-linear model by GLS with the same covariance)\n",
         s.tracking ? "arcsec" : "div");
     for (const auto& w : s.result.warnings) o += "WARNING: " + w + "\n";
     for (const auto& t : s.result.tests)
@@ -188,6 +215,8 @@ Document stochastic_document(const std::string& file, const gyro::StochasticBook
     t.columns = {"model",
                  s.tracking ? "north reading" : "centre [div]",
                  "m [" + u + "]",
+                 s.tracking ? "north reading (R1)" : "centre (R1) [div]",
+                 "m (R1) [" + u + "]",
                  "amplitude [" + u + "]",
                  "m [" + u + "]",
                  "rho | shape",
@@ -198,7 +227,8 @@ Document stochastic_document(const std::string& file, const gyro::StochasticBook
                  "AIC",
                  "BIC",
                  ""};
-    t.numeric = {false, true, true, true, true, false, true, true, true, true, true, true, false};
+    t.numeric = {false, true, true, true, true, true, true, false, true, true, true, true, true, true,
+                 false};
     for (const auto& m : res.models) {
       std::string rho;
       for (std::size_t k = 0; k < m.rho.size(); ++k) rho += (k ? ", " : "") + f(m.rho[k], 3);
@@ -208,7 +238,12 @@ Document stochastic_document(const std::string& file, const gyro::StochasticBook
       }
       t.rows.push_back({gyro::to_string(m.model),
                         s.tracking ? north_dms(s, m.north.value) : f(m.north.value, 4),
-                        f(m.north.sigma, s.tracking ? 2 : 4), f(m.amplitude.value, 2),
+                        f(m.north.sigma, s.tracking ? 2 : 4),
+                        !m.r1 ? "-"
+                              : (s.tracking ? north_dms(s, m.r1->centre.value)
+                                            : f(m.r1->centre.value, 4)),
+                        m.r1 ? f(m.r1->centre.sigma, s.tracking ? 2 : 4) : "-",
+                        f(m.amplitude.value, 2),
                         f(m.amplitude.sigma, 2), rho.empty() ? "-" : rho,
                         f(m.sigma1.value, 3) + " ± " + f(m.sigma1.sigma, 3),
                         f(m.sigma2.value, 3) + " ± " + f(m.sigma2.sigma, 3),
@@ -217,6 +252,8 @@ Document stochastic_document(const std::string& file, const gyro::StochasticBook
                         m.recommended ? "recommended" : (m.degenerate ? "degenerate" : "")});
     }
     t.note =
+        "North reading / centre and amplitude of the linearised model (R2); (R1): the centre of "
+        "the non-linear model r_i = M + (−1)^i·A·e^(−iκ) by GLS with the same covariance. "
         "rho: Markov coefficients; shape: b in lags and ω in rad per lag of the covariance "
         "functions. Recommended: smallest BIC among the non-degenerate models.";
     sec.blocks.push_back(t);

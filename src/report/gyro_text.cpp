@@ -100,6 +100,15 @@ std::string transit_factor_text(const gyro::TransitFactorCalibration& c) {
   return out;
 }
 
+namespace {
+
+// "[white]", "[markov1-ml]", "[white*]" (the requested model could not be used).
+std::string stochastic_tag(const gyro::StochasticUse& u) {
+  return "[" + u.used + (u.fallback ? "*" : "") + "]";
+}
+
+}  // namespace
+
 std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   std::string out;
   out += fmt::format("Gyro orientation campaign: {}\n", r.name.empty() ? "(unnamed)" : r.name);
@@ -139,8 +148,9 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
     auto list = [&](const char* when, const std::vector<gyro::DeterminationResult>& d,
                     const std::vector<gyro::Uncertain>& ag, const std::vector<gyro::Uncertain>& e) {
       for (std::size_t i = 0; i < d.size(); ++i)
-        out += fmt::format("  {:<6} {:<20} N_G {:>15}  A_G {:>15}  E {:>9}  sigma {}\n", when,
-                           gyro::to_string(d[i].primary.method), f.dir(d[i].primary.north.north_rad), f.dir(ag[i].value),
+        out += fmt::format("  {:<6} {:<20} {:<13} N_G {:>15}  A_G {:>15}  E {:>9}  sigma {}\n", when,
+                           gyro::to_string(d[i].primary.method), stochastic_tag(d[i].stochastic),
+                           f.dir(d[i].primary.north.north_rad), f.dir(ag[i].value),
                            f.sec(e[i].value), f.sig(e[i].sigma));
     };
     list("before", r.known_before, r.known_gyro_azimuths_before, r.instrument_constant->before);
@@ -152,11 +162,17 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   out += "Determinations on the line\n";
   for (std::size_t i = 0; i < r.determinations.size(); ++i) {
     const auto& d = r.determinations[i];
-    out += fmt::format("  {:<2} {:<20} N_G {:>15}  sigma {:>6}  A_G {:>15}  sigma {}\n", i + 1,
-                       d.label.empty() ? gyro::to_string(d.primary.method) : d.label, f.dir(d.primary.north.north_rad),
+    out += fmt::format("  {:<2} {:<20} {:<13} N_G {:>15}  sigma {:>6}  A_G {:>15}  sigma {}\n", i + 1,
+                       d.label.empty() ? gyro::to_string(d.primary.method) : d.label,
+                       stochastic_tag(d.stochastic), f.dir(d.primary.north.north_rad),
                        f.sig(d.primary.north.sigma_rad), f.dir(r.gyro_azimuths[i].value),
                        f.sig(r.gyro_azimuths[i].sigma));
   }
+  out += fmt::format(
+      "  [model]: stochastic model of the reversal readings behind N_G (stochastic_model: {}); "
+      "white: independent readings; *: the requested model could not be used, white noise (see "
+      "Warnings)\n",
+      gyro::to_string(r.stochastic_model));
   out += "\nAzimuth chain (station to target)\n";
   const auto& c = r.chain;
   out += fmt::format("  gyro azimuth        A_G = {:>15}  sigma {}\n", f.dir(c.gyro_azimuth_rad.value),

@@ -73,6 +73,44 @@ TEST_F(CliStochastic, StochasticJsonContract) {
   EXPECT_EQ(s.at("tests").size(), 2u);
 }
 
+TEST_F(CliStochastic, EveryModelCarriesTheGlsOfR1) {
+  // The simulated book follows (R1) with κ = 0.002 and white noise of 3": every model's (R1)
+  // centre is the truth within 3σ, its decay near 0.002, the text and JSON show it.
+  const auto f = write("book.yaml", kBook);
+  const CmdResult r = run("gyro stochastic " + f.string() + " --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const auto& m : j.at("series")[0].at("models")) {
+    SCOPED_TRACE(m.at("name").get<std::string>());
+    ASSERT_TRUE(m.contains("r1"));
+    if (m.at("degenerate").get<bool>() && m.at("r1").is_null()) continue;
+    ASSERT_TRUE(m.at("r1").is_object());
+    const auto& r1 = m.at("r1");
+    for (const char* k : {"north_reading_deg", "north_reading_dms", "sigma_north_arcsec",
+                          "amplitude_arcsec", "sigma_amplitude_arcsec", "decay_per_half_period",
+                          "sigma_decay_per_half_period", "iterations"})
+      EXPECT_TRUE(r1.contains(k)) << k;
+    if (m.at("degenerate").get<bool>()) continue;
+    const double n = r1.at("north_reading_deg");
+    const double sig = r1.at("sigma_north_arcsec");
+    EXPECT_GT(sig, 0.0);
+    EXPECT_LT(std::fabs((n - (12.0 / 60.0 + 34.0 / 3600.0)) * 3600.0), 3.0 * std::max(sig, 0.5));
+    const double kappa = r1.at("decay_per_half_period");
+    const double sk = r1.at("sigma_decay_per_half_period");
+    EXPECT_LT(std::fabs(kappa - 0.002), 3.0 * sk + 1e-4);
+    // A of (R1) has the sign of A′ of (R2).
+    EXPECT_GT(r1.at("amplitude_arcsec").get<double>() * m.at("amplitude_arcsec").get<double>(),
+              0.0);
+  }
+  const CmdResult t = run("gyro stochastic " + f.string() + " -q");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("north (R1)"), std::string::npos) << t.out;
+  const CmdResult h = run("gyro stochastic " + f.string() + " -q -o out.txt --report r.html");
+  if (h.code != 0 && h.err.find("without HTML reports") != std::string::npos) return;
+  ASSERT_EQ(h.code, 0) << h.err;
+  EXPECT_NE(slurp(dir_ / "r.html").find("north reading (R1)"), std::string::npos);
+}
+
 TEST_F(CliStochastic, StochasticTextAndBadInput) {
   const auto f = write("book.yaml", kBook);
   const CmdResult t = run("gyro stochastic " + f.string() + " -q");
@@ -232,6 +270,130 @@ TEST_F(CliStochastic, SimulatorSigmaOfTheInitialStateScalesBTimesX0Only) {
   const CmdResult neg = run(common + " --sigma-initial-arcsec -1");
   EXPECT_NE(neg.code, 0);
   EXPECT_NE(neg.err.find("--sigma-initial-arcsec"), std::string::npos) << neg.err;
+}
+
+}  // namespace
+
+namespace {
+
+using meridian_test::CmdResult;
+
+// examples/campaign.yaml with its tracking determination (line #3) replaced by 14 reversals of
+// `meridian gyro simulate --mode tracking --seed 7 --centre "284 05 00" --tracking-reversals 14
+// --sigma-tracking-arcsec 2 --noise markov1 --rho1 0.6`, and `stochastic_model:` as given (none
+// when empty).
+std::string campaign_with_long_tracking(const std::string& model) {
+  std::string text = example_campaign();
+  const std::string five =
+      R"(reversals: ["282 46 16.9308", "285 25 59.4311", "282 46 27.8308", "285 25 26.9311", "282 46 52.7308"])"
+      "\n      sigma_reading_arcsec: 8";
+  const auto at = text.find(five);
+  EXPECT_NE(at, std::string::npos);
+  if (at == std::string::npos) return text;
+  text.replace(at, five.size(),
+               R"(reversals: ["282 45 08.6925", "285 24 41.3942", "282 45 31.9577", "285 24 20.4799", )"
+               R"("282 45 45.2723", "285 24 00.2154", "282 46 06.9698", "285 23 43.1481", "282 46 26.5003", )"
+               R"("285 23 22.5150", "282 46 44.7035", "285 23 03.4367", "282 46 59.2801", "285 22 47.4714"])"
+               "\n      sigma_reading_arcsec: 2");
+  if (!model.empty()) text.replace(text.find("campaign:"), 0, "stochastic_model: " + model + "\n");
+  return text;
+}
+
+TEST_F(CliStochastic, CampaignStochasticModelOption) {
+  // Default: white, stated per determination; the numbers as with an explicit `white`.
+  const CmdResult w =
+      run("gyro campaign " + write("w.yaml", campaign_with_long_tracking("")).string() + " --json -q");
+  ASSERT_EQ(w.code, 0) << w.err;
+  const auto jw = nlohmann::json::parse(w.out);
+  EXPECT_EQ(jw.at("stochastic_model"), "white");
+  const CmdResult we = run("gyro campaign " +
+                           write("we.yaml", campaign_with_long_tracking("white")).string() + " --json -q");
+  ASSERT_EQ(we.code, 0) << we.err;
+  EXPECT_EQ(nlohmann::json::parse(we.out).at("determinations"), jw.at("determinations"));
+  for (const auto& d : jw.at("determinations")) {
+    EXPECT_EQ(d.at("stochastic_model").at("used"), "white");
+    EXPECT_EQ(d.at("stochastic_model").at("fallback"), false);
+  }
+  // markov1: the tracking run by GLS under markov1-ml, the non-tracking runs fall back.
+  const auto f = write("m1.yaml", campaign_with_long_tracking("markov1"));
+  const CmdResult m = run("gyro campaign " + f.string() + " --json -q");
+  ASSERT_EQ(m.code, 0) << m.err;
+  const auto jm = nlohmann::json::parse(m.out);
+  EXPECT_EQ(jm.at("stochastic_model"), "markov1");
+  const auto& dets = jm.at("determinations");
+  ASSERT_EQ(dets.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto& s = dets[i].at("stochastic_model");
+    EXPECT_EQ(s.at("requested"), "markov1");
+    if (dets[i].at("mode") == "tracking") {
+      EXPECT_EQ(s.at("used"), "markov1-ml");
+      EXPECT_EQ(s.at("fallback"), false);
+      EXPECT_EQ(s.at("rho").size(), 1u);
+      EXPECT_GT(s.at("sigma1_arcsec").get<double>(), 0.0);
+    } else {
+      EXPECT_EQ(s.at("used"), "white");
+      EXPECT_EQ(s.at("fallback"), true);
+      EXPECT_NE(s.at("reason").get<std::string>().find("non-tracking"), std::string::npos);
+      // Unchanged from white noise.
+      EXPECT_EQ(dets[i].at("north_reading_deg"), jw.at("determinations")[i].at("north_reading_deg"));
+    }
+  }
+  bool warned = false;
+  for (const auto& x : jm.at("warnings"))
+    warned = warned || x.get<std::string>().find("stochastic_model markov1 cannot be used") !=
+                           std::string::npos;
+  EXPECT_TRUE(warned);
+  // Text: a tag per determination and the legend.
+  const CmdResult t = run("gyro campaign " + f.string() + " -q");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("[markov1-ml]"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("[white*]"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("[model]: stochastic model of the reversal readings"), std::string::npos);
+  // HTML: the column.
+  const CmdResult h = run("gyro campaign " + f.string() + " -q -o out.txt --report r.html");
+  if (h.code == 0) {
+    const std::string html = slurp(dir_ / "r.html");
+    EXPECT_NE(html.find("stochastic model"), std::string::npos);
+    EXPECT_NE(html.find("markov1-ml"), std::string::npos);
+  } else {
+    EXPECT_NE(h.err.find("without HTML reports"), std::string::npos) << h.err;
+  }
+}
+
+TEST_F(CliStochastic, CampaignStochasticModelErrorsNameTheLine) {
+  // An unknown model.
+  const std::string bad_text = campaign_with_long_tracking("markov3");
+  std::size_t bad_line = 1;
+  for (std::size_t i = 0; i < bad_text.find("stochastic_model: markov3"); ++i)
+    bad_line += bad_text[i] == '\n';
+  const auto bad = write("bad.yaml", bad_text);
+  const CmdResult b = run("gyro campaign " + bad.string() + " -q");
+  EXPECT_EQ(b.code, 1);
+  EXPECT_NE(b.err.find("bad.yaml:" + std::to_string(bad_line)), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("expected white, markov1, markov2 or recommended"), std::string::npos)
+      << b.err;
+  // A determination's own request that cannot be honoured: a non-tracking run asking for
+  // markov1 is an error at its line and field.
+  std::string text = campaign_with_long_tracking("");
+  const std::string key = "label: \"line, non-tracking #1\"";
+  const auto at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + key.size(), "\n      stochastic_model: markov1");
+  const auto f = write("own.yaml", text);
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < text.find("stochastic_model: markov1"); ++i) line += text[i] == '\n';
+  const CmdResult r = run("gyro campaign " + f.string() + " -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("own.yaml:" + std::to_string(line)), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line.determinations[0].stochastic_model"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("non-tracking"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  // gyro reduce files do not take the key.
+  std::string book = kBook;
+  book += "    stochastic_model: markov1\n";
+  const CmdResult g = run("gyro reduce " + write("book.yaml", book).string() + " -q");
+  EXPECT_EQ(g.code, 1);
+  EXPECT_NE(g.err.find("stochastic_model is a campaign option"), std::string::npos) << g.err;
 }
 
 }  // namespace

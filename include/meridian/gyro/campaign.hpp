@@ -94,6 +94,10 @@ struct CampaignInput {
   /// by the caller (see deflection_model.hpp).
   std::optional<GravityModelRef> gravity_model;
   AngleUnit angle_unit = AngleUnit::Dms;  ///< the file's `angle_unit:`, as ReduceInput's
+  /// The stochastic model of the reversal readings of every tracking determination (the file's
+  /// `stochastic_model:`; stochastic_determination.hpp). A determination for which it cannot be
+  /// used keeps white noise, with a warning. White (default): results as without the option.
+  StochasticChoice stochastic_model = StochasticChoice::White;
 };
 
 /// A point resolved in both coordinate systems.
@@ -141,6 +145,9 @@ struct CampaignResult {
   AzimuthChainResult chain;
   RegulationLimits limits;                   ///< the limits the checks used
   RecordSheet record;                        ///< as booked (for the reports)
+  /// The campaign's stochastic_model (each determination's own request and what was used:
+  /// DeterminationResult::stochastic).
+  StochasticChoice stochastic_model = StochasticChoice::White;
   std::string instrument_name, instrument_serial;
   std::vector<Check> checks;
   /// One-run standard deviations (一次测定中误差, AzimuthMean::one_run_sigma)

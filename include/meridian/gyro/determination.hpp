@@ -12,6 +12,7 @@
 #include "meridian/gyro/instrument.hpp"
 #include "meridian/gyro/nontracking.hpp"
 #include "meridian/gyro/reversal.hpp"
+#include "meridian/gyro/stochastic_choice.hpp"
 #include "meridian/gyro/target_pointing.hpp"
 #include "meridian/gyro/tracking.hpp"
 #include "meridian/gyro/unified_fit.hpp"
@@ -61,6 +62,10 @@ struct DeterminationInput {
   // The record sheet (shown in reports, not used in the arithmetic).
   std::string time;       ///< clock time of the run as booked, e.g. "08:40"
   std::string observer;   ///< when not the campaign's observer
+  /// The stochastic model of this determination's reversal readings (campaign files only;
+  /// overrides CampaignInput::stochastic_model, and an error when it cannot be used: see
+  /// stochastic_determination.hpp). None: the campaign's.
+  std::optional<StochasticChoice> stochastic_model;
 };
 
 /// Options that apply to all determinations.
@@ -95,6 +100,9 @@ struct DeterminationResult {
   ZeroPosition zero_position_used;          ///< α_p applied (if any)
   std::optional<TargetDirection> target;    ///< the target rounds reduced, when given
   std::optional<ZeroPositionSummary> zero_position;  ///< from before/after runs
+  /// The stochastic model of the reversal readings behind primary.north (white unless a
+  /// campaign asked for another: with_stochastic_model).
+  StochasticUse stochastic;
   std::vector<std::string> warnings;
 };
 

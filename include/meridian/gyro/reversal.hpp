@@ -56,6 +56,11 @@ struct ReversalResult {
   /// The stated a-priori σ of one reading (> 0), NaN when none was stated.
   double sigma_reading = std::numeric_limits<double>::quiet_NaN();
   bool sigma_is_aposteriori = false;    ///< centre.sigma from σ̂0 (true) or the a-priori σ (false)
+  /// centre (and amplitude, damping, residuals) from the generalised least squares under a
+  /// stochastic model of correlated readings (campaign option stochastic_model,
+  /// stochastic_determination.hpp), σ = sqrt(D_Ŷ(0,0)); cofactor_centre, dof, sigma0 and
+  /// reading_sigma_test then remain those of the white-noise fit (the check of the booked σ).
+  bool sigma_from_gls = false;
   /// Global test of σ̂0 against the stated reading σ: T = dof·σ̂0²/σ_r² against
   /// χ²_{1−α}(dof), α = kReadingSigmaTestAlpha (adjust::global_test). Present
   /// when a reading σ is stated and dof > 0. `rejected`: the readings scatter

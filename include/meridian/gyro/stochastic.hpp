@@ -80,6 +80,7 @@
 /// 82:65–82; Harville (1977) JASA 72:320–338; Akaike (1974), Schwarz (1978).
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -138,6 +139,35 @@ inline constexpr double kR2MisfitRatio = 0.25;
 /// (below it, a rejected test says the readings scatter more than booked).
 inline constexpr double kBookingErrorRatio = 10.0;
 
+/// Options of the GLS of (R1) (reversal_gls_nonlinear).
+struct R1GlsOptions {
+  /// Maximum Gauss–Newton steps (adjust::NonlinearOptions::max_iterations), ≥ 1.
+  int max_iterations = 50;
+  /// Converged when every |ΔY_j| ≤ step_tolerance·(|Y_j| + s_j), s = (|M₀| + |A₀|, |A₀|, 1)
+  /// from the start (adjust::NonlinearOptions::step_tolerance), > 0.
+  double step_tolerance = 1e-12;
+};
+
+/// The GLS of the non-linear reversal-point model (R1) of gyro-theodolite.md §3,
+///     r_i = M + (−1)^i·A·e^{−iκ},   i = 1 … n,
+/// with a full covariance D of the readings. Values in the unit of the readings (arcsec or div);
+/// κ is the decay per half period (dimensionless, per reading; κ > 0 for a decaying
+/// oscillation). A is signed as A′ of (R2): A > 0 when the even readings lie above the centre.
+struct R1GlsFit {
+  Eigen::Vector3d y = Eigen::Vector3d::Zero();  ///< Ŷ = (M, A, κ)
+  /// D_Ŷ = (JᵀD⁻¹J)⁻¹, J = ∂f/∂Y at Ŷ (the a-priori covariance at the given D, not rescaled
+  /// by σ̂0 — as the (R2) GLS of the models).
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  Uncertain centre;     ///< M and sqrt(D_Ŷ(0,0)): α_N (tracking) or the zero position
+  Uncertain amplitude;  ///< A and sqrt(D_Ŷ(1,1))
+  Uncertain decay;      ///< κ and sqrt(D_Ŷ(2,2))
+  Eigen::Vector3d start = Eigen::Vector3d::Zero();  ///< (M₀, A₀, κ₀) from the OLS of (R2)
+  Eigen::VectorXd residuals;  ///< v = f(Ŷ) − L
+  double vtpv = 0.0;          ///< vᵀD⁻¹v
+  int iterations = 0;         ///< Gauss–Newton steps taken
+  bool converged = false;     ///< always true when returned (non-convergence throws)
+};
+
 /// One model's fit. Values in the readings' unit; NaN where a quantity does not apply.
 struct ModelFit {
   StochasticModel model = StochasticModel::WhiteNoise;
@@ -169,6 +199,9 @@ struct ModelFit {
   std::string degenerate_reason;
   /// D_{i,i+k}/sqrt(D_ii·D_{i+k,i+k}) averaged over i, k = 0 … n−1.
   std::vector<double> implied_autocorrelation;
+  /// The GLS of the non-linear model (R1) with this model's D (reversal_gls_nonlinear); none
+  /// when it could not be computed (the reason is then in notes, starting "(R1) GLS").
+  std::optional<R1GlsFit> r1;
   std::vector<std::string> notes;
 };
 
@@ -225,5 +258,20 @@ GlsFit reversal_gls(const std::vector<double>& readings, const Eigen::MatrixXd& 
 
 /// The design G of (R2) for n readings (n×3).
 Eigen::MatrixXd reversal_design(int n);
+
+/// Fit (R1) by Gauss–Newton on the whitened system L⁻¹(f(Y) − l), D = L·Lᵀ (Cholesky; no inverse
+/// of D), with adjust::solve_nonlinear (its Levenberg–Marquardt safeguard damps a step only when
+/// the full step would raise vᵀD⁻¹v; near the minimum the steps are Gauss–Newton's) and the
+/// analytic Jacobian ∂f_i/∂M = 1, ∂f_i/∂A = (−1)^i·e^{−iκ}, ∂f_i/∂κ = −(−1)^i·i·A·e^{−iκ}.
+/// Start: the unweighted least squares of (R2), (M′, A′, c), mapped by matching (R2) to the
+/// first-order expansion of (R1): M₀ = M′, A₀ = A′ + c, κ₀ = 2c/A₀.
+/// Requires n ≥ 4 readings (3 unknowns + 1), D n×n symmetric positive definite.
+/// Throws InputError when n < 4, sizes differ, a reading or D is not finite (field "readings[i]"
+/// or "covariance"), or the options are invalid; NumericalError when D is not positive definite,
+/// |A₀| ≤ 1e-12·max|r_i| (no oscillation; κ is then not determined), the normal matrix is singular, Gauss–Newton
+/// does not converge within max_iterations, or the solution or its σ is not finite. The message
+/// starts with "(R1) GLS:". Never returns NaN.
+R1GlsFit reversal_gls_nonlinear(const std::vector<double>& readings, const Eigen::MatrixXd& D,
+                                const R1GlsOptions& options = {});
 
 }  // namespace meridian::gyro

@@ -10,7 +10,11 @@
 /// (R2), signed), sigma_amplitude_*, rho [..], rho_sigma [..], sigma1_*, sigma1_sigma_*,
 /// sigma2_*, sigma2_sigma_*, signal_influence_* (ΔM), signal_influence_amplitude_*,
 /// log_likelihood (REML), aic, bic, covariance_parameters, vce_iterations, recommended
-/// (true for exactly one), notes. Values that do not apply or cannot be stated are null.
+/// (true for exactly one), r1 (the GLS of (R1) with the model's D: north_reading_deg,
+/// north_reading_dms, sigma_north_arcsec | zero_position_div, sigma_zero_position_div,
+/// amplitude_*, sigma_amplitude_*, decay_per_half_period, sigma_decay_per_half_period,
+/// iterations; null when not computed, the reason in notes), notes. Values that do not apply
+/// or cannot be stated are null.
 
 #include <string>
 
