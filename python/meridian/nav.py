@@ -27,12 +27,23 @@ from . import _core
 from ._result import Result, Table, renamed
 from .errors import Error, InputError
 
-__all__ = ["process", "simulate", "METHODS", "SCENARIOS"]
+__all__ = ["inspect", "process", "simulate", "METHODS", "SCENARIOS"]
 
 #: The methods in the order of the result (fix-closure only with fixes).
 METHODS = ("dead-reckoning", "sequential-no-bias", "sequential-bias-I", "sequential-bias-II", "backward",
            "fix-closure", "ekf", "rts")
 SCENARIOS = ("A", "B", "C", "D")
+
+
+def inspect(*files, accept_missing_checksum=False) -> Result:
+    """Inspect NMEA 0183 logs (`nav inspect FILE... --json`): per file the sentences by type,
+    the bad, missing-checksum, duplicated and rolled-over ones with their first line numbers,
+    and the time span. ``result.files[k]`` is the k-th file's summary. Every file is read
+    before anything is returned: an unreadable one raises (meridian.Error naming it)."""
+    if not files:
+        raise InputError("give at least one NMEA file", field="files")
+    return Result(json.loads(_core.nav.inspect_files([os.fspath(f) for f in files],
+                                                     bool(accept_missing_checksum))))
 
 
 def process(config) -> Result:

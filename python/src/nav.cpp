@@ -18,8 +18,10 @@
 #include "bindings.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/io/nav_files.hpp"
+#include "meridian/io/nmea.hpp"
 #include "meridian/nav/navigation.hpp"
 #include "meridian/nav/simulator.hpp"
+#include "meridian/report/nav_inspect.hpp"
 #include "meridian/report/nav_outputs.hpp"
 
 namespace py = pybind11;
@@ -97,6 +99,20 @@ py::tuple process_file(const std::string& config) {
 }  // namespace
 
 void bind_nav(py::module_& m) {
+  m.def(
+      "inspect_files",
+      [](const std::vector<std::string>& files, bool accept_missing_checksum) {
+        py::gil_scoped_release released;
+        io::nmea::Options o;
+        o.accept_missing_checksum = accept_missing_checksum;
+        nlohmann::json summaries = nlohmann::json::array();
+        for (const std::string& f : files)
+          summaries.push_back(report::nav_inspect_to_json(io::nmea::read_file(f, o)));
+        return nlohmann::json{{"files", summaries}}.dump(-1, ' ', false,
+                                                         nlohmann::json::error_handler_t::replace);
+      },
+      py::arg("files"), py::arg("accept_missing_checksum"),
+      "`nav inspect FILE... --json` as JSON text");
   m.def("process_file", &process_file, py::arg("config"),
         "`nav process CONFIG --json` and every method's track: (JSON text, [(method, columns)])");
   m.def(

@@ -90,6 +90,22 @@ def test_process_nmea_matches_the_cli(cli, read_csv, nmea_job, tmp_path):
     compare_tracks(cli, read_csv, config, r, ["ekf", "dead-reckoning"], tmp_path)
 
 
+def test_inspect_matches_the_cli(cli, nmea_job, tmp_path):
+    log = nmea_job / "log.nmea"
+    bad = tmp_path / "bad.nmea"
+    text = log.read_text().splitlines(keepends=True)
+    bad.write_text("".join(text[:20]) + "$GPGGA,garbage*00\n" + "".join(text[20:40]))
+    ref = json.loads(cli("nav", "inspect", log, bad, "--json").stdout)
+    r = nav.inspect(log, bad)
+    assert r.to_dict() == ref
+    assert len(r.files) == 2
+    with pytest.raises(meridian.Error) as e:
+        nav.inspect(tmp_path / "missing.nmea")
+    assert e.value.file == str(tmp_path / "missing.nmea")
+    with pytest.raises(meridian.InputError):
+        nav.inspect()
+
+
 def test_bad_input_raises_the_right_error(simulated, tmp_path):
     with pytest.raises(meridian.IoError) as e:
         nav.process(tmp_path / "missing.yaml")
