@@ -38,7 +38,7 @@ from . import _core
 from ._result import Result, Table, degrees, real_array
 from .errors import Error, InputError
 
-__all__ = ["process", "simulate", "LINE_COLUMNS"]
+__all__ = ["process", "read_line", "simulate", "LINE_COLUMNS"]
 
 #: The arrays of a line (the truth columns are optional).
 LINE_COLUMNS = ("time_s", "lat_deg", "lon_deg", "height_m", "speed_m_s", "lgu_body_to_nav", "ins_body_to_nav",
@@ -113,6 +113,14 @@ def process(source, **options) -> Result:
             raise
     finally:
         os.unlink(path)
+
+
+def read_line(path) -> Table:
+    """A line file, CSV or the binary format (told apart by content, as `dov process` does),
+    read whole into the arrays simulate() gives (and process() takes): the model columns only
+    when the file has them, the truth columns only when it has them. Errors name the file,
+    line (CSV) or sample index (binary) and column, as the CLI's."""
+    return Table(_core.dov.read_line(os.fspath(path)))
 
 
 def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height_m=0.0, speed_m_s=5.0,

@@ -184,6 +184,54 @@ py::tuple process_arrays(const py::dict& line, const std::string& options_file) 
   return py::make_tuple(text, profile.to_dict());
 }
 
+// The columns of a line (dov simulate's Table, the CSV's names): model and truth columns
+// when `model` / truth is not empty.
+py::dict line_columns(const std::vector<md::Sample>& samples, const std::vector<md::Truth>& truth,
+                      bool model) {
+  const std::size_t n = samples.size();
+  const bool has_truth = !truth.empty();
+  std::vector<double> t(n), lat(n), lon(n), h(n), v(n), eta(n), xi(n), te(n), tx(n);
+  const std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(n), 3, 3};
+  py::array_t<double> lgu(shape), ins(shape);
+  double *lgu_out = lgu.mutable_data(), *ins_out = ins.mutable_data();
+  for (std::size_t k = 0; k < n; ++k) {
+    const md::Sample& s = samples[k];
+    t[k] = s.time_s;
+    lat[k] = units::rad_to_deg(s.lat_rad);
+    lon[k] = units::rad_to_deg(s.lon_rad);
+    h[k] = s.height_m;
+    v[k] = s.speed_m_s;
+    eta[k] = rad_to_arcsec(s.model_eta_rad);
+    xi[k] = rad_to_arcsec(s.model_xi_rad);
+    if (has_truth) {
+      te[k] = rad_to_arcsec(truth[k].eta_rad);
+      tx[k] = rad_to_arcsec(truth[k].xi_rad);
+    }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        lgu_out[9 * k + 3 * i + j] = s.lgu_body_to_nav(i, j);
+        ins_out[9 * k + 3 * i + j] = s.ins_body_to_nav(i, j);
+      }
+  }
+  py::dict d;
+  d["time_s"] = to_numpy(t);
+  d["lat_deg"] = to_numpy(lat);
+  d["lon_deg"] = to_numpy(lon);
+  d["height_m"] = to_numpy(h);
+  d["speed_m_s"] = to_numpy(v);
+  d["lgu_body_to_nav"] = lgu;
+  d["ins_body_to_nav"] = ins;
+  if (model) {
+    d["model_eta_arcsec"] = to_numpy(eta);
+    d["model_xi_arcsec"] = to_numpy(xi);
+  }
+  if (has_truth) {
+    d["truth_eta_arcsec"] = to_numpy(te);
+    d["truth_xi_arcsec"] = to_numpy(tx);
+  }
+  return d;
+}
+
 py::dict simulate(const py::dict& o) {
   md::SimulationOptions so;
   so.start_lat_rad = units::deg_to_rad(o["latitude_deg"].cast<double>());
@@ -207,41 +255,18 @@ py::dict simulate(const py::dict& o) {
     py::gil_scoped_release released;
     in = md::simulate(so);
   }
-  const std::size_t n = in.samples.size();
-  std::vector<double> t(n), lat(n), lon(n), h(n), v(n), eta(n), xi(n), te(n), tx(n);
-  const std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(n), 3, 3};
-  py::array_t<double> lgu(shape), ins(shape);
-  double *lgu_out = lgu.mutable_data(), *ins_out = ins.mutable_data();
-  for (std::size_t k = 0; k < n; ++k) {
-    const md::Sample& s = in.samples[k];
-    t[k] = s.time_s;
-    lat[k] = units::rad_to_deg(s.lat_rad);
-    lon[k] = units::rad_to_deg(s.lon_rad);
-    h[k] = s.height_m;
-    v[k] = s.speed_m_s;
-    eta[k] = rad_to_arcsec(s.model_eta_rad);
-    xi[k] = rad_to_arcsec(s.model_xi_rad);
-    te[k] = rad_to_arcsec(in.truth[k].eta_rad);
-    tx[k] = rad_to_arcsec(in.truth[k].xi_rad);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        lgu_out[9 * k + 3 * i + j] = s.lgu_body_to_nav(i, j);
-        ins_out[9 * k + 3 * i + j] = s.ins_body_to_nav(i, j);
-      }
+  return line_columns(in.samples, in.truth, true);
+}
+
+// A line file (CSV or binary, by content) read whole, as the columns simulate() gives: the
+// model columns only when the file has them, the truth columns only when it has them.
+py::dict read_line(const std::string& path) {
+  io::DovLine line;
+  {
+    py::gil_scoped_release released;
+    line = io::read_dov_line_file(path);
   }
-  py::dict d;
-  d["time_s"] = to_numpy(t);
-  d["lat_deg"] = to_numpy(lat);
-  d["lon_deg"] = to_numpy(lon);
-  d["height_m"] = to_numpy(h);
-  d["speed_m_s"] = to_numpy(v);
-  d["lgu_body_to_nav"] = lgu;
-  d["ins_body_to_nav"] = ins;
-  d["model_eta_arcsec"] = to_numpy(eta);
-  d["model_xi_arcsec"] = to_numpy(xi);
-  d["truth_eta_arcsec"] = to_numpy(te);
-  d["truth_xi_arcsec"] = to_numpy(tx);
-  return d;
+  return line_columns(line.samples, line.truth, line.has_model_values);
 }
 
 }  // namespace
@@ -252,6 +277,8 @@ void bind_dov(py::module_& m) {
   m.def("process_arrays", &process_arrays, py::arg("line"), py::arg("options_file"),
         "A line of arrays with the options of a configuration file: (JSON text, profile columns)");
   m.def("simulate", &simulate, py::arg("options"), "`dov simulate`: the line's columns");
+  m.def("read_line", &read_line, py::arg("path"),
+        "A line file (CSV or binary) as the columns simulate gives");
 }
 
 }  // namespace meridian::python

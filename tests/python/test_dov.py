@@ -53,6 +53,26 @@ def test_process_matches_the_cli_from_the_configuration_and_from_arrays(cli, rea
         np.testing.assert_array_equal(a.profile[name], r.profile[name], err_msg=name)
 
 
+def test_read_line_gives_the_simulated_arrays_from_csv_and_binary(cli, line_files, tmp_path):
+    line = dov.simulate(**SIM)
+    from_csv = dov.read_line(line_files / "line.csv")
+    cli("dov", "convert", line_files / "line.csv", tmp_path / "line.bin")
+    from_bin = dov.read_line(tmp_path / "line.bin")
+    assert list(from_csv.keys()) == list(line.keys()) == list(from_bin.keys())
+    for name in line.keys():
+        np.testing.assert_array_equal(from_csv[name], line[name], err_msg=name)  # 17 digits
+        np.testing.assert_array_equal(from_bin[name], line[name], err_msg=name)
+    # processed from the arrays read back: the summary of the file itself
+    ref = json.loads(cli("dov", "process", line_files / "dov.yaml", "--json", "-q").stdout)
+    assert dov.process(from_bin, sigma_model_arcsec=3, sigma_obs_arcsec=0.5).to_dict() == ref
+    bad = tmp_path / "bad.csv"
+    text = (line_files / "line.csv").read_text().splitlines(keepends=True)
+    bad.write_text("".join(text[:5]) + text[5].replace(",", ",x", 1) + "".join(text[6:]))
+    with pytest.raises(meridian.ParseError) as e:
+        dov.read_line(bad)
+    assert e.value.file == str(bad) and e.value.line == 6
+
+
 def test_transport_rate_matches_the_cli(cli, tmp_path):
     args = ["--hours", 0.05, "--seed", 4, "--speed-m-s", 200, "--transport-rate"]
     cli("dov", "simulate", *args, "--out", tmp_path / "line.csv", "--config", tmp_path / "dov.yaml")
