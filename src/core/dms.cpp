@@ -267,6 +267,17 @@ double parse_stopwatch_s(std::string_view text) {
 }
 
 Angle parse_angle(std::string_view text) {
+  // Decimal degrees in exponent notation ("4.98e-19", as %.17g writes values below 1e-4):
+  // the whole text one number with an exponent. No unit marker contains an 'e', so nothing
+  // else reads this way.
+  if (std::string_view t = trim(text); t.find_first_of("eE") != std::string_view::npos) {
+    const double sign = take_sign(t);
+    double v = 0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), v, std::chars_format::scientific);
+    if (!t.empty() && t.front() != '-' && r.ec == std::errc() && r.ptr == t.data() + t.size() &&
+        std::isfinite(v))
+      return Angle::degrees(sign * v);
+  }
   std::string_view s = text;
   auto skip_ws = [&] {
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);

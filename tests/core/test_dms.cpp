@@ -35,6 +35,16 @@ TEST(ParseAngle, OtherForms) {
   EXPECT_NEAR(deg("359 41 12"), 359.0 + 41.0 / 60 + 12.0 / 3600, 1e-12);
 }
 
+TEST(ParseAngle, DecimalDegreesWithAnExponent) {
+  // As %.17g writes a latitude near the equator (a dov line CSV crossing it was unreadable).
+  EXPECT_EQ(deg("4.9838993339234222e-19"), 4.9838993339234222e-19);
+  EXPECT_EQ(deg("-9.5630522950706032e-05"), -9.5630522950706032e-05);
+  EXPECT_EQ(deg(" +1E-3 "), 1e-3);
+  EXPECT_EQ(deg("1.5e2"), 150.0);
+  for (const char* bad : {"1e", "e5", "1e5 d", "1e5deg", "--1e-3", "-+1e-3", "1e-3.5", "1e400"})
+    EXPECT_THROW(parse_angle(bad), meridian::ParseError) << "text: " << bad;
+}
+
 TEST(ParseAngle, RejectsBadText) {
   for (const char* bad : {"", "  ", "abc", "12 60 00", "12 30 60", "nan", "inf", "-inf", "1e400",
                           "12 -3 00", "1 2 3 4", "12.5 30", "12°30'x", "12s 30d", "--5", "5 :"}) {

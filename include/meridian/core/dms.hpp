@@ -14,7 +14,8 @@ namespace meridian {
 /// * degrees-minutes-seconds with symbols: `157°21'00"`, `157°21′00.5″`,
 ///   `157d21m00s`, or colons `157:21:00`;
 /// * space-separated D M S or D M: `157 21 00`, `-0 01 16.2`, `157 21.5`;
-/// * decimal degrees: `157.35`, `-0.0045`, optionally with `°` or `deg`;
+/// * decimal degrees: `157.35`, `-0.0045`, optionally with `°` or `deg`, or with an exponent
+///   `4.98e-05`, `-1E-3` (no marker then);
 /// * gon: `174.8333g`, `174.8333 gon`;
 /// * radians: `2.746 rad`;
 /// * arc-seconds or arc-minutes: `93.6"`, `12.5'` (single component with symbol).
