@@ -19,6 +19,7 @@ constexpr double kGridRelTolerance = 1e-9;  // spans that must be whole multiple
 // (span / spacing) as a whole number; -1 when it is not one.
 long long whole_intervals(double span_deg, double spacing_deg) {
   const double n = span_deg / spacing_deg;
+  if (n < 1 - kGridRelTolerance) return 0;  // the spacing is larger than the span: no interval
   const double k = std::round(n);
   if (!(std::abs(n - k) <= kGridRelTolerance * std::max(1.0, n))) return -1;
   return static_cast<long long>(k);
