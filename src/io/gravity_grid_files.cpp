@@ -152,7 +152,7 @@ class NetCdfGridWriter final : public GridFileWriter {
     lo_.assign(vars_.size(), std::numeric_limits<double>::infinity());
     hi_.assign(vars_.size(), -std::numeric_limits<double>::infinity());
     const bool pixel = spec_.registration == gravity::GridRegistration::Pixel;
-    text(NC_GLOBAL, "Conventions", "CF-1.7, COARDS");
+    text(NC_GLOBAL, "Conventions", "CF-1.8, COARDS");
     text(NC_GLOBAL, "title", fmt::format("{} synthesised from {} to degree {}", quantity_list(), meta.model_name,
                                          meta.max_degree));
     text(NC_GLOBAL, "source", fmt::format("Meridian {} (meridian gravity grid)", version()));

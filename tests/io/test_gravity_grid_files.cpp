@@ -135,7 +135,7 @@ TEST(GridFiles, NetCdfReadBackWithTheCApi) {
     EXPECT_EQ(text_attribute(nc, NC_GLOBAL, "model"), "synth");
     EXPECT_EQ(text_attribute(nc, NC_GLOBAL, "synthesis_path"), "parallel");
     EXPECT_EQ(text_attribute(nc, NC_GLOBAL, "tide_system"), "tide_free");
-    EXPECT_NE(text_attribute(nc, NC_GLOBAL, "Conventions").find("CF-1.7"), std::string::npos);
+    EXPECT_NE(text_attribute(nc, NC_GLOBAL, "Conventions").find("CF-1.8"), std::string::npos);
     int degree = 0;
     nc_get_att_int(nc, NC_GLOBAL, "max_degree", &degree);
     EXPECT_EQ(degree, 60);

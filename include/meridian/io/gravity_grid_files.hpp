@@ -1,6 +1,6 @@
 #pragma once
 /// \file gravity_grid_files.hpp
-/// Files of `meridian gravity grid` (issue 14): NetCDF grids (CF-1.7 and
+/// Files of `meridian gravity grid` (issue 14): NetCDF grids (CF-1.8 and
 /// COARDS, readable by GMT and QGIS/GDAL) and CSV for small grids, both
 /// written atomically (a temporary file beside the target, fsync, rename):
 /// on any error, or without commit(), the target is untouched. The layout
