@@ -26,6 +26,7 @@
 #include <cmath>
 #include <complex>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -288,6 +289,43 @@ void check_finite(const GridSpec& spec, std::size_t j, const double* row, std::s
                              {"", {}, fmt::format("rows[{}]", j)});
 }
 
+// Per-node heights: parallels in order on the calling thread, each node a scattered point
+// (GravityField::evaluate, which spreads a parallel's nodes over the field's threads).
+GridSynthesisResult synthesize_with_heights(const GravityField& field, const GridSpec& spec, const GridRowSink& sink,
+                                            Progress* progress) {
+  const std::size_t rows = spec.rows(), cols = spec.columns(), nq = spec.quantities.size();
+  const Quantities what = static_cast<Quantities>(
+      (needs_gradient(spec.quantities) ? static_cast<unsigned>(Quantities::Deflection) : 0u) |
+      (needs_geoid(spec.quantities) ? static_cast<unsigned>(Quantities::Geoid) : 0u));
+  std::vector<double> heights(cols), buffer(cols * nq);
+  std::vector<GeodeticPoint> points(cols);
+  report_progress(progress, 0, rows, "parallels");
+  for (std::size_t j = 0; j < rows; ++j) {
+    std::fill(heights.begin(), heights.end(), std::numeric_limits<double>::quiet_NaN());
+    spec.node_heights(j, heights);
+    for (std::size_t i = 0; i < cols; ++i) points[i] = {spec.lat_rad(j), spec.lon_rad(i), heights[i]};
+    std::vector<FieldValues> v;
+    try {
+      v = field.evaluate(points, what);
+    } catch (Error& e) {
+      e.add_context("", std::nullopt, fmt::format("rows[{}]", j));
+      throw;
+    }
+    for (std::size_t qi = 0; qi < nq; ++qi)
+      for (std::size_t i = 0; i < cols; ++i) buffer[qi * cols + i] = pick(v[i], spec.quantities[qi]);
+    check_finite(spec, j, buffer.data(), cols);
+    sink(GridRow{j, spec.lat_deg(j), cols, buffer});
+    report_progress(progress, j + 1, rows, "parallels");
+  }
+  GridSynthesisResult r;
+  r.path_used = GridPath::Parallel;
+  r.rows = rows;
+  r.columns = cols;
+  r.threads = 1;
+  r.per_node_heights = true;
+  return r;
+}
+
 std::size_t row_bytes(const GridSpec& spec) { return spec.columns() * spec.quantities.size() * sizeof(double); }
 
 }  // namespace
@@ -320,7 +358,10 @@ GridPath choose_grid_path(const GridSpec& spec, const GridOptions& options) {
     throw InputError("the FFT path needs a grid that spans 360° in longitude (E − W = 360) with a spacing that "
                      "divides 360°",
                      {"", {}, "path"});
-  if (options.path == GridPath::Auto) return global ? GridPath::Fft : GridPath::Parallel;
+  if (options.path == GridPath::Fft && spec.node_heights)
+    throw InputError("the FFT path needs one height for the whole grid; per-node heights use the per-parallel path",
+                     {"", {}, "path"});
+  if (options.path == GridPath::Auto) return global && !spec.node_heights ? GridPath::Fft : GridPath::Parallel;
   return options.path;
 }
 
@@ -328,6 +369,7 @@ GridSynthesisResult synthesize_grid(const GravityField& field, const GridSpec& s
                                     Progress* progress, const GridOptions& options) {
   Job job{field, spec, 0, GridPath::Parallel, nullptr, {}};
   job.path = choose_grid_path(spec, options);
+  if (spec.node_heights) return synthesize_with_heights(field, spec, sink, progress);
   job.columns = spec.columns();
   const std::size_t rows = spec.rows(), nq = spec.quantities.size(), per_row = job.columns * nq;
   unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -346,6 +348,67 @@ TEST(GridSpec, ParsesGmtRegionAndSpacing) {
   EXPECT_THROW(grid_quantity_from_string("zeta"), InputError);
   EXPECT_EQ(grid_path_from_string("fft"), GridPath::Fft);
   EXPECT_THROW(grid_path_from_string("fast"), InputError);
+}
+
+}  // namespace gtest_grid
+
+namespace gtest_grid {
+
+TEST(GridSynthesis, PerNodeHeightsEqualPointsAtEveryNode) {
+  const GravityField f(grid_model(60));
+  GridSpec spec = spec_of(-20, 20, 30, 60, 5, 0, GridRegistration::Gridline, kAll);
+  auto height = [](std::size_t j, std::size_t i) { return 100.0 * static_cast<double>(j) - 37.5 * static_cast<double>(i) + 250; };
+  std::vector<std::size_t> asked;
+  spec.node_heights = [&](std::size_t row, std::span<double> h) {
+    asked.push_back(row);
+    for (std::size_t i = 0; i < h.size(); ++i) h[i] = height(row, i);
+  };
+  const Grid g = run(f, spec);
+  EXPECT_EQ(g.result.path_used, GridPath::Parallel);
+  EXPECT_TRUE(g.result.per_node_heights);
+  EXPECT_EQ(asked.size(), spec.rows());
+  const std::size_t cols = spec.columns();
+  for (std::size_t k = 0; k < spec.quantities.size(); ++k) {
+    const GridQuantity q = spec.quantities[k];
+    double worst = 0;
+    for (std::size_t j = 0; j < spec.rows(); ++j)
+      for (std::size_t i = 0; i < cols; ++i) {
+        const FieldValues v = f.evaluate({spec.lat_rad(j), spec.lon_rad(i), height(j, i)});
+        worst = std::max(worst, std::abs(g.rows[j][k * cols + i] - value_of(v, q)) / scale_of(q));
+      }
+    EXPECT_LE(worst, tolerance_of(q)) << to_string(q);
+  }
+  // A constant per-node height gives the constant-height grid (the GravityCircle path).
+  GridSpec constant = spec_of(-20, 20, 30, 60, 5, 800, GridRegistration::Gridline, kAll);
+  GridSpec per_node = constant;
+  per_node.node_heights = [](std::size_t, std::span<double> h) { std::fill(h.begin(), h.end(), 800.0); };
+  const Grid a = run(f, constant), b = run(f, per_node);
+  for (std::size_t j = 0; j < spec.rows(); ++j)
+    for (std::size_t k = 0; k < spec.quantities.size(); ++k)
+      for (std::size_t i = 0; i < cols; ++i)
+        EXPECT_NEAR(a.rows[j][k * cols + i] / scale_of(spec.quantities[k]),
+                    b.rows[j][k * cols + i] / scale_of(spec.quantities[k]), tolerance_of(spec.quantities[k]));
+}
+
+TEST(GridSynthesis, PerNodeHeightErrors) {
+  const GravityField f(grid_model(20));
+  GridSpec spec = spec_of(0, 360, -90, 90, 30, 0, GridRegistration::Gridline, {GridQuantity::Xi});
+  spec.node_heights = [](std::size_t row, std::span<double> h) {
+    std::fill(h.begin(), h.end(), 0.0);
+    if (row == 2) h[3] = 2e7;  // above kMaxHeight_m
+  };
+  EXPECT_EQ(choose_grid_path(spec), GridPath::Parallel);  // global, but heights vary
+  GridOptions fft;
+  fft.path = GridPath::Fft;
+  expect_input_error(spec, "path", fft);
+  try {
+    synthesize_grid(f, spec, [](const GridRow&) {});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().field, "rows[2].points[3].h") << e.what();
+  }
+  spec.node_heights = [](std::size_t, std::span<double>) { throw IoError("height grid unreadable"); };
+  EXPECT_THROW(synthesize_grid(f, spec, [](const GridRow&) {}), IoError);
 }
 
 }  // namespace gtest_grid

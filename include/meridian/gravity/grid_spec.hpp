@@ -17,6 +17,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,6 +52,11 @@ GridQuantity grid_quantity_from_string(std::string_view name);
 /// "gridline" or "pixel".
 std::string_view to_string(GridRegistration r) noexcept;
 
+/// Per-node ellipsoidal heights, one parallel at a time: fill `heights_m` (columns() values,
+/// west to east, metres above the reference ellipsoid) for row `row` (0 = southernmost).
+/// Called on the thread that runs synthesize_grid, rows in order, once each. May throw.
+using GridHeightSource = std::function<void(std::size_t row, std::span<double> heights_m)>;
+
 /// A grid to synthesise. Degrees at this edge (GMT's units); the engine
 /// converts to radians.
 struct GridSpec {
@@ -61,6 +68,11 @@ struct GridSpec {
   double lat_spacing_deg = 0;  ///< Δφ > 0; (N − S)/Δφ must be a whole number (to 1e-9 relative)
   GridRegistration registration = GridRegistration::Gridline;
   double height_m = 0;  ///< ellipsoidal height of every node, [kMinHeight_m, kMaxHeight_m] (N ignores it)
+  /// Empty: every node at height_m. Set: per-node heights (height_m is then unused), each
+  /// checked as it arrives (InputError, field "rows[j].points[i].h"); only the per-parallel
+  /// path can use them, evaluating every node as a scattered point (GravityField::evaluate,
+  /// O(N²) per node: meant for regional grids).
+  GridHeightSource node_heights;
   std::vector<GridQuantity> quantities;  ///< at least one, no repeats; the order of the outputs
 
   /// At most this many nodes in a grid (2³² ≈ 4.3·10⁹: a 20″ global grid);

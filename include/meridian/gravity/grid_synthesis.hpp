@@ -33,9 +33,9 @@ namespace meridian::gravity {
 
 /// How a grid is synthesised.
 enum class GridPath {
-  Auto,      ///< Fft when the grid is global in longitude, else Parallel
+  Auto,      ///< Fft when the grid is global in longitude (and has one height), else Parallel
   Fft,       ///< one real FFT per parallel and quantity (global grids only)
-  Parallel,  ///< GravityCircle per parallel, O(M) per node
+  Parallel,  ///< GravityCircle per parallel, O(M) per node (per-node heights: GravityField::evaluate)
 };
 /// "auto", "fft", "parallel".
 std::string_view to_string(GridPath p) noexcept;
@@ -73,12 +73,15 @@ struct GridSynthesisResult {
   GridPath path_used = GridPath::Parallel;  ///< Fft or Parallel, never Auto
   std::size_t rows = 0, columns = 0;
   std::size_t fft_length = 0;  ///< Nλ of the FFT path (0 for Parallel)
-  unsigned threads = 1;        ///< threads used
+  /// Threads over parallels. With per-node heights 1: parallels run in order on the calling
+  /// thread and GravityField::evaluate spreads each one's nodes over FieldOptions::threads.
+  unsigned threads = 1;
+  bool per_node_heights = false;  ///< GridSpec::node_heights was used
 };
 
 /// Checks a spec against a field and options without computing: the path
 /// that would be used. Throws InputError as GridSpec::validate(), for
-/// GridPath::Fft on a grid that is not global in longitude (field "path"),
+/// GridPath::Fft on a grid that is not global in longitude or has per-node heights (field "path"),
 /// and for a parallel larger than options.max_buffer_bytes (field "spacing").
 GridPath choose_grid_path(const GridSpec& spec, const GridOptions& options = {});
 
