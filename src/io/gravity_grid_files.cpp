@@ -165,10 +165,13 @@ class NetCdfGridWriter final : public GridFileWriter {
     const int node_offset = pixel ? 1 : 0;
     check(nc_put_att_int(ncid_, NC_GLOBAL, "node_offset", NC_INT, 1, &node_offset), "cannot define");
     text(NC_GLOBAL, "synthesis_path", gravity::to_string(meta.path));
-    check(nc_put_att_double(ncid_, NC_GLOBAL, "height_m", NC_DOUBLE, 1, &spec_.height_m), "cannot define");
+    if (meta.height_source.empty())
+      check(nc_put_att_double(ncid_, NC_GLOBAL, "height_m", NC_DOUBLE, 1, &spec_.height_m), "cannot define");
+    else
+      text(NC_GLOBAL, "height_source", "ellipsoidal height of each node (m) from " + meta.height_source);
     text(NC_GLOBAL, "comment",
-         "Heights are ellipsoidal, the same at every node; the geoid height N is evaluated on the ellipsoid "
-         "(h = 0) whatever height_m says. xi, eta, dg_* are in the local geocentric (spherical) frame as "
+         "Heights are ellipsoidal (height_m: the same at every node; height_source: per node); the geoid "
+         "height N is evaluated on the ellipsoid (h = 0) whatever the height. xi, eta, dg_* are in the local geocentric (spherical) frame as "
          "GeographicLib's SphericalAnomaly; definitions: Meridian docs/gravity-field.md, Grids.");
     check(nc_enddef(ncid_), "cannot define");
     check(nc_put_var_double(ncid_, lat_var, lat.data()), "cannot write");
@@ -232,7 +235,124 @@ class CsvGridWriter final : public GridFileWriter {
   std::size_t rows_written_ = 0;
 };
 
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
 }  // namespace
+
+GridHeightFile::GridHeightFile(const std::string& path, const GridSpec& spec)
+    : rows_(spec.rows()), columns_(spec.columns()) {
+  const std::size_t q = path.rfind('?');
+  file_ = q == std::string::npos ? path : path.substr(0, q);
+  if (q != std::string::npos) variable_ = path.substr(q + 1);
+  const ErrorContext where{file_, std::nullopt, "--height-grid"};
+  if (const int st = nc_open(file_.c_str(), NC_NOWRITE, &ncid_); st != NC_NOERR)
+    throw IoError(fmt::format("cannot open the height grid: {}", nc_strerror(st)), {file_, std::nullopt, {}});
+  try {
+    auto ok = [&](int st, const char* what) {
+      if (st != NC_NOERR) throw IoError(fmt::format("cannot read {}: {}", what, nc_strerror(st)), {file_, std::nullopt, {}});
+    };
+    if (variable_.empty()) {
+      int nvars = 0;
+      ok(nc_inq_nvars(ncid_, &nvars), "the variables");
+      std::vector<std::string> names;
+      for (int v = 0; v < nvars; ++v) {
+        int nd = 0;
+        char name[NC_MAX_NAME + 1] = {};
+        ok(nc_inq_varndims(ncid_, v, &nd), "the variables");
+        ok(nc_inq_varname(ncid_, v, name), "the variables");
+        if (nd == 2) names.emplace_back(name), var_ = v;
+      }
+      if (names.size() != 1)
+        throw InputError(fmt::format("the height grid has {} two-dimensional variables; name one as FILE?VARIABLE",
+                                     names.size()),
+                         where);
+      variable_ = names.front();
+    } else if (nc_inq_varid(ncid_, variable_.c_str(), &var_) != NC_NOERR) {
+      throw InputError(fmt::format("the height grid has no variable \"{}\"", variable_), where);
+    }
+    int nd = 0, dims[NC_MAX_VAR_DIMS] = {};
+    ok(nc_inq_varndims(ncid_, var_, &nd), "the variable");
+    if (nd != 2) throw InputError(fmt::format("variable \"{}\" has {} dimensions, not 2", variable_, nd), where);
+    ok(nc_inq_vardimid(ncid_, var_, dims), "the variable");
+    std::string dim_name[2];
+    std::size_t len[2] = {0, 0};
+    std::vector<double> coord[2];
+    for (int k = 0; k < 2; ++k) {
+      char name[NC_MAX_NAME + 1] = {};
+      ok(nc_inq_dim(ncid_, dims[k], name, &len[k]), "the dimensions");
+      dim_name[k] = name;
+      int cv = 0;
+      if (nc_inq_varid(ncid_, name, &cv) != NC_NOERR)
+        throw InputError(fmt::format("dimension \"{}\" has no coordinate variable", dim_name[k]), where);
+      coord[k].resize(len[k]);
+      ok(nc_get_var_double(ncid_, cv, coord[k].data()), "the coordinates");
+    }
+    const std::string d0 = lower(dim_name[0]), d1 = lower(dim_name[1]);
+    if (!(d0 == "lat" || d0 == "latitude" || d0 == "y") || !(d1 == "lon" || d1 == "longitude" || d1 == "x"))
+      throw InputError(fmt::format("variable \"{}\" has dimensions ({}, {}); expected (lat, lon)", variable_,
+                                   dim_name[0], dim_name[1]),
+                       where);
+    if (len[0] != rows_ || len[1] != columns_)
+      throw InputError(fmt::format("the height grid has {} x {} nodes (lon x lat), the grid {} x {}", len[1], len[0],
+                                   columns_, rows_),
+                       where);
+    south_first_ = rows_ < 2 || coord[0].front() <= coord[0].back();
+    for (std::size_t j = 0; j < rows_; ++j) {
+      const double lat = coord[0][south_first_ ? j : rows_ - 1 - j];
+      if (!(std::abs(lat - spec.lat_deg(j)) <= 1e-9))
+        throw InputError(fmt::format("the height grid's latitude {} is not the grid's node latitude {} (row {})", lat,
+                                     spec.lat_deg(j), j),
+                         where);
+    }
+    for (std::size_t i = 0; i < columns_; ++i) {
+      double d = coord[1][i] - spec.lon_deg(i);
+      d -= 360.0 * std::round(d / 360.0);
+      if (!(std::abs(d) <= 1e-9))
+        throw InputError(fmt::format("the height grid's longitude {} is not the grid's node longitude {} (column {})",
+                                     coord[1][i], spec.lon_deg(i), i),
+                         where);
+    }
+    if (std::size_t n = 0; nc_inq_attlen(ncid_, var_, "units", &n) == NC_NOERR) {
+      std::string units(n, '\0');
+      ok(nc_get_att_text(ncid_, var_, "units", units.data()), "the units");
+      while (!units.empty() && (units.back() == '\0' || units.back() == ' ')) units.pop_back();
+      const std::string u = lower(units);
+      if (u != "m" && u != "meter" && u != "meters" && u != "metre" && u != "metres")
+        throw InputError(fmt::format("variable \"{}\" is in \"{}\"; heights must be in metres", variable_, units),
+                         where);
+    }
+    has_fill_ = nc_get_att_double(ncid_, var_, "_FillValue", &fill_) == NC_NOERR;
+    for (std::size_t j = 0; j < rows_; ++j) lat_deg_.push_back(spec.lat_deg(j));
+    for (std::size_t i = 0; i < columns_; ++i) lon_deg_.push_back(spec.lon_deg(i));
+  } catch (...) {
+    nc_close(ncid_);
+    throw;
+  }
+}
+
+GridHeightFile::~GridHeightFile() { nc_close(ncid_); }
+
+void GridHeightFile::read_row(std::size_t row, std::span<double> heights_m) const {
+  if (row >= rows_ || heights_m.size() != columns_)
+    throw InputError(fmt::format("height row {} of {} values asked of a {} x {} grid", row, heights_m.size(), columns_,
+                                 rows_),
+                     {file_, std::nullopt, "--height-grid"});
+  const std::size_t start[2] = {south_first_ ? row : rows_ - 1 - row, 0}, count[2] = {1, columns_};
+  if (const int st = nc_get_vara_double(ncid_, var_, start, count, heights_m.data()); st != NC_NOERR)
+    throw IoError(fmt::format("cannot read heights: {}", nc_strerror(st)), {file_, std::nullopt, {}});
+  for (std::size_t i = 0; i < columns_; ++i)
+    if (!std::isfinite(heights_m[i]) || (has_fill_ && heights_m[i] == fill_))
+      throw InputError(fmt::format("no height at lat {} deg, lon {} deg (variable \"{}\")", lat_deg_[row],
+                                   lon_deg_[i], variable_),
+                       {file_, std::nullopt, "--height-grid"});
+}
+
+gravity::GridHeightSource GridHeightFile::source() const {
+  return [this](std::size_t row, std::span<double> h) { read_row(row, h); };
+}
 
 GridQuantityFormat grid_quantity_format(GridQuantity q) noexcept {
   const double arcsec = 1.0 / units::kArcsecond, mgal = 1e5;

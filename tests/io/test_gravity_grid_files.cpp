@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -238,6 +239,89 @@ TEST(GridFiles, AtomicAndErrorsBeforeWork) {
   EXPECT_THROW(w->write_row(GridRow{1, s.lat_deg(1), s.columns(), std::vector<double>(s.columns() * 3, 0.0)}),
                InputError);  // out of order
   EXPECT_EQ(io::grid_quantity_format(GridQuantity::DisturbanceUp).units, "mGal");
+}
+
+}  // namespace gtest_grid_files
+
+namespace gtest_grid_files {
+
+// A height grid written with the netCDF C API: rows north to south (as many tools write them),
+// `units`, an optional second variable and an optional fill value at one node.
+void write_height_grid(const fs::path& path, const GridSpec& s, const char* units, bool second_variable,
+                       bool fill_one, double lon_offset_deg = 0) {
+  int nc = 0, lat_dim = 0, lon_dim = 0, lat_var = 0, lon_var = 0, z = 0, other = 0;
+  ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER | NC_NETCDF4 | NC_CLASSIC_MODEL, &nc), NC_NOERR);
+  nc_def_dim(nc, "lat", s.rows(), &lat_dim);
+  nc_def_dim(nc, "lon", s.columns(), &lon_dim);
+  nc_def_var(nc, "lat", NC_DOUBLE, 1, &lat_dim, &lat_var);
+  nc_def_var(nc, "lon", NC_DOUBLE, 1, &lon_dim, &lon_var);
+  const int dims[2] = {lat_dim, lon_dim};
+  nc_def_var(nc, "z", NC_DOUBLE, 2, dims, &z);
+  nc_put_att_text(nc, z, "units", std::strlen(units), units);
+  const double fill = -9999;
+  nc_put_att_double(nc, z, "_FillValue", NC_DOUBLE, 1, &fill);
+  if (second_variable) nc_def_var(nc, "z2", NC_DOUBLE, 2, dims, &other);
+  nc_enddef(nc);
+  std::vector<double> lat(s.rows()), lon(s.columns()), h(s.rows() * s.columns());
+  for (std::size_t j = 0; j < s.rows(); ++j) lat[j] = s.lat_deg(s.rows() - 1 - j);
+  for (std::size_t i = 0; i < s.columns(); ++i) lon[i] = s.lon_deg(i) + lon_offset_deg;
+  for (std::size_t r = 0; r < s.rows(); ++r)
+    for (std::size_t i = 0; i < s.columns(); ++i)
+      h[r * s.columns() + i] = 1000.0 * static_cast<double>(s.rows() - 1 - r) + static_cast<double>(i);
+  if (fill_one) h[1] = fill;
+  nc_put_var_double(nc, lat_var, lat.data());
+  nc_put_var_double(nc, lon_var, lon.data());
+  nc_put_var_double(nc, z, h.data());
+  if (second_variable) nc_put_var_double(nc, other, h.data());
+  nc_close(nc);
+}
+
+TEST(GridFiles, HeightGridIsReadRowByRowFromSouthToNorth) {
+  TempDir dir;
+  const GridSpec s = small_spec(GridRegistration::Gridline);
+  const fs::path p = dir.p / "h.nc";
+  write_height_grid(p, s, "m", false, false, 360.0);  // longitudes 370…380: the same meridians
+  const io::GridHeightFile f(p.string(), s);
+  EXPECT_EQ(f.variable(), "z");
+  std::vector<double> h(s.columns());
+  for (std::size_t j = 0; j < s.rows(); ++j) {
+    f.source()(j, h);
+    for (std::size_t i = 0; i < s.columns(); ++i) EXPECT_EQ(h[i], 1000.0 * static_cast<double>(j) + static_cast<double>(i));
+  }
+}
+
+TEST(GridFiles, HeightGridErrors) {
+  TempDir dir;
+  const GridSpec s = small_spec(GridRegistration::Gridline);
+  auto field_of = [&](const std::string& path, const GridSpec& spec) -> std::string {
+    try {
+      io::GridHeightFile f(path, spec);
+      std::vector<double> h(spec.columns());
+      for (std::size_t j = 0; j < spec.rows(); ++j) f.read_row(j, h);
+      return "no error";
+    } catch (const InputError& e) {
+      return "InputError " + e.context().field + ": " + e.message();
+    } catch (const IoError& e) {
+      return "IoError " + e.context().file;
+    }
+  };
+  const fs::path km = dir.p / "km.nc", two = dir.p / "two.nc", fill = dir.p / "fill.nc";
+  write_height_grid(km, s, "km", false, false);
+  write_height_grid(two, s, "m", true, false);
+  write_height_grid(fill, s, "metres", false, true);
+  EXPECT_NE(field_of(km.string(), s).find("must be in metres"), std::string::npos) << field_of(km.string(), s);
+  EXPECT_NE(field_of(two.string(), s).find("2 two-dimensional variables"), std::string::npos);
+  EXPECT_EQ(field_of(two.string() + "?z2", s), "no error");
+  EXPECT_NE(field_of(two.string() + "?nope", s).find("no variable \"nope\""), std::string::npos);
+  EXPECT_NE(field_of(fill.string(), s).find("no height at lat 35 deg, lon 12.5 deg"), std::string::npos)
+      << field_of(fill.string(), s);
+  GridSpec other = s;
+  other.west_deg = 12.5, other.east_deg = 22.5;  // same shape, other meridians
+  EXPECT_NE(field_of(two.string() + "?z", other).find("is not the grid's node longitude"), std::string::npos);
+  other = s;
+  other.registration = GridRegistration::Pixel;  // another shape
+  EXPECT_NE(field_of(two.string() + "?z", other).find("4 x 2"), std::string::npos) << field_of(two.string() + "?z", other);
+  EXPECT_EQ(field_of((dir.p / "missing.nc").string(), s), "IoError " + (dir.p / "missing.nc").string());
 }
 
 }  // namespace gtest_grid_files

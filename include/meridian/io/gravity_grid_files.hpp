@@ -16,7 +16,9 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <span>
 #include <string_view>
+#include <vector>
 
 #include "meridian/gravity/grid_spec.hpp"
 #include "meridian/gravity/grid_synthesis.hpp"
@@ -48,6 +50,9 @@ struct GridFileMetadata {
   std::string tide_system;  ///< as stated by the model file; empty: "not stated"
   gravity::GridPath path = gravity::GridPath::Parallel;  ///< synthesis path used (Fft or Parallel)
   std::string history;      ///< the command line, or empty
+  /// Empty: every node at GridSpec::height_m (global attribute height_m). Otherwise where the
+  /// per-node heights came from (global attribute height_source; height_m is not written).
+  std::string height_source;
 };
 
 /// Receives the rows of a synthesis and writes them; commit() makes the file appear.
@@ -81,5 +86,39 @@ void check_grid_output(const std::filesystem::path& path, const gravity::GridSpe
 /// from south to north, 10 decimals for coordinates and 9 for values.
 std::unique_ptr<GridFileWriter> open_grid_file(const std::filesystem::path& path, const gravity::GridSpec& spec,
                                                const GridFileMetadata& metadata);
+
+/// A NetCDF grid of ellipsoidal heights (metres) at exactly the nodes of a GridSpec, read one
+/// parallel at a time (GridSpec::node_heights; `gravity grid --height-grid FILE.nc[?VAR]`).
+/// `path` may name the variable after a '?' (GMT's convention); otherwise the file must hold
+/// exactly one two-dimensional variable. The variable's dimensions are (lat, lon) with
+/// one-dimensional coordinate variables of the same names (also latitude/longitude, y/x);
+/// rows may run south to north or north to south. Every node's coordinates must equal the
+/// spec's (to 1e-9°; longitudes modulo 360°), a `units` attribute, when present, must be
+/// metres, and every value must be finite and not the _FillValue.
+class GridHeightFile {
+ public:
+  /// Opens and checks the file against `spec` (validated by the caller). Throws IoError
+  /// (cannot open or read, naming the file) or InputError (field "--height-grid": another
+  /// shape, other coordinates, units not metres, no or several candidate variables).
+  GridHeightFile(const std::string& path, const gravity::GridSpec& spec);
+  ~GridHeightFile();
+  GridHeightFile(const GridHeightFile&) = delete;
+  GridHeightFile& operator=(const GridHeightFile&) = delete;
+
+  /// Row `row` (0 = southernmost) into heights_m (columns() values). Throws IoError on a read
+  /// failure, InputError naming the node for a missing value. Not thread-safe.
+  void read_row(std::size_t row, std::span<double> heights_m) const;
+  /// A GridHeightSource that reads from this file (which must outlive it).
+  gravity::GridHeightSource source() const;
+  const std::string& variable() const noexcept { return variable_; }
+
+ private:
+  std::string file_, variable_;
+  int ncid_ = -1, var_ = -1;
+  bool south_first_ = true, has_fill_ = false;
+  double fill_ = 0;
+  std::size_t rows_ = 0, columns_ = 0;
+  std::vector<double> lat_deg_, lon_deg_;  // of the spec's nodes, for messages
+};
 
 }  // namespace meridian::io
