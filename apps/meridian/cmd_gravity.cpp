@@ -58,7 +58,7 @@ struct GridArgs {
 };
 
 struct SynthGridArgs : ModelArgs {
-  std::string region, spacing, quantities = "xi,eta,geoid", output, path = "auto";
+  std::string region, spacing, quantities = "xi,eta,geoid", output, path = "auto", height_grid;
   double height_m = 0;
   bool pixel = false, json = false, quiet = false;
 };
@@ -153,6 +153,13 @@ int run_synth_grid(const SynthGridArgs& a) {
   options.path = gravity::grid_path_from_string(a.path);
   options.threads = a.threads;
   if (a.output.empty()) throw InputError("-o/--output FILE (.nc or .csv) is required", {"", {}, "--output"});
+  spec.validate();
+  // Per-node heights: the file is opened and checked against the nodes before any work.
+  std::unique_ptr<io::GridHeightFile> heights;
+  if (!a.height_grid.empty()) {
+    heights = std::make_unique<io::GridHeightFile>(a.height_grid, spec);
+    spec.node_heights = heights->source();
+  }
   const gravity::GridPath path = gravity::choose_grid_path(spec, options);
   io::check_grid_output(a.output, spec);
 
@@ -168,10 +175,13 @@ int run_synth_grid(const SynthGridArgs& a) {
   meta.max_degree = field.max_degree();
   meta.tide_system = m.tide_system;
   meta.path = path;
-  meta.history = fmt::format("meridian gravity grid --model {} --region {} --spacing {} --quantities {} --height {}{} "
+  const std::string height_arg =
+      heights ? "--height-grid " + a.height_grid : fmt::format("--height {}", a.height_m);
+  meta.history = fmt::format("meridian gravity grid --model {} --region {} --spacing {} --quantities {} {}{} "
                              "--path {} -o {}",
-                             a.model, a.region, a.spacing, a.quantities, a.height_m, a.pixel ? " -r" : "", a.path,
+                             a.model, a.region, a.spacing, a.quantities, height_arg, a.pixel ? " -r" : "", a.path,
                              a.output);
+  if (heights) meta.height_source = a.height_grid;
   const std::unique_ptr<io::GridFileWriter> writer = io::open_grid_file(a.output, spec, meta);
   TerminalProgress progress(a.quiet);
   const auto start = std::chrono::steady_clock::now();
@@ -197,7 +207,8 @@ int run_synth_grid(const SynthGridArgs& a) {
                               {"lon_spacing_deg", spec.lon_spacing_deg},
                               {"lat_spacing_deg", spec.lat_spacing_deg},
                               {"registration", std::string(gravity::to_string(spec.registration))},
-                              {"height_m", spec.height_m},
+                              {"height_m", heights ? nlohmann::json(nullptr) : nlohmann::json(spec.height_m)},
+                              {"height_grid", heights ? nlohmann::json(a.height_grid) : nlohmann::json(nullptr)},
                               {"rows", r.rows},
                               {"columns", r.columns},
                               {"nodes", spec.nodes()},
@@ -214,12 +225,17 @@ int run_synth_grid(const SynthGridArgs& a) {
       names += fmt::format("{}{} [{}]", names.empty() ? "" : ", ", f.name, f.units);
     }
     emit("", fmt::format("wrote {} ({}): {} x {} nodes (lon x lat, {} registration), {}\n"
-                         "path {}{}, {} thread(s), {:.2f} s\n",
+                         "heights {}\npath {}{}, {}, {:.2f} s\n",
                          a.output, netcdf ? "NetCDF" : "CSV", r.columns, r.rows, gravity::to_string(spec.registration),
-                         names, gravity::to_string(r.path_used),
+                         names,
+                         heights ? "per node from " + a.height_grid : fmt::format("{} m at every node", spec.height_m),
+                         gravity::to_string(r.path_used),
                          r.fft_length ? fmt::format(" (one real FFT of length {} per parallel and quantity)", r.fft_length)
-                                      : std::string(" (GravityCircle per parallel)"),
-                         r.threads, elapsed_s));
+                         : r.per_node_heights ? std::string(" (every node as a scattered point: per-node heights)")
+                                              : std::string(" (GravityCircle per parallel)"),
+                         r.per_node_heights ? std::string("parallels in order, each one's nodes over the threads")
+                                            : fmt::format("{} thread(s) over parallels", r.threads),
+                         elapsed_s));
   }
   return kOk;
 }
@@ -285,8 +301,13 @@ void add_gravity_commands(CLI::App& app, int& exit_code) {
   sgrid->add_option("--quantities", sg->quantities,
                     "Comma-separated: xi, eta (arcsec), geoid (m), anomaly, dg_east, dg_north, dg_up (mGal)")
       ->capture_default_str();
-  sgrid->add_option("--height", sg->height_m, "Ellipsoidal height of every node (m); the geoid ignores it")
-      ->capture_default_str();
+  CLI::Option* height = sgrid->add_option("--height", sg->height_m,
+                                          "Ellipsoidal height of every node (m); the geoid ignores it")
+                            ->capture_default_str();
+  sgrid->add_option("--height-grid", sg->height_grid,
+                    "NetCDF grid FILE.nc[?VAR] of ellipsoidal heights (m) at exactly the grid's nodes (per-node "
+                    "heights: every node evaluated as a point; for regional grids)")
+      ->excludes(height);
   sgrid->add_flag("-r,--pixel", sg->pixel, "Pixel (cell-centre) registration, GMT -r (default: gridline)");
   sgrid->add_option("--path", sg->path,
                     "auto (FFT for global grids, else per parallel) | fft | parallel")->capture_default_str();

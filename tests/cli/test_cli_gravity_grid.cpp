@@ -141,3 +141,41 @@ TEST_F(GravityGridCli, BadInputFailsBeforeAnyWork) {
 }
 
 }  // namespace gtest_cli_grid
+
+namespace gtest_cli_grid {
+
+TEST_F(GravityGridCli, PerNodeHeightsFromANetCdfGrid) {
+  ASSERT_EQ(run("gravity synth-model --degree 24 --seed 7 --out m").code, 0);
+  // A 5 x 3 height grid in CDL, turned into NetCDF by ncgen (netcdf-bin).
+  write("h.cdl", "netcdf h {\ndimensions:\n lat = 3 ;\n lon = 5 ;\nvariables:\n double lat(lat) ;\n"
+                 " double lon(lon) ;\n double elevation(lat, lon) ;\n  elevation:units = \"m\" ;\ndata:\n"
+                 " lat = 40, 40.5, 41 ;\n lon = 0, 0.5, 1, 1.5, 2 ;\n"
+                 " elevation = 0, 100, 200, 300, 400,\n  1000, 1100, 1200, 1300, 1400,\n"
+                 "  2000, 2100, 2200, 2300, 2400 ;\n}\n");
+  const CmdResult g = shell("ncgen -o h.nc h.cdl");
+  ASSERT_EQ(g.code, 0) << "ncgen (netcdf-bin) is required: " << g.err;
+  const CmdResult r = run("gravity grid --model m.gfc --region 0/2/40/41 --spacing 30m --height-grid h.nc "
+                          "--quantities xi,eta,geoid -o out.csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("heights per node from h.nc"), std::string::npos) << r.out;
+  const auto rows = csv_rows(slurp(dir_ / "out.csv"));
+  ASSERT_EQ(rows.size(), 15u);
+  const auto& node = rows[1 * 5 + 3];  // lat 40.5, lon 1.5, h 1300 m
+  EXPECT_EQ(node[0], 1.5);
+  EXPECT_EQ(node[1], 40.5);
+  const auto p = nlohmann::json::parse(run("gravity point --model m.gfc 40.5 1.5 1300 --json").out);
+  EXPECT_NEAR(node[2], p["xi_arcsec"].get<double>(), 1e-8);
+  EXPECT_NEAR(node[3], p["eta_arcsec"].get<double>(), 1e-8);
+  EXPECT_NEAR(node[4], p["geoid_m"].get<double>(), 1e-8);
+  // Another grid than the heights': refused before the model is loaded; --height and
+  // --height-grid together: a usage error.
+  const CmdResult bad = run("gravity grid --model nope.gfc --region 0/2/40/41 --spacing 15m --height-grid h.nc -o b.nc");
+  EXPECT_EQ(bad.code, 1) << bad.err;
+  EXPECT_NE(bad.err.find("the height grid has 5 x 3 nodes"), std::string::npos) << bad.err;
+  EXPECT_EQ(run("gravity grid --model m.gfc --region 0/2/40/41 --spacing 30m --height 5 --height-grid h.nc -o c.nc").code,
+            2);
+  EXPECT_FALSE(fs::exists(dir_ / "b.nc"));
+  EXPECT_FALSE(fs::exists(dir_ / "c.nc"));
+}
+
+}  // namespace gtest_cli_grid
