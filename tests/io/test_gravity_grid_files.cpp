@@ -23,6 +23,7 @@ namespace gtest_grid_files {
 
 using namespace meridian;
 using namespace meridian::gravity;
+using namespace meridian::io;
 namespace fs = std::filesystem;
 
 struct TempDir {
