@@ -160,7 +160,7 @@ int run_synth_grid(const SynthGridArgs& a) {
     heights = std::make_unique<io::GridHeightFile>(a.height_grid, spec);
     spec.node_heights = heights->source();
   }
-  const gravity::GridPath path = gravity::choose_grid_path(spec, options);
+  gravity::choose_grid_path(spec, options);  // every check that does not need the model
   io::check_grid_output(a.output, spec);
 
   const gravity::GravityModelData m = load(a);
@@ -169,6 +169,7 @@ int run_synth_grid(const SynthGridArgs& a) {
   if (!a.quiet && !a.json) std::fputs(report::model_text(info).c_str(), stderr);
   else
     for (const std::string& w : gravity::model_warnings(info)) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const gravity::GridPath path = gravity::choose_grid_path(spec, options, field.max_order());
   io::GridFileMetadata meta;
   meta.model_name = m.name;
   meta.model_file = m.source_file;

@@ -149,8 +149,8 @@ class FftWorker {
   // The coefficient sets of the current parallel (length max order + 1 or empty).
   std::vector<Complex> v, dr, dn, de, v0, corr, combined;
 
-  // Sample Re Σm c_m e^{imλ} at λ0 + 2πk/n, k = 0 … n−1, into out (n values); phase[m] = e^{imλ0}.
-  void sample(const C2rPlan& plan, const std::vector<Complex>& c, const std::vector<Complex>& phase, double* out) {
+  // Sample Re Σm c_m e^{imλ} at λ0 + 2πk/n, k = 0 … n−1 (phase[m] = e^{imλ0}); returns the n values.
+  const double* sample(const C2rPlan& plan, const std::vector<Complex>& c, const std::vector<Complex>& phase) {
     const std::size_t n = bins_.size();
     std::fill(bins_.begin(), bins_.end(), Complex{});
     for (std::size_t m = 0; m < c.size(); ++m) bins_[m % n] += c[m] * phase[m];
@@ -160,7 +160,7 @@ class FftWorker {
       in_[j][1] = x.imag();
     }
     plan.execute(in_, out_);
-    std::copy(out_, out_ + n, out);
+    return out_;
   }
 
  private:
@@ -262,9 +262,11 @@ void row_fft(const Job& job, std::size_t j, FftWorker& w, double* out) {
         combine(w.combined, k / gamma0, w.v0, f.correction_multiplier(), w.corr, dgm / (r0 * gamma0));
         break;
     }
+    // Node i is sample i of the parallel from the grid's first longitude on: a regional grid
+    // keeps its first columns, a global gridline grid's last column (E = W + 360°) is sample 0.
+    const double* samples = w.sample(*job.plan, w.combined, job.phase);
     double* row = out + qi * cols;
-    w.sample(*job.plan, w.combined, job.phase, row);
-    if (cols > n) row[n] = row[0];  // gridline registration: E = W + 360° repeats the first column
+    for (std::size_t i = 0; i < cols; ++i) row[i] = samples[i % n];
   }
 }
 
@@ -346,29 +348,33 @@ GridPath grid_path_from_string(std::string_view name) {
                    {"", {}, "path"});
 }
 
-GridPath choose_grid_path(const GridSpec& spec, const GridOptions& options) {
+GridPath choose_grid_path(const GridSpec& spec, const GridOptions& options, int max_order) {
   spec.validate();
   if (row_bytes(spec) > options.max_buffer_bytes)
     throw InputError(fmt::format("one parallel of {} nodes × {} quantities needs {} bytes, more than the buffer "
                                  "limit of {} bytes",
                                  spec.columns(), spec.quantities.size(), row_bytes(spec), options.max_buffer_bytes),
                      {"", {}, "spacing"});
-  const bool global = spec.global_longitude() && spec.samples_per_turn() > 0;
-  if (options.path == GridPath::Fft && !global)
-    throw InputError("the FFT path needs a grid that spans 360° in longitude (E − W = 360) with a spacing that "
-                     "divides 360°",
+  const std::size_t n = spec.samples_per_turn();
+  if (options.path == GridPath::Fft && n == 0)
+    throw InputError(fmt::format("the FFT path needs a longitude spacing that divides 360° ({}° does not)",
+                                 spec.lon_spacing_deg),
                      {"", {}, "path"});
   if (options.path == GridPath::Fft && spec.node_heights)
     throw InputError("the FFT path needs one height for the whole grid; per-node heights use the per-parallel path",
                      {"", {}, "path"});
-  if (options.path == GridPath::Auto) return global && !spec.node_heights ? GridPath::Fft : GridPath::Parallel;
-  return options.path;
+  if (options.path != GridPath::Auto) return options.path;
+  if (n == 0 || spec.node_heights) return GridPath::Parallel;
+  if (spec.global_longitude()) return GridPath::Fft;
+  const double per_parallel = static_cast<double>(spec.columns()) * (std::max(max_order, 0) + 1.0);
+  const double fft = 2.0 * static_cast<double>(spec.quantities.size()) * static_cast<double>(n);
+  return per_parallel >= fft ? GridPath::Fft : GridPath::Parallel;
 }
 
 GridSynthesisResult synthesize_grid(const GravityField& field, const GridSpec& spec, const GridRowSink& sink,
                                     Progress* progress, const GridOptions& options) {
   Job job{field, spec, 0, GridPath::Parallel, nullptr, {}};
-  job.path = choose_grid_path(spec, options);
+  job.path = choose_grid_path(spec, options, field.max_order());
   if (spec.node_heights) return synthesize_with_heights(field, spec, sink, progress);
   job.columns = spec.columns();
   const std::size_t rows = spec.rows(), nq = spec.quantities.size(), per_row = job.columns * nq;

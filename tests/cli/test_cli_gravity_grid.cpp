@@ -119,7 +119,7 @@ TEST_F(GravityGridCli, BadInputFailsBeforeAnyWork) {
       {"--region 0/10/0 --spacing 1 -o a.nc", 1, "cannot read region"},
       {"--region 0/10/0/10 --spacing 1q -o a.nc", 1, "cannot read spacing"},
       {"--region 0/10/0/10 --spacing 1 --quantities xi,zeta -o a.nc", 1, "unknown quantity \"zeta\""},
-      {"--region 0/10/0/10 --spacing 1 --path fft -o a.nc", 1, "FFT path needs"},
+      {"--region 0/7/0/7 --spacing 0.7 --path fft -o a.nc", 1, "FFT path needs"},
       {"--region 0/10/0/10 --spacing 1 -o a.txt", 1, "from its extension"},
       {"--region g --spacing 5m -o big.csv", 1, "CSV grid is for small grids"},
       {"--region 0/10/0/10 --spacing 1 -o no/such/dir/a.nc", 4, "cannot write to the directory"},

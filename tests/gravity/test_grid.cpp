@@ -170,6 +170,25 @@ TEST(GridSynthesis, FoldingWithVeryFewSamplesPerParallel) {
   expect_matches_points(f, spec, g);
 }
 
+TEST(GridSynthesis, RegionalGridsByTheFftPathEqualPoints) {
+  // A wide band at degree 100: the automatic choice is the FFT path (91·101 ≥ 2·3·180).
+  const GravityField f(grid_model(100));
+  const GridSpec band = spec_of(-30, 150, -30, 30, 2, 500, GridRegistration::Gridline,
+                                {GridQuantity::Xi, GridQuantity::Eta, GridQuantity::Geoid});
+  const Grid a = run(f, band);
+  EXPECT_EQ(a.result.path_used, GridPath::Fft);
+  EXPECT_EQ(a.result.fft_length, 180u);
+  expect_matches_points(f, band, a);
+  // Forced on a small pixel-registered region at the pole, and at a 3.75° spacing (Nλ = 96).
+  GridOptions fft;
+  fft.path = GridPath::Fft;
+  const GridSpec cap = spec_of(100, 160, -90, -60, 3.75, 0, GridRegistration::Pixel, kAll);
+  const Grid b = run(f, cap, fft);
+  EXPECT_EQ(b.result.path_used, GridPath::Fft);
+  EXPECT_EQ(b.result.fft_length, 96u);
+  expect_matches_points(f, cap, b);
+}
+
 TEST(GridSynthesis, RegionalGridUsesParallelPathAndEqualsPoints) {
   const GravityField f(grid_model(90));
   const GridSpec spec = spec_of(-10, 30, 35, 60, 2.5, 800);
@@ -275,12 +294,17 @@ TEST(GridSpec, BadSpecificationsAreRefusedBeforeAnyWork) {
                      "quantities");
   GridOptions fft;
   fft.path = GridPath::Fft;
-  expect_input_error(spec_of(0, 10, 0, 10, 1), "path", fft);  // FFT asked for a regional grid
+  expect_input_error(spec_of(0, 7, 0, 7, 0.7), "path", fft);  // FFT asked for a spacing not dividing 360°
   GridOptions small;
   small.max_buffer_bytes = 1000;
   expect_input_error(spec_of(0, 360, 0, 10, 1), "spacing", small);  // one parallel > the buffer
   EXPECT_EQ(choose_grid_path(spec_of(0, 360, 0, 10, 1)), GridPath::Fft);
-  EXPECT_EQ(choose_grid_path(spec_of(0, 350, 0, 10, 1)), GridPath::Parallel);
+  EXPECT_EQ(choose_grid_path(spec_of(0, 7, 0, 7, 0.7), {}, 2190), GridPath::Parallel);  // 0.7° does not divide 360°
+  // Regional, spacing dividing 360°: FFT when columns·(M + 1) ≥ 2·quantities·Nλ (7 quantities, Nλ = 360).
+  EXPECT_EQ(choose_grid_path(spec_of(0, 350, 0, 10, 1), {}, 0), GridPath::Parallel);   // 351 < 5040
+  EXPECT_EQ(choose_grid_path(spec_of(0, 350, 0, 10, 1), {}, 14), GridPath::Fft);       // 5265 ≥ 5040
+  EXPECT_EQ(choose_grid_path(spec_of(0, 10, 0, 10, 1), {}, 360), GridPath::Parallel);  // 3971 < 5040
+  EXPECT_EQ(choose_grid_path(spec_of(0, 10, 0, 10, 1), {}, 460), GridPath::Fft);       // 5071 ≥ 5040
 }
 
 TEST(GridSpec, NodesOfBothRegistrations) {

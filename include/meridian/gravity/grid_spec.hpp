@@ -102,7 +102,8 @@ struct GridSpec {
   /// True when the columns cover the whole parallel: E − W = 360° (to 1e-9°). Every
   /// spacing that passes validate() then divides 360°.
   bool global_longitude() const;
-  /// 360°/Δλ, the samples per parallel of the FFT path (global grids only).
+  /// 360°/Δλ, the samples per parallel of the FFT path; 0 when Δλ does not divide 360° (to
+  /// 1e-9 relative), when the FFT path cannot be used.
   std::size_t samples_per_turn() const;
 };
 

@@ -7,12 +7,13 @@
 ///
 /// Two paths give the same numbers (to rounding, ~1e-15 relative) as
 /// GravityField::evaluate at every node:
-/// * FFT (GridPath::Fft; global grids: E − W = 360°, spacing dividing 360°):
+/// * FFT (GridPath::Fft; a longitude spacing that divides 360°, one height):
 ///   per parallel, the order-m column sums of the stable recursion
 ///   (Holmes & Featherstone 2002, as GravityField) give the Fourier
 ///   coefficients a_m, b_m of each quantity, f(λ) = Σm a_m cos mλ + b_m sin mλ;
 ///   one real inverse FFT of length Nλ = 360°/Δλ (FFTW c2r) per quantity
-///   samples it at every node. Orders m ≥ Nλ/2 are folded exactly
+///   samples the whole parallel from the grid's first longitude on; a regional
+///   grid keeps its first columns. Orders m ≥ Nλ/2 are folded exactly
 ///   (e^{imλ_k} = e^{i(m mod Nλ)λ_k} at the nodes, with the Hermitian partner):
 ///   no aliasing error and no truncation, whatever the degree.
 /// * Per parallel (GridPath::Parallel; any grid): GravityCircle per parallel,
@@ -33,8 +34,8 @@ namespace meridian::gravity {
 
 /// How a grid is synthesised.
 enum class GridPath {
-  Auto,      ///< Fft when the grid is global in longitude (and has one height), else Parallel
-  Fft,       ///< one real FFT per parallel and quantity (global grids only)
+  Auto,      ///< see choose_grid_path
+  Fft,       ///< one real FFT per parallel and quantity (longitude spacing dividing 360°, one height)
   Parallel,  ///< GravityCircle per parallel, O(M) per node (per-node heights: GravityField::evaluate)
 };
 /// "auto", "fft", "parallel".
@@ -79,11 +80,18 @@ struct GridSynthesisResult {
   bool per_node_heights = false;  ///< GridSpec::node_heights was used
 };
 
-/// Checks a spec against a field and options without computing: the path
-/// that would be used. Throws InputError as GridSpec::validate(), for
-/// GridPath::Fft on a grid that is not global in longitude or has per-node heights (field "path"),
-/// and for a parallel larger than options.max_buffer_bytes (field "spacing").
-GridPath choose_grid_path(const GridSpec& spec, const GridOptions& options = {});
+/// Checks a spec and options without computing, and returns the path that
+/// synthesize_grid would use for a model of maximum order `max_order`.
+/// Auto: Fft when the longitude spacing divides 360° and the grid has one
+/// height, and either the grid is global in longitude or the per-parallel
+/// path's O(columns·(M + 1)) per parallel exceeds the FFT's, estimated as
+/// 2·quantities·Nλ (columns·(M + 1) ≥ 2·quantities·Nλ: a rule from the
+/// measured costs, docs/gravity-field.md §6); else Parallel. Throws
+/// InputError as GridSpec::validate(), for GridPath::Fft with a longitude
+/// spacing that does not divide 360° or with per-node heights (field
+/// "path"), and for a parallel larger than options.max_buffer_bytes (field
+/// "spacing").
+GridPath choose_grid_path(const GridSpec& spec, const GridOptions& options = {}, int max_order = 0);
 
 /// Synthesise the grid: checks everything first (choose_grid_path), then
 /// calls `sink` for every row from south to north, and `progress` (may be
