@@ -311,7 +311,8 @@ void add_gravity_commands(CLI::App& app, int& exit_code) {
       ->excludes(height);
   sgrid->add_flag("-r,--pixel", sg->pixel, "Pixel (cell-centre) registration, GMT -r (default: gridline)");
   sgrid->add_option("--path", sg->path,
-                    "auto (FFT for global grids, else per parallel) | fft | parallel")->capture_default_str();
+                    "auto (FFT when the longitude spacing divides 360° and the grid is global or wide enough, else per "
+                    "parallel) | fft | parallel")->capture_default_str();
   sgrid->add_option("-o,--output", sg->output, "Output file, written atomically: .nc (NetCDF) or .csv (small grids)")
       ->required();
   sgrid->add_flag("--json", sg->json, "Print a JSON summary");

@@ -1,6 +1,6 @@
 // Grid synthesis (issue 14): per parallel, the order-m column sums of the stable recursion
 // (synthesis.hpp, the same sums GravityCircle uses), then either one real inverse FFT per
-// quantity (global grids) or GravityCircle's O(M) Horner pass per node. docs/gravity-field.md,
+// quantity (longitude spacing dividing 360°) or GravityCircle's O(M) Horner pass per node. docs/gravity-field.md,
 // "Grids", has the formulas.
 //
 // The FFT path. The point path combines the column sums (scaled by 1e-280 and divided by u^m)
