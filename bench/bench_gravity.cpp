@@ -24,6 +24,7 @@
 #include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/gravity_circle.hpp"
 #include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/grid_synthesis.hpp"
 #include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/synthetic.hpp"
 
@@ -195,6 +196,44 @@ void BM_GeographicLib_CircleSetup(benchmark::State& st) {
   const auto& g = *models(static_cast<int>(st.range(0))).geographiclib;
   for (auto _ : st) benchmark::DoNotOptimize(g.Circle(47.3, 500, GeographicLib::GravityModel::SPHERICAL_ANOMALY));
 }
+// A global grid (issue 14): ξ, η and Δg at every node of a gridline-registered 0/360/−90/90
+// grid of spacing range(1) arc-minutes, h = 0. Meridian: synthesize_grid on range(2) threads
+// and path range(3) (0 FFT, 1 per parallel); GeographicLib: a GravityCircle per parallel and
+// SphericalAnomaly at every longitude (one thread). Items: nodes.
+mg::GridSpec global_grid(double spacing_arcmin) {
+  mg::GridSpec s;
+  s.west_deg = 0, s.east_deg = 360, s.south_deg = -90, s.north_deg = 90;
+  s.lon_spacing_deg = s.lat_spacing_deg = spacing_arcmin / 60;
+  s.quantities = {mg::GridQuantity::Xi, mg::GridQuantity::Eta, mg::GridQuantity::Anomaly};
+  return s;
+}
+void BM_Meridian_GlobalGrid(benchmark::State& st) {
+  const auto& f = *models(static_cast<int>(st.range(0))).meridian;
+  const mg::GridSpec spec = global_grid(static_cast<double>(st.range(1)));
+  mg::GridOptions o;
+  o.threads = static_cast<unsigned>(st.range(2));
+  o.path = st.range(3) == 0 ? mg::GridPath::Fft : mg::GridPath::Parallel;
+  double sum = 0;
+  for (auto _ : st) mg::synthesize_grid(f, spec, [&](const mg::GridRow& r) { sum += r.data[0]; }, nullptr, o);
+  benchmark::DoNotOptimize(sum);
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * spec.nodes()));
+}
+void BM_GeographicLib_GlobalGrid(benchmark::State& st) {
+  const auto& g = *models(static_cast<int>(st.range(0))).geographiclib;
+  const mg::GridSpec spec = global_grid(static_cast<double>(st.range(1)));
+  double sum = 0;
+  for (auto _ : st)
+    for (std::size_t j = 0; j < spec.rows(); ++j) {
+      const GeographicLib::GravityCircle c = g.Circle(spec.lat_deg(j), 0, GeographicLib::GravityModel::SPHERICAL_ANOMALY);
+      for (std::size_t i = 0; i < spec.columns(); ++i) {
+        double dg, xi, eta;
+        c.SphericalAnomaly(spec.lon_deg(i), dg, xi, eta);
+        sum += xi;
+      }
+    }
+  benchmark::DoNotOptimize(sum);
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations() * spec.nodes()));
+}
 // Loading a model from the binary .egm.cof (read + synthesis tables).
 void BM_Meridian_Load(benchmark::State& st) {
   const fs::path p = dir() / (model_name(static_cast<int>(st.range(0))) + ".egm");
@@ -231,6 +270,10 @@ BENCHMARK(BM_Meridian_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMic
 BENCHMARK(BM_GeographicLib_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Meridian_CircleSetup)->Arg(360)->Arg(2190)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GeographicLib_CircleSetup)->Arg(360)->Arg(2190)->Unit(benchmark::kMillisecond);
+// Global 5′ grid at degree 360 (9.3 million nodes): minutes for GeographicLib, so one iteration.
+BENCHMARK(BM_Meridian_GlobalGrid)->Args({360, 5, 1, 0})->Args({360, 5, 2, 0})->Args({360, 5, 1, 1})
+    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_GeographicLib_GlobalGrid)->Args({360, 5})->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK(BM_Meridian_Load)->Arg(2190)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Meridian_LoadRead)->Arg(2190)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Meridian_LoadTables)->Arg(2190)->Unit(benchmark::kMillisecond);

@@ -1,5 +1,6 @@
-// meridian gravity point | points | synth-model | geoid-grid
+// meridian gravity point | points | grid | synth-model | geoid-grid
 
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -15,10 +16,13 @@
 #include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/geoid_grid.hpp"
 #include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/grid_spec.hpp"
+#include "meridian/gravity/grid_synthesis.hpp"
 #include "meridian/gravity/icgem.hpp"
 #include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/points.hpp"
 #include "meridian/gravity/synthetic.hpp"
+#include "meridian/io/gravity_grid_files.hpp"
 #include "meridian/io/gravity_jobs.hpp"
 #include "meridian/io/gravity_points.hpp"
 #include "meridian/report/gravity_html.hpp"
@@ -51,6 +55,12 @@ struct PointsArgs : ModelArgs {
 struct GridArgs {
   std::string grid, lat, lon, interpolation = "bicubic";
   bool json = false;
+};
+
+struct SynthGridArgs : ModelArgs {
+  std::string region, spacing, quantities = "xi,eta,geoid", output, path = "auto", height_grid;
+  double height_m = 0;
+  bool pixel = false, json = false, quiet = false;
 };
 
 struct SynthArgs {
@@ -125,6 +135,112 @@ int run_synth(const SynthArgs& a) {
   return kOk;
 }
 
+// `gravity grid`: every check (region, spacing, quantities, output path) before the model is
+// loaded; the file is opened (created as a temporary) before synthesis and renamed at the end.
+int run_synth_grid(const SynthGridArgs& a) {
+  gravity::GridSpec spec;
+  gravity::parse_grid_region(a.region, spec);
+  gravity::parse_grid_spacing(a.spacing, spec.lon_spacing_deg, spec.lat_spacing_deg);
+  spec.registration = a.pixel ? gravity::GridRegistration::Pixel : gravity::GridRegistration::Gridline;
+  spec.height_m = a.height_m;
+  for (std::size_t start = 0; start <= a.quantities.size();) {
+    const std::size_t comma = std::min(a.quantities.find(',', start), a.quantities.size());
+    const std::string name = a.quantities.substr(start, comma - start);
+    if (!name.empty()) spec.quantities.push_back(gravity::grid_quantity_from_string(name));
+    start = comma + 1;
+  }
+  gravity::GridOptions options;
+  options.path = gravity::grid_path_from_string(a.path);
+  options.threads = a.threads;
+  if (a.output.empty()) throw InputError("-o/--output FILE (.nc or .csv) is required", {"", {}, "--output"});
+  spec.validate();
+  // Per-node heights: the file is opened and checked against the nodes before any work.
+  std::unique_ptr<io::GridHeightFile> heights;
+  if (!a.height_grid.empty()) {
+    heights = std::make_unique<io::GridHeightFile>(a.height_grid, spec);
+    spec.node_heights = heights->source();
+  }
+  gravity::choose_grid_path(spec, options);  // every check that does not need the model
+  io::check_grid_output(a.output, spec);
+
+  const gravity::GravityModelData m = load(a);
+  const gravity::GravityField field(m, {false, a.threads});
+  const gravity::ModelInfo info = gravity::model_info(m, field);
+  if (!a.quiet && !a.json) std::fputs(report::model_text(info).c_str(), stderr);
+  else
+    for (const std::string& w : gravity::model_warnings(info)) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const gravity::GridPath path = gravity::choose_grid_path(spec, options, field.max_order());
+  io::GridFileMetadata meta;
+  meta.model_name = m.name;
+  meta.model_file = m.source_file;
+  meta.max_degree = field.max_degree();
+  meta.tide_system = m.tide_system;
+  meta.path = path;
+  const std::string height_arg =
+      heights ? "--height-grid " + a.height_grid : fmt::format("--height {}", a.height_m);
+  meta.history = fmt::format("meridian gravity grid --model {} --region {} --spacing {} --quantities {} {}{} "
+                             "--path {} -o {}",
+                             a.model, a.region, a.spacing, a.quantities, height_arg, a.pixel ? " -r" : "", a.path,
+                             a.output);
+  if (heights) meta.height_source = a.height_grid;
+  const std::unique_ptr<io::GridFileWriter> writer = io::open_grid_file(a.output, spec, meta);
+  TerminalProgress progress(a.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  const gravity::GridSynthesisResult r = gravity::synthesize_grid(
+      field, spec, [&](const gravity::GridRow& row) { writer->write_row(row); }, &progress, options);
+  progress.finish();
+  writer->commit();
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const bool netcdf = io::grid_file_format_for(a.output) == io::GridFileFormat::NetCdf;
+  if (a.json) {
+    nlohmann::json q = nlohmann::json::array();
+    for (gravity::GridQuantity x : spec.quantities) {
+      const io::GridQuantityFormat f = io::grid_quantity_format(x);
+      q.push_back({{"name", std::string(f.name)}, {"units", std::string(f.units)}, {"long_name", std::string(f.long_name)}});
+    }
+    const nlohmann::json j = {{"output", a.output},
+                              {"format", netcdf ? "netcdf" : "csv"},
+                              {"model", m.name},
+                              {"model_file", m.source_file},
+                              {"max_degree", field.max_degree()},
+                              {"region_deg", {spec.west_deg, spec.east_deg, spec.south_deg, spec.north_deg}},
+                              {"lon_spacing_deg", spec.lon_spacing_deg},
+                              {"lat_spacing_deg", spec.lat_spacing_deg},
+                              {"registration", std::string(gravity::to_string(spec.registration))},
+                              {"height_m", heights ? nlohmann::json(nullptr) : nlohmann::json(spec.height_m)},
+                              {"height_grid", heights ? nlohmann::json(a.height_grid) : nlohmann::json(nullptr)},
+                              {"rows", r.rows},
+                              {"columns", r.columns},
+                              {"nodes", spec.nodes()},
+                              {"quantities", q},
+                              {"path_used", std::string(gravity::to_string(r.path_used))},
+                              {"fft_length", r.fft_length},
+                              {"threads", r.threads},
+                              {"elapsed_s", elapsed_s}};
+    emit("", json_text(j));
+  } else {
+    std::string names;
+    for (gravity::GridQuantity x : spec.quantities) {
+      const io::GridQuantityFormat f = io::grid_quantity_format(x);
+      names += fmt::format("{}{} [{}]", names.empty() ? "" : ", ", f.name, f.units);
+    }
+    emit("", fmt::format("wrote {} ({}): {} x {} nodes (lon x lat, {} registration), {}\n"
+                         "heights {}\npath {}{}, {}, {:.2f} s\n",
+                         a.output, netcdf ? "NetCDF" : "CSV", r.columns, r.rows, gravity::to_string(spec.registration),
+                         names,
+                         heights ? "per node from " + a.height_grid : fmt::format("{} m at every node", spec.height_m),
+                         gravity::to_string(r.path_used),
+                         r.fft_length ? fmt::format(" (one real FFT of length {} per parallel and quantity)", r.fft_length)
+                         : r.per_node_heights ? std::string(" (every node as a scattered point: per-node heights)")
+                                              : std::string(" (GravityCircle per parallel)"),
+                         r.per_node_heights ? std::string("parallels in order, each one's nodes over the threads")
+                                            : fmt::format("{} thread(s) over parallels", r.threads),
+                         elapsed_s));
+  }
+  return kOk;
+}
+
 int run_grid(const GridArgs& a) {
   const gravity::GeoidGrid g = gravity::read_geoid_grid(a.grid);
   const double lat = io::parse_latitude_rad(a.lat), lon = io::parse_longitude_rad(a.lon);
@@ -174,6 +290,34 @@ void add_gravity_commands(CLI::App& app, int& exit_code) {
                      "Also write a self-contained HTML report (statistics, maps of xi, eta, N) to this file");
   points->add_flag("-q,--quiet", ps->quiet, "No progress bar");
   points->callback([ps, &exit_code] { exit_code = guarded([&] { return run_points(*ps); }); });
+
+  auto sg = std::make_shared<SynthGridArgs>();
+  CLI::App* sgrid = g->add_subcommand(
+      "grid", "xi, eta, geoid, gravity anomaly, disturbance vector on a lat/lon grid (NetCDF or CSV)");
+  add_model_options(sgrid, *sg);
+  sgrid->add_option("-R,--region", sg->region, "W/E/S/N in degrees (GMT style), or g (0/360/-90/90), d (-180/180/-90/90)")
+      ->required();
+  sgrid->add_option("-I,--spacing", sg->spacing, "Node spacing: 30s, 5m, 0.5d or plain degrees; X/Y for lon/lat")
+      ->required();
+  sgrid->add_option("--quantities", sg->quantities,
+                    "Comma-separated: xi, eta (arcsec), geoid (m), anomaly, dg_east, dg_north, dg_up (mGal)")
+      ->capture_default_str();
+  CLI::Option* height = sgrid->add_option("--height", sg->height_m,
+                                          "Ellipsoidal height of every node (m); the geoid ignores it")
+                            ->capture_default_str();
+  sgrid->add_option("--height-grid", sg->height_grid,
+                    "NetCDF grid FILE.nc[?VAR] of ellipsoidal heights (m) at exactly the grid's nodes (per-node "
+                    "heights: every node evaluated as a point; for regional grids)")
+      ->excludes(height);
+  sgrid->add_flag("-r,--pixel", sg->pixel, "Pixel (cell-centre) registration, GMT -r (default: gridline)");
+  sgrid->add_option("--path", sg->path,
+                    "auto (FFT when the longitude spacing divides 360° and the grid is global or wide enough, else per "
+                    "parallel) | fft | parallel")->capture_default_str();
+  sgrid->add_option("-o,--output", sg->output, "Output file, written atomically: .nc (NetCDF) or .csv (small grids)")
+      ->required();
+  sgrid->add_flag("--json", sg->json, "Print a JSON summary");
+  sgrid->add_flag("-q,--quiet", sg->quiet, "No progress bar, no model lines");
+  sgrid->callback([sg, &exit_code] { exit_code = guarded([&] { return run_synth_grid(*sg); }); });
 
   auto ga = std::make_shared<GridArgs>();
   CLI::App* grid = g->add_subcommand("geoid-grid", "Geoid height from a .gtx/.pgm grid (DOV from its slope: fallback only)");

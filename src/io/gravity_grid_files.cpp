@@ -1,0 +1,417 @@
+#include "meridian/io/gravity_grid_files.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include <fmt/format.h>
+#include <netcdf.h>
+
+#include "meridian/core/atomic_file.hpp"
+#include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
+#include "meridian/core/version.hpp"
+
+namespace meridian::io {
+namespace {
+
+using gravity::GridQuantity;
+using gravity::GridRow;
+using gravity::GridSpec;
+
+void check_row(const GridSpec& spec, const GridRow& row, std::size_t expected_row, const std::filesystem::path& p) {
+  if (row.row != expected_row || row.columns != spec.columns() ||
+      row.data.size() != spec.columns() * spec.quantities.size())
+    throw InputError(fmt::format("grid row {} ({} columns) does not fit the grid (row {} of {} expected, {} columns)",
+                                 row.row, row.columns, expected_row, spec.rows(), spec.columns()),
+                     {p.string(), std::nullopt, {}});
+}
+
+// ---- NetCDF ----
+
+class NetCdfGridWriter final : public GridFileWriter {
+ public:
+  NetCdfGridWriter(std::filesystem::path path, const GridSpec& spec, const GridFileMetadata& meta)
+      : path_(std::move(path)), spec_(spec) {
+    namespace fs = std::filesystem;
+    const fs::path dir = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
+    tmp_ = (dir / ("." + path_.filename().string() + ".tmp.XXXXXX")).string();
+    const int fd = ::mkstemp(tmp_.data());
+    if (fd < 0)
+      throw IoError(fmt::format("cannot create a temporary file in {}: {}", dir.string(), std::strerror(errno)),
+                    {path_.string(), std::nullopt, {}});
+    ::close(fd);
+    created_ = true;
+    check(nc_create(tmp_.c_str(), NC_CLOBBER | NC_NETCDF4 | NC_CLASSIC_MODEL, &ncid_), "cannot create");
+    open_ = true;
+    define(meta);
+  }
+
+  ~NetCdfGridWriter() override {
+    if (open_) nc_close(ncid_);
+    if (created_) ::unlink(tmp_.c_str());
+  }
+
+  void write_row(const GridRow& row) override {
+    check_row(spec_, row, rows_written_, path_);
+    const std::size_t cols = spec_.columns();
+    buffer_.resize(cols);
+    for (std::size_t k = 0; k < spec_.quantities.size(); ++k) {
+      const double f = grid_quantity_format(spec_.quantities[k]).per_si;
+      const std::span<const double> v = row.values(k);
+      for (std::size_t i = 0; i < cols; ++i) {
+        buffer_[i] = v[i] * f;
+        lo_[k] = std::min(lo_[k], buffer_[i]);
+        hi_[k] = std::max(hi_[k], buffer_[i]);
+      }
+      const std::size_t start[2] = {row.row, 0}, count[2] = {1, cols};
+      check(nc_put_vara_double(ncid_, vars_[k], start, count, buffer_.data()), "cannot write");
+    }
+    ++rows_written_;
+  }
+
+  void commit() override {
+    if (!open_) throw IoError("committed twice", {path_.string(), std::nullopt, {}});
+    if (rows_written_ != spec_.rows())
+      throw IoError(fmt::format("only {} of {} rows were written", rows_written_, spec_.rows()),
+                    {path_.string(), std::nullopt, {}});
+    check(nc_redef(ncid_), "cannot write attributes to");
+    for (std::size_t k = 0; k < vars_.size(); ++k) {
+      const double range[2] = {lo_[k], hi_[k]};
+      check(nc_put_att_double(ncid_, vars_[k], "actual_range", NC_DOUBLE, 2, range), "cannot write attributes to");
+    }
+    check(nc_enddef(ncid_), "cannot write attributes to");
+    open_ = false;
+    check(nc_close(ncid_), "cannot close");
+    const int fd = ::open(tmp_.c_str(), O_RDONLY);
+    if (fd < 0 || ::fsync(fd) != 0) {
+      const int err = errno;
+      if (fd >= 0) ::close(fd);
+      fail("cannot flush to disk", err);
+    }
+    // mkstemp creates 0600; give the result ordinary permissions (umask applies).
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(fd, static_cast<mode_t>(0666 & ~mask));
+    ::close(fd);
+    if (::rename(tmp_.c_str(), path_.c_str()) != 0) fail("cannot rename the temporary file into place", errno);
+    created_ = false;
+  }
+
+ private:
+  [[noreturn]] void fail(const char* what, int err) const {
+    throw IoError(fmt::format("{}: {}", what, std::strerror(err)), {path_.string(), std::nullopt, {}});
+  }
+  void check(int status, const char* what) const {
+    if (status != NC_NOERR)
+      throw IoError(fmt::format("{} NetCDF file: {}", what, nc_strerror(status)), {path_.string(), std::nullopt, {}});
+  }
+  void text(int var, const char* name, std::string_view value) {
+    check(nc_put_att_text(ncid_, var, name, value.size(), value.data()), "cannot write attributes to");
+  }
+
+  void define(const GridFileMetadata& meta) {
+    const std::size_t rows = spec_.rows(), cols = spec_.columns();
+    int lat_dim = 0, lon_dim = 0, lat_var = 0, lon_var = 0;
+    check(nc_def_dim(ncid_, "lat", rows, &lat_dim), "cannot define");
+    check(nc_def_dim(ncid_, "lon", cols, &lon_dim), "cannot define");
+    check(nc_def_var(ncid_, "lat", NC_DOUBLE, 1, &lat_dim, &lat_var), "cannot define");
+    check(nc_def_var(ncid_, "lon", NC_DOUBLE, 1, &lon_dim, &lon_var), "cannot define");
+    text(lat_var, "long_name", "latitude");
+    text(lat_var, "standard_name", "latitude");
+    text(lat_var, "units", "degrees_north");
+    text(lon_var, "long_name", "longitude");
+    text(lon_var, "standard_name", "longitude");
+    text(lon_var, "units", "degrees_east");
+    std::vector<double> lat(rows), lon(cols);
+    for (std::size_t j = 0; j < rows; ++j) lat[j] = spec_.lat_deg(j);
+    for (std::size_t i = 0; i < cols; ++i) lon[i] = spec_.lon_deg(i);
+    const double lat_range[2] = {lat.front(), lat.back()}, lon_range[2] = {lon.front(), lon.back()};
+    check(nc_put_att_double(ncid_, lat_var, "actual_range", NC_DOUBLE, 2, lat_range), "cannot define");
+    check(nc_put_att_double(ncid_, lon_var, "actual_range", NC_DOUBLE, 2, lon_range), "cannot define");
+    const int dims[2] = {lat_dim, lon_dim};
+    const std::size_t chunk[2] = {1, cols};
+    for (GridQuantity q : spec_.quantities) {
+      const GridQuantityFormat f = grid_quantity_format(q);
+      int var = 0;
+      check(nc_def_var(ncid_, std::string(f.name).c_str(), NC_DOUBLE, 2, dims, &var), "cannot define");
+      check(nc_def_var_chunking(ncid_, var, NC_CHUNKED, chunk), "cannot define");
+      text(var, "long_name", f.long_name);
+      text(var, "units", f.units);
+      vars_.push_back(var);
+    }
+    lo_.assign(vars_.size(), std::numeric_limits<double>::infinity());
+    hi_.assign(vars_.size(), -std::numeric_limits<double>::infinity());
+    const bool pixel = spec_.registration == gravity::GridRegistration::Pixel;
+    text(NC_GLOBAL, "Conventions", "CF-1.8, COARDS");
+    text(NC_GLOBAL, "title", fmt::format("{} synthesised from {} to degree {}", quantity_list(), meta.model_name,
+                                         meta.max_degree));
+    text(NC_GLOBAL, "source", fmt::format("Meridian {} (meridian gravity grid)", version()));
+    if (!meta.history.empty()) text(NC_GLOBAL, "history", meta.history);
+    text(NC_GLOBAL, "model", meta.model_name);
+    text(NC_GLOBAL, "model_file", meta.model_file);
+    check(nc_put_att_int(ncid_, NC_GLOBAL, "max_degree", NC_INT, 1, &meta.max_degree), "cannot define");
+    text(NC_GLOBAL, "tide_system", meta.tide_system.empty() ? "not stated" : meta.tide_system);
+    text(NC_GLOBAL, "registration", pixel ? "pixel (cell centres; GMT -r)" : "gridline (nodes on the region's edges)");
+    const int node_offset = pixel ? 1 : 0;
+    check(nc_put_att_int(ncid_, NC_GLOBAL, "node_offset", NC_INT, 1, &node_offset), "cannot define");
+    text(NC_GLOBAL, "synthesis_path", gravity::to_string(meta.path));
+    if (meta.height_source.empty())
+      check(nc_put_att_double(ncid_, NC_GLOBAL, "height_m", NC_DOUBLE, 1, &spec_.height_m), "cannot define");
+    else
+      text(NC_GLOBAL, "height_source", "ellipsoidal height of each node (m) from " + meta.height_source);
+    text(NC_GLOBAL, "comment",
+         "Heights are ellipsoidal (height_m: the same at every node; height_source: per node); the geoid "
+         "height N is evaluated on the ellipsoid (h = 0) whatever the height. xi, eta, dg_* are in the local geocentric (spherical) frame as "
+         "GeographicLib's SphericalAnomaly; definitions: Meridian docs/gravity-field.md, Grids.");
+    check(nc_enddef(ncid_), "cannot define");
+    check(nc_put_var_double(ncid_, lat_var, lat.data()), "cannot write");
+    check(nc_put_var_double(ncid_, lon_var, lon.data()), "cannot write");
+  }
+
+  std::string quantity_list() const {
+    std::string s;
+    for (GridQuantity q : spec_.quantities) s += (s.empty() ? "" : ", ") + std::string(gravity::to_string(q));
+    return s;
+  }
+
+  std::filesystem::path path_;
+  GridSpec spec_;
+  std::string tmp_;
+  bool created_ = false, open_ = false;
+  int ncid_ = -1;
+  std::vector<int> vars_;
+  std::vector<double> buffer_, lo_, hi_;
+  std::size_t rows_written_ = 0;
+};
+
+// ---- CSV ----
+
+class CsvGridWriter final : public GridFileWriter {
+ public:
+  CsvGridWriter(const std::filesystem::path& path, const GridSpec& spec) : path_(path), spec_(spec), out_(path) {
+    std::string header = "lon_deg,lat_deg";
+    for (GridQuantity q : spec_.quantities) {
+      const GridQuantityFormat f = grid_quantity_format(q);
+      header += fmt::format(",{}_{}", f.name, f.units);
+    }
+    out_.write(header + "\n");
+  }
+
+  void write_row(const GridRow& row) override {
+    check_row(spec_, row, rows_written_, path_);
+    std::string text;
+    const std::size_t cols = spec_.columns();
+    for (std::size_t i = 0; i < cols; ++i) {
+      text += fmt::format("{:.10f},{:.10f}", spec_.lon_deg(i), row.lat_deg);
+      for (std::size_t k = 0; k < spec_.quantities.size(); ++k)
+        text += fmt::format(",{:.9f}", row.values(k)[i] * grid_quantity_format(spec_.quantities[k]).per_si);
+      text += '\n';
+    }
+    out_.write(text);
+    ++rows_written_;
+  }
+
+  void commit() override {
+    if (rows_written_ != spec_.rows())
+      throw IoError(fmt::format("only {} of {} rows were written", rows_written_, spec_.rows()),
+                    {path_.string(), std::nullopt, {}});
+    out_.commit();
+  }
+
+ private:
+  std::filesystem::path path_;
+  GridSpec spec_;
+  AtomicFileWriter out_;
+  std::size_t rows_written_ = 0;
+};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+}  // namespace
+
+GridHeightFile::GridHeightFile(const std::string& path, const GridSpec& spec)
+    : rows_(spec.rows()), columns_(spec.columns()) {
+  const std::size_t q = path.rfind('?');
+  file_ = q == std::string::npos ? path : path.substr(0, q);
+  if (q != std::string::npos) variable_ = path.substr(q + 1);
+  const ErrorContext where{file_, std::nullopt, "--height-grid"};
+  if (const int st = nc_open(file_.c_str(), NC_NOWRITE, &ncid_); st != NC_NOERR)
+    throw IoError(fmt::format("cannot open the height grid: {}", nc_strerror(st)), {file_, std::nullopt, {}});
+  try {
+    auto ok = [&](int st, const char* what) {
+      if (st != NC_NOERR) throw IoError(fmt::format("cannot read {}: {}", what, nc_strerror(st)), {file_, std::nullopt, {}});
+    };
+    if (variable_.empty()) {
+      int nvars = 0;
+      ok(nc_inq_nvars(ncid_, &nvars), "the variables");
+      std::vector<std::string> names;
+      for (int v = 0; v < nvars; ++v) {
+        int nd = 0;
+        char name[NC_MAX_NAME + 1] = {};
+        ok(nc_inq_varndims(ncid_, v, &nd), "the variables");
+        ok(nc_inq_varname(ncid_, v, name), "the variables");
+        if (nd == 2) names.emplace_back(name), var_ = v;
+      }
+      if (names.size() != 1)
+        throw InputError(fmt::format("the height grid has {} two-dimensional variables; name one as FILE?VARIABLE",
+                                     names.size()),
+                         where);
+      variable_ = names.front();
+    } else if (nc_inq_varid(ncid_, variable_.c_str(), &var_) != NC_NOERR) {
+      throw InputError(fmt::format("the height grid has no variable \"{}\"", variable_), where);
+    }
+    int nd = 0, dims[NC_MAX_VAR_DIMS] = {};
+    ok(nc_inq_varndims(ncid_, var_, &nd), "the variable");
+    if (nd != 2) throw InputError(fmt::format("variable \"{}\" has {} dimensions, not 2", variable_, nd), where);
+    ok(nc_inq_vardimid(ncid_, var_, dims), "the variable");
+    std::string dim_name[2];
+    std::size_t len[2] = {0, 0};
+    std::vector<double> coord[2];
+    for (int k = 0; k < 2; ++k) {
+      char name[NC_MAX_NAME + 1] = {};
+      ok(nc_inq_dim(ncid_, dims[k], name, &len[k]), "the dimensions");
+      dim_name[k] = name;
+      int cv = 0;
+      if (nc_inq_varid(ncid_, name, &cv) != NC_NOERR)
+        throw InputError(fmt::format("dimension \"{}\" has no coordinate variable", dim_name[k]), where);
+      coord[k].resize(len[k]);
+      ok(nc_get_var_double(ncid_, cv, coord[k].data()), "the coordinates");
+    }
+    const std::string d0 = lower(dim_name[0]), d1 = lower(dim_name[1]);
+    if (!(d0 == "lat" || d0 == "latitude" || d0 == "y") || !(d1 == "lon" || d1 == "longitude" || d1 == "x"))
+      throw InputError(fmt::format("variable \"{}\" has dimensions ({}, {}); expected (lat, lon)", variable_,
+                                   dim_name[0], dim_name[1]),
+                       where);
+    if (len[0] != rows_ || len[1] != columns_)
+      throw InputError(fmt::format("the height grid has {} x {} nodes (lon x lat), the grid {} x {}", len[1], len[0],
+                                   columns_, rows_),
+                       where);
+    south_first_ = rows_ < 2 || coord[0].front() <= coord[0].back();
+    for (std::size_t j = 0; j < rows_; ++j) {
+      const double lat = coord[0][south_first_ ? j : rows_ - 1 - j];
+      if (!(std::abs(lat - spec.lat_deg(j)) <= 1e-9))
+        throw InputError(fmt::format("the height grid's latitude {} is not the grid's node latitude {} (row {})", lat,
+                                     spec.lat_deg(j), j),
+                         where);
+    }
+    for (std::size_t i = 0; i < columns_; ++i) {
+      double d = coord[1][i] - spec.lon_deg(i);
+      d -= 360.0 * std::round(d / 360.0);
+      if (!(std::abs(d) <= 1e-9))
+        throw InputError(fmt::format("the height grid's longitude {} is not the grid's node longitude {} (column {})",
+                                     coord[1][i], spec.lon_deg(i), i),
+                         where);
+    }
+    if (std::size_t n = 0; nc_inq_attlen(ncid_, var_, "units", &n) == NC_NOERR) {
+      std::string units(n, '\0');
+      ok(nc_get_att_text(ncid_, var_, "units", units.data()), "the units");
+      while (!units.empty() && (units.back() == '\0' || units.back() == ' ')) units.pop_back();
+      const std::string u = lower(units);
+      if (u != "m" && u != "meter" && u != "meters" && u != "metre" && u != "metres")
+        throw InputError(fmt::format("variable \"{}\" is in \"{}\"; heights must be in metres", variable_, units),
+                         where);
+    }
+    has_fill_ = nc_get_att_double(ncid_, var_, "_FillValue", &fill_) == NC_NOERR;
+    for (std::size_t j = 0; j < rows_; ++j) lat_deg_.push_back(spec.lat_deg(j));
+    for (std::size_t i = 0; i < columns_; ++i) lon_deg_.push_back(spec.lon_deg(i));
+  } catch (...) {
+    nc_close(ncid_);
+    throw;
+  }
+}
+
+GridHeightFile::~GridHeightFile() { nc_close(ncid_); }
+
+void GridHeightFile::read_row(std::size_t row, std::span<double> heights_m) const {
+  if (row >= rows_ || heights_m.size() != columns_)
+    throw InputError(fmt::format("height row {} of {} values asked of a {} x {} grid", row, heights_m.size(), columns_,
+                                 rows_),
+                     {file_, std::nullopt, "--height-grid"});
+  const std::size_t start[2] = {south_first_ ? row : rows_ - 1 - row, 0}, count[2] = {1, columns_};
+  if (const int st = nc_get_vara_double(ncid_, var_, start, count, heights_m.data()); st != NC_NOERR)
+    throw IoError(fmt::format("cannot read heights: {}", nc_strerror(st)), {file_, std::nullopt, {}});
+  for (std::size_t i = 0; i < columns_; ++i)
+    if (!std::isfinite(heights_m[i]) || (has_fill_ && heights_m[i] == fill_))
+      throw InputError(fmt::format("no height at lat {} deg, lon {} deg (variable \"{}\")", lat_deg_[row],
+                                   lon_deg_[i], variable_),
+                       {file_, std::nullopt, "--height-grid"});
+}
+
+gravity::GridHeightSource GridHeightFile::source() const {
+  return [this](std::size_t row, std::span<double> h) { read_row(row, h); };
+}
+
+GridQuantityFormat grid_quantity_format(GridQuantity q) noexcept {
+  const double arcsec = 1.0 / units::kArcsecond, mgal = 1e5;
+  switch (q) {
+    case GridQuantity::Xi:
+      return {"xi", "arcsec", arcsec,
+              "deflection of the vertical, north-south component xi (positive: plumb line north of the ellipsoid "
+              "normal, astronomic latitude greater than geodetic)"};
+    case GridQuantity::Eta:
+      return {"eta", "arcsec", arcsec,
+              "deflection of the vertical, east-west component eta (positive: plumb line east of the ellipsoid "
+              "normal, astronomic longitude greater than geodetic)"};
+    case GridQuantity::Geoid:
+      return {"geoid", "m", 1.0, "geoid height N above the reference ellipsoid (positive: geoid above the ellipsoid)"};
+    case GridQuantity::Anomaly:
+      return {"anomaly", "mGal", mgal,
+              "spherical gravity anomaly Dg = -dT/dr - 2T/r (positive: gravity stronger than normal)"};
+    case GridQuantity::DisturbanceEast:
+      return {"dg_east", "mGal", mgal,
+              "gravity disturbance vector grad T, east component (1/(r cos psi)) dT/dlambda, local geocentric "
+              "frame (positive east)"};
+    case GridQuantity::DisturbanceNorth:
+      return {"dg_north", "mGal", mgal,
+              "gravity disturbance vector grad T, north component (1/r) dT/dpsi, local geocentric frame "
+              "(positive north)"};
+    case GridQuantity::DisturbanceUp:
+      return {"dg_up", "mGal", mgal,
+              "gravity disturbance vector grad T, radial component dT/dr (positive up, away from the Earth's "
+              "centre; the scalar gravity disturbance is -dg_up)"};
+  }
+  return {"?", "?", 1.0, "?"};
+}
+
+GridFileFormat grid_file_format_for(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".nc" || ext == ".grd" || ext == ".cdf") return GridFileFormat::NetCdf;
+  if (ext == ".csv") return GridFileFormat::Csv;
+  throw InputError(fmt::format("cannot tell the format of \"{}\" from its extension: use .nc (NetCDF) or .csv",
+                               path.string()),
+                   {"", {}, "--output"});
+}
+
+void check_grid_output(const std::filesystem::path& path, const GridSpec& spec) {
+  if (grid_file_format_for(path) == GridFileFormat::Csv && spec.nodes() > kMaxCsvGridNodes)
+    throw InputError(fmt::format("a CSV grid is for small grids: {} nodes is more than {}; write NetCDF (.nc)",
+                                 spec.nodes(), kMaxCsvGridNodes),
+                     {"", {}, "--output"});
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw IoError(fmt::format("cannot write to the directory {}: {}", dir.string(), std::strerror(errno)),
+                  {path.string(), std::nullopt, {}});
+}
+
+std::unique_ptr<GridFileWriter> open_grid_file(const std::filesystem::path& path, const GridSpec& spec,
+                                               const GridFileMetadata& metadata) {
+  check_grid_output(path, spec);
+  if (grid_file_format_for(path) == GridFileFormat::Csv) return std::make_unique<CsvGridWriter>(path, spec);
+  return std::make_unique<NetCdfGridWriter>(path, spec, metadata);
+}
+
+}  // namespace meridian::io
