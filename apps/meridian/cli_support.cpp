@@ -7,7 +7,9 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -51,6 +53,18 @@ void emit(const std::string& path, const std::string& text) {
     return;
   }
   write_file_atomically(path, text);
+}
+
+void emit_all(std::initializer_list<Output> outputs) {
+  std::vector<std::unique_ptr<AtomicFileWriter>> files;
+  for (const Output& o : outputs)
+    if (!o.path.empty() && o.path != "-") {
+      files.push_back(std::make_unique<AtomicFileWriter>(o.path));
+      files.back()->write(o.text);
+    }
+  for (auto& f : files) f->commit();
+  for (const Output& o : outputs)
+    if (o.path == "-") emit("", o.text);
 }
 
 TerminalProgress::TerminalProgress(bool quiet) : enabled_(!quiet && ::isatty(STDERR_FILENO) == 1) {

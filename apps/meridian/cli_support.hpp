@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <functional>
+#include <initializer_list>
 #include <string>
 
 #include "meridian/core/progress.hpp"
@@ -26,6 +27,18 @@ int guarded(const std::function<int()>& body);
 
 /// Write `text` to `path` atomically, or to stdout when path is empty or "-".
 void emit(const std::string& path, const std::string& text);
+
+/// One output of emit_all: `text` to `path` ("-": standard output; empty: not written).
+struct Output {
+  const std::string& path;
+  const std::string& text;
+};
+/// Several outputs of one run, all or none: every file's temporary is created and written
+/// before any is renamed into place, so a report in a missing directory no longer leaves the
+/// text output written (cli.md: on an error nothing is written); standard output last.
+void emit_all(std::initializer_list<Output> outputs);
+/// "-", the path of standard output in emit_all.
+inline const std::string kStandardOutput = "-";
 
 /// When `report_path` is not empty and this build has no HTML reports, throw
 /// an Error saying how to enable them, before any work is done.

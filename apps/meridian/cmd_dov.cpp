@@ -251,8 +251,11 @@ int run_process(const ProcessArgs& a) {
   TerminalProgress progress(a.quiet);
   // The profile streams into a temporary file beside its path while the epochs come, and is
   // renamed into place only when everything is computed (atomic outputs).
-  std::optional<AtomicFileWriter> profile;
+  std::optional<AtomicFileWriter> profile, report_file;
   if (!a.output.empty() && a.output != "-") profile.emplace(a.output);
+  // The report's temporary file too, now: a report that cannot be written fails before the
+  // work, and never after the profile has been renamed into place.
+  if (!a.report.empty() && a.report != "-") report_file.emplace(a.report);
   std::string buffer;
   bool header = false;
   ReportEpochs drawn;
@@ -286,13 +289,17 @@ int run_process(const ProcessArgs& a) {
         r, c.options, a.config, c.line_path,
         c.gravity_model ? model_text(*c.gravity_model) : std::string(), drawn.every()));
   }
+  if (report_file) report_file->write(html);
   if (profile) {
     flush();
     profile->commit();
   } else if (!a.output.empty()) {
     emit(a.output, buffer);  // "-": standard output
   }
-  if (!a.report.empty()) emit(a.report, html);
+  if (report_file)
+    report_file->commit();
+  else if (!a.report.empty())
+    emit(a.report, html);  // "-"
   emit("", text);
   return kOk;
 }

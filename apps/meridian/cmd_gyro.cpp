@@ -47,8 +47,10 @@ int run_reduce(const ReduceArgs& a) {
   const std::string html =
       a.report.empty() ? std::string()
                        : report::render_html(report::gyro_reduce_document(job.file.file, job.file.input, job.result));
-  emit(a.output, out);
-  if (!a.report.empty()) emit(a.report, html);
+  if (a.report.empty())
+    emit(a.output, out);
+  else
+    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
   return kOk;
 }
 
@@ -64,8 +66,12 @@ int run_stochastic(const StochasticArgs& a) {
   progress.finish();
   const std::string html =
       a.report.empty() ? std::string() : report::render_html(report::stochastic_document(job.file, job.result));
-  emit(a.output, a.json ? report::stochastic_to_json(job.file, job.result).dump(2) + "\n" : report::stochastic_text(job.file, job.result));
-  if (!a.report.empty()) emit(a.report, html);
+  const std::string out =
+      a.json ? report::stochastic_to_json(job.file, job.result).dump(2) + "\n" : report::stochastic_text(job.file, job.result);
+  if (a.report.empty())
+    emit(a.output, out);
+  else
+    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
   return kOk;
 }
 
@@ -103,8 +109,10 @@ int run_campaign(const CampaignArgs& a) {
   const std::string html =
       a.report.empty() ? std::string()
                        : report::render_html(report::gyro_campaign_document(job.file.file, job.file.campaign, r));
-  emit(a.output, out);
-  if (!a.report.empty()) emit(a.report, html);
+  if (a.report.empty())
+    emit(a.output, out);
+  else
+    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
   return kOk;
 }
 

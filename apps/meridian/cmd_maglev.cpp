@@ -165,9 +165,12 @@ int run_reduce(const ReduceArgs& a) {
   const std::string html = a.report.empty()
                                ? std::string()
                                : report::render_html(report::maglev_reduce_document(r, in, input));
-  emit(a.output, a.json ? report::maglev_reduce_to_json(r, in).dump(2) + "\n"
-                        : report::maglev_reduce_text(r));
-  if (!a.report.empty()) emit(a.report, html);
+  const std::string out = a.json ? report::maglev_reduce_to_json(r, in).dump(2) + "\n"
+                                 : report::maglev_reduce_text(r);
+  if (a.report.empty())
+    emit(a.output, out);
+  else
+    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
   return kOk;
 }
 
@@ -319,9 +322,12 @@ int run_calibrate(const CalibrateArgs& a) {
   const std::string html =
       a.report.empty() ? std::string()
                        : report::render_html(report::maglev_calibration_document(r, in, a.file));
-  emit(a.output, a.json ? report::maglev_calibration_to_json(r).dump(2) + "\n"
-                        : report::maglev_calibration_text(r));
-  if (!a.report.empty()) emit(a.report, html);
+  const std::string out = a.json ? report::maglev_calibration_to_json(r).dump(2) + "\n"
+                                 : report::maglev_calibration_text(r);
+  if (a.report.empty())
+    emit(a.output, out);
+  else
+    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
   return kOk;
 }
 

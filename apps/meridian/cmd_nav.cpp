@@ -126,11 +126,8 @@ int run_process(const ProcessArgs& a) {
   const std::string html =
       a.report.empty() ? std::string()
                        : report::render_html(report::nav_document(r, "Marine navigation: " + a.config));
-  if (!a.track.empty()) emit(a.track, track);
-  if (!a.geojson.empty()) emit(a.geojson, geojson);
-  if (!a.rejected.empty()) emit(a.rejected, rejected);
-  if (!a.report.empty()) emit(a.report, html);
-  emit("", text);
+  emit_all({{a.track, track}, {a.geojson, geojson}, {a.rejected, rejected}, {a.report, html},
+            {kStandardOutput, text}});
   return kOk;
 }
 

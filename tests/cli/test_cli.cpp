@@ -138,6 +138,16 @@ TEST_F(Cli, OutputFileWrittenAtomically) {
   EXPECT_EQ(parsed["determinations"].size(), 3u);
 }
 
+TEST_F(Cli, AReportThatCannotBeWrittenLeavesNoOutput) {
+  // All outputs or none: a report in a missing directory used to leave -o written (trial).
+  const auto f = write("obs.yaml", kScenario);
+  const auto out = dir_ / "result.json";
+  const CmdResult r = run("gyro reduce " + f.string() + " --json -o " + out.string() +
+                          " --report " + (dir_ / "no" / "such" / "r.html").string());
+  EXPECT_NE(r.code, 0) << r.err;  // 4 (I/O); without HTML reports the --report refusal
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST_F(Cli, SimulateIsDeterministicAndReducible) {
   const CmdResult a = run("gyro simulate --mode non-tracking --seed 42");
   const CmdResult b = run("gyro simulate --mode non-tracking --seed 42");

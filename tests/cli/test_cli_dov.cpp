@@ -137,6 +137,13 @@ TEST_F(DovCli, TransportRateFromSimulationToSummary) {
   EXPECT_NE(plain.out.find("\"transport_rate_baseline_s\": null"), std::string::npos) << plain.out;
 }
 
+TEST_F(DovCli, AReportThatCannotBeWrittenLeavesNoProfile) {
+  ASSERT_EQ(run("dov simulate --hours 0.02 --out line.csv --config dov.yaml").code, 0);
+  const CmdResult r = run("dov process dov.yaml -q -o profile.csv --report no/such/r.html");
+  EXPECT_NE(r.code, 0) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "profile.csv"));
+}
+
 TEST_F(DovCli, BadSampleNamesFileLineAndColumn) {
   ASSERT_EQ(run("dov simulate --hours 0.05 --out line.csv --config dov.yaml").code, 0);
   // line 4 is the first sample (two comments, header): make its lgu_11 unreadable
