@@ -38,13 +38,14 @@ struct SimulateArgs {
   double sigma_model_arcsec = 3.0, sigma_ins_arcsec = 0.5, eps_u_deg_per_h = 0.003;
   double phi_e_arcsec = 0.0, phi_n_arcsec = 0.0, phi_u_arcsec = 0.0;
   std::uint64_t seed = 1;
-  std::string out = "dov-line.csv";
+  std::string out;  // default dov-line.csv, or dov-line.bin with --binary
   std::string config;
   bool binary = false;
   bool transport_rate = false;
 };
 
-int run_simulate(const SimulateArgs& a) {
+int run_simulate(SimulateArgs a) {
+  if (a.out.empty()) a.out = a.binary ? "dov-line.bin" : "dov-line.csv";
   dov::SimulationOptions so;
   so.start_lat_rad = angle_option(a.latitude, "--latitude");
   so.start_lon_rad = angle_option(a.longitude, "--longitude");
@@ -63,7 +64,7 @@ int run_simulate(const SimulateArgs& a) {
   // The simulator's own checks name its members in radians; say it in the options' terms
   // (a user trial found "simulation.start_lat_rad … 1.658" for --latitude 95).
   if (!(std::abs(so.start_lat_rad) < 89.0 * units::kDegree))
-    throw InputError(fmt::format("--latitude must be within ±89°, is {:.6g}°",
+    throw InputError(fmt::format("--latitude must be strictly between -89° and 89°, is {:.6g}°",
                                  so.start_lat_rad / units::kDegree));
   if (!(a.rate_hz > 0.0) || !std::isfinite(a.rate_hz))
     throw InputError(fmt::format("--rate-hz must be > 0 (samples per second), is {}", a.rate_hz));
@@ -340,7 +341,9 @@ void add_dov_commands(CLI::App& app, int& exit_code) {
   sim->add_option("--phi-n-arcsec", sa->phi_n_arcsec, "Initial LGU error phi_N (arcsec)");
   sim->add_option("--phi-u-arcsec", sa->phi_u_arcsec, "Initial LGU error phi_U (arcsec)");
   sim->add_option("--seed", sa->seed, "Random seed")->capture_default_str();
-  sim->add_option("--out", sa->out, "Line CSV to write")->capture_default_str();
+  sim->add_option("--out", sa->out,
+                  "Line to write (default dov-line.csv, with --binary dov-line.bin; - for "
+                  "standard output, CSV only)");
   sim->add_option("--config", sa->config, "Also write a configuration naming the line");
   sim->add_flag("--binary", sa->binary,
                 "Write the line in the compact binary format (docs/file-formats.md)");

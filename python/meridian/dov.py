@@ -140,10 +140,13 @@ def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height
                        ("phi_n_arcsec", phi_n_arcsec), ("phi_u_arcsec", phi_u_arcsec)]:
         o[key] = float(value)
     o["seed"] = int(seed)
+    if not isinstance(transport_rate, bool):
+        raise InputError(f"must be True or False, is {transport_rate!r}", field="transport_rate")
     o["transport_rate"] = bool(transport_rate)
     # The simulator's own checks name its members in radians; say it in these arguments' terms.
     if not abs(o["latitude_deg"]) < 89.0:
-        raise InputError(f"must be within ±89°, is {o['latitude_deg']:.6g}°", field="latitude_deg")
+        raise InputError(f"must be strictly between -89° and 89°, is {o['latitude_deg']:.6g}°",
+                         field="latitude_deg")
     if not o["rate_hz"] > 0.0 or o["rate_hz"] == float("inf"):
         raise InputError(f"must be > 0 (samples per second), is {o['rate_hz']}", field="rate_hz")
     if not o["hours"] * 3600.0 * o["rate_hz"] >= 1.0:

@@ -254,6 +254,7 @@ class Forward {
         baseline_time_ = s.time_s;
         baseline_lat_ = s.lat_rad;
         baseline_lon_ = s.lon_rad;
+        ++out_.summary.transport_rate_updates;
       }
       if (!cache_.valid || std::abs(dt - cache_.dt_s) > o_.step_tolerance * cache_.dt_s ||
           std::abs(lat - cache_.lat_rad) > o_.rediscretise_latitude_rad ||
@@ -549,6 +550,12 @@ LineResult process_stream(SampleSource& source, const Options& o, const EpochSin
           "(σ_model, r, P₀) does not fit the data",
           sum.mean_nis, sum.nis_interval.lower, sum.nis_interval.upper));
   }
+  if (o.transport_rate && sum.transport_rate_updates == 0)
+    out.warnings.push_back(fmt::format(
+        "transport_rate: no baseline of {} s closed within the line ({} s): ω_en stayed 0, so the "
+        "line was processed with the Earth-rate model (give a shorter "
+        "transport_rate_baseline_s)",
+        o.transport_rate_baseline_s, fw.last_time() - fw.t0()));
   // The mean NIS is over the accepted updates only, so a gate that rejects far more than its
   // α·N can hide a misfit there: say so (α·N plus 3 binomial σ plus 2).
   if (o.gate_alpha > 0.0) {

@@ -141,8 +141,9 @@ Document dov_document(const dov::Result& r, const dov::Options& o, const std::st
                              : "published first order"},
       {"extraction", o.extraction == dov::Extraction::Exact ? "exact (log map)" : "skew part"},
       {"attitude dynamics",
-       o.transport_rate ? fmt::format("Earth rate + transport rate from the track ({} s baselines)",
-                                      o.transport_rate_baseline_s)
+       o.transport_rate ? fmt::format("Earth rate + transport rate from the track ({} s baselines, "
+                                      "{} closed)",
+                                      o.transport_rate_baseline_s, r.summary.transport_rate_updates)
                         : std::string("Earth rate only")}};
 
   Section summary{"summary", "Summary", {}, 2};

@@ -32,8 +32,10 @@ json dov_summary_to_json(const dov::Result& r, const dov::Options& o) {
                                    ? "exact"
                                    : "published_first_order"},
             {"extraction", o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric"},
-            {"transport_rate_baseline_s",
-             o.transport_rate ? json(o.transport_rate_baseline_s) : json(nullptr)},
+            {"transport_rate",
+             o.transport_rate ? json{{"baseline_s", o.transport_rate_baseline_s},
+                                     {"updates", s.transport_rate_updates}}
+                              : json(nullptr)},
             {"notes", r.notes},
             {"warnings", r.warnings}};
   if (s.rms_model)
@@ -57,8 +59,10 @@ std::string dov_summary_text(const dov::Result& r, const dov::Options& o) {
       o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric");
   if (o.transport_rate)
     t += fmt::format("attitude dynamics: Earth rate + transport rate from the track ({} s "
-                     "baselines)\n",
-                     o.transport_rate_baseline_s);
+                     "baselines, {} closed)\n",
+                     o.transport_rate_baseline_s, s.transport_rate_updates);
+  else
+    t += "attitude dynamics: Earth rate only (transport_rate: false)\n";
   if (s.rms_model)
     t += fmt::format(
         "RMS error (″)       eta      xi\n  model     {:9.4f} {:7.4f}\n  filtered  {:9.4f} "

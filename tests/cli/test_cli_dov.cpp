@@ -125,16 +125,24 @@ TEST_F(DovCli, TransportRateFromSimulationToSummary) {
   EXPECT_NE(slurp(dir_ / "line.csv").find("attitude error with transport rate"), std::string::npos);
   const CmdResult text = run("dov process dov.yaml -q");
   ASSERT_EQ(text.code, 0) << text.err;
-  EXPECT_NE(text.out.find("transport rate from the track (10 s baselines)"), std::string::npos)
+  EXPECT_NE(text.out.find("transport rate from the track (10 s baselines, 18 closed)"),
+            std::string::npos)
       << text.out;
   const CmdResult json = run("dov process dov.yaml -q --json");
   ASSERT_EQ(json.code, 0) << json.err;
-  EXPECT_NE(json.out.find("\"transport_rate_baseline_s\": 10.0"), std::string::npos) << json.out;
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["transport_rate"]["baseline_s"], 10.0);
+  EXPECT_EQ(j["transport_rate"]["updates"], 18);  // 1-Hz samples over 180 s: closed at 10, 20, …, 180 s
+  // a baseline longer than the line: ω_en never set, and a warning says so
+  write("long.yaml", "line: line.csv\ntransport_rate: true\ntransport_rate_baseline_s: 2000\n");
+  const CmdResult longer = run("dov process long.yaml -q");
+  ASSERT_EQ(longer.code, 0) << longer.err;
+  EXPECT_NE(longer.out.find("no baseline of 2000 s closed"), std::string::npos) << longer.out;
   // without the flag: the spec's Earth-rate model, said as null
   ASSERT_EQ(run("dov simulate --hours 0.05 --out plain.csv --config plain.yaml").code, 0);
   EXPECT_EQ(slurp(dir_ / "plain.yaml").find("transport_rate"), std::string::npos);
   const CmdResult plain = run("dov process plain.yaml -q --json");
-  EXPECT_NE(plain.out.find("\"transport_rate_baseline_s\": null"), std::string::npos) << plain.out;
+  EXPECT_TRUE(nlohmann::json::parse(plain.out)["transport_rate"].is_null()) << plain.out;
 }
 
 TEST_F(DovCli, AReportThatCannotBeWrittenLeavesNoProfile) {
@@ -227,6 +235,10 @@ TEST_F(DovCli, BinaryLineConvertedOrSimulatedGivesTheSameProfile) {
               nlohmann::json::parse(a.out)["rms_arcsec"]["smoothed"]["xi"].get<double>(), 1e-9);
   // refused: the binary line to standard output, over its input
   EXPECT_NE(run("dov simulate --hours 0.01 --binary --out -").code, 0);
+  // --binary without --out: dov-line.bin, not binary bytes in dov-line.csv (trial)
+  ASSERT_EQ(run("dov simulate --hours 0.01 --binary").code, 0);
+  EXPECT_EQ(slurp(dir_ / "dov-line.bin").substr(0, 8), "MRDN-DOV");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "dov-line.csv"));
   EXPECT_NE(run("dov convert line.csv line.csv").code, 0);
   EXPECT_EQ(slurp(dir_ / "line.csv").substr(0, 20), "# meridian dov line:");
   // a convert that fails (a bad CSV) leaves no output
@@ -297,7 +309,7 @@ TEST_F(DovCli, SimulateOptionErrorsInTheOptionsTerms) {
       << r.err;
   const CmdResult l = run("dov simulate --latitude 95 --hours 0.01 --out x.csv");
   EXPECT_EQ(l.code, 1);
-  EXPECT_NE(l.err.find("--latitude must be within ±89°, is 95°"), std::string::npos) << l.err;
+  EXPECT_NE(l.err.find("--latitude must be strictly between -89° and 89°, is 95°"), std::string::npos) << l.err;
   const CmdResult t = run("dov simulate --latitude 79 --heading 0 --speed-m-s 50 --hours 100 --out x.csv");
   EXPECT_EQ(t.code, 1);
   EXPECT_NE(t.err.find("the track leaves ±89° of latitude within --hours 100"), std::string::npos)

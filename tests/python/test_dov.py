@@ -77,10 +77,13 @@ def test_transport_rate_matches_the_cli(cli, tmp_path):
     args = ["--hours", 0.05, "--seed", 4, "--speed-m-s", 200, "--transport-rate"]
     cli("dov", "simulate", *args, "--out", tmp_path / "line.csv", "--config", tmp_path / "dov.yaml")
     ref = json.loads(cli("dov", "process", tmp_path / "dov.yaml", "--json", "-q").stdout)
-    assert ref["transport_rate_baseline_s"] == 10.0
+    assert ref["transport_rate"]["baseline_s"] == 10.0 and ref["transport_rate"]["updates"] > 0
     line = dov.simulate(hours=0.05, seed=4, speed_m_s=200, transport_rate=True)
     a = dov.process(line, sigma_model_arcsec=3, sigma_obs_arcsec=0.5, transport_rate=True)
     assert a.to_dict() == ref
+    with pytest.raises(meridian.InputError) as e:
+        dov.simulate(hours=0.05, transport_rate="false")  # a truthy string is not a flag
+    assert e.value.field == "transport_rate"
     # the default simulation is another line (the truth turns without the transport rate)
     plain = dov.simulate(hours=0.05, seed=4, speed_m_s=200)
     assert not np.array_equal(plain["lgu_body_to_nav"], line["lgu_body_to_nav"])

@@ -159,6 +159,9 @@ struct Summary {
   std::size_t statistics_epochs = 0;  ///< epochs in the statistics (t − t₀ ≥ statistics_start_s)
   std::size_t rejected = 0;           ///< updates rejected by the gate (all epochs)
   std::size_t discretisations = 0;    ///< times the model was discretised
+  /// Options::transport_rate: baselines closed, i.e. times ω_en was set (0: ω_en stayed 0,
+  /// the Earth-rate model, and a warning says so).
+  std::size_t transport_rate_updates = 0;
   /// Over the accepted statistics epochs; a warning says when the gate rejected far more
   /// than α·N (3 binomial σ + 2 above it), which this mean then cannot show.
   double mean_nis = 0.0;
