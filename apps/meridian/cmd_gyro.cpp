@@ -176,7 +176,19 @@ struct SimulateArgs {
   double sigma_tracking_arcsec = 0;
   std::optional<double> sigma_initial_arcsec;  // σ_2 of Markov tracking noise; default σ_1
   bool quiet = false;
+  std::vector<std::string> given;  // long names of the options typed (refused where unused)
 };
+
+// An option typed for a mode that does not use it is an error, not silently dropped (a trial
+// found --tracking-reversals 20 ignored by --mode campaign but recorded in the file's header).
+void refuse_unused(const SimulateArgs& a, std::initializer_list<const char*> unused,
+                   const char* why) {
+  for (const std::string& g : a.given)
+    for (const char* u : unused)
+      if (g == u)
+        throw InputError(fmt::format("not used by --mode {}: {}", a.mode, why),
+                         {"", std::nullopt, "--" + g});
+}
 
 gyro::NoiseModel::Kind noise_kind(const std::string& name) {
   if (name == "white") return gyro::NoiseModel::White;
@@ -204,6 +216,14 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
       throw InputError("only Markov tracking noise has initial states: give it with --mode tracking and "
                        "--noise markov1 or markov2",
                        {"", std::nullopt, "--sigma-initial-arcsec"});
+    for (const std::string& g : a.given)
+      if (g != "mode" && g != "seed" && g != "sigma-time-s" && g != "sigma-reading-div" &&
+          g != "noise" && g != "output" && g != "quiet")
+        throw InputError(
+            "not used by --mode campaign: it simulates the example campaign's set-up (docs/gyro-"
+            "theodolite.md), varied only by --seed, --sigma-time-s and --sigma-reading-div; "
+            "simulate other runs with --mode tracking or non-tracking",
+            {"", std::nullopt, "--" + g});
     gyro::CampaignTruth truth = gyro::example_campaign_truth();
     truth.sigma_time_s = a.sim.sigma_time_s;
     truth.sigma_reading_div = a.sim.sigma_reading_div;
@@ -217,6 +237,13 @@ int run_simulate(const SimulateArgs& a, const std::string& command_line) {
   else
     throw InputError("unknown mode \"" + a.mode + "\" (expected non-tracking, tracking or campaign)",
                      {"", std::nullopt, "--mode"});
+  if (s.mode == gyro::Mode::Tracking)
+    refuse_unused(a, {"levels", "crossings", "reversals"},
+                  "it is a non-tracking option (timed graduations and reversal readings)");
+  else
+    refuse_unused(a, {"centre", "tracking-amplitude-div", "kappa", "tracking-reversals",
+                      "sigma-tracking-arcsec"},
+                  "it is a tracking option");
   s.scale_value_rad = units::arcsec_to_rad(a.tau_arcsec);
   s.latitude_rad = units::deg_to_rad(a.latitude_deg);
   if (a.spin_momentum_Nms > 0 || a.inertia_kgm2 > 0 || a.torsion_Nm_per_rad > 0)
@@ -359,6 +386,9 @@ void add_gyro_commands(CLI::App& app, int& exit_code) {
       for (const auto& r : o->results()) value += (value.empty() ? "" : ",") + r;
       cmd += value.find(' ') == std::string::npos ? " " + value : " \"" + value + "\"";
     }
+    sa->given.clear();
+    for (const CLI::Option* o : sim->get_options())
+      if (o->count() > 0 && !o->get_lnames().empty()) sa->given.push_back(o->get_lnames().front());
     exit_code = guarded([&] { return run_simulate(*sa, cmd); });
   });
 

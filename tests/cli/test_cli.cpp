@@ -138,6 +138,22 @@ TEST_F(Cli, OutputFileWrittenAtomically) {
   EXPECT_EQ(parsed["determinations"].size(), 3u);
 }
 
+TEST_F(Cli, SimulateRefusesOptionsItsModeDoesNotUse) {
+  // A trial found --tracking-reversals 20 ignored by --mode campaign, yet in the header.
+  for (const auto& [cmd, option] :
+       {std::pair{"gyro simulate --mode campaign --tracking-reversals 20", "--tracking-reversals"},
+        std::pair{"gyro simulate --mode campaign --rho1 0.9", "--rho1"},
+        std::pair{"gyro simulate --mode tracking --reversals 9", "--reversals"},
+        std::pair{"gyro simulate --mode non-tracking --kappa 0.1", "--kappa"}}) {
+    const CmdResult r = run(cmd);
+    EXPECT_EQ(r.code, 1) << cmd;
+    EXPECT_NE(r.err.find(std::string(option) + ": not used by --mode"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << cmd;
+  }
+  EXPECT_EQ(run("gyro simulate --mode campaign --seed 3 --sigma-time-s 0.2").code, 0);
+  EXPECT_EQ(run("gyro simulate --mode tracking --tracking-reversals 9 --kappa 0.1").code, 0);
+}
+
 TEST_F(Cli, AReportThatCannotBeWrittenLeavesNoOutput) {
   // All outputs or none: a report in a missing directory used to leave -o written (trial).
   const auto f = write("obs.yaml", kScenario);
