@@ -33,6 +33,7 @@ import json
 import os
 import re
 import tempfile
+import warnings
 
 from . import _core
 from ._result import Result, Table, degrees, real_array
@@ -120,7 +121,12 @@ def read_line(path) -> Table:
     read whole into the arrays simulate() gives (and process() takes): the model columns only
     when the file has them, the truth columns only when it has them. Errors name the file,
     line (CSV) or sample index (binary) and column, as the CLI's."""
-    return Table(_core.dov.read_line(os.fspath(path)))
+    columns, ignored = _core.dov.read_line(os.fspath(path))
+    if ignored:  # as the CLI warns: a misspelt optional column would otherwise vanish
+        warnings.warn(f"{os.fspath(path)}: column{'s' if len(ignored) > 1 else ''} {', '.join(ignored)} "
+                      f"not used (a misspelt optional column such as model_eta_arcsec or truth_eta_arcsec "
+                      f"is not read; docs/file-formats.md lists the names)", stacklevel=2)
+    return Table(columns)
 
 
 def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height_m=0.0, speed_m_s=5.0,

@@ -260,13 +260,22 @@ py::dict simulate(const py::dict& o) {
 
 // A line file (CSV or binary, by content) read whole, as the columns simulate() gives: the
 // model columns only when the file has them, the truth columns only when it has them.
-py::dict read_line(const std::string& path) {
+// Also the header's columns the reader does not use (a misspelt optional column), for a warning.
+py::tuple read_line(const std::string& path) {
   io::DovLine line;
+  std::vector<std::string> ignored;
   {
     py::gil_scoped_release released;
-    line = io::read_dov_line_file(path);
+    io::DovLineReader reader(path);
+    ignored = reader.ignored_columns();
+    io::DovLine chunk;
+    line.has_model_values = reader.has_model_values();
+    while (reader.next(chunk, 65536)) {
+      line.samples.insert(line.samples.end(), chunk.samples.begin(), chunk.samples.end());
+      line.truth.insert(line.truth.end(), chunk.truth.begin(), chunk.truth.end());
+    }
   }
-  return line_columns(line.samples, line.truth, line.has_model_values);
+  return py::make_tuple(line_columns(line.samples, line.truth, line.has_model_values), ignored);
 }
 
 }  // namespace
@@ -278,7 +287,7 @@ void bind_dov(py::module_& m) {
         "A line of arrays with the options of a configuration file: (JSON text, profile columns)");
   m.def("simulate", &simulate, py::arg("options"), "`dov simulate`: the line's columns");
   m.def("read_line", &read_line, py::arg("path"),
-        "A line file (CSV or binary) as the columns simulate gives");
+        "A line file (CSV or binary) as the columns simulate gives, and the columns not used");
 }
 
 }  // namespace meridian::python

@@ -164,9 +164,12 @@ int Node::integer() const {
 bool Node::boolean() const {
   if (!node_.IsScalar()) fail("expected true or false");
   const std::string& s = node_.Scalar();
-  if (s == "true" || s == "yes") return true;
-  if (s == "false" || s == "no") return false;
-  fail(fmt::format("expected true or false, got \"{}\"", s));
+  // YAML 1.2's core schema (true, True, TRUE) and the YAML 1.1 yes/no that files still use.
+  for (const char* t : {"true", "True", "TRUE", "yes", "Yes", "YES"})
+    if (s == t) return true;
+  for (const char* f : {"false", "False", "FALSE", "no", "No", "NO"})
+    if (s == f) return false;
+  fail(fmt::format("expected true or false (or yes, no), got \"{}\"", s));
 }
 
 std::string Node::string() const {

@@ -176,6 +176,20 @@ TEST(DovFiles, ConfigAndRunner) {
   EXPECT_TRUE(tr.options.transport_rate);
   EXPECT_DOUBLE_EQ(tr.options.transport_rate_baseline_s, 30.0);
   EXPECT_FALSE(io::run_dov(tr).notes.empty());
+  // booleans: YAML 1.2's true/True/TRUE and 1.1's yes/no; anything else names what is allowed
+  for (const char* yes : {"True", "TRUE", "yes"}) {
+    write(dir / "b.yaml", std::string("line: line.csv\ntransport_rate: ") + yes + "\n");
+    EXPECT_TRUE(io::read_dov_config((dir / "b.yaml").string()).options.transport_rate) << yes;
+  }
+  write(dir / "b.yaml", "line: line.csv\ntransport_rate: 1\n");
+  try {
+    io::read_dov_config((dir / "b.yaml").string());
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected true or false (or yes, no), got \"1\""),
+              std::string::npos)
+        << e.what();
+  }
   write(dir / "bad3.yaml", "line: line.csv\ntransport_rate_baseline_s: 30\n");
   try {
     io::read_dov_config((dir / "bad3.yaml").string());

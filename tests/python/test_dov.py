@@ -65,8 +65,14 @@ def test_read_line_gives_the_simulated_arrays_from_csv_and_binary(cli, line_file
     # processed from the arrays read back: the summary of the file itself
     ref = json.loads(cli("dov", "process", line_files / "dov.yaml", "--json", "-q").stdout)
     assert dov.process(from_bin, sigma_model_arcsec=3, sigma_obs_arcsec=0.5).to_dict() == ref
-    bad = tmp_path / "bad.csv"
+    # a column the reader does not use is warned about, as by the CLI
     text = (line_files / "line.csv").read_text().splitlines(keepends=True)
+    extra = tmp_path / "extra.csv"
+    extra.write_text("".join(text[:2]) + text[2].rstrip("\n") + ",status\n" +
+                     "".join(t.rstrip("\n") + ",ok\n" for t in text[3:]))
+    with pytest.warns(UserWarning, match="column status not used"):
+        np.testing.assert_array_equal(dov.read_line(extra)["time_s"], line["time_s"])
+    bad = tmp_path / "bad.csv"
     bad.write_text("".join(text[:5]) + text[5].replace(",", ",x", 1) + "".join(text[6:]))
     with pytest.raises(meridian.ParseError) as e:
         dov.read_line(bad)
