@@ -270,10 +270,12 @@ BENCHMARK(BM_Meridian_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMic
 BENCHMARK(BM_GeographicLib_CirclePerPoint)->Arg(360)->Arg(2190)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Meridian_CircleSetup)->Arg(360)->Arg(2190)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GeographicLib_CircleSetup)->Arg(360)->Arg(2190)->Unit(benchmark::kMillisecond);
-// Global 5′ grid at degree 360 (9.3 million nodes): minutes for GeographicLib, so one iteration.
+// Global 5′ grid at degree 360 and 2190 (9.3 million nodes): minutes for GeographicLib, so one
+// iteration. (The per-parallel path at 2190 is left out: minutes more, and not the issue's.)
 BENCHMARK(BM_Meridian_GlobalGrid)->Args({360, 5, 1, 0})->Args({360, 5, 2, 0})->Args({360, 5, 1, 1})
-    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
-BENCHMARK(BM_GeographicLib_GlobalGrid)->Args({360, 5})->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+    ->Args({2190, 5, 1, 0})->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_GeographicLib_GlobalGrid)->Args({360, 5})->Args({2190, 5})->Iterations(1)->UseRealTime()
+    ->Unit(benchmark::kSecond);
 BENCHMARK(BM_Meridian_Load)->Arg(2190)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Meridian_LoadRead)->Arg(2190)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Meridian_LoadTables)->Arg(2190)->Unit(benchmark::kMillisecond);
