@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <cctype>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -87,14 +87,14 @@ int run_simulate(SimulateArgs a) {
       a.seed, a.latitude, a.longitude, a.heading, a.height_m, a.speed_m_s, a.rate_hz, a.hours,
       a.sigma_model_arcsec, a.sigma_ins_arcsec, a.eps_u_deg_per_h, a.phi_e_arcsec, a.phi_n_arcsec,
       a.phi_u_arcsec) + (a.transport_rate ? ", attitude error with transport rate" : "");
-  if (a.binary && (a.out.empty() || a.out == "-"))
+  if (a.binary && a.out == "-")
     throw InputError("--binary needs --out to name a file (no binary on standard output)");
   const std::string csv = a.binary ? io::dov_line_binary(in) : io::dov_line_csv(in, settings);
   if (a.config.empty()) {
     emit(a.out, csv);
     return kOk;
   }
-  if (a.out.empty() || a.out == "-")
+  if (a.out == "-")
     throw InputError("--config needs --out to name a file: the configuration names the line");
   if (same_path(a.out, a.config))
     throw InputError(fmt::format("--out and --config name the same file {}", a.out));
@@ -163,10 +163,10 @@ bool names_csv(const std::string& path) {
   return ext == ".csv";
 }
 
-// A binary line (or a CSV) to a line CSV, a block at a time, atomically (or to stdout).
-int convert_to_csv(const ConvertArgs& a) {
-  io::DovLineReader reader(a.input);
-  const bool model = reader.has_model_values(), truth = reader.has_truth();
+// The line of `reader` as a line CSV, a block at a time, atomically (or to stdout); returns
+// the sample count.
+std::uint64_t convert_to_csv(const ConvertArgs& a, io::DovLineReader& reader, bool model,
+                             bool truth) {
   std::optional<AtomicFileWriter> file;
   if (a.output != "-") file.emplace(a.output);
   const auto put = [&](const std::string& text) {
@@ -186,10 +186,7 @@ int convert_to_csv(const ConvertArgs& a) {
     count += chunk.samples.size();
   }
   if (file) file->commit();
-  std::cerr << fmt::format("{}: {} samples{}{}\n", a.output == "-" ? "stdout" : a.output, count,
-                           model ? ", model values" : ", no model values",
-                           truth ? ", truth" : "");
-  return kOk;
+  return count;
 }
 
 // A line CSV (or binary) to the binary format, a block at a time: the header's count is
@@ -201,14 +198,20 @@ int run_convert(const ConvertArgs& a) {
   std::error_code ec;
   if (same_path(a.input, a.output) || std::filesystem::equivalent(a.input, a.output, ec))
     throw InputError(fmt::format("the output would overwrite the input {}", a.input));
-  if (names_csv(a.output)) return convert_to_csv(a);
   io::DovLineReader reader(a.input);
   const bool model = reader.has_model_values(), truth = reader.has_truth();
   const std::vector<std::string> ignored = reader.ignored_columns();
-  if (!ignored.empty())  // the binary format has no room for them: say so before dropping them
+  if (!ignored.empty())  // neither output has room for them: say so before dropping them
     std::cerr << fmt::format("warning: {}: column{} {} not converted (not a line column; a "
                              "misspelt optional column is not read)\n",
                              a.input, ignored.size() == 1 ? "" : "s", fmt::join(ignored, ", "));
+  const auto summary = [&](std::uint64_t count) {
+    std::cerr << fmt::format("{}: {} samples{}{}\n", a.output == "-" ? "stdout" : a.output, count,
+                             model ? ", model values" : ", no model values",
+                             truth ? ", truth" : "");
+    return kOk;
+  };
+  if (names_csv(a.output)) return summary(convert_to_csv(a, reader, model, truth));
   AtomicFileWriter out(a.output);
   out.write(io::dov_binary_header(0, model, truth));
   io::DovLine chunk;
@@ -224,10 +227,7 @@ int run_convert(const ConvertArgs& a) {
   }
   out.write_at(0, io::dov_binary_header(count, model, truth));
   out.commit();
-  std::cerr << fmt::format("{}: {} samples{}{}\n", a.output, count,
-                           model ? ", model values" : ", no model values",
-                           truth ? ", truth" : "");
-  return kOk;
+  return summary(count);
 }
 
 int run_process(const ProcessArgs& a) {

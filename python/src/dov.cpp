@@ -263,19 +263,12 @@ py::dict simulate(const py::dict& o) {
 // Also the header's columns the reader does not use (a misspelt optional column), for a warning.
 py::tuple read_line(const std::string& path) {
   io::DovLine line;
-  std::vector<std::string> ignored;
   {
     py::gil_scoped_release released;
-    io::DovLineReader reader(path);
-    ignored = reader.ignored_columns();
-    io::DovLine chunk;
-    line.has_model_values = reader.has_model_values();
-    while (reader.next(chunk, 65536)) {
-      line.samples.insert(line.samples.end(), chunk.samples.begin(), chunk.samples.end());
-      line.truth.insert(line.truth.end(), chunk.truth.begin(), chunk.truth.end());
-    }
+    line = io::read_dov_line_file(path);
   }
-  return py::make_tuple(line_columns(line.samples, line.truth, line.has_model_values), ignored);
+  return py::make_tuple(line_columns(line.samples, line.truth, line.has_model_values),
+                        line.ignored_columns);
 }
 
 }  // namespace

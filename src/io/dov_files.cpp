@@ -275,6 +275,7 @@ DovLine read_all(DovLineReader& reader) {
   out.source = reader.source();
   out.binary = reader.binary();
   out.has_model_values = reader.has_model_values();
+  out.ignored_columns = reader.ignored_columns();
   while (reader.next(chunk, 65536)) {
     out.samples.insert(out.samples.end(), chunk.samples.begin(), chunk.samples.end());
     out.truth.insert(out.truth.end(), chunk.truth.begin(), chunk.truth.end());

@@ -54,6 +54,8 @@ struct DovLine {
   /// true: read from the binary format (dov_binary.hpp); `lines` is then empty and errors
   /// name "sample k" instead of a file line.
   bool binary = false;
+  /// Whole-file reads (read_dov_line, read_dov_line_file): DovLineReader::ignored_columns().
+  std::vector<std::string> ignored_columns;
 };
 
 /// Reads a line a chunk of samples at a time, so a long line never has to be in memory: a
