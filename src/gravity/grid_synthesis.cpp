@@ -1,6 +1,9 @@
 // Grid synthesis (issue 14): per parallel, the order-m column sums of the stable recursion
 // (synthesis.hpp, the same sums GravityCircle uses), then either one real inverse FFT per
-// quantity (longitude spacing dividing 360°) or GravityCircle's O(M) Horner pass per node. docs/gravity-field.md,
+// quantity (longitude spacing dividing 360°) or GravityCircle's O(M) Horner pass per node.
+// The FFT path sums blocks of up to 16 parallels in one pass over the coefficients, in the
+// SIMD kernel (the sums are its O(N²) part: scalar, one parallel at a time, they took 95 % of
+// a degree-2190 global grid). docs/gravity-field.md,
 // "Grids", has the formulas.
 //
 // The FFT path. The point path combines the column sums (scaled by 1e-280 and divided by u^m)
@@ -146,6 +149,9 @@ class FftWorker {
   FftWorker(const FftWorker&) = delete;
   FftWorker& operator=(const FftWorker&) = delete;
 
+  // The column sums of the current block of parallels (SynthesisTable::column_sums).
+  std::vector<double> sums[detail::kBlockParallels], sums0[detail::kBlockParallels],
+      sums_corr[detail::kBlockParallels];
   // The coefficient sets of the current parallel (length max order + 1 or empty).
   std::vector<Complex> v, dr, dn, de, v0, corr, combined;
 
@@ -222,51 +228,80 @@ void combine(std::vector<Complex>& out, double a, const std::vector<Complex>& x,
   if (!out.empty()) out[0] += constant;
 }
 
-void row_fft(const Job& job, std::size_t j, FftWorker& w, double* out) {
+// One block of up to kBlockParallels consecutive rows (first … first + count − 1) by the FFT
+// path: the column sums of the whole block in one pass over the coefficient table, then per row
+// the Fourier coefficients and one c2r transform per quantity. out: count rows of per-row values.
+void block_fft(const Job& job, std::size_t first, std::size_t count, FftWorker& w, double* out) {
   const GravityField& f = job.field;
   const GridSpec& spec = job.spec;
-  const double lat = spec.lat_rad(j), k = f.model_gm_m3_s2() / f.model_radius_m();
+  const double k = f.model_gm_m3_s2() / f.model_radius_m();
   const double dgm = f.include_degree_zero() ? f.degree_zero_gm_m3_s2() : 0.0;
-  double r = 0, gamma = 0, r0 = 0, gamma0 = 0;
-  if (needs_gradient(spec.quantities)) {
-    EcefPosition e;
-    const Parallel p = parallel_at(f, lat, spec.height_m, &e);
-    const EcefPosition g = f.normal().gravity_vector_m_s2(e);
-    r = p.r;
-    gamma = std::hypot(std::hypot(g.x_m, g.y_m), g.z_m);
-    fourier_coefficients(f.disturbing_table().column_sums(p.t, p.q, true), true, p, w, w.v);
-  }
-  if (needs_geoid(spec.quantities)) {
-    Parallel p0 = parallel_at(f, lat, 0.0);
-    r0 = p0.r;
-    gamma0 = f.normal().surface_gravity_m_s2(lat);
-    fourier_coefficients(f.disturbing_table().column_sums(p0.t, p0.q, false), false, p0, w, w.v0);
-    w.corr.clear();
-    if (const detail::SynthesisTable* c = f.correction_table()) {
-      p0.q = 1.0;  // the correction series is evaluated on the unit sphere
-      fourier_coefficients(c->column_sums(p0.t, 1.0, false), false, p0, w, w.corr);
+  const bool gradient = needs_gradient(spec.quantities), geoid = needs_geoid(spec.quantities);
+  const detail::SynthesisTable* correction = f.correction_table();
+  const int n_rows = static_cast<int>(count);
+  Parallel p[detail::kBlockParallels], p0[detail::kBlockParallels];
+  double r[detail::kBlockParallels]{}, gamma[detail::kBlockParallels]{}, gamma0[detail::kBlockParallels]{};
+  double t[detail::kBlockParallels], q[detail::kBlockParallels], t0[detail::kBlockParallels],
+      q0[detail::kBlockParallels], ones[detail::kBlockParallels];
+  for (int i = 0; i < n_rows; ++i) {
+    const double lat = spec.lat_rad(first + static_cast<std::size_t>(i));
+    if (gradient) {
+      EcefPosition e;
+      p[i] = parallel_at(f, lat, spec.height_m, &e);
+      const EcefPosition g = f.normal().gravity_vector_m_s2(e);
+      r[i] = p[i].r;
+      gamma[i] = std::hypot(std::hypot(g.x_m, g.y_m), g.z_m);
+      t[i] = p[i].t;
+      q[i] = p[i].q;
+    }
+    if (geoid) {
+      p0[i] = parallel_at(f, lat, 0.0);
+      gamma0[i] = f.normal().surface_gravity_m_s2(lat);
+      t0[i] = p0[i].t;
+      q0[i] = p0[i].q;
+      ones[i] = 1.0;
     }
   }
-  const std::size_t n = static_cast<std::size_t>(job.plan->size()), cols = job.columns;
+  if (gradient) f.disturbing_table().column_sums(t, q, n_rows, true, w.sums);
+  if (geoid) {
+    f.disturbing_table().column_sums(t0, q0, n_rows, false, w.sums0);
+    if (correction) correction->column_sums(t0, ones, n_rows, false, w.sums_corr);  // on the unit sphere
+  }
+
+  const std::size_t cols = job.columns, n = static_cast<std::size_t>(job.plan->size());
   const std::vector<Complex> none;
-  for (std::size_t qi = 0; qi < spec.quantities.size(); ++qi) {
-    switch (spec.quantities[qi]) {
-      case GridQuantity::Xi: combine(w.combined, -k / (r * gamma), w.dn, 0, none, 0); break;
-      case GridQuantity::Eta: combine(w.combined, -k / (r * gamma), w.de, 0, none, 0); break;
-      case GridQuantity::DisturbanceNorth: combine(w.combined, k / r, w.dn, 0, none, 0); break;
-      case GridQuantity::DisturbanceEast: combine(w.combined, k / r, w.de, 0, none, 0); break;
-      case GridQuantity::DisturbanceUp: combine(w.combined, -k / r, w.dr, 0, none, -dgm / (r * r)); break;
-      // Δg = −∂T/∂r − 2T/r = (K/r)(dr − 2v) − dgm/r²
-      case GridQuantity::Anomaly: combine(w.combined, k / r, w.dr, -2 * k / r, w.v, -dgm / (r * r)); break;
-      case GridQuantity::Geoid:
-        combine(w.combined, k / gamma0, w.v0, f.correction_multiplier(), w.corr, dgm / (r0 * gamma0));
-        break;
+  for (int i = 0; i < n_rows; ++i) {
+    if (gradient) fourier_coefficients(w.sums[i], true, p[i], w, w.v);
+    if (geoid) {
+      fourier_coefficients(w.sums0[i], false, p0[i], w, w.v0);
+      w.corr.clear();
+      if (correction) {
+        Parallel unit = p0[i];
+        unit.q = 1.0;
+        fourier_coefficients(w.sums_corr[i], false, unit, w, w.corr);
+      }
     }
-    // Node i is sample i of the parallel from the grid's first longitude on: a regional grid
-    // keeps its first columns, a global gridline grid's last column (E = W + 360°) is sample 0.
-    const double* samples = w.sample(*job.plan, w.combined, job.phase);
-    double* row = out + qi * cols;
-    for (std::size_t i = 0; i < cols; ++i) row[i] = samples[i % n];
+    const double ri = r[i], r0 = p0[i].r;
+    double* row_out = out + static_cast<std::size_t>(i) * cols * spec.quantities.size();
+    for (std::size_t qi = 0; qi < spec.quantities.size(); ++qi) {
+      switch (spec.quantities[qi]) {
+        case GridQuantity::Xi: combine(w.combined, -k / (ri * gamma[i]), w.dn, 0, none, 0); break;
+        case GridQuantity::Eta: combine(w.combined, -k / (ri * gamma[i]), w.de, 0, none, 0); break;
+        case GridQuantity::DisturbanceNorth: combine(w.combined, k / ri, w.dn, 0, none, 0); break;
+        case GridQuantity::DisturbanceEast: combine(w.combined, k / ri, w.de, 0, none, 0); break;
+        case GridQuantity::DisturbanceUp: combine(w.combined, -k / ri, w.dr, 0, none, -dgm / (ri * ri)); break;
+        // Δg = −∂T/∂r − 2T/r = (K/r)(dr − 2v) − dgm/r²
+        case GridQuantity::Anomaly: combine(w.combined, k / ri, w.dr, -2 * k / ri, w.v, -dgm / (ri * ri)); break;
+        case GridQuantity::Geoid:
+          combine(w.combined, k / gamma0[i], w.v0, f.correction_multiplier(), w.corr, dgm / (r0 * gamma0[i]));
+          break;
+      }
+      // Node i is sample i of the parallel from the grid's first longitude on: a regional grid
+      // keeps its first columns, a global gridline grid's last column (E = W + 360°) is sample 0.
+      const double* samples = w.sample(*job.plan, w.combined, job.phase);
+      double* row = row_out + qi * cols;
+      for (std::size_t c = 0; c < cols; ++c) row[c] = samples[c % n];
+    }
   }
 }
 
@@ -382,7 +417,10 @@ GridSynthesisResult synthesize_grid(const GravityField& field, const GridSpec& s
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, rows));
   // Rows in flight: within the memory bound, enough to keep every thread busy between sinks.
   const std::size_t by_memory = std::max<std::size_t>(1, options.max_buffer_bytes / row_bytes(spec));
-  const std::size_t batch = std::min({rows, by_memory, std::size_t{16} * threads});
+  // The FFT path works in blocks of parallels that share one pass over the coefficients
+  // (SynthesisTable::column_sums); a batch holds two blocks per thread.
+  const std::size_t per_thread = job.path == GridPath::Fft ? 2 * detail::kBlockParallels : 16;
+  const std::size_t batch = std::min({rows, by_memory, per_thread * threads});
 
   GridSynthesisResult result;
   result.path_used = job.path;
@@ -409,24 +447,33 @@ GridSynthesisResult synthesize_grid(const GravityField& field, const GridSpec& s
   report_progress(progress, 0, rows, "parallels");
   for (std::size_t first = 0; first < rows; first += batch) {
     const std::size_t count = std::min(batch, rows - first);
+    // Work items: blocks of consecutive rows, at most kBlockParallels (FFT path) and small
+    // enough that every thread gets one; one row each on the per-parallel path.
+    const std::size_t block =
+        job.path == GridPath::Fft
+            ? std::clamp<std::size_t>((count + threads - 1) / threads, 1, detail::kBlockParallels)
+            : 1;
+    const std::size_t items = (count + block - 1) / block;
     std::atomic<std::size_t> next{0};
     std::atomic<bool> failed{false};
     std::vector<std::exception_ptr> errors(threads);
     auto work = [&](unsigned t) {
       try {
-        for (std::size_t k; !failed.load(std::memory_order_relaxed) && (k = next.fetch_add(1)) < count;) {
-          const std::size_t j = first + k;
-          double* out = buffer.data() + k * per_row;
-          if (job.path == GridPath::Fft) row_fft(job, j, *workers[t], out);
-          else row_parallel(job, j, out);
-          check_finite(spec, j, out, job.columns);
+        for (std::size_t k; !failed.load(std::memory_order_relaxed) && (k = next.fetch_add(1)) < items;) {
+          const std::size_t k0 = k * block, n_rows = std::min(block, count - k0);
+          double* out = buffer.data() + k0 * per_row;
+          if (job.path == GridPath::Fft)
+            block_fft(job, first + k0, n_rows, *workers[t], out);
+          else
+            row_parallel(job, first + k0, out);
+          for (std::size_t i = 0; i < n_rows; ++i) check_finite(spec, first + k0 + i, out + i * per_row, job.columns);
         }
       } catch (...) {
         errors[t] = std::current_exception();
         failed = true;
       }
     };
-    const unsigned active = static_cast<unsigned>(std::min<std::size_t>(threads, count));
+    const unsigned active = static_cast<unsigned>(std::min<std::size_t>(threads, items));
     if (active <= 1) {
       work(0);
     } else {

@@ -170,6 +170,37 @@ MERIDIAN_INLINE void evaluate_impl(const SynthesisTable::Term* terms, const std:
   }
 }
 
+
+// Column sums of up to P·W parallels (the grid's FFT path): P groups of W lanes share each column
+// while it is in cache, as in evaluate_impl; lane i of group k is parallel k·W + i.
+template <bool Grad, class V, int W, int P>
+MERIDIAN_INLINE void column_sums_impl(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
+                                      int nmax, int mmax, const double* t, const double* q, int count,
+                                      std::vector<double>* out) {
+  constexpr std::size_t width = Grad ? 6 : 2;
+  V tq[P], qv[P], q2[P];
+  const int groups = (count + W - 1) / W;
+  for (int k = 0; k < groups; ++k)
+    for (int i = 0; i < W; ++i) {
+      const int j = std::min(k * W + i, count - 1);  // spare lanes repeat the last parallel
+      qv[k][i] = q[j];
+      tq[k][i] = t[j] * q[j];
+      q2[k][i] = q[j] * q[j];
+    }
+  for (int j = 0; j < count; ++j) out[j].resize(width * (static_cast<std::size_t>(mmax) + 1));
+  V acc[6];
+  for (int m = 0; m <= mmax; ++m) {
+    const std::size_t o = width * static_cast<std::size_t>(m);
+    for (int k = 0; k < groups; ++k) {
+      column<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, tq[k], qv[k], q2[k], acc);
+      for (int i = 0; i < W && k * W + i < count; ++i) {
+        double* s = out[k * W + i].data() + o;
+        for (std::size_t c = 0; c < width; ++c) s[c] = acc[c][i];
+      }
+    }
+  }
+}
+
 typedef double V2 __attribute__((vector_size(2 * sizeof(double))));
 
 // One function per kernel (gravity/simd_kernel.hpp), each in its native vector width; chosen
@@ -195,6 +226,22 @@ __attribute__((target("arch=x86-64-v3"))) void evaluate_v3(const SynthesisTable:
                                                            const LanePoint* pts, int count, LaneSums* out) {
   evaluate_impl<Grad, V4, 4, kLanes / 4>(terms, start, sect, nmax, mmax, pts, count, out);
 }
+
+template <bool Grad>
+__attribute__((target("arch=x86-64-v4"))) void column_sums_v4(const SynthesisTable::Term* terms,
+                                                              const std::size_t* start, const double* sect, int nmax,
+                                                              int mmax, const double* t, const double* q, int count,
+                                                              std::vector<double>* out) {
+  column_sums_impl<Grad, V8, kLanes, kBlockParallels / kLanes>(terms, start, sect, nmax, mmax, t, q, count, out);
+}
+
+template <bool Grad>
+__attribute__((target("arch=x86-64-v3"))) void column_sums_v3(const SynthesisTable::Term* terms,
+                                                              const std::size_t* start, const double* sect, int nmax,
+                                                              int mmax, const double* t, const double* q, int count,
+                                                              std::vector<double>* out) {
+  column_sums_impl<Grad, V4, 4, kBlockParallels / 4>(terms, start, sect, nmax, mmax, t, q, count, out);
+}
 #endif
 
 template <bool Grad>
@@ -213,6 +260,19 @@ void evaluate_with(SimdKernel kernel, const SynthesisTable::Term* terms, const s
   (void)kernel;
 #endif
   evaluate_baseline<Grad>(terms, start, sect, nmax, mmax, pts, count, out);
+}
+
+template <bool Grad>
+void column_sums_with(SimdKernel kernel, const SynthesisTable::Term* terms, const std::size_t* start,
+                      const double* sect, int nmax, int mmax, const double* t, const double* q, int count,
+                      std::vector<double>* out) {
+#ifdef MERIDIAN_HAVE_X86_KERNELS
+  if (kernel == SimdKernel::X86_64_V4) return column_sums_v4<Grad>(terms, start, sect, nmax, mmax, t, q, count, out);
+  if (kernel == SimdKernel::X86_64_V3) return column_sums_v3<Grad>(terms, start, sect, nmax, mmax, t, q, count, out);
+#else
+  (void)kernel;
+#endif
+  column_sums_impl<Grad, V2, 2, kBlockParallels / 2>(terms, start, sect, nmax, mmax, t, q, count, out);
 }
 
 }  // namespace
@@ -263,6 +323,19 @@ std::vector<double> SynthesisTable::column_sums(double t, double q, bool gradien
     }
   }
   return sums;
+}
+
+void SynthesisTable::column_sums(const double* t, const double* q, int count, bool gradient,
+                                 std::vector<double>* out) const {
+  for (int first = 0; first < count; first += kBlockParallels) {
+    const int n = std::min(kBlockParallels, count - first);
+    if (gradient)
+      column_sums_with<true>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, t + first, q + first, n,
+                             out + first);
+    else
+      column_sums_with<false>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, t + first, q + first, n,
+                              out + first);
+  }
 }
 
 LaneSums SynthesisTable::horner(const std::vector<double>& sums, bool gradient, const LanePoint& p) const {

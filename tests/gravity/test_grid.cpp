@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "meridian/gravity/grid_spec.hpp"
 #include "meridian/gravity/grid_synthesis.hpp"
 #include "meridian/gravity/gravity_field.hpp"
+#include "meridian/gravity/simd_kernel.hpp"
 #include "meridian/gravity/synthetic.hpp"
 
 namespace gtest_grid {
@@ -244,6 +246,41 @@ TEST(GridSynthesis, ResultsDoNotDependOnThreadsOrBatches) {
   EXPECT_EQ(a.result.threads, 1u);
   EXPECT_EQ(b.result.threads, 3u);
   EXPECT_EQ(a.rows, b.rows);  // bit for bit
+}
+
+TEST(GridSynthesis, EveryKernelsBlocksOfParallelsEqualPoints) {
+  // The FFT path sums the columns of up to 16 parallels per pass over the coefficients, in the
+  // field's SIMD kernel (2, 4 or 8 parallels per vector). 37 rows on one thread are blocks of
+  // 16, 16 and 5 (spare lanes); each kernel against the points of the same field, and the
+  // kernels against each other.
+  const GravityModelData model = grid_model(120, true);
+  const GridSpec spec = spec_of(0, 360, -90, 90, 5, 250);
+  ASSERT_EQ(spec.rows(), 37u);
+  GridOptions one;
+  one.threads = 1;
+  std::vector<Grid> grids;
+  for (SimdKernel k : supported_simd_kernels()) {
+    SCOPED_TRACE(std::string(to_string(k)));
+    FieldOptions o;
+    o.simd_kernel = k;
+    o.threads = 1;
+    const GravityField f(model, o);
+    grids.push_back(run(f, spec, one));
+    EXPECT_EQ(grids.back().result.path_used, GridPath::Fft);
+    expect_matches_points(f, spec, grids.back());
+  }
+  // 1e-12 of each quantity's largest |value| (a node near zero has no relative precision).
+  const std::size_t cols = spec.columns();
+  for (std::size_t qi = 0; qi < spec.quantities.size(); ++qi) {
+    double largest = 0;
+    for (const auto& row : grids[0].rows)
+      for (std::size_t i = 0; i < cols; ++i) largest = std::max(largest, std::abs(row[qi * cols + i]));
+    for (std::size_t g = 1; g < grids.size(); ++g)
+      for (std::size_t j = 0; j < spec.rows(); ++j)
+        for (std::size_t i = 0; i < cols; ++i)
+          EXPECT_LE(std::abs(grids[0].rows[j][qi * cols + i] - grids[g].rows[j][qi * cols + i]), 1e-12 * largest)
+              << to_string(spec.quantities[qi]) << " row " << j << " column " << i;
+  }
 }
 
 TEST(GridSynthesis, ProgressCountsParallelsAndSinkErrorsPropagate) {
