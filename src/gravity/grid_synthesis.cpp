@@ -2,7 +2,7 @@
 // (synthesis.hpp, the same sums GravityCircle uses), then either one real inverse FFT per
 // quantity (longitude spacing dividing 360°) or GravityCircle's O(M) Horner pass per node.
 // The FFT path sums blocks of up to 16 parallels in one pass over the coefficients, in the
-// SIMD kernel (the sums are its O(N²) part: scalar, one parallel at a time, they took 95 % of
+// SIMD kernel (the sums are its O(N²) part: scalar, one parallel at a time, they took at least 94 % of
 // a degree-2190 global grid). docs/gravity-field.md,
 // "Grids", has the formulas.
 //
