@@ -83,10 +83,10 @@ void GravityField::check_point(const GeodeticPoint& p) {
 
 void GravityField::evaluate_block(const GeodeticPoint* p, std::size_t count, Quantities what, FieldValues* out) const {
   const int n = static_cast<int>(count);
-  detail::LanePoint lanes[detail::kLanes]{};
-  detail::LaneSums sums[detail::kLanes]{};
-  double r[detail::kLanes]{};
-  EcefPosition ecef[detail::kLanes]{};
+  detail::LanePoint lanes[detail::kPointsPerPass]{};
+  detail::LaneSums sums[detail::kPointsPerPass]{};
+  double r[detail::kPointsPerPass]{};
+  EcefPosition ecef[detail::kPointsPerPass]{};
   bool all_on_ellipsoid = true;
   // Geocentric spherical variables of a geodetic point.
   auto lane = [&](int i, double h) {
@@ -131,9 +131,9 @@ void GravityField::evaluate_block(const GeodeticPoint* p, std::size_t count, Qua
       for (int i = 0; i < n; ++i) lane(i, 0.0);
       table_->evaluate(lanes, n, false, sums);
     }
-    detail::LaneSums corr[detail::kLanes]{};
+    detail::LaneSums corr[detail::kPointsPerPass]{};
     if (correction_) {
-      detail::LanePoint unit[detail::kLanes]{};
+      detail::LanePoint unit[detail::kPointsPerPass]{};
       for (int i = 0; i < n; ++i) unit[i] = {lanes[i].t, lanes[i].u, 1.0, lanes[i].cos_lon, lanes[i].sin_lon};
       correction_->evaluate(unit, n, false, corr);
     }
@@ -183,7 +183,9 @@ std::vector<FieldValues> GravityField::evaluate(std::span<const GeodeticPoint> p
     }
   }
   std::vector<FieldValues> out(points.size());
-  const std::size_t lanes = detail::kLanes;
+  // Passes of kPointsPerPass points, smaller (down to one vector) when that gives every thread one.
+  const std::size_t per_thread = (points.size() + threads_ - 1) / threads_;  // threads_ ≥ 1
+  const std::size_t lanes = std::clamp<std::size_t>(per_thread, detail::kLanes, detail::kPointsPerPass);
   const std::size_t blocks = (points.size() + lanes - 1) / lanes;
   std::atomic<std::size_t> next{0};
   auto work = [&] {

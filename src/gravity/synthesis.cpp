@@ -217,14 +217,14 @@ __attribute__((target("arch=x86-64-v4"))) void evaluate_v4(const SynthesisTable:
   if (count <= 4)
     evaluate_impl<Grad, V4, 4, 1>(terms, start, sect, nmax, mmax, pts, count, out);
   else
-    evaluate_impl<Grad, V8, kLanes, 1>(terms, start, sect, nmax, mmax, pts, count, out);
+    evaluate_impl<Grad, V8, kLanes, kPointsPerPass / kLanes>(terms, start, sect, nmax, mmax, pts, count, out);
 }
 
 template <bool Grad>
 __attribute__((target("arch=x86-64-v3"))) void evaluate_v3(const SynthesisTable::Term* terms, const std::size_t* start,
                                                            const double* sect, int nmax, int mmax,
                                                            const LanePoint* pts, int count, LaneSums* out) {
-  evaluate_impl<Grad, V4, 4, kLanes / 4>(terms, start, sect, nmax, mmax, pts, count, out);
+  evaluate_impl<Grad, V4, 4, kPointsPerPass / 4>(terms, start, sect, nmax, mmax, pts, count, out);
 }
 
 template <bool Grad>
@@ -247,7 +247,7 @@ __attribute__((target("arch=x86-64-v3"))) void column_sums_v3(const SynthesisTab
 template <bool Grad>
 void evaluate_baseline(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect, int nmax,
                        int mmax, const LanePoint* pts, int count, LaneSums* out) {
-  evaluate_impl<Grad, V2, 2, kLanes / 2>(terms, start, sect, nmax, mmax, pts, count, out);
+  evaluate_impl<Grad, V2, 2, kPointsPerPass / 2>(terms, start, sect, nmax, mmax, pts, count, out);
 }
 
 template <bool Grad>

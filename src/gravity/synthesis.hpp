@@ -15,8 +15,12 @@ namespace meridian::gravity::detail {
 /// The "not requested" value of FieldValues.
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Points evaluated together (one AVX-512 vector; two passes of AVX2, four of SSE2).
+/// Points in the widest vector (one AVX-512 register of doubles).
 inline constexpr int kLanes = 8;
+/// Scattered points evaluated in one pass over the coefficient table (evaluate): groups of
+/// 8 (AVX-512), 4 (AVX2) or 2 (SSE2) lanes that share each column while it is in cache, so
+/// the table (77 MB at degree 2190) is streamed from memory once per this many points.
+inline constexpr int kPointsPerPass = 16;
 /// Parallels whose column sums one pass over the coefficient table computes (the grid's FFT
 /// path): two AVX-512 vectors, four AVX2, eight SSE2 — each column (≤ 70 KB at degree 2190)
 /// is read from memory once and from cache for the other vectors.
@@ -51,7 +55,7 @@ class SynthesisTable {
   /// Replace C̄_n0 (0 ≤ n ≤ N): for the owner's adjustments while it builds its tables.
   void set_zonal_c(int n, double c) noexcept { terms_[start_[0] + static_cast<std::size_t>(n)].c = c; }
 
-  /// Evaluate 1..kLanes points (count); dr/dn/de only when `gradient`.
+  /// Evaluate 1..kPointsPerPass points (count) in one pass; dr/dn/de only when `gradient`.
   void evaluate(const LanePoint* points, int count, bool gradient, LaneSums* out) const;
 
   /// Per-order column sums for one (t, q) — 6 values per m when
