@@ -62,15 +62,33 @@ typedef double V4 __attribute__((vector_size(4 * sizeof(double))));
 
 #define MERIDIAN_INLINE inline __attribute__((always_inline))
 
-// One column m for kLanes points; acc receives A0, B0 (and A1, B1, A2, B2).
+// The forward recursion of one column for one group of lanes, resumable: W_{k−1}, W_{k−2},
+// D_{k−1}, D_{k−2} and the six sums (A0, B0, A1, B1, A2, B2) after term k − 1.
+template <class V>
+struct ColumnState {
+  V w1, w2, d1, d2, acc[6];
+};
+
+// Term 0 of column m (W_m = sect).
+template <class V>
+MERIDIAN_INLINE void column_begin(const SynthesisTable::Term& t0, double sect, double m, ColumnState<V>& st) {
+  st.w1 = sect + V{};
+  st.w2 = st.d1 = st.d2 = V{};
+  st.acc[0] = t0.c * st.w1;
+  st.acc[1] = t0.s * st.w1;
+  st.acc[2] = (m + 1) * st.acc[0];
+  st.acc[3] = (m + 1) * st.acc[1];
+  st.acc[4] = st.acc[5] = V{};
+}
+
+// Terms k0 ≤ k < k1 (k0 ≥ 1) of column m: the state is kept in registers over the loop.
 template <bool Grad, class V>
-MERIDIAN_INLINE void column(const SynthesisTable::Term* tm, int count, double sect, double m, const V& tq, const V& q,
-                            const V& q2, V* acc) {
-  V w1 = sect + V{}, w2 = V{}, d1 = V{}, d2 = V{};
-  V a0 = tm[0].c * w1, b0 = tm[0].s * w1;
-  V a1 = (m + 1) * a0, b1 = (m + 1) * b0, a2 = V{}, b2 = V{};
-  double np1 = m + 1;
-  for (int k = 1; k < count; ++k) {
+MERIDIAN_INLINE void column_run(const SynthesisTable::Term* tm, int k0, int k1, double m, const V& tq, const V& q,
+                                const V& q2, ColumnState<V>& st) {
+  V w1 = st.w1, w2 = st.w2, d1 = st.d1, d2 = st.d2;
+  V a0 = st.acc[0], b0 = st.acc[1], a1 = st.acc[2], b1 = st.acc[3], a2 = st.acc[4], b2 = st.acc[5];
+  double np1 = m + k0;  // n + 1 of term k − 1
+  for (int k = k0; k < k1; ++k) {
     const SynthesisTable::Term& e = tm[k];
     const V bq2 = e.beta * q2, atq = e.alpha * tq;
     const V w = atq * w1 - bq2 * w2;
@@ -91,13 +109,31 @@ MERIDIAN_INLINE void column(const SynthesisTable::Term* tm, int count, double se
     w2 = w1;
     w1 = w;
   }
-  acc[0] = a0;
-  acc[1] = b0;
-  if constexpr (Grad) {
-    acc[2] = a1;
-    acc[3] = b1;
-    acc[4] = a2;
-    acc[5] = b2;
+  st.w1 = w1;
+  st.w2 = w2;
+  st.d1 = d1;
+  st.d2 = d2;
+  st.acc[0] = a0;
+  st.acc[1] = b0;
+  st.acc[2] = a1;
+  st.acc[3] = b1;
+  st.acc[4] = a2;
+  st.acc[5] = b2;
+}
+
+// Terms per segment when several groups share a column: 8 KB of the table, which stays in the
+// L1 cache while every group runs its recursion over it (a whole column at degree 2190 is
+// 70 KB, beyond L1: the groups would each read it from L2).
+inline constexpr int kSegmentTerms = 256;
+
+// One column m (count terms) for `groups` groups of lanes: st[g] receives the sums of group g.
+template <bool Grad, class V>
+MERIDIAN_INLINE void columns(const SynthesisTable::Term* tm, int count, double sect, double m, const V* tq,
+                             const V* q, const V* q2, int groups, ColumnState<V>* st) {
+  for (int g = 0; g < groups; ++g) column_begin(tm[0], sect, m, st[g]);
+  for (int k0 = 1; k0 < count; k0 += kSegmentTerms) {
+    const int k1 = std::min(count, k0 + kSegmentTerms);
+    for (int g = 0; g < groups; ++g) column_run<Grad, V>(tm, k0, k1, m, tq[g], q[g], q2[g], st[g]);
   }
 }
 
@@ -111,8 +147,8 @@ MERIDIAN_INLINE void horner_step(V& hr, V& hi, const V& zr, const V& zi, const V
 
 // Up to P·W points as P groups of W lanes of type V (V8: kLanes points; V4 for small blocks:
 // half the work on AVX2 and on AMD Zen 4, which splits 512-bit operations in two). The groups
-// share each column m while it is in cache (≤ 70 KB at degree 2190): the coefficient table is
-// streamed from memory once per block, however narrow the vectors, and the column loop keeps
+// share each column m segment by segment while it is in the L1 cache (columns): the coefficient
+// table is streamed from memory once per pass, however narrow the vectors, and the loop keeps
 // only one group's recursion in registers.
 template <bool Grad, class V, int W, int P>
 MERIDIAN_INLINE void evaluate_impl(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
@@ -138,11 +174,18 @@ MERIDIAN_INLINE void evaluate_impl(const SynthesisTable::Term* terms, const std:
     G.zr = G.u * G.q * G.cl;
     G.zi = G.u * G.q * G.sl;
   }
-  V acc[6];
+  V tq[P]{}, qv[P]{}, q2[P]{};
+  for (int k = 0; k < groups; ++k) {
+    tq[k] = g[k].tq;
+    qv[k] = g[k].q;
+    q2[k] = g[k].q2;
+  }
+  ColumnState<V> st[P]{};
   for (int m = mmax; m >= 0; --m) {
+    columns<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, tq, qv, q2, groups, st);
     for (int k = 0; k < groups; ++k) {
       Group& G = g[k];
-      column<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, G.tq, G.q, G.q2, acc);
+      const V* acc = st[k].acc;
       horner_step(G.h0r, G.h0i, G.zr, G.zi, acc[0], acc[1]);
       if constexpr (Grad) {
         horner_step(G.h1r, G.h1i, G.zr, G.zi, acc[2], acc[3]);
@@ -178,7 +221,7 @@ MERIDIAN_INLINE void column_sums_impl(const SynthesisTable::Term* terms, const s
                                       int nmax, int mmax, const double* t, const double* q, int count,
                                       std::vector<double>* out) {
   constexpr std::size_t width = Grad ? 6 : 2;
-  V tq[P], qv[P], q2[P];
+  V tq[P]{}, qv[P]{}, q2[P]{};
   const int groups = (count + W - 1) / W;
   for (int k = 0; k < groups; ++k)
     for (int i = 0; i < W; ++i) {
@@ -188,11 +231,12 @@ MERIDIAN_INLINE void column_sums_impl(const SynthesisTable::Term* terms, const s
       q2[k][i] = q[j] * q[j];
     }
   for (int j = 0; j < count; ++j) out[j].resize(width * (static_cast<std::size_t>(mmax) + 1));
-  V acc[6];
+  ColumnState<V> st[P]{};
   for (int m = 0; m <= mmax; ++m) {
     const std::size_t o = width * static_cast<std::size_t>(m);
+    columns<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, tq, qv, q2, groups, st);
     for (int k = 0; k < groups; ++k) {
-      column<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, tq[k], qv[k], q2[k], acc);
+      const V* acc = st[k].acc;
       for (int i = 0; i < W && k * W + i < count; ++i) {
         double* s = out[k * W + i].data() + o;
         for (std::size_t c = 0; c < width; ++c) s[c] = acc[c][i];
