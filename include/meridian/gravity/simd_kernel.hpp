@@ -5,13 +5,14 @@
 /// The kernel is compiled three times and chosen at run time, so one binary runs at full speed
 /// on every x86-64 CPU:
 ///
-/// | kernel | instructions | points per pass over the coefficients |
+/// | kernel | instructions | points per vector |
 /// | --- | --- | --- |
 /// | `baseline` | x86-64 (SSE2), any CPU | 2 (one 128-bit vector) |
 /// | `x86-64-v3` | AVX2 + FMA (Haswell, Zen 1 and later) | 4 (one 256-bit vector) |
 /// | `x86-64-v4` | AVX-512 F/CD/BW/DQ/VL (Skylake-SP, Zen 4 and later) | 8 (one 512-bit vector) |
 ///
-/// A batch of 8 points is evaluated as 8 ÷ width passes, each in the kernel's native vector
+/// One pass over the coefficients evaluates up to 16 points (or the column sums of 16 grid
+/// parallels) as 16 ÷ width groups of one vector each, each group in the kernel's native
 /// width: the recursion of the deflection (gradient) kernel keeps 16 vectors live, which fits
 /// the 16 AVX2 registers only at 256 bits (8-point vectors split into 2 × 256-bit halves spill
 /// on AVX2: several times slower, issue 14). All kernels compute the same sums in the same
