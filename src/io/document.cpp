@@ -116,7 +116,16 @@ std::string Node::child_path(const std::string& key) const {
 std::optional<Node> Node::get(const std::string& key) const {
   if (!node_.IsMap()) fail("expected a mapping of fields");
   YAML::Node c = node_[key];
-  if (!c || c.IsNull()) return std::nullopt;
+  if (!c) return std::nullopt;
+  // A key written without a value ("sigma_arcsec:") is null in YAML: taking the default for it
+  // would hide a value the user meant to give (trial finding), so it is an error.
+  if (c.IsNull()) {
+    std::optional<int> line = mark_line();  // the key's own line (an empty value's mark is the next one)
+    for (const auto& kv : node_)
+      if (kv.first.IsScalar() && kv.first.Scalar() == key && kv.first.Mark().line >= 0) line = kv.first.Mark().line + 1;
+    throw InputError(fmt::format("\"{}\" has no value: give one, or remove the line to use the default", key),
+                     {*file_, line, child_path(key)});
+  }
   return Node(c, child_path(key), file_, lines_);
 }
 

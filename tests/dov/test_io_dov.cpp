@@ -190,6 +190,17 @@ TEST(DovFiles, ConfigAndRunner) {
               std::string::npos)
         << e.what();
   }
+  // a key without a value is an error at the key's line, never the default (trial finding)
+  for (const char* empty : {"zeta:\n", "zeta: ~\n", "zeta: null\n", "initial:\n"}) {
+    write(dir / "e.yaml", std::string("line: line.csv\nsigma_model_arcsec: 3\n") + empty);
+    try {
+      io::read_dov_config((dir / "e.yaml").string());
+      FAIL() << empty;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.context().line, 3) << e.what();
+      EXPECT_NE(std::string(e.what()).find("has no value"), std::string::npos) << e.what();
+    }
+  }
   write(dir / "bad3.yaml", "line: line.csv\ntransport_rate_baseline_s: 30\n");
   try {
     io::read_dov_config((dir / "bad3.yaml").string());

@@ -69,9 +69,11 @@ class Node {
   bool is_sequence() const { return node_.IsSequence(); }
   bool is_scalar() const { return node_.IsScalar(); }
 
-  /// Member `key`; nullopt when absent or null. Requires a map.
+  /// Member `key`; nullopt when absent. Requires a map. Throws InputError (file, line, field)
+  /// when the key is present without a value (YAML null: "key:", "key: ~", "key: null"), so a
+  /// forgotten value is never replaced by a default.
   std::optional<Node> get(const std::string& key) const;
-  /// Member `key`; throws "missing field" when absent or null.
+  /// Member `key`; throws "missing field" when absent, InputError as get() when null.
   Node require(const std::string& key) const;
   bool has(const std::string& key) const { return get(key).has_value(); }
 
