@@ -48,8 +48,8 @@ struct Model {
   unsigned threads = 1;  ///< threads of a batch (FieldOptions::threads resolved)
 };
 
-Model make_model(const mg::GravityModelData& data, unsigned threads) {
-  auto field = std::make_shared<const mg::GravityField>(data, mg::FieldOptions{false, threads});
+Model make_model(mg::GravityModelData data, unsigned threads) {
+  auto field = std::make_shared<const mg::GravityField>(std::move(data), mg::FieldOptions{false, threads});
   mg::ModelInfo info = mg::model_info(data, *field);
   std::vector<std::string> warnings = mg::model_warnings(info);
   return {std::move(info), std::move(warnings), std::move(field),

@@ -42,20 +42,24 @@ class CofReader {
     size_ = static_cast<std::uint64_t>(in_.tellg());
     in_.seekg(0);
   }
-  std::uint64_t offset() { return static_cast<std::uint64_t>(in_.tellg()); }
+  // The position is counted here, not asked of the stream (tellg is a system call).
+  std::uint64_t offset() const { return pos_; }
   void need(std::uint64_t bytes, const char* what) {
-    if (offset() + bytes > size_)
-      throw ParseError(fmt::format("file truncated: {} needs {} bytes at offset {}, file has {}", what, bytes, offset(), size_),
+    if (pos_ + bytes > size_)
+      throw ParseError(fmt::format("file truncated: {} needs {} bytes at offset {}, file has {}", what, bytes, pos_, size_),
                        {file_, {}, what});
   }
   void read(void* dst, std::uint64_t bytes, const char* what) {
     need(bytes, what);
     in_.read(static_cast<char*>(dst), static_cast<std::streamsize>(bytes));
-    if (!in_) throw IoError(fmt::format("read error at offset {}", offset()), {file_, {}, what});
+    if (!in_) throw IoError(fmt::format("read error at offset {}", pos_), {file_, {}, what});
+    pos_ += bytes;
   }
   void skip(std::uint64_t bytes, const char* what) {
+    if (bytes == 0) return;
     need(bytes, what);
     in_.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
+    pos_ += bytes;
   }
   // One coefficient set with truncation; returns nullopt for N = M = −1.
   std::optional<SphericalHarmonicCoefficients> coefficients(const Truncation& t, const char* what, int* file_n) {
@@ -74,25 +78,48 @@ class CofReader {
     const int n = t.max_degree < 0 ? n0 : std::min(t.max_degree, n0);
     const int m = std::min({t.max_order < 0 ? n : t.max_order, m0, n});
     SphericalHarmonicCoefficients c(n, m);
-    // C: columns m = 0..m0 of length n0 + 1 − m; S: columns m = 1..m0.
-    for (int pass = 0; pass < 2; ++pass) {
-      double* dst = pass == 0 ? c.c_data() : c.s_data();
-      for (int mm = pass; mm <= m0; ++mm) {
-        const std::uint64_t len = static_cast<std::uint64_t>(n0 + 1 - mm);
-        if (mm > m) {
-          skip(len * 8, what);
-          continue;
-        }
-        const std::uint64_t keep = static_cast<std::uint64_t>(n + 1 - mm);
-        read(dst + c.index(mm, mm), keep * 8, what);
-        skip((len - keep) * 8, what);
-      }
-    }
     // Fully normalised gravitational coefficients are at most 1 in absolute
     // value (C̄00 = 1; |C̄20| ≈ 4.8e-4 for the Earth); the correction set is
     // in metres and is only required to be finite.
     const bool normalised = std::string_view(what) == "gravitational";
-    for (std::size_t k = 0; k < c.size(); ++k) {
+    const double limit = normalised ? 1.0 : std::numeric_limits<double>::max();
+    // A branch-free scan (NaN fails the comparison) of what was just read, while it is in cache;
+    // the loop at the end finds the entry to name.
+    int out_of_range = 0;
+    auto scan = [&](const double* v, std::uint64_t count) {
+      for (std::uint64_t k = 0; k < count; ++k) out_of_range |= !(std::abs(v[k]) <= limit);
+    };
+    // C: columns m = 0..m0 of length n0 + 1 − m; S: columns m = 1..m0. Without truncation the
+    // file's columns are the set's own layout: read in large chunks (S̄ from column m = 1 on).
+    if (n == n0 && m == m0) {
+      constexpr std::uint64_t kChunk = 32768;  // 256 KB
+      auto read_scanned = [&](double* dst, std::uint64_t count) {
+        for (std::uint64_t k = 0; k < count; k += kChunk) {
+          const std::uint64_t len = std::min(kChunk, count - k);
+          read(dst + k, 8 * len, what);
+          scan(dst + k, len);
+        }
+      };
+      read_scanned(c.c_data(), c_count);
+      read_scanned(c.s_data() + (N0 + 1), c_count - (N0 + 1));
+    } else {
+      for (int pass = 0; pass < 2; ++pass) {
+        double* dst = pass == 0 ? c.c_data() : c.s_data();
+        for (int mm = pass; mm <= m0; ++mm) {
+          const std::uint64_t len = static_cast<std::uint64_t>(n0 + 1 - mm);
+          if (mm > m) {
+            skip(len * 8, what);
+            continue;
+          }
+          const std::uint64_t keep = static_cast<std::uint64_t>(n + 1 - mm);
+          read(dst + c.index(mm, mm), keep * 8, what);
+          scan(dst + c.index(mm, mm), keep);
+          skip((len - keep) * 8, what);
+        }
+      }
+    }
+    const bool bad = out_of_range != 0;
+    for (std::size_t k = 0; bad && k < c.size(); ++k) {
       const double cv = c.c_values()[k], sv = c.s_values()[k];
       if (!std::isfinite(cv) || !std::isfinite(sv))
         throw ParseError(fmt::format("non-finite coefficient (entry {} of the {} set)", k, what), {file_, {}, what});
@@ -113,7 +140,7 @@ class CofReader {
  private:
   std::string file_;
   std::ifstream in_;
-  std::uint64_t size_ = 0;
+  std::uint64_t size_ = 0, pos_ = 0;
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -21,24 +22,32 @@ using detail::kNaN;
 
 // The disturbing potential's coefficients are the model's minus the normal field's even zonal
 // terms C̄_n0 = −(GM_ref/GM)(a_ref/a)^n J_n/√(2n+1), with C̄00 cancelled exactly (the GM
-// difference is handled separately): applied to the table built from the model's own
-// coefficients (no copy of the whole set).
+// difference is handled separately): applied to the table's own copy of the coefficients.
 void remove_normal_field(detail::SynthesisTable& t, const GravityModelData& m, const NormalGravity& normal) {
-  const SphericalHarmonicCoefficients& c = m.coefficients;
   t.set_zonal_c(0, 0.0);
   const double amult = (normal.a_m() / m.radius_m) * (normal.a_m() / m.radius_m);
   double mult = normal.gm_m3_s2() / m.gm_m3_s2;
-  for (int n = 2; n <= c.max_degree(); n += 2) {
+  for (int n = 2; n <= t.max_degree(); n += 2) {
     mult *= amult;
     const double s = -mult * normal.jn(n) / std::sqrt(2.0 * n + 1);
     if (s == 0) break;  // J_n underflowed: nothing left to remove
-    t.set_zonal_c(n, c.c(n, 0) - s);
+    t.set_zonal_c(n, t.zonal_c(n) - s);
   }
 }
 
 }  // namespace
 
 GravityField::GravityField(const GravityModelData& model, FieldOptions options)
+    : GravityField(model, model.coefficients, options) {}
+
+GravityField::GravityField(GravityModelData&& model, FieldOptions options)
+    : GravityField(model, std::move(model.coefficients), options) {
+  model.coefficients = SphericalHarmonicCoefficients();  // a valid, empty (degree 0) set
+}
+
+// `model` supplies everything but the coefficients (which may have been moved out of it).
+GravityField::GravityField(const GravityModelData& model, SphericalHarmonicCoefficients coefficients,
+                           FieldOptions options)
     : normal_(model.reference),
       gm_(model.gm_m3_s2),
       radius_m_(model.radius_m),
@@ -47,9 +56,9 @@ GravityField::GravityField(const GravityModelData& model, FieldOptions options)
   if (!(std::isfinite(gm_) && gm_ > 0)) throw InputError("gravity model: GM must be positive", {model.source_file, {}, "gm"});
   if (!(std::isfinite(radius_m_) && radius_m_ > 0))
     throw InputError("gravity model: reference radius must be positive", {model.source_file, {}, "radius"});
-  dgm_ = gm_ * model.coefficients.c(0, 0) - normal_.gm_m3_s2();
+  dgm_ = gm_ * coefficients.c(0, 0) - normal_.gm_m3_s2();
   const SimdKernel kernel = resolve_simd_kernel(options.simd_kernel);
-  table_ = std::make_unique<detail::SynthesisTable>(model.coefficients, kernel);
+  table_ = std::make_unique<detail::SynthesisTable>(std::move(coefficients), kernel);
   remove_normal_field(*table_, model, normal_);
   if (model.correction) {
     SphericalHarmonicCoefficients cc = model.correction->coefficients;
@@ -57,7 +66,7 @@ GravityField::GravityField(const GravityModelData& model, FieldOptions options)
       throw InputError("geoid correction multiplier must be positive", {model.source_file, {}, "CorrectionMultiplier"});
     cc.set(0, 0, cc.c(0, 0) + model.correction->height_offset_m / model.correction->multiplier, 0.0);
     corr_mult_ = model.correction->multiplier;
-    correction_ = std::make_unique<detail::SynthesisTable>(cc, kernel);
+    correction_ = std::make_unique<detail::SynthesisTable>(std::move(cc), kernel);
   }
   if (threads_ == 0) threads_ = std::max(1u, std::thread::hardware_concurrency());
 }

@@ -14,40 +14,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace meridian::gravity::detail {
 
-SynthesisTable::SynthesisTable(const SphericalHarmonicCoefficients& c, SimdKernel kernel)
-    : n_(c.max_degree()), m_(c.max_order()), kernel_(resolve_simd_kernel(kernel)) {
-  // Every term is written below: no zero fill of the 32 bytes per coefficient first.
-  terms_.reset(new Term[c.size()]);
+SynthesisTable::SynthesisTable(SphericalHarmonicCoefficients c, SimdKernel kernel)
+    : n_(c.max_degree()), m_(c.max_order()), kernel_(resolve_simd_kernel(kernel)), coefficients_(std::move(c)) {
+  // α_nm = √((2n−1)(2n+1) / ((n−m)(n+m))), β_nm = √((2n+1)(n+m−1)(n−m−1) / ((n−m)(n+m)(2n−3)))
+  // are formed in the kernel from these tables (products instead of a square root and a
+  // division per term; a few ulp from the direct forms).
+  const std::size_t roots = 2 * static_cast<std::size_t>(n_) + 2, degrees = static_cast<std::size_t>(n_) + 1;
+  roots_.root.resize(roots);
+  roots_.inv_root.resize(roots);
+  for (std::size_t k = 0; k < roots; ++k) {
+    roots_.root[k] = std::sqrt(static_cast<double>(k));
+    roots_.inv_root[k] = k == 0 ? 0.0 : 1.0 / roots_.root[k];
+  }
+  roots_.r2p1.assign(degrees, 0.0);
+  roots_.r2m1.assign(degrees, 0.0);
+  roots_.inv_r2m3.assign(degrees, 0.0);
+  for (std::size_t n = 0; n < degrees; ++n) {
+    roots_.r2p1[n] = roots_.root[2 * n + 1];
+    if (n >= 1) roots_.r2m1[n] = roots_.root[2 * n - 1];
+    if (n >= 2) roots_.inv_r2m3[n] = roots_.inv_root[2 * n - 3];
+  }
   start_.resize(static_cast<std::size_t>(m_) + 1);
   sectoral_.resize(static_cast<std::size_t>(m_) + 1);
-  // α_nm = √((2n−1)(2n+1) / ((n−m)(n+m))),
-  // β_nm = √((2n+1)(n+m−1)(n−m−1) / ((n−m)(n+m)(2n−3))), from tables of √k and 1/√k: products
-  // instead of a square root and a division per term (loading a degree-2190 model computes
-  // 2.4 million of each; the products differ from the direct forms by a few ulp).
-  std::vector<double> root(2 * static_cast<std::size_t>(n_) + 2), inv_root(root.size());
-  for (std::size_t k = 0; k < root.size(); ++k) {
-    root[k] = std::sqrt(static_cast<double>(k));
-    inv_root[k] = k == 0 ? 0.0 : 1.0 / root[k];
-  }
-  const double* C = c.c_values().data();
-  const double* S = c.s_values().data();
   for (int m = 0; m <= m_; ++m) {
-    const std::size_t k0 = c.index(m, m);
-    start_[static_cast<std::size_t>(m)] = k0;
-    Term* col = terms_.get() + k0;
-    col[0] = {0.0, 0.0, C[k0], S[k0]};
-    for (int n = m + 1; n <= n_; ++n) {
-      const auto u = [](int i) { return static_cast<std::size_t>(i); };
-      const double common = inv_root[u(n - m)] * inv_root[u(n + m)] * root[u(2 * n + 1)];
-      const double alpha = common * root[u(2 * n - 1)];
-      const double beta = n > m + 1 ? common * root[u(n + m - 1)] * root[u(n - m - 1)] * inv_root[u(2 * n - 3)] : 0.0;
-      const std::size_t k = k0 + u(n - m);
-      col[n - m] = {alpha, beta, C[k], S[k]};
-    }
+    start_[static_cast<std::size_t>(m)] = coefficients_.index(m, m);
     double p = kScale;
     if (m == 1) p = kScale * std::sqrt(3.0);
     if (m >= 2) p = sectoral_[static_cast<std::size_t>(m) - 1] * std::sqrt((2.0 * m + 1) / (2.0 * m));
@@ -71,38 +66,38 @@ struct ColumnState {
 
 // Term 0 of column m (W_m = sect).
 template <class V>
-MERIDIAN_INLINE void column_begin(const SynthesisTable::Term& t0, double sect, double m, ColumnState<V>& st) {
+MERIDIAN_INLINE void column_begin(double c0, double s0, double sect, double m, ColumnState<V>& st) {
   st.w1 = sect + V{};
   st.w2 = st.d1 = st.d2 = V{};
-  st.acc[0] = t0.c * st.w1;
-  st.acc[1] = t0.s * st.w1;
+  st.acc[0] = c0 * st.w1;
+  st.acc[1] = s0 * st.w1;
   st.acc[2] = (m + 1) * st.acc[0];
   st.acc[3] = (m + 1) * st.acc[1];
   st.acc[4] = st.acc[5] = V{};
 }
 
-// Terms k0 ≤ k < k1 (k0 ≥ 1) of column m: the state is kept in registers over the loop.
+// Terms k0 … k0 + len − 1 (k0 ≥ 1) of column m: c, s, alpha, beta point at term k0's values.
+// The state is kept in registers over the loop.
 template <bool Grad, class V>
-MERIDIAN_INLINE void column_run(const SynthesisTable::Term* tm, int k0, int k1, double m, const V& tq, const V& q,
-                                const V& q2, ColumnState<V>& st) {
+MERIDIAN_INLINE void column_run(const double* c, const double* s, const double* alpha, const double* beta, int len,
+                                double np1, const V& tq, const V& q, const V& q2, ColumnState<V>& st) {
   V w1 = st.w1, w2 = st.w2, d1 = st.d1, d2 = st.d2;
   V a0 = st.acc[0], b0 = st.acc[1], a1 = st.acc[2], b1 = st.acc[3], a2 = st.acc[4], b2 = st.acc[5];
-  double np1 = m + k0;  // n + 1 of term k − 1
-  for (int k = k0; k < k1; ++k) {
-    const SynthesisTable::Term& e = tm[k];
-    const V bq2 = e.beta * q2, atq = e.alpha * tq;
+  for (int i = 0; i < len; ++i) {
+    const double ci = c[i], si = s[i], al = alpha[i];
+    const V bq2 = beta[i] * q2, atq = al * tq;
     const V w = atq * w1 - bq2 * w2;
-    a0 += e.c * w;
-    b0 += e.s * w;
+    a0 += ci * w;
+    b0 += si * w;
     if constexpr (Grad) {
       // Written so that only one multiply-add depends on d1 (short chain).
-      const V d = atq * d1 + ((e.alpha * q) * w1 - bq2 * d2);
+      const V d = atq * d1 + ((al * q) * w1 - bq2 * d2);
       np1 += 1;
       const V wn = np1 * w;
-      a1 += e.c * wn;
-      b1 += e.s * wn;
-      a2 += e.c * d;
-      b2 += e.s * d;
+      a1 += ci * wn;
+      b1 += si * wn;
+      a2 += ci * d;
+      b2 += si * d;
       d2 = d1;
       d1 = d;
     }
@@ -121,19 +116,45 @@ MERIDIAN_INLINE void column_run(const SynthesisTable::Term* tm, int k0, int k1, 
   st.acc[5] = b2;
 }
 
-// Terms per segment when several groups share a column: 8 KB of the table, which stays in the
-// L1 cache while every group runs its recursion over it (a whole column at degree 2190 is
-// 70 KB, beyond L1: the groups would each read it from L2).
+// Terms per segment: the segment's α, β (4 KB) and C̄, S̄ (4 KB) stay in the L1 cache while
+// every group of the pass runs its recursion over them (a whole column at degree 2190 is
+// 35 KB of C̄, S̄).
 inline constexpr int kSegmentTerms = 256;
 
-// One column m (count terms) for `groups` groups of lanes: st[g] receives the sums of group g.
+// α_nm, β_nm of n = m + k, k = k0 … k0 + len − 1 (k0 ≥ 1), into alpha[0 … len), beta[0 … len):
+// the products the table-building code formed before (bit for bit), from contiguous tables so
+// that the loop vectorises; β_{m+1,m} = 0.
+MERIDIAN_INLINE void recursion_coefficients(const RootTables& r, int m, int k0, int len, double* alpha, double* beta) {
+  const double* inv = r.inv_root.data();
+  const double* root = r.root.data();
+  const double* p1 = r.r2p1.data();
+  const double* m1 = r.r2m1.data();
+  const double* m3 = r.inv_r2m3.data();
+  const int n0 = m + k0;
+  for (int i = 0; i < len; ++i) {
+    const int n = n0 + i;
+    const double common = inv[n - m] * inv[n + m] * p1[n];
+    alpha[i] = common * m1[n];
+    beta[i] = common * root[n + m - 1] * root[n - m - 1] * m3[n];
+  }
+  if (k0 == 1) beta[0] = 0.0;  // n = m + 1 (for m = 0, n = 1 the tables hold 1/√(−1) as 0 anyway)
+}
+
+// One column m for `groups` groups of lanes: st[g] receives the sums of group g.
 template <bool Grad, class V>
-MERIDIAN_INLINE void columns(const SynthesisTable::Term* tm, int count, double sect, double m, const V* tq,
-                             const V* q, const V* q2, int groups, ColumnState<V>* st) {
-  for (int g = 0; g < groups; ++g) column_begin(tm[0], sect, m, st[g]);
+MERIDIAN_INLINE void columns(const KernelData& d, int m, const V* tq, const V* q, const V* q2, int groups,
+                             ColumnState<V>* st) {
+  const std::size_t k = d.start[m];
+  const double* c = d.c + k;
+  const double* s = d.s + k;
+  const int count = d.nmax - m + 1;
+  for (int g = 0; g < groups; ++g) column_begin(c[0], s[0], d.sect[m], m, st[g]);
+  alignas(64) double alpha[kSegmentTerms], beta[kSegmentTerms];
   for (int k0 = 1; k0 < count; k0 += kSegmentTerms) {
-    const int k1 = std::min(count, k0 + kSegmentTerms);
-    for (int g = 0; g < groups; ++g) column_run<Grad, V>(tm, k0, k1, m, tq[g], q[g], q2[g], st[g]);
+    const int len = std::min(count - k0, kSegmentTerms);
+    recursion_coefficients(*d.roots, m, k0, len, alpha, beta);
+    for (int g = 0; g < groups; ++g)
+      column_run<Grad, V>(c + k0, s + k0, alpha, beta, len, m + k0, tq[g], q[g], q2[g], st[g]);
   }
 }
 
@@ -151,8 +172,7 @@ MERIDIAN_INLINE void horner_step(V& hr, V& hi, const V& zr, const V& zi, const V
 // table is streamed from memory once per pass, however narrow the vectors, and the loop keeps
 // only one group's recursion in registers.
 template <bool Grad, class V, int W, int P>
-MERIDIAN_INLINE void evaluate_impl(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
-                                   int nmax, int mmax, const LanePoint* pts, int count, LaneSums* out) {
+MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, int count, LaneSums* out) {
   struct Group {
     V t, u, q, cl, sl, tq, q2, zr, zi;
     V h0r{}, h0i{}, h1r{}, h1i{}, h2r{}, h2i{}, gr{}, gi{};
@@ -181,8 +201,8 @@ MERIDIAN_INLINE void evaluate_impl(const SynthesisTable::Term* terms, const std:
     q2[k] = g[k].q2;
   }
   ColumnState<V> st[P]{};
-  for (int m = mmax; m >= 0; --m) {
-    columns<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, tq, qv, q2, groups, st);
+  for (int m = d.mmax; m >= 0; --m) {
+    columns<Grad, V>(d, m, tq, qv, q2, groups, st);
     for (int k = 0; k < groups; ++k) {
       Group& G = g[k];
       const V* acc = st[k].acc;
@@ -217,8 +237,7 @@ MERIDIAN_INLINE void evaluate_impl(const SynthesisTable::Term* terms, const std:
 // Column sums of up to P·W parallels (the grid's FFT path): P groups of W lanes share each column
 // while it is in cache, as in evaluate_impl; lane i of group k is parallel k·W + i.
 template <bool Grad, class V, int W, int P>
-MERIDIAN_INLINE void column_sums_impl(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
-                                      int nmax, int mmax, const double* t, const double* q, int count,
+MERIDIAN_INLINE void column_sums_impl(const KernelData& d, const double* t, const double* q, int count,
                                       std::vector<double>* out) {
   constexpr std::size_t width = Grad ? 6 : 2;
   V tq[P]{}, qv[P]{}, q2[P]{};
@@ -230,11 +249,11 @@ MERIDIAN_INLINE void column_sums_impl(const SynthesisTable::Term* terms, const s
       tq[k][i] = t[j] * q[j];
       q2[k][i] = q[j] * q[j];
     }
-  for (int j = 0; j < count; ++j) out[j].resize(width * (static_cast<std::size_t>(mmax) + 1));
+  for (int j = 0; j < count; ++j) out[j].resize(width * (static_cast<std::size_t>(d.mmax) + 1));
   ColumnState<V> st[P]{};
-  for (int m = 0; m <= mmax; ++m) {
+  for (int m = 0; m <= d.mmax; ++m) {
     const std::size_t o = width * static_cast<std::size_t>(m);
-    columns<Grad, V>(terms + start[m], nmax - m + 1, sect[m], m, tq, qv, q2, groups, st);
+    columns<Grad, V>(d, m, tq, qv, q2, groups, st);
     for (int k = 0; k < groups; ++k) {
       const V* acc = st[k].acc;
       for (int i = 0; i < W && k * W + i < count; ++i) {
@@ -254,131 +273,93 @@ typedef double V2 __attribute__((vector_size(2 * sizeof(double))));
 #if defined(__x86_64__) && !defined(MERIDIAN_NO_TARGET_CLONES)
 #define MERIDIAN_HAVE_X86_KERNELS 1
 template <bool Grad>
-__attribute__((target("arch=x86-64-v4"))) void evaluate_v4(const SynthesisTable::Term* terms, const std::size_t* start,
-                                                           const double* sect, int nmax, int mmax,
+__attribute__((target("arch=x86-64-v4"))) void evaluate_v4(const KernelData& d,
                                                            const LanePoint* pts, int count, LaneSums* out) {
   // Up to 4 points: one 256-bit pass does half the work (AMD Zen 4 splits 512-bit operations).
   if (count <= 4)
-    evaluate_impl<Grad, V4, 4, 1>(terms, start, sect, nmax, mmax, pts, count, out);
+    evaluate_impl<Grad, V4, 4, 1>(d, pts, count, out);
   else
-    evaluate_impl<Grad, V8, kLanes, kPointsPerPass / kLanes>(terms, start, sect, nmax, mmax, pts, count, out);
+    evaluate_impl<Grad, V8, kLanes, kPointsPerPass / kLanes>(d, pts, count, out);
 }
 
 template <bool Grad>
-__attribute__((target("arch=x86-64-v3"))) void evaluate_v3(const SynthesisTable::Term* terms, const std::size_t* start,
-                                                           const double* sect, int nmax, int mmax,
+__attribute__((target("arch=x86-64-v3"))) void evaluate_v3(const KernelData& d,
                                                            const LanePoint* pts, int count, LaneSums* out) {
-  evaluate_impl<Grad, V4, 4, kPointsPerPass / 4>(terms, start, sect, nmax, mmax, pts, count, out);
+  evaluate_impl<Grad, V4, 4, kPointsPerPass / 4>(d, pts, count, out);
 }
 
 template <bool Grad>
-__attribute__((target("arch=x86-64-v4"))) void column_sums_v4(const SynthesisTable::Term* terms,
-                                                              const std::size_t* start, const double* sect, int nmax,
-                                                              int mmax, const double* t, const double* q, int count,
+__attribute__((target("arch=x86-64-v4"))) void column_sums_v4(const KernelData& d, const double* t, const double* q, int count,
                                                               std::vector<double>* out) {
-  column_sums_impl<Grad, V8, kLanes, kBlockParallels / kLanes>(terms, start, sect, nmax, mmax, t, q, count, out);
+  column_sums_impl<Grad, V8, kLanes, kBlockParallels / kLanes>(d, t, q, count, out);
 }
 
 template <bool Grad>
-__attribute__((target("arch=x86-64-v3"))) void column_sums_v3(const SynthesisTable::Term* terms,
-                                                              const std::size_t* start, const double* sect, int nmax,
-                                                              int mmax, const double* t, const double* q, int count,
+__attribute__((target("arch=x86-64-v3"))) void column_sums_v3(const KernelData& d, const double* t, const double* q, int count,
                                                               std::vector<double>* out) {
-  column_sums_impl<Grad, V4, 4, kBlockParallels / 4>(terms, start, sect, nmax, mmax, t, q, count, out);
+  column_sums_impl<Grad, V4, 4, kBlockParallels / 4>(d, t, q, count, out);
 }
 #endif
 
 template <bool Grad>
-void evaluate_baseline(const SynthesisTable::Term* terms, const std::size_t* start, const double* sect, int nmax,
-                       int mmax, const LanePoint* pts, int count, LaneSums* out) {
-  evaluate_impl<Grad, V2, 2, kPointsPerPass / 2>(terms, start, sect, nmax, mmax, pts, count, out);
+void evaluate_baseline(const KernelData& d, const LanePoint* pts, int count, LaneSums* out) {
+  evaluate_impl<Grad, V2, 2, kPointsPerPass / 2>(d, pts, count, out);
 }
 
 template <bool Grad>
-void evaluate_with(SimdKernel kernel, const SynthesisTable::Term* terms, const std::size_t* start, const double* sect,
-                   int nmax, int mmax, const LanePoint* pts, int count, LaneSums* out) {
+void evaluate_with(SimdKernel kernel, const KernelData& d, const LanePoint* pts, int count, LaneSums* out) {
 #ifdef MERIDIAN_HAVE_X86_KERNELS
-  if (kernel == SimdKernel::X86_64_V4) return evaluate_v4<Grad>(terms, start, sect, nmax, mmax, pts, count, out);
-  if (kernel == SimdKernel::X86_64_V3) return evaluate_v3<Grad>(terms, start, sect, nmax, mmax, pts, count, out);
+  if (kernel == SimdKernel::X86_64_V4) return evaluate_v4<Grad>(d, pts, count, out);
+  if (kernel == SimdKernel::X86_64_V3) return evaluate_v3<Grad>(d, pts, count, out);
 #else
   (void)kernel;
 #endif
-  evaluate_baseline<Grad>(terms, start, sect, nmax, mmax, pts, count, out);
+  evaluate_baseline<Grad>(d, pts, count, out);
 }
 
 template <bool Grad>
-void column_sums_with(SimdKernel kernel, const SynthesisTable::Term* terms, const std::size_t* start,
-                      const double* sect, int nmax, int mmax, const double* t, const double* q, int count,
+void column_sums_with(SimdKernel kernel, const KernelData& d, const double* t, const double* q, int count,
                       std::vector<double>* out) {
 #ifdef MERIDIAN_HAVE_X86_KERNELS
-  if (kernel == SimdKernel::X86_64_V4) return column_sums_v4<Grad>(terms, start, sect, nmax, mmax, t, q, count, out);
-  if (kernel == SimdKernel::X86_64_V3) return column_sums_v3<Grad>(terms, start, sect, nmax, mmax, t, q, count, out);
+  if (kernel == SimdKernel::X86_64_V4) return column_sums_v4<Grad>(d, t, q, count, out);
+  if (kernel == SimdKernel::X86_64_V3) return column_sums_v3<Grad>(d, t, q, count, out);
 #else
   (void)kernel;
 #endif
-  column_sums_impl<Grad, V2, 2, kBlockParallels / 2>(terms, start, sect, nmax, mmax, t, q, count, out);
+  column_sums_impl<Grad, V2, 2, kBlockParallels / 2>(d, t, q, count, out);
 }
 
 }  // namespace
 
+KernelData SynthesisTable::kernel_data() const noexcept {
+  return {coefficients_.c_values().data(), coefficients_.s_values().data(), start_.data(), sectoral_.data(), &roots_,
+          n_, m_};
+}
+
 void SynthesisTable::evaluate(const LanePoint* points, int count, bool gradient, LaneSums* out) const {
   if (count <= 0) return;
+  const KernelData d = kernel_data();
   if (gradient)
-    evaluate_with<true>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
+    evaluate_with<true>(kernel_, d, points, count, out);
   else
-    evaluate_with<false>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, points, count, out);
+    evaluate_with<false>(kernel_, d, points, count, out);
 }
 
 std::vector<double> SynthesisTable::column_sums(double t, double q, bool gradient) const {
-  const std::size_t width = gradient ? 6 : 2;
-  std::vector<double> sums(width * (static_cast<std::size_t>(m_) + 1));
-  for (int m = 0; m <= m_; ++m) {
-    const Term* tm = terms_.get() + start_[static_cast<std::size_t>(m)];
-    const int count = n_ - m + 1;
-    double w1 = sectoral_[static_cast<std::size_t>(m)], w2 = 0, d1 = 0, d2 = 0, np1 = m + 1.0;
-    double a0 = tm[0].c * w1, b0 = tm[0].s * w1, a1 = np1 * a0, b1 = np1 * b0, a2 = 0, b2 = 0;
-    for (int k = 1; k < count; ++k) {
-      const Term& e = tm[k];
-      const double bq2 = e.beta * q * q;
-      const double w = e.alpha * t * q * w1 - bq2 * w2;
-      a0 += e.c * w;
-      b0 += e.s * w;
-      if (gradient) {
-        const double d = e.alpha * q * (w1 + t * d1) - bq2 * d2;
-        np1 += 1;
-        a1 += e.c * np1 * w;
-        b1 += e.s * np1 * w;
-        a2 += e.c * d;
-        b2 += e.s * d;
-        d2 = d1;
-        d1 = d;
-      }
-      w2 = w1;
-      w1 = w;
-    }
-    double* o = sums.data() + width * static_cast<std::size_t>(m);
-    o[0] = a0;
-    o[1] = b0;
-    if (gradient) {
-      o[2] = a1;
-      o[3] = b1;
-      o[4] = a2;
-      o[5] = b2;
-    }
-  }
+  std::vector<double> sums;
+  column_sums(&t, &q, 1, gradient, &sums);
   return sums;
 }
 
 void SynthesisTable::column_sums(const double* t, const double* q, int count, bool gradient,
                                  std::vector<double>* out) const {
+  const KernelData d = kernel_data();
   for (int first = 0; first < count; first += kBlockParallels) {
     const int n = std::min(kBlockParallels, count - first);
     if (gradient)
-      column_sums_with<true>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, t + first, q + first, n,
-                             out + first);
+      column_sums_with<true>(kernel_, d, t + first, q + first, n, out + first);
     else
-      column_sums_with<false>(kernel_, terms_.get(), start_.data(), sectoral_.data(), n_, m_, t + first, q + first, n,
-                              out + first);
+      column_sums_with<false>(kernel_, d, t + first, q + first, n, out + first);
   }
 }
 

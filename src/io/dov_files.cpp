@@ -442,11 +442,11 @@ std::unique_ptr<ModelValues> load_model_values(const DovConfig& config) {
     if (e.context().file.empty()) locate_error(e, config.file, config.lines);
     throw;
   }
-  m->field.emplace(m->data);
+  m->field.emplace(std::move(m->data));  // takes the coefficients (the metadata stays)
   m->note = fmt::format(
       "model values eta_G, xi_G from the gravity model {} (degree {}): the astronomic deflection "
       "of its plumb line at each sample, evaluated along the line within {}\"",
-      m->data.name.empty() ? ref.source : m->data.name, m->data.coefficients.max_degree(),
+      m->data.name.empty() ? ref.source : m->data.name, m->field->max_degree(),
       m->track.tolerance_rad / kAs);
   return m;
 }

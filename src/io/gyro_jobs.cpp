@@ -1,5 +1,7 @@
 #include "meridian/io/gyro_jobs.hpp"
 
+#include <utility>
+
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
@@ -26,11 +28,11 @@ auto located(const std::string& file, const FieldLines& lines, F&& body) {
 const gyro::DeflectionModel& DeflectionModels::get(const gyro::GravityModelRef& ref) {
   const auto key = std::make_pair(ref.lookup, ref.max_degree);
   if (const auto it = loaded_.find(key); it != loaded_.end()) return *it->second;
-  const gravity::GravityModelData data = detail::load_named_model(ref.lookup, ref.max_degree);
-  auto field = std::make_shared<const gravity::GravityField>(data);
+  gravity::GravityModelData data = detail::load_named_model(ref.lookup, ref.max_degree);
+  auto field = std::make_shared<const gravity::GravityField>(std::move(data));  // takes the coefficients
   auto model = std::make_shared<gyro::DeflectionModel>();
   model->description = fmt::format("{} (degree {})", data.name.empty() ? ref.source : data.name,
-                                   data.coefficients.max_degree());
+                                   field->max_degree());
   model->sigma_eta_rad = ref.sigma_eta_rad;
   model->sigma_xi_rad = ref.sigma_xi_rad;
   model->deflection = [field](double lat_rad, double lon_rad, double height_m) {

@@ -213,3 +213,32 @@ TEST(GravityPoints, ChunkEvaluationAgreesWithTheModelAtEveryPoint) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(GravityFieldConstruction, MovingTheModelInGivesTheSameFieldAndKeepsTheMetadata) {
+  SyntheticModelOptions o;
+  o.max_degree = 60;
+  o.seed = 77;
+  GravityModelData model = make_synthetic_model(o);
+  model.name = "moved";
+  model.file_max_degree = 60;
+  const GravityField copied(model);
+  const GravityField moved(std::move(model));
+  // The moved-from model keeps what model_info reads; its coefficients are an empty set.
+  EXPECT_EQ(model.name, "moved");
+  EXPECT_EQ(model.file_max_degree, 60);
+  EXPECT_EQ(model.coefficients.max_degree(), 0);
+  EXPECT_EQ(model.coefficients.size(), 1u);
+  EXPECT_EQ(model_info(model, moved).max_degree, 60);
+  for (double lat : {-89.5, -33.0, 0.0, 47.0, 90.0}) {
+    const FieldValues a = copied.evaluate({lat * kDeg, 1.3, 250.0});
+    const FieldValues b = moved.evaluate({lat * kDeg, 1.3, 250.0});
+    EXPECT_EQ(a.xi_rad, b.xi_rad) << lat;  // bit for bit: the same coefficients
+    EXPECT_EQ(a.eta_rad, b.eta_rad) << lat;
+    EXPECT_EQ(a.geoid_m, b.geoid_m) << lat;
+    EXPECT_NE(a.xi_rad, 0.0) << lat;
+  }
+}
+
+}  // namespace

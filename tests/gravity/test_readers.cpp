@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -221,6 +222,17 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   const double beyond = -9.6e301;
   std::memcpy(big.data() + 16 + 8 * 5, &beyond, 8);
   expect(meta, big, bcof, "is not a fully normalised coefficient (|value| <= 1)");
+  // A NaN among the S̄ (the last value of the file's S̄ columns: m = 10, n = 10), whole and
+  // truncated reads (the reader scans each chunk or kept column as it reads it).
+  std::string nan_s = cof;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::memcpy(nan_s.data() + nan_s.size() - 8 - 8, &nan, 8);  // before the correction set's N = M = −1
+  expect(meta, nan_s, bcof, "non-finite coefficient");
+  write_text("bad.egm", meta);
+  write_text("bad.egm.cof", big);
+  expect_parse_error([&] { (void)read_egm_file(egm, {8, 8}); }, bcof, 0, "is not a fully normalised coefficient");
+  write_text("bad.egm.cof", nan_s);
+  EXPECT_NO_THROW((void)read_egm_file(egm, {9, 9}));  // the NaN is in a column not kept
   std::string latin1 = meta;
   latin1.replace(latin1.find("Description"), 11, "Description caf\xE9");
   expect(latin1, cof, egm, "Description is not UTF-8 text");

@@ -99,13 +99,19 @@ struct FieldOptions {
 };
 
 /// The synthesis engine for one model. Immutable and thread-safe after
-/// construction; construction precomputes the recursion coefficients
-/// (≈ 32 bytes per coefficient pair).
+/// construction. It keeps its own copy of C̄, S̄ (16 bytes per coefficient pair; the
+/// recursion coefficients are formed during evaluation from tables of O(N) roots).
 class GravityField {
  public:
   /// Throws InputError for an empty/invalid model (GM, a not positive), or for a
-  /// FieldOptions::simd_kernel (or MERIDIAN_SIMD_KERNEL) this CPU cannot run.
+  /// FieldOptions::simd_kernel (or MERIDIAN_SIMD_KERNEL) this CPU cannot run. Copies the
+  /// model's coefficients.
   explicit GravityField(const GravityModelData& model, FieldOptions options = {});
+  /// As above, but takes the coefficients over from `model` instead of copying them (38 MB at
+  /// degree 2190): `GravityField(read_egm_file(path))` loads a model without a copy. `model`
+  /// keeps its metadata (name, GM, radius, correction, … for model_info) and is left with an
+  /// all-zero degree-0 coefficient set.
+  explicit GravityField(GravityModelData&& model, FieldOptions options = {});
   ~GravityField();
   GravityField(GravityField&&) noexcept;
   GravityField& operator=(GravityField&&) noexcept;
@@ -142,6 +148,7 @@ class GravityField {
   double degree_zero_gm_m3_s2() const noexcept { return dgm_; }
 
  private:
+  GravityField(const GravityModelData& model, SphericalHarmonicCoefficients coefficients, FieldOptions options);
   void evaluate_block(const GeodeticPoint* p, std::size_t count, Quantities what, FieldValues* out) const;
 
   NormalGravity normal_;
