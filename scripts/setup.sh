@@ -10,8 +10,9 @@ packages=(
   libeigen3-dev libgeographiclib-dev geographiclib-tools
   libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libfmt-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  # Grid synthesis (FFTW) and grid files (netCDF C library; ncdump for the tests).
-  libfftw3-dev libnetcdf-dev netcdf-bin
+  # Grid synthesis (FFTW) and grid files (netCDF C library; ncdump for the tests; PROJ's cct
+  # reads the .gtx geoid grids back in the tests).
+  libfftw3-dev libnetcdf-dev netcdf-bin proj-bin
   # The Python package (MERIDIAN_PYTHON=ON, docs/python.md) and its tests.
   python3-dev pybind11-dev python3-pybind11 python3-pytest python3-yaml python3-dask python3-distributed
   python3-netcdf4

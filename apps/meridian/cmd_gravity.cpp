@@ -193,7 +193,10 @@ int run_synth_grid(const SynthGridArgs& a) {
   writer->commit();
   const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const bool netcdf = io::grid_file_format_for(a.output) == io::GridFileFormat::NetCdf;
+  const io::GridFileFormat format = io::grid_file_format_for(a.output);
+  const char* format_name = format == io::GridFileFormat::NetCdf ? "NetCDF"
+                            : format == io::GridFileFormat::Gtx  ? "GTX"
+                                                                 : "CSV";
   if (a.json) {
     nlohmann::json q = nlohmann::json::array();
     for (gravity::GridQuantity x : spec.quantities) {
@@ -201,7 +204,7 @@ int run_synth_grid(const SynthGridArgs& a) {
       q.push_back({{"name", std::string(f.name)}, {"units", std::string(f.units)}, {"long_name", std::string(f.long_name)}});
     }
     const nlohmann::json j = {{"output", a.output},
-                              {"format", netcdf ? "netcdf" : "csv"},
+                              {"format", std::string(io::to_string(format))},
                               {"model", m.name},
                               {"model_file", m.source_file},
                               {"max_degree", field.max_degree()},
@@ -228,7 +231,7 @@ int run_synth_grid(const SynthGridArgs& a) {
     }
     emit("", fmt::format("wrote {} ({}): {} x {} nodes (lon x lat, {} registration), {}\n"
                          "heights {}\npath {}{}, {}, {:.2f} s\n",
-                         a.output, netcdf ? "NetCDF" : "CSV", r.columns, r.rows, gravity::to_string(spec.registration),
+                         a.output, format_name, r.columns, r.rows, gravity::to_string(spec.registration),
                          names,
                          heights ? "per node from " + a.height_grid : fmt::format("{} m at every node", spec.height_m),
                          gravity::to_string(r.path_used),
@@ -314,7 +317,7 @@ void add_gravity_commands(CLI::App& app, int& exit_code) {
   sgrid->add_option("--path", sg->path,
                     "auto (FFT when the longitude spacing divides 360° and the grid is global or wide enough, else per "
                     "parallel) | fft | parallel")->capture_default_str();
-  sgrid->add_option("-o,--output", sg->output, "Output file, written atomically: .nc (NetCDF) or .csv (small grids)")
+  sgrid->add_option("-o,--output", sg->output, "Output file, written atomically: .nc (NetCDF), .gtx (geoid heights only, float32) or .csv (small grids)")
       ->required();
   sgrid->add_flag("--json", sg->json, "Print a JSON summary");
   sgrid->add_flag("-q,--quiet", sg->quiet, "No progress bar, no model lines");

@@ -5,12 +5,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -235,6 +238,56 @@ class CsvGridWriter final : public GridFileWriter {
   std::size_t rows_written_ = 0;
 };
 
+// ---- GTX (NOAA VDatum; PROJ and GDAL read it) ----
+
+// Big-endian bytes of an IEEE value or a 32-bit integer.
+template <class T>
+void put_big_endian(std::string& out, T value) {
+  static_assert(sizeof(T) == 4 || sizeof(T) == 8);
+  using U = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  const U u = std::bit_cast<U>(value);
+  for (int shift = 8 * static_cast<int>(sizeof(T)) - 8; shift >= 0; shift -= 8)
+    out += static_cast<char>((u >> shift) & 0xFF);
+}
+
+class GtxGridWriter final : public GridFileWriter {
+ public:
+  GtxGridWriter(const std::filesystem::path& path, const GridSpec& spec) : path_(path), spec_(spec), out_(path) {
+    // Header: first node's latitude and longitude, the two spacings (degrees, float64), rows and
+    // columns (int32); then the values row by row from south to north.
+    std::string header;
+    put_big_endian(header, spec_.lat_deg(0));
+    put_big_endian(header, spec_.lon_deg(0));
+    put_big_endian(header, spec_.lat_spacing_deg);
+    put_big_endian(header, spec_.lon_spacing_deg);
+    put_big_endian(header, static_cast<std::int32_t>(spec_.rows()));
+    put_big_endian(header, static_cast<std::int32_t>(spec_.columns()));
+    out_.write(header);
+  }
+
+  void write_row(const GridRow& row) override {
+    check_row(spec_, row, rows_written_, path_);
+    std::string bytes;
+    bytes.reserve(4 * spec_.columns());
+    for (double v : row.values(0)) put_big_endian(bytes, static_cast<float>(v));  // geoid, metres
+    out_.write(bytes);
+    ++rows_written_;
+  }
+
+  void commit() override {
+    if (rows_written_ != spec_.rows())
+      throw IoError(fmt::format("only {} of {} rows were written", rows_written_, spec_.rows()),
+                    {path_.string(), std::nullopt, {}});
+    out_.commit();
+  }
+
+ private:
+  std::filesystem::path path_;
+  GridSpec spec_;
+  AtomicFileWriter out_;
+  std::size_t rows_written_ = 0;
+};
+
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
@@ -386,18 +439,38 @@ GridQuantityFormat grid_quantity_format(GridQuantity q) noexcept {
   return {"?", "?", 1.0, "?"};
 }
 
+std::string_view to_string(GridFileFormat f) noexcept {
+  switch (f) {
+    case GridFileFormat::NetCdf: return "netcdf";
+    case GridFileFormat::Csv: return "csv";
+    case GridFileFormat::Gtx: return "gtx";
+  }
+  return "?";
+}
+
 GridFileFormat grid_file_format_for(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".nc" || ext == ".grd" || ext == ".cdf") return GridFileFormat::NetCdf;
   if (ext == ".csv") return GridFileFormat::Csv;
-  throw InputError(fmt::format("cannot tell the format of \"{}\" from its extension: use .nc (NetCDF) or .csv",
+  if (ext == ".gtx") return GridFileFormat::Gtx;
+  throw InputError(fmt::format("cannot tell the format of \"{}\" from its extension: use .nc (NetCDF), .gtx "
+                               "(geoid heights) or .csv",
                                path.string()),
                    {"", {}, "--output"});
 }
 
 void check_grid_output(const std::filesystem::path& path, const GridSpec& spec) {
-  if (grid_file_format_for(path) == GridFileFormat::Csv && spec.nodes() > kMaxCsvGridNodes)
+  const GridFileFormat format = grid_file_format_for(path);
+  if (format == GridFileFormat::Gtx) {
+    if (spec.quantities != std::vector<GridQuantity>{GridQuantity::Geoid})
+      throw InputError("a .gtx file holds geoid heights only: use --quantities geoid, or write NetCDF (.nc)",
+                       {"", {}, "--quantities"});
+    if (spec.rows() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) ||
+        spec.columns() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+      throw InputError("too many rows or columns for the 32-bit sizes of a .gtx header", {"", {}, "--output"});
+  }
+  if (format == GridFileFormat::Csv && spec.nodes() > kMaxCsvGridNodes)
     throw InputError(fmt::format("a CSV grid is for small grids: {} nodes is more than {}; write NetCDF (.nc)",
                                  spec.nodes(), kMaxCsvGridNodes),
                      {"", {}, "--output"});
@@ -411,6 +484,7 @@ std::unique_ptr<GridFileWriter> open_grid_file(const std::filesystem::path& path
                                                const GridFileMetadata& metadata) {
   check_grid_output(path, spec);
   if (grid_file_format_for(path) == GridFileFormat::Csv) return std::make_unique<CsvGridWriter>(path, spec);
+  if (grid_file_format_for(path) == GridFileFormat::Gtx) return std::make_unique<GtxGridWriter>(path, spec);
   return std::make_unique<NetCdfGridWriter>(path, spec, metadata);
 }
 

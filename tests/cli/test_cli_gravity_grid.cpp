@@ -2,6 +2,8 @@
 // chosen, values against `gravity point`, and the errors raised before any work.
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -102,6 +104,46 @@ TEST_F(GravityGridCli, RegionalPixelGridUsesTheParallelPath) {
   EXPECT_NE(h.out.find(":height_m = 1000. ;"), std::string::npos) << h.out;
 }
 
+// Big-endian value at `p` (decoded here, independently of the writer and of read_gtx).
+template <class T, class U>
+T from_big_endian(const char* p) {
+  U u = 0;
+  for (std::size_t i = 0; i < sizeof(U); ++i) u = static_cast<U>((u << 8) | static_cast<unsigned char>(p[i]));
+  T t;
+  std::memcpy(&t, &u, sizeof t);
+  return t;
+}
+
+TEST_F(GravityGridCli, GeoidAsGtxHasTheHeaderAndValuesOfGravityPoint) {
+  ASSERT_EQ(run("gravity synth-model --degree 30 --seed 5 --out m").code, 0);
+  const CmdResult r = run("gravity grid --model m.gfc -R -30/60/-45/45 -I 15d --quantities geoid -o n.gtx --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["format"], "gtx");
+  const std::string d = slurp(dir_ / "n.gtx");
+  ASSERT_EQ(d.size(), 40u + 4u * 7u * 7u);
+  EXPECT_EQ((from_big_endian<double, std::uint64_t>(d.data())), -45.0);       // first node's latitude
+  EXPECT_EQ((from_big_endian<double, std::uint64_t>(d.data() + 8)), -30.0);   // and longitude
+  EXPECT_EQ((from_big_endian<double, std::uint64_t>(d.data() + 16)), 15.0);   // spacings
+  EXPECT_EQ((from_big_endian<double, std::uint64_t>(d.data() + 24)), 15.0);
+  EXPECT_EQ((from_big_endian<std::int32_t, std::uint32_t>(d.data() + 32)), 7);  // rows
+  EXPECT_EQ((from_big_endian<std::int32_t, std::uint32_t>(d.data() + 36)), 7);  // columns
+  // Node (lat 15, lon 45): row 4 from the south, column 5 from the west; float32 of N.
+  const float got = from_big_endian<float, std::uint32_t>(d.data() + 40 + 4 * (4 * 7 + 5));
+  const auto p = nlohmann::json::parse(run("gravity point --model m.gfc 15 45 --json").out);
+  const double want = p["geoid_m"].get<double>();
+  EXPECT_NE(want, 0.0);
+  EXPECT_EQ(got, static_cast<float>(want));
+  // PROJ (an independent reader of the format) applies the grid as a vertical shift: z + N.
+  const CmdResult proj = shell("echo '45 15 0 0' | PROJ_NETWORK=OFF cct -d 7 +proj=vgridshift +grids=./n.gtx +multiplier=1");
+  ASSERT_EQ(proj.code, 0) << "cct (Debian's proj-bin, installed by scripts/setup.sh) is required: " << proj.err;
+  std::istringstream fields(proj.out);
+  double lon = 0, lat = 0, z = 0;
+  fields >> lon >> lat >> z;
+  EXPECT_EQ(lon, 45.0) << proj.out;
+  EXPECT_EQ(lat, 15.0) << proj.out;
+  EXPECT_NEAR(z, want, 1e-5) << proj.out;  // float32 in the file, 7 decimals printed
+}
+
 TEST_F(GravityGridCli, BadInputFailsBeforeAnyWork) {
   // The model does not exist: every error below must come before it is looked for.
   struct Case {
@@ -123,6 +165,7 @@ TEST_F(GravityGridCli, BadInputFailsBeforeAnyWork) {
       {"--region 0/10/0/10 --spacing 1 -o a.txt", 1, "from its extension"},
       {"--region g --spacing 5m -o big.csv", 1, "CSV grid is for small grids"},
       {"--region 0/10/0/10 --spacing 1 -o no/such/dir/a.nc", 4, "cannot write to the directory"},
+      {"--region 0/10/0/10 --spacing 1 --quantities geoid,xi -o a.gtx", 1, "holds geoid heights only"},
   };
   for (const Case& c : cases) {
     const CmdResult r = run(std::string("gravity grid --model does-not-exist.gfc ") + c.args);

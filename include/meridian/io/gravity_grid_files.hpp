@@ -34,10 +34,12 @@ struct GridQuantityFormat {
 };
 GridQuantityFormat grid_quantity_format(gravity::GridQuantity q) noexcept;
 
-enum class GridFileFormat { NetCdf, Csv };
-/// From the extension: .nc, .grd, .cdf → NetCdf; .csv → Csv. InputError
+enum class GridFileFormat { NetCdf, Csv, Gtx };
+/// From the extension: .nc, .grd, .cdf → NetCdf; .csv → Csv; .gtx → Gtx. InputError
 /// (field "--output") otherwise.
 GridFileFormat grid_file_format_for(const std::filesystem::path& path);
+/// "netcdf", "csv" or "gtx" (the `format` of `gravity grid --json`).
+std::string_view to_string(GridFileFormat f) noexcept;
 
 /// CSV is meant for small grids: more nodes than this are refused (InputError, field "--output").
 inline constexpr std::uint64_t kMaxCsvGridNodes = 1'000'000;
@@ -68,7 +70,8 @@ class GridFileWriter {
 
 /// The checks open_grid_file makes before it creates anything, for a caller
 /// that wants them before loading a model: the extension (InputError, field
-/// "--output"), a CSV of more than kMaxCsvGridNodes nodes (InputError), a
+/// "--output"), a CSV of more than kMaxCsvGridNodes nodes (InputError), a .gtx
+/// for anything but the geoid alone (InputError, field "--quantities"), a
 /// directory that does not exist or cannot be written (IoError naming the path).
 void check_grid_output(const std::filesystem::path& path, const gravity::GridSpec& spec);
 
@@ -84,6 +87,12 @@ void check_grid_output(const std::filesystem::path& path, const gravity::GridSpe
 /// (lat, lon), in the units above; GMT's node_offset (0 gridline, 1 pixel).
 /// CSV: `lon_deg,lat_deg,<name>_<unit>…` (e.g. xi_arcsec), one line per node, rows
 /// from south to north, 10 decimals for coordinates and 9 for values.
+/// GTX (NOAA VDatum, read by PROJ and GDAL; geoid heights only): a 40-byte big-endian header
+/// (first node's latitude and longitude, latitude and longitude spacing, all float64 degrees;
+/// rows and columns, int32), then rows × columns float32 big-endian heights in metres, rows
+/// from south to north, each from west to east. The header gives node coordinates, so both
+/// registrations are stored as their nodes (a pixel grid's cell centres); float32 rounds a
+/// 100 m height to about 4 µm.
 std::unique_ptr<GridFileWriter> open_grid_file(const std::filesystem::path& path, const gravity::GridSpec& spec,
                                                const GridFileMetadata& metadata);
 
