@@ -225,6 +225,11 @@ void unpack(const double* p, EpochResult& e, StateVector* state) {
     for (int i = 0; i < State::size; ++i) (*state)(i) = p[30 + i];
 }
 
+/// P⁻ = Φ·P·Φᵀ + Q_d unrolled for the model's structure (model.hpp): the same numbers as the
+/// generic sparse kernel, in about half the instructions (issue 10).
+constexpr filter::TransitionKernel<State::size> kTransitionKernel =
+    filter::structured_transition_kernel<State::size, transition_structure()>();
+
 /// The forward pass of process_stream: one sample at a time.
 class Forward {
  public:
@@ -240,6 +245,7 @@ class Forward {
         layout_(layout),
         epochs_(epochs),
         out_(out) {
+    kf_.set_transition_kernel(&kTransitionKernel);
     if (!o.initial.x_rad_s)
       out.notes.push_back(
           reference_speed > 0.0
