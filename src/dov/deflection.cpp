@@ -166,6 +166,43 @@ void pack(const EpochResult& e, const StateVector* state, double* p) {
   for (int i = 0; i < State::size; ++i) p[30 + i] = state ? (*state)(i) : nan;
 }
 
+/// What process_stream keeps of each forward epoch for the backward pass. With a sink, the
+/// whole epoch (pack, kRecordDoubles); without one only what the smoothed statistics read: η_G,
+/// ξ_G and the true η, ξ when the line has truth, and the true state for the NEES — 0 to 12
+/// doubles instead of 38, so a line of millions of epochs keeps them in memory instead of
+/// spilling 304 bytes an epoch to disk and reading them back (issue 10).
+struct EpochLayout {
+  bool full = true;     // the whole EpochResult (a sink receives every field)
+  bool truth = false;   // slim: η_G, ξ_G, true η, ξ
+  bool states = false;  // slim: the true state
+  std::size_t doubles() const {
+    return full ? kRecordDoubles : (truth ? 4 : 0) + (states ? State::size : 0);
+  }
+};
+
+void pack_slim(const EpochLayout& l, const Sample& s, const Truth* truth, double* p) {
+  if (l.truth) {
+    p[0] = s.model_eta_rad;
+    p[1] = s.model_xi_rad;
+    p[2] = truth->eta_rad;
+    p[3] = truth->xi_rad;
+    p += 4;
+  }
+  if (l.states)
+    for (int i = 0; i < State::size; ++i) p[i] = (*truth->state)(i);
+}
+
+void unpack_slim(const EpochLayout& l, const double* p, EpochResult& e, StateVector& state) {
+  if (l.truth) {
+    e.model_eta_rad = p[0];
+    e.model_xi_rad = p[1];
+    e.truth = EtaXi{p[2], p[3]};
+    p += 4;
+  }
+  if (l.states)
+    for (int i = 0; i < State::size; ++i) state(i) = p[i];
+}
+
 void unpack(const double* p, EpochResult& e, StateVector* state) {
   e.time_s = p[0];
   e.lat_rad = p[1];
@@ -188,19 +225,27 @@ void unpack(const double* p, EpochResult& e, StateVector* state) {
     for (int i = 0; i < State::size; ++i) (*state)(i) = p[30 + i];
 }
 
+/// P⁻ = Φ·P·Φᵀ + Q_d unrolled for the model's structure (model.hpp): the same numbers as the
+/// generic sparse kernel, in about half the instructions (issue 10).
+constexpr filter::TransitionKernel<State::size> kTransitionKernel =
+    filter::structured_transition_kernel<State::size, transition_structure()>();
+
 /// The forward pass of process_stream: one sample at a time.
 class Forward {
  public:
-  Forward(const Options& o, double reference_speed, LineResult& out,
-          filter::detail::RecordStore& epochs)
+  /// `epochs` receives each epoch in `layout` (nullptr when it has no doubles).
+  Forward(const Options& o, double reference_speed, LineResult& out, EpochLayout layout,
+          filter::detail::RecordStore* epochs)
       : o_(o),
         H_(observation_matrix()),
         R_(observation_covariance(o.sigma_obs_east_rad, o.sigma_obs_north_rad)),
         kf_(initial_estimate(o.initial, o.model, reference_speed),
             o.gate_alpha > 0.0 ? filter::InnovationGate(o.gate_alpha) : filter::InnovationGate()),
         storage_(State::size, o.storage),
+        layout_(layout),
         epochs_(epochs),
         out_(out) {
+    kf_.set_transition_kernel(&kTransitionKernel);
     if (!o.initial.x_rad_s)
       out.notes.push_back(
           reference_speed > 0.0
@@ -318,7 +363,10 @@ class Forward {
     if (have_states_)
       e.nees_filtered = filter::nees<State::size>(*truth->state, kf_.estimate(),
                                                   static_cast<Eigen::Index>(k));
-    pack(e, have_states_ ? &*truth->state : nullptr, epochs_.append(k));
+    if (layout_.full)
+      pack(e, have_states_ ? &*truth->state : nullptr, epochs_->append(k));
+    else if (epochs_)
+      pack_slim(layout_, s, truth, epochs_->append(k));
 
     // Forward statistics.
     if (s.time_s - t0_ >= o_.statistics_start_s) {
@@ -356,7 +404,8 @@ class Forward {
   ObservationCovariance R_;
   filter::KalmanFilter<State::size> kf_;
   filter::SmootherStorage<State::size> storage_;
-  filter::detail::RecordStore& epochs_;
+  EpochLayout layout_;
+  filter::detail::RecordStore* epochs_;
   LineResult& out_;
   ModelCache cache_;
   std::size_t n_ = 0;
@@ -456,8 +505,13 @@ LineResult process_stream(SampleSource& source, const Options& o, const EpochSin
     }
   }
 
-  filter::detail::RecordStore epochs("MRDN-DVF", State::size, kRecordDoubles, o.storage);
-  Forward fw(o, reference_speed, out, epochs);
+  EpochLayout layout;
+  layout.full = static_cast<bool>(sink);
+  layout.truth = have_truth;
+  layout.states = have_truth && !pending_truth.empty() && pending_truth.front().state.has_value();
+  std::optional<filter::detail::RecordStore> epochs;
+  if (layout.doubles() > 0) epochs.emplace("MRDN-DVF", State::size, layout.doubles(), o.storage);
+  Forward fw(o, reference_speed, out, layout, epochs ? &*epochs : nullptr);
   const auto feed = [&](const std::vector<Sample>& s, const std::vector<Truth>& t) {
     for (std::size_t i = 0; i < s.size(); ++i) {
       fw.add(s[i], have_truth ? &t[i] : nullptr);
@@ -493,13 +547,22 @@ LineResult process_stream(SampleSource& source, const Options& o, const EpochSin
   std::optional<filter::detail::RecordStore> done_store;
   if (sink) done_store.emplace("MRDN-DVS", State::size, kRecordDoubles, o.storage);
   Accumulator ss_eta, ss_xi, s_eta, s_xi, nees_s;
-  auto forward_records = epochs.read_reverse();
+  std::optional<filter::detail::RecordStore::ReverseReader> forward_records;
+  if (epochs) forward_records.emplace(epochs->read_reverse());
+  // Time strictly increases, so the epochs with t − t₀ ≥ statistics_start_s are the last
+  // statistics_epochs ones: the slim records need not carry the time.
+  const std::size_t first_statistics_epoch = n - sum.statistics_epochs;
   EpochResult e;
   StateVector state;
   std::size_t done = 0;
   filter::rts_smooth(fw.storage(), [&](Eigen::Index k, const filter::Estimate<State::size>& sm) {
-    const double* p = forward_records.next();
-    unpack(p, e, &state);
+    if (forward_records) {
+      const double* p = forward_records->next();
+      if (layout.full)
+        unpack(p, e, &state);
+      else
+        unpack_slim(layout, p, e, state);
+    }
     e.smoothed.eta_rad = e.model_eta_rad + sm.x(State::delta_eta);
     e.smoothed.xi_rad = e.model_xi_rad + sm.x(State::delta_xi);
     e.smoothed.sigma_eta_rad = sm.sigma(State::delta_eta);
@@ -507,7 +570,7 @@ LineResult process_stream(SampleSource& source, const Options& o, const EpochSin
     e.smoothed.eps_u_rad_s = sm.x(State::eps_u);
     e.smoothed.sigma_eps_u_rad_s = sm.sigma(State::eps_u);
     if (have_states) e.nees_smoothed = filter::nees<State::size>(state, sm, k);
-    if (e.time_s - fw.t0() >= o.statistics_start_s) {
+    if (static_cast<std::size_t>(k) >= first_statistics_epoch) {
       ss_eta.add(e.smoothed.sigma_eta_rad * e.smoothed.sigma_eta_rad);
       ss_xi.add(e.smoothed.sigma_xi_rad * e.smoothed.sigma_xi_rad);
       if (e.truth) {

@@ -170,12 +170,18 @@ std::size_t DovBinaryReader::next(std::vector<dov::Sample>& samples,
   for (std::size_t r = 0; r < n; ++r) {
     const char* p = buffer_.data() + r * record_bytes;
     const std::uint64_t k = read_ + r;
+    // One test for the whole record (x·0 is 0 for finite x, NaN otherwise), the value named
+    // only on failure: a test and branch per value was a third of the reader's time.
+    double zero = 0.0;
     for (std::size_t i = 0; i < record_doubles_; ++i) {
       v[i] = get<double>(p + 8 * i);
-      if (!std::isfinite(v[i])) [[unlikely]]
-        throw InputError(fmt::format("{} is not finite ({})", value_name(i, flags_), v[i]),
-                         ErrorContext{source_, std::nullopt, fmt::format("sample {}", k)});
+      zero += v[i] * 0.0;
     }
+    if (zero != 0.0) [[unlikely]]
+      for (std::size_t i = 0; i < record_doubles_; ++i)
+        if (!std::isfinite(v[i]))
+          throw InputError(fmt::format("{} is not finite ({})", value_name(i, flags_), v[i]),
+                           ErrorContext{source_, std::nullopt, fmt::format("sample {}", k)});
     if (std::abs(v[1]) > units::kPi / 2.0)
       throw InputError(fmt::format("latitude {}° is beyond ±90°", v[1] / units::kDegree),
                        ErrorContext{source_, std::nullopt, fmt::format("sample {}", k)});

@@ -451,8 +451,9 @@ std::unique_ptr<ModelValues> load_model_values(const DovConfig& config) {
   return m;
 }
 
-/// A DovLineReader as the workflow's sample source: reads blocks of kBlock samples (the
-/// track evaluator's chunk), fills in the model values when a gravity model gives them, and
+/// A DovLineReader as the workflow's sample source: with a gravity model reads blocks of kBlock
+/// samples (the track evaluator's chunk) and fills in the model values, without one reads the
+/// chunks the workflow asks for straight into its vectors; either way it
 /// remembers where each sample is in the file (for a CSV, line = k + offset with the offset
 /// stored only where it changes: flat memory for the usual file).
 class LineSource final : public dov::SampleSource {
@@ -463,22 +464,27 @@ class LineSource final : public dov::SampleSource {
 
   std::size_t next(std::vector<dov::Sample>& samples, std::vector<dov::Truth>& truth,
                    std::size_t max) override {
+    if (!model_) {
+      // Nothing to fill in: read straight into the caller's vectors (swapped with the
+      // reader's, both keep their capacity) instead of copying each sample out of a block.
+      if (!reader_.next(block_, std::max<std::size_t>(max, 1))) {
+        samples.clear();
+        truth.clear();
+        return 0;
+      }
+      begin_block();
+      samples.swap(block_.samples);
+      truth.swap(block_.truth);
+      return block_size_;
+    }
     if (at_ == block_.samples.size()) {
       if (!reader_.next(block_, kBlock)) {
         samples.clear();
         truth.clear();
         return 0;
       }
-      first_ += block_size_;
-      block_size_ = block_.samples.size();
-      at_ = 0;
-      for (std::size_t i = 0; i < block_.lines.size(); ++i) {
-        const long long offset = static_cast<long long>(block_.lines[i]) -
-                                 static_cast<long long>(first_ + i);
-        if (offsets_.empty() || offsets_.back().second != offset)
-          offsets_.emplace_back(first_ + i, offset);
-      }
-      if (model_) fill_model_values();
+      begin_block();
+      fill_model_values();
     }
     const std::size_t n = std::min(std::max<std::size_t>(max, 1), block_size_ - at_);
     const auto from = static_cast<std::ptrdiff_t>(at_);
@@ -510,6 +516,18 @@ class LineSource final : public dov::SampleSource {
   }
 
  private:
+  // block_ holds the samples that follow the last block: note where they are in the file.
+  void begin_block() {
+    first_ += block_size_;
+    block_size_ = block_.samples.size();
+    at_ = 0;
+    for (std::size_t i = 0; i < block_.lines.size(); ++i) {
+      const long long offset = static_cast<long long>(block_.lines[i]) -
+                               static_cast<long long>(first_ + i);
+      if (offsets_.empty() || offsets_.back().second != offset)
+        offsets_.emplace_back(first_ + i, offset);
+    }
+  }
   // η_G, ξ_G of the block from the model: the astronomic deflection along the line.
   void fill_model_values() {
     const std::size_t n = block_.samples.size();

@@ -3,6 +3,7 @@
 // spill-to-disk path bit-identical to the in-memory path, the spill file's format and removal.
 #include <unistd.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -80,8 +81,10 @@ void simulate(Line<N, M>& line, Index epochs, const std::vector<double>& dts,
 // Forward filter over the line into `storage`: full records (P⁻ stored), or compact ones
 // (append(filter): P⁻ recomputed when read back).
 template <int N, int M>
-void forward(const Line<N, M>& line, SmootherStorage<N>& storage, bool compact = false) {
+void forward(const Line<N, M>& line, SmootherStorage<N>& storage, bool compact = false,
+             const meridian::filter::TransitionKernel<N>* kernel = nullptr) {
   KalmanFilter<N> kf(line.initial);
+  kf.set_transition_kernel(kernel);
   for (Index k = 0; k < line.size(); ++k) {
     const auto i = static_cast<std::size_t>(k);
     if (k > 0) kf.predict(line.steps[i]);
@@ -402,6 +405,90 @@ TEST(SmootherStorage, CompactRecordsGiveTheFullRecordsResultsBitForBit) {
     EXPECT_TRUE(df[i].x == dc[i].x) << i;
     EXPECT_TRUE(df[i].P == dc[i].P) << i;
   }
+  EXPECT_TRUE(dir.empty());
+}
+
+// The deflection model's structure: the attitude block with ε_U, and the two Gauss–Markov pairs.
+constexpr std::array<std::uint32_t, DovState::size> dov_structure() {
+  std::array<std::uint32_t, DovState::size> rows{};
+  for (int j : {DovState::phi_e, DovState::phi_n, DovState::phi_u})
+    rows[static_cast<std::size_t>(j)] = 0x0fu;
+  rows[DovState::eps_u] = 1u << DovState::eps_u;
+  rows[DovState::x_e] = rows[DovState::delta_eta] = (1u << DovState::x_e) | (1u << DovState::delta_eta);
+  rows[DovState::x_n] = rows[DovState::delta_xi] = (1u << DovState::x_n) | (1u << DovState::delta_xi);
+  return rows;
+}
+constexpr meridian::filter::TransitionKernel<DovState::size> kDovKernel =
+    meridian::filter::structured_transition_kernel<DovState::size, dov_structure()>();
+
+TEST(StructuredTransition, GivesTheGenericKernelsNumbersBitForBit) {
+  constexpr int n = DovState::size;
+  using meridian::filter::detail::RowPattern;
+  using meridian::filter::detail::predict_covariance;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g;
+  const DovParameters p;
+  const Matrix<n, n> q = meridian::filter::discretise(dov_model(p), 0.01).q;
+  for (int trial = 0; trial < 50; ++trial) {
+    Matrix<n, n> a;
+    for (Index i = 0; i < a.size(); ++i) a.data()[i] = g(rng);
+    const Matrix<n, n> P = (a * a.transpose()).eval();  // exactly symmetric
+    Matrix<n, n> phi = meridian::filter::discretise(dov_model(p), 0.01 * (1 + trial)).phi;
+    if (trial % 2 == 1) phi(DovState::x_e, DovState::delta_eta) = 0.0;  // a zero inside
+    ASSERT_TRUE(kDovKernel.fits(phi));
+    const RowPattern<n, n> pattern(phi);
+    Matrix<n, n> want, want_pphit, got, got_pphit;
+    predict_covariance(phi, P, q, pattern, want, want_pphit);
+    kDovKernel.predict(phi, P, q, got, &got_pphit);
+    EXPECT_TRUE(got == want) << trial;  // == : equal up to the sign of a zero
+    EXPECT_TRUE(got_pphit == want_pphit) << trial;
+    kDovKernel.predict(phi, P, q, got, nullptr);
+    EXPECT_TRUE(got == want) << trial;
+  }
+  Matrix<n, n> outside = Matrix<n, n>::Identity();
+  EXPECT_TRUE(kDovKernel.fits(outside));
+  outside(DovState::eps_u, DovState::phi_e) = 1e-9;
+  EXPECT_FALSE(kDovKernel.fits(outside));
+  outside(DovState::eps_u, DovState::phi_e) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(kDovKernel.fits(outside));
+}
+
+TEST(StructuredTransition, FilterAndSmootherGiveTheGenericResultsBitForBit) {
+  const ScratchDir dir;
+  const auto line = dov_line(2000, 31);
+  constexpr int n = DovState::size;
+  const std::size_t compact_bytes = SmootherStorage<n>::compact_record_doubles(n) * sizeof(double);
+  constexpr std::size_t never = std::numeric_limits<std::size_t>::max();
+  SmootherStorage<n> generic(n, {never, dir.path, 1 << 20});
+  SmootherStorage<n> structured(n, {never, dir.path, 1 << 20});
+  SmootherStorage<n> spilled(n, {300 * compact_bytes, dir.path, 64 << 10});
+  forward(line, generic, true);
+  forward(line, structured, true, &kDovKernel);
+  forward(line, spilled, true, &kDovKernel);
+  const auto a = rts_smooth(generic);
+  EXPECT_TRUE(bit_identical(a, rts_smooth(structured)));
+  EXPECT_TRUE(bit_identical(a, rts_smooth(spilled)));
+  // The filtered estimates and the P⁻ the reader recomputes, epoch by epoch.
+  auto rg = generic.read_reverse();
+  auto rs = spilled.read_reverse();
+  EpochRecord<n> x, y;
+  while (rg.next(x)) {
+    ASSERT_TRUE(rs.next(y));
+    EXPECT_TRUE(x.predicted.P == y.predicted.P) << rg.index();
+    EXPECT_TRUE(x.filtered.P == y.filtered.P) << rg.index();
+    EXPECT_TRUE(x.filtered.x == y.filtered.x) << rg.index();
+  }
+  // A Φ outside the structure takes the generic path: still the same numbers.
+  KalmanFilter<n> k1(line.initial), k2(line.initial);
+  k2.set_transition_kernel(&kDovKernel);
+  Matrix<n, n> odd = line.steps[1].phi;
+  odd(DovState::eps_u, DovState::x_e) = 1e-6;
+  for (KalmanFilter<n>* k : {&k1, &k2}) {
+    k->predict(odd, line.steps[1].q);
+    k->update(line.z[1], line.H, line.R);
+    k->predict(line.steps[1]);
+  }
+  EXPECT_TRUE(k1.estimate().P == k2.estimate().P);
   EXPECT_TRUE(dir.empty());
 }
 

@@ -9,14 +9,17 @@
 ///  1. forward: checks, predict, update (deflection.hpp, steps 1–5) per sample; the filter's
 ///     records go to filter::SmootherStorage and the epoch's own outputs (time, position, model
 ///     values, ΔΦ, filtered estimate, innovations, truth) to a record store beside it, both
-///     spilling to anonymous temporary files beyond Options::storage.memory_limit_bytes;
+///     spilling to anonymous temporary files beyond Options::storage.memory_limit_bytes —
+///     without a sink only what the smoothed statistics need (η_G, ξ_G and the truth; nothing
+///     for a line without truth);
 ///  2. backward: the RTS smoother (filter/rts_smoother.hpp), last epoch first, joined with
 ///     the stored outputs of each epoch; the completed epoch results go to a third store;
 ///  3. the completed results, read back in time order, to the sink (skipped without a sink).
 /// Memory is O(chunk + buffers), independent of the line length — except a stationary start:
 /// the initial σ of x_E, x_N needs the first moving speed (deflection.hpp), so samples are held
-/// until the carrier first moves (≈ 200 bytes each) or the line ends. Disk: 712 + 2 × 304 bytes
-/// per epoch in the temporary files beyond the memory limit.
+/// until the carrier first moves (≈ 200 bytes each) or the line ends. Disk: 424 + 2 × 304 bytes
+/// per epoch in the temporary files beyond the memory limit with a sink; without one 424 + 32
+/// (with truth; 96 more with true states, 0 without truth).
 ///
 /// Errors: as dov::process (deflection.hpp); errors of the source propagate unchanged.
 

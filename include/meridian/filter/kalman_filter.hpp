@@ -26,6 +26,8 @@
 /// 1e-9 of its largest entry), a negative variance; NumericalError when S is not positive
 /// definite, NIS is not finite, or P loses its positive finite diagonal.
 
+#include <array>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -53,6 +55,28 @@ struct SequentialInnovations {
   /// Number of scalars rejected by the gate.
   Eigen::Index rejected() const { return accepted.size() - accepted.count(); }
 };
+
+/// A kernel for the predicted covariance Φ·P·Φᵀ + Q_d specialised to a transition structure
+/// known at compile time (fixed N): fits(Φ) is true when every nonzero of Φ lies in the
+/// structure, predict computes out = Φ·P·Φᵀ + q (P exactly symmetric, q = ½(Q_d + Q_dᵀ); and
+/// P·Φᵀ into p_phit unless it is null) — bit for bit what the generic kernel gives, up to the
+/// sign of a zero, in about half the instructions. structured_transition_kernel<N, rows>()
+/// makes one from the structure's rows (detail::StructuredTransition).
+template <int N>
+struct TransitionKernel {
+  bool (*fits)(const Matrix<N, N>& phi);
+  void (*predict)(const Matrix<N, N>& phi, const Matrix<N, N>& P, const Matrix<N, N>& q,
+                  Matrix<N, N>& out, Matrix<N, N>* p_phit);
+};
+
+/// The kernel of a structure whose row j may be nonzero in the columns of the set bits of
+/// rows[j]. Define it as a constant (`static constexpr`) and pass its address to
+/// KalmanFilter::set_transition_kernel.
+template <int N, std::array<std::uint32_t, N> rows>
+constexpr TransitionKernel<N> structured_transition_kernel() {
+  return {&detail::StructuredTransition<N, rows>::fits,
+          &detail::StructuredTransition<N, rows>::predict};
+}
 
 /// Kalman filter of an N-state (N fixed, or Eigen::Dynamic). A value type: copy it to branch.
 template <int N>
@@ -131,6 +155,20 @@ class KalmanFilter {
   static void predicted_covariance(const Matrix<N, N>& phi, const TransitionPattern& pattern,
                                    const Matrix<N, N>& P, const Matrix<N, N>& q,
                                    Matrix<N, N>& out, Matrix<N, N>* p_phit = nullptr);
+  /// Use `kernel` (fixed N, ignored for dynamic sizes; must outlive the filter and its copies)
+  /// for P⁻ whenever Φ fits its structure, the generic sparse kernel otherwise; nullptr: always
+  /// the generic one. The results are the same either way (TransitionKernel);
+  /// SmootherStorage::append(filter) takes the kernel over for the P⁻ it recomputes.
+  void set_transition_kernel(const TransitionKernel<N>* kernel) {
+    if constexpr (N != Eigen::Dynamic) {  // dynamic sizes: ignored
+      kernel_ = kernel;
+      phi_fits_kernel_ = kernel_ != nullptr && kernel_->fits(phi_);
+    } else {
+      (void)kernel;
+    }
+  }
+  /// The kernel set by set_transition_kernel (nullptr: none).
+  const TransitionKernel<N>* transition_kernel() const { return kernel_; }
   /// Current epoch, 0-based.
   Eigen::Index epoch() const { return epoch_; }
   /// Number of states.
@@ -177,6 +215,9 @@ class KalmanFilter {
   Matrix<kCache, kCache> q_sym_ = decltype(q_sym_)::Zero();
   // Fixed N: the exact nonzeros of phi_ (small_matrix.hpp), recomputed only when Φ changes.
   PhiPattern phi_pattern_{};
+  // Fixed N: the structured kernel, if any, and whether phi_ fits it.
+  const TransitionKernel<N>* kernel_ = nullptr;
+  bool phi_fits_kernel_ = false;
   // Dynamic sizes: Q_d of the last predict (process_noise()).
   std::conditional_t<N == Eigen::Dynamic, Matrix<N, N>, detail::NoPattern> q_last_{};
 };
@@ -295,13 +336,18 @@ void KalmanFilter<N>::commit_prediction(const Vector<N>& x, const Matrix<N, N>& 
     PhiPattern pattern;
     if (new_phi) pattern.assign(phi);
     const PhiPattern& pat = new_phi ? pattern : phi_pattern_;
+    const bool fits = new_phi ? kernel_ != nullptr && kernel_->fits(phi) : phi_fits_kernel_;
     Matrix<N, N> p_new;
-    predicted_covariance(phi, pat, estimate_.P, q_sym_, p_new);
+    if (fits)
+      kernel_->predict(phi, estimate_.P, q_sym_, p_new, nullptr);
+    else
+      predicted_covariance(phi, pat, estimate_.P, q_sym_, p_new);
     detail::check_covariance_diagonal(p_new, "predicted covariance P⁻", next);
     p = p_new;
     if (new_phi) {
       phi_ = phi;
       phi_pattern_ = pattern;
+      phi_fits_kernel_ = fits;
     }
   } else {
     Matrix<N, N> p_new;

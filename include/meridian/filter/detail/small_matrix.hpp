@@ -6,9 +6,12 @@
 /// faster. Likewise its triangular solves with a matrix right-hand side take the general
 /// blocked path. Dynamic sizes keep Eigen's defaults (large states gain from blocking).
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -223,6 +226,74 @@ inline void predict_covariance(const Eigen::Matrix<double, N, N>& phi,
   Eigen::Matrix<double, N, N> p_phit;
   predict_covariance(phi, P, q_sym, pattern, out, p_phit);
 }
+
+/// predict_covariance for a transition whose nonzeros lie in a structure known at compile time:
+/// Rows[j] has bit k set where Φ(j, k) may be nonzero. The same terms in the same order as
+/// predict_covariance with the RowPattern of Φ, fully unrolled instead of looping over each
+/// row's nonzeros (about half the instructions for the deflection model): a term the structure
+/// keeps where Φ holds an exact zero adds an exact ±0 (P is finite: the filter checks it), so
+/// the result is the same bit for bit up to the sign of a zero. Q enters each upper column
+/// directly instead of being copied into out first (the mirror writes the lower triangle).
+template <int N, std::array<std::uint32_t, N> Rows>
+struct StructuredTransition {
+  static_assert(N != Eigen::Dynamic && N <= 32);
+  using M = Eigen::Matrix<double, N, N>;
+
+  /// True when every nonzero of phi (a NaN included) lies in the structure.
+  static bool fits(const M& phi) {
+    for (int k = 0; k < N; ++k)
+      for (int j = 0; j < N; ++j)
+        if (phi(j, k) != 0.0 && ((Rows[j] >> k) & 1u) == 0) return false;
+    return true;
+  }
+
+  /// out = Q + Φ·P·Φᵀ as predict_covariance; p_phit (if not null) receives P·Φᵀ.
+  static void predict(const M& phi, const M& P, const M& q_sym, M& out, M* p_phit) {
+    M local;
+    M& ppt = p_phit != nullptr ? *p_phit : local;
+    each<N>([&]<int J>() { pphit_column<J>(P, phi, ppt); });
+    const M phi_p = ppt.transpose();  // Φ·P, P being exactly symmetric
+    each<N>([&]<int J>() { upper_column<J>(phi_p, phi, q_sym, out); });
+    for (int j = 0; j < N; ++j)
+      for (int i = j + 1; i < N; ++i) out(i, j) = out(j, i);
+  }
+
+ private:
+  // f.template operator()<I>() for I = 0 … C − 1, unrolled.
+  template <int C, typename F>
+  static void each(F&& f) {
+    [&]<int... I>(std::integer_sequence<int, I...>) {
+      (f.template operator()<I>(), ...);
+    }(std::make_integer_sequence<int, C>{});
+  }
+  // Column J of P·Φᵀ: Σ over the structure's k of row J, ascending, of P.col(k)·Φ(J, k).
+  template <int J>
+  static void pphit_column(const M& P, const M& phi, M& out) {
+    constexpr std::uint32_t row = Rows[J];
+    if constexpr (row == 0) {
+      out.col(J).setZero();
+    } else {
+      constexpr int first = std::countr_zero(row);
+      Eigen::Matrix<double, N, 1> s = P.col(first) * phi(J, first);
+      each<N>([&]<int K>() {
+        if constexpr (K > first && ((row >> K) & 1u) != 0) s += P.col(K) * phi(J, K);
+      });
+      out.col(J) = s;
+    }
+  }
+  // Rows 0 … J (rounded up to an even count, as add_abt_upper_columns) of column J of
+  // Q + (Φ·P)·Φᵀ.
+  template <int J>
+  static void upper_column(const M& phi_p, const M& phi, const M& q_sym, M& out) {
+    constexpr std::uint32_t row = Rows[J];
+    constexpr int rows = (J + 2) / 2 * 2 < N ? (J + 2) / 2 * 2 : N;
+    Eigen::Matrix<double, rows, 1> s = q_sym.col(J).template head<rows>();
+    each<N>([&]<int K>() {
+      if constexpr (((row >> K) & 1u) != 0) s += phi_p.col(K).template head<rows>() * phi(J, K);
+    });
+    out.col(J).template head<rows>() = s;
+  }
+};
 
 /// Solve A·X = B in place (B ← A⁻¹·B) for a symmetric positive definite A (only its lower
 /// triangle is read) by Cholesky A = L·Lᵀ (Golub & Van Loan, Matrix computations, 4th ed.,
