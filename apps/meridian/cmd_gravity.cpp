@@ -261,7 +261,8 @@ void add_model_options(CLI::App* c, ModelArgs& a) {
   c->add_option("--model", a.model,
                 "Model file (.gfc, .egm) or name (egm2008, egm96, ...) found in GeographicLib's gravity directories")
       ->required();
-  c->add_option("--max-degree", a.max_degree, "Truncate the model to this degree on load");
+  c->add_option("--max-degree", a.max_degree, "Truncate the model to this degree on load (above the file's degree: the file's)")
+      ->check(CLI::Range(0, 100000));
   c->add_option("--threads", a.threads, "Threads (0 = all cores)")->capture_default_str();
 }
 
@@ -297,7 +298,7 @@ void add_gravity_commands(CLI::App& app, int& exit_code) {
 
   auto sg = std::make_shared<SynthGridArgs>();
   CLI::App* sgrid = g->add_subcommand(
-      "grid", "xi, eta, geoid, gravity anomaly, disturbance vector on a lat/lon grid (NetCDF or CSV)");
+      "grid", "xi, eta, geoid, gravity anomaly, disturbance vector on a lat/lon grid (NetCDF, GTX for geoid heights, or CSV)");
   add_model_options(sgrid, *sg);
   sgrid->add_option("-R,--region", sg->region, "W/E/S/N in degrees (GMT style), or g (0/360/-90/90), d (-180/180/-90/90)")
       ->required();

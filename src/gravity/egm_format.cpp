@@ -24,6 +24,9 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "the .egm.cof reader assumes a little-endian host");
 
 constexpr std::size_t kIdLength = 8;
+// A geoid correction set (metres; a few metres at most for real models) with a coefficient
+// beyond this is a damaged file: it gave geoid heights of 1e300 m (trial finding).
+constexpr double kMaxCorrection_m = 1000.0;
 
 // GeographicLib's "fract": a number or "p/q".
 std::optional<double> parse_fract(std::string_view s) {
@@ -69,7 +72,12 @@ class CofReader {
     if (file_n) *file_n = n0;
     if (n0 == -1 && m0 == -1) return std::nullopt;
     if (!(n0 >= m0 && m0 >= 0) || n0 > 100000)
-      throw ParseError(fmt::format("bad degree and order {} {} at offset {}", n0, m0, offset() - sizeof nm), {file_, {}, what});
+      throw ParseError(fmt::format("bad degree and order {} {} at offset {}{}", n0, m0, offset() - sizeof nm,
+                                   std::string_view(what) == "correction"
+                                       ? " (where the file's layout puts the correction set: if the gravitational "
+                                         "set's N, M are wrong, its coefficients end elsewhere)"
+                                       : ""),
+                       {file_, {}, what});
     // The whole set must be in the file before anything is allocated, so a
     // header claiming a huge degree is a truncated file, not an allocation.
     const std::uint64_t N0 = static_cast<std::uint64_t>(n0), M0 = static_cast<std::uint64_t>(m0);
@@ -80,9 +88,9 @@ class CofReader {
     SphericalHarmonicCoefficients c(n, m);
     // Fully normalised gravitational coefficients are at most 1 in absolute
     // value (C̄00 = 1; |C̄20| ≈ 4.8e-4 for the Earth); the correction set is
-    // in metres and is only required to be finite.
+    // in metres, at most kMaxCorrection_m.
     const bool normalised = std::string_view(what) == "gravitational";
-    const double limit = normalised ? 1.0 : std::numeric_limits<double>::max();
+    const double limit = normalised ? 1.0 : kMaxCorrection_m;
     // A branch-free scan (NaN fails the comparison) of what was just read, while it is in cache;
     // the loop at the end finds the entry to name.
     int out_of_range = 0;
@@ -118,16 +126,26 @@ class CofReader {
         }
       }
     }
-    const bool bad = out_of_range != 0;
-    for (std::size_t k = 0; bad && k < c.size(); ++k) {
-      const double cv = c.c_values()[k], sv = c.s_values()[k];
-      if (!std::isfinite(cv) || !std::isfinite(sv))
-        throw ParseError(fmt::format("non-finite coefficient (entry {} of the {} set)", k, what), {file_, {}, what});
-      if (normalised && (std::abs(cv) > 1 || std::abs(sv) > 1))
-        throw ParseError(fmt::format("coefficient {:g} (entry {} of the {} set) is not a fully normalised coefficient "
-                                     "(|value| <= 1)",
-                                     std::abs(cv) > 1 ? cv : sv, k, what),
+    for (std::size_t k = 0; out_of_range != 0 && k < c.size(); ++k) {
+      for (const bool sine : {false, true}) {
+        const double v = sine ? c.s_values()[k] : c.c_values()[k];
+        if (std::abs(v) <= limit) continue;
+        // Name the coefficient, not its position in memory (S̄ has no m = 0 column in the file).
+        int mm = 0;
+        while (mm < c.max_order() && c.index(mm + 1, mm + 1) <= k) ++mm;
+        const int nn = mm + static_cast<int>(k - c.index(mm, mm));
+        const std::string name = fmt::format("{}({}, {})", sine ? "S" : "C", nn, mm);
+        if (!std::isfinite(v))
+          throw ParseError(fmt::format("non-finite coefficient {} ({}) of the {} set", name, v, what),
+                           {file_, {}, what});
+        throw ParseError(normalised ? fmt::format("coefficient {} = {:g} of the {} set is not a fully normalised "
+                                                  "coefficient (|value| <= 1)",
+                                                  name, v, what)
+                                    : fmt::format("coefficient {} = {:g} m of the {} set is beyond {:g} m: not a "
+                                                  "geoid correction (damaged file?)",
+                                                  name, v, what, kMaxCorrection_m),
                          {file_, {}, what});
+      }
     }
     return c;
   }

@@ -123,7 +123,7 @@ std::optional<Node> Node::get(const std::string& key) const {
     std::optional<int> line = mark_line();  // the key's own line (an empty value's mark is the next one)
     for (const auto& kv : node_)
       if (kv.first.IsScalar() && kv.first.Scalar() == key && kv.first.Mark().line >= 0) line = kv.first.Mark().line + 1;
-    throw InputError(fmt::format("\"{}\" has no value: give one, or remove the line to use the default", key),
+    throw InputError(fmt::format("\"{}\" has no value: give one (or remove the line, where the field has a default)", key),
                      {*file_, line, child_path(key)});
   }
   return Node(c, child_path(key), file_, lines_);

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <span>
 #include <type_traits>
 #include <vector>
 
@@ -252,7 +253,16 @@ void put_big_endian(std::string& out, T value) {
 
 class GtxGridWriter final : public GridFileWriter {
  public:
-  GtxGridWriter(const std::filesystem::path& path, const GridSpec& spec) : path_(path), spec_(spec), out_(path) {
+  GtxGridWriter(const std::filesystem::path& path, const GridSpec& spec)
+      : path_(path),
+        spec_(spec),
+        out_(path),
+        // A global gridline grid repeats its first column at W + 360°: GTX readers wrap the
+        // longitude themselves (PROJ's own global grids have no repeated column) and PROJ 9.1
+        // misplaces every value east of the repeat when it is there (trial finding), so it is
+        // not written.
+        columns_(spec.columns() -
+                 (spec.global_longitude() && spec.registration == gravity::GridRegistration::Gridline ? 1 : 0)) {
     // Header: first node's latitude and longitude, the two spacings (degrees, float64), rows and
     // columns (int32); then the values row by row from south to north.
     std::string header;
@@ -261,15 +271,23 @@ class GtxGridWriter final : public GridFileWriter {
     put_big_endian(header, spec_.lat_spacing_deg);
     put_big_endian(header, spec_.lon_spacing_deg);
     put_big_endian(header, static_cast<std::int32_t>(spec_.rows()));
-    put_big_endian(header, static_cast<std::int32_t>(spec_.columns()));
+    put_big_endian(header, static_cast<std::int32_t>(columns_));
     out_.write(header);
   }
 
   void write_row(const GridRow& row) override {
     check_row(spec_, row, rows_written_, path_);
     std::string bytes;
-    bytes.reserve(4 * spec_.columns());
-    for (double v : row.values(0)) put_big_endian(bytes, static_cast<float>(v));  // geoid, metres
+    bytes.reserve(4 * columns_);
+    const std::span<const double> n = row.values(0);  // geoid, metres
+    for (std::size_t i = 0; i < columns_; ++i) {
+      if (!(std::abs(n[i]) <= std::numeric_limits<float>::max()))
+        throw NumericalError(fmt::format("the geoid height {} m at lat {} deg, lon {} deg does not fit the float32 "
+                                         "of a .gtx file (damaged model?)",
+                                         n[i], row.lat_deg, spec_.lon_deg(i)),
+                             {path_.string(), std::nullopt, fmt::format("rows[{}]", row.row)});
+      put_big_endian(bytes, static_cast<float>(n[i]));
+    }
     out_.write(bytes);
     ++rows_written_;
   }
@@ -285,6 +303,7 @@ class GtxGridWriter final : public GridFileWriter {
   std::filesystem::path path_;
   GridSpec spec_;
   AtomicFileWriter out_;
+  std::size_t columns_;
   std::size_t rows_written_ = 0;
 };
 

@@ -114,6 +114,12 @@ T from_big_endian(const char* p) {
   return t;
 }
 
+std::string fmt_point(double lat, double lon) {
+  std::ostringstream o;
+  o << "gravity point --model m.gfc --json " << lat << " " << lon;
+  return o.str();
+}
+
 TEST_F(GravityGridCli, GeoidAsGtxHasTheHeaderAndValuesOfGravityPoint) {
   ASSERT_EQ(run("gravity synth-model --degree 30 --seed 5 --out m").code, 0);
   const CmdResult r = run("gravity grid --model m.gfc -R -30/60/-45/45 -I 15d --quantities geoid -o n.gtx --json -q");
@@ -142,6 +148,25 @@ TEST_F(GravityGridCli, GeoidAsGtxHasTheHeaderAndValuesOfGravityPoint) {
   EXPECT_EQ(lon, 45.0) << proj.out;
   EXPECT_EQ(lat, 15.0) << proj.out;
   EXPECT_NEAR(z, want, 1e-5) << proj.out;  // float32 in the file, 7 decimals printed
+
+  // A global gridline grid (0…360) is stored without its repeated column (PROJ misplaced every
+  // value east of it when it was there): nodes east of 180° through PROJ equal gravity point.
+  const CmdResult g = run("gravity grid --model m.gfc -R g -I 15d --quantities geoid -o g.gtx -q");
+  ASSERT_EQ(g.code, 0) << g.err;
+  const std::string gd = slurp(dir_ / "g.gtx");
+  ASSERT_EQ(gd.size(), 40u + 4u * 13u * 24u);
+  EXPECT_EQ((from_big_endian<std::int32_t, std::uint32_t>(gd.data() + 36)), 24);
+  for (const char* node : {"195 30", "-15 -45", "345 60", "0 0"}) {
+    const CmdResult at = shell(std::string("echo '") + node +
+                               " 0 0' | PROJ_NETWORK=OFF cct -d 7 +proj=vgridshift +grids=./g.gtx +multiplier=1");
+    ASSERT_EQ(at.code, 0) << at.err;
+    std::istringstream in(at.out), where(node);
+    double x = 0, y = 0, zz = 0, lo = 0, la = 0;
+    in >> x >> y >> zz;
+    where >> lo >> la;
+    const auto pt = nlohmann::json::parse(run(fmt_point(la, lo)).out);
+    EXPECT_NEAR(zz, pt["geoid_m"].get<double>(), 1e-5) << node << ": " << at.out;
+  }
 }
 
 TEST_F(GravityGridCli, BadInputFailsBeforeAnyWork) {

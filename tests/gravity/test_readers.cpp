@@ -221,18 +221,29 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   std::string big = cof;
   const double beyond = -9.6e301;
   std::memcpy(big.data() + 16 + 8 * 5, &beyond, 8);
-  expect(meta, big, bcof, "is not a fully normalised coefficient (|value| <= 1)");
+  expect(meta, big, bcof, "coefficient C(5, 0) = -9.6e+301 of the gravitational set is not a fully normalised");
   // A NaN among the S̄ (the last value of the file's S̄ columns: m = 10, n = 10), whole and
   // truncated reads (the reader scans each chunk or kept column as it reads it).
   std::string nan_s = cof;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::memcpy(nan_s.data() + nan_s.size() - 8 - 8, &nan, 8);  // before the correction set's N = M = −1
-  expect(meta, nan_s, bcof, "non-finite coefficient");
+  expect(meta, nan_s, bcof, "non-finite coefficient S(10, 10) (nan) of the gravitational set");
   write_text("bad.egm", meta);
   write_text("bad.egm.cof", big);
-  expect_parse_error([&] { (void)read_egm_file(egm, {8, 8}); }, bcof, 0, "is not a fully normalised coefficient");
+  expect_parse_error([&] { (void)read_egm_file(egm, {8, 8}); }, bcof, 0, "coefficient C(5, 0) = -9.6e+301");
   write_text("bad.egm.cof", nan_s);
   EXPECT_NO_THROW((void)read_egm_file(egm, {9, 9}));  // the NaN is in a column not kept
+  // A correction set (metres) with a coefficient beyond 1000 m is a damaged file: it gave
+  // geoid heights of 1e300 m and a .gtx full of inf (trial finding).
+  GravityModelData wc = m;
+  wc.correction = meridian::gravity::GeoidCorrection{meridian::gravity::SphericalHarmonicCoefficients(2, 2), 1.0, 0.0};
+  wc.correction->coefficients.set(1, 1, 0.5, 1e300);
+  meridian::gravity::write_egm_files(wc, scratch_dir() / "corr");
+  expect_parse_error([&] { (void)read_egm_file(scratch_dir() / "corr.egm"); }, scratch_dir() / "corr.egm.cof", 0,
+                     "coefficient S(1, 1) = 1e+300 m of the correction set is beyond 1000 m");
+  wc.correction->coefficients.set(1, 1, 0.5, 2.5);
+  meridian::gravity::write_egm_files(wc, scratch_dir() / "corr");
+  EXPECT_NO_THROW((void)read_egm_file(scratch_dir() / "corr.egm"));
   std::string latin1 = meta;
   latin1.replace(latin1.find("Description"), 11, "Description caf\xE9");
   expect(latin1, cof, egm, "Description is not UTF-8 text");

@@ -91,8 +91,10 @@ void check_grid_output(const std::filesystem::path& path, const gravity::GridSpe
 /// (first node's latitude and longitude, latitude and longitude spacing, all float64 degrees;
 /// rows and columns, int32), then rows × columns float32 big-endian heights in metres, rows
 /// from south to north, each from west to east. The header gives node coordinates, so both
-/// registrations are stored as their nodes (a pixel grid's cell centres); float32 rounds a
-/// 100 m height to about 4 µm.
+/// registrations are stored as their nodes (a pixel grid's cell centres); a global gridline
+/// grid is stored without its repeated last column (E = W + 360°: readers wrap longitudes).
+/// float32 rounds a 100 m height to about 4 µm; a height beyond float32's range is a
+/// NumericalError naming the node.
 std::unique_ptr<GridFileWriter> open_grid_file(const std::filesystem::path& path, const gravity::GridSpec& spec,
                                                const GridFileMetadata& metadata);
 
