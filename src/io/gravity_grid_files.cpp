@@ -198,11 +198,43 @@ class NetCdfGridWriter final : public GridFileWriter {
   std::size_t rows_written_ = 0;
 };
 
+// ---- Formats written as a byte stream: a header, then each row's bytes in turn ----
+
+// The row order check, the row count and the atomic file of CSV and GTX; a format supplies its
+// header (written by its constructor) and encode_row.
+class StreamGridWriter : public GridFileWriter {
+ public:
+  void write_row(const GridRow& row) final {
+    check_row(spec_, row, rows_written_, path_);
+    out_.write(encode_row(row));
+    ++rows_written_;
+  }
+
+  void commit() final {
+    if (rows_written_ != spec_.rows())
+      throw IoError(fmt::format("only {} of {} rows were written", rows_written_, spec_.rows()),
+                    {path_.string(), std::nullopt, {}});
+    out_.commit();
+  }
+
+ protected:
+  StreamGridWriter(const std::filesystem::path& path, const GridSpec& spec) : path_(path), spec_(spec), out_(path) {}
+  // The bytes of one row (checked against the spec already). Throws as write_row.
+  virtual std::string encode_row(const GridRow& row) const = 0;
+
+  std::filesystem::path path_;
+  GridSpec spec_;
+  AtomicFileWriter out_;
+
+ private:
+  std::size_t rows_written_ = 0;
+};
+
 // ---- CSV ----
 
-class CsvGridWriter final : public GridFileWriter {
+class CsvGridWriter final : public StreamGridWriter {
  public:
-  CsvGridWriter(const std::filesystem::path& path, const GridSpec& spec) : path_(path), spec_(spec), out_(path) {
+  CsvGridWriter(const std::filesystem::path& path, const GridSpec& spec) : StreamGridWriter(path, spec) {
     std::string header = "lon_deg,lat_deg";
     for (GridQuantity q : spec_.quantities) {
       const GridQuantityFormat f = grid_quantity_format(q);
@@ -211,8 +243,8 @@ class CsvGridWriter final : public GridFileWriter {
     out_.write(header + "\n");
   }
 
-  void write_row(const GridRow& row) override {
-    check_row(spec_, row, rows_written_, path_);
+ private:
+  std::string encode_row(const GridRow& row) const override {
     std::string text;
     const std::size_t cols = spec_.columns();
     for (std::size_t i = 0; i < cols; ++i) {
@@ -221,22 +253,8 @@ class CsvGridWriter final : public GridFileWriter {
         text += fmt::format(",{:.9f}", row.values(k)[i] * grid_quantity_format(spec_.quantities[k]).per_si);
       text += '\n';
     }
-    out_.write(text);
-    ++rows_written_;
+    return text;
   }
-
-  void commit() override {
-    if (rows_written_ != spec_.rows())
-      throw IoError(fmt::format("only {} of {} rows were written", rows_written_, spec_.rows()),
-                    {path_.string(), std::nullopt, {}});
-    out_.commit();
-  }
-
- private:
-  std::filesystem::path path_;
-  GridSpec spec_;
-  AtomicFileWriter out_;
-  std::size_t rows_written_ = 0;
 };
 
 // ---- GTX (NOAA VDatum; PROJ and GDAL read it) ----
@@ -251,12 +269,10 @@ void put_big_endian(std::string& out, T value) {
     out += static_cast<char>((u >> shift) & 0xFF);
 }
 
-class GtxGridWriter final : public GridFileWriter {
+class GtxGridWriter final : public StreamGridWriter {
  public:
   GtxGridWriter(const std::filesystem::path& path, const GridSpec& spec)
-      : path_(path),
-        spec_(spec),
-        out_(path),
+      : StreamGridWriter(path, spec),
         // A global gridline grid repeats its first column at W + 360°: GTX readers wrap the
         // longitude themselves (PROJ's own global grids have no repeated column) and PROJ 9.1
         // misplaces every value east of the repeat when it is there (trial finding), so it is
@@ -275,8 +291,8 @@ class GtxGridWriter final : public GridFileWriter {
     out_.write(header);
   }
 
-  void write_row(const GridRow& row) override {
-    check_row(spec_, row, rows_written_, path_);
+ private:
+  std::string encode_row(const GridRow& row) const override {
     std::string bytes;
     bytes.reserve(4 * columns_);
     const std::span<const double> n = row.values(0);  // geoid, metres
@@ -288,23 +304,10 @@ class GtxGridWriter final : public GridFileWriter {
                              {path_.string(), std::nullopt, fmt::format("rows[{}]", row.row)});
       put_big_endian(bytes, static_cast<float>(n[i]));
     }
-    out_.write(bytes);
-    ++rows_written_;
+    return bytes;
   }
 
-  void commit() override {
-    if (rows_written_ != spec_.rows())
-      throw IoError(fmt::format("only {} of {} rows were written", rows_written_, spec_.rows()),
-                    {path_.string(), std::nullopt, {}});
-    out_.commit();
-  }
-
- private:
-  std::filesystem::path path_;
-  GridSpec spec_;
-  AtomicFileWriter out_;
   std::size_t columns_;
-  std::size_t rows_written_ = 0;
 };
 
 std::string lower(std::string s) {
@@ -502,8 +505,11 @@ void check_grid_output(const std::filesystem::path& path, const GridSpec& spec) 
 std::unique_ptr<GridFileWriter> open_grid_file(const std::filesystem::path& path, const GridSpec& spec,
                                                const GridFileMetadata& metadata) {
   check_grid_output(path, spec);
-  if (grid_file_format_for(path) == GridFileFormat::Csv) return std::make_unique<CsvGridWriter>(path, spec);
-  if (grid_file_format_for(path) == GridFileFormat::Gtx) return std::make_unique<GtxGridWriter>(path, spec);
+  switch (grid_file_format_for(path)) {
+    case GridFileFormat::Csv: return std::make_unique<CsvGridWriter>(path, spec);
+    case GridFileFormat::Gtx: return std::make_unique<GtxGridWriter>(path, spec);
+    case GridFileFormat::NetCdf: break;
+  }
   return std::make_unique<NetCdfGridWriter>(path, spec, metadata);
 }
 

@@ -33,6 +33,18 @@ std::string north_dms(const gyro::StochasticSeries& s, double m_arcsec) {
                               {2, true, false});
 }
 
+// A fit's centre M with its σ: the north reading (tracking) or the zero position.
+void put_centre(nlohmann::json& j, const gyro::StochasticSeries& s, const Uncertain& centre) {
+  if (s.tracking) {
+    j["north_reading_deg"] = north_deg(s, centre.value);
+    j["north_reading_dms"] = north_dms(s, centre.value);
+    j["sigma_north_arcsec"] = json_number(centre.sigma);
+  } else {
+    j["zero_position_div"] = json_number(centre.value);
+    j["sigma_zero_position_div"] = json_number(centre.sigma);
+  }
+}
+
 bool c_type(gyro::StochasticModel m) {
   return m == gyro::StochasticModel::Exponential || m == gyro::StochasticModel::Gaussian ||
          m == gyro::StochasticModel::DampedCosine;
@@ -58,14 +70,7 @@ nlohmann::json stochastic_to_json(const std::string& file, const gyro::Stochasti
         {"r2_misfit_rms_" + u, json_number(s.result.r2_misfit_rms)}};
     for (const auto& m : s.result.models) {
       nlohmann::json jm{{"name", gyro::to_string(m.model)}};
-      if (s.tracking) {
-        jm["north_reading_deg"] = north_deg(s, m.north.value);
-        jm["north_reading_dms"] = north_dms(s, m.north.value);
-        jm["sigma_north_arcsec"] = json_number(m.north.sigma);
-      } else {
-        jm["zero_position_div"] = json_number(m.north.value);
-        jm["sigma_zero_position_div"] = json_number(m.north.sigma);
-      }
+      put_centre(jm, s, m.north);
       jm["amplitude_" + u] = json_number(m.amplitude.value);
       jm["sigma_amplitude_" + u] = json_number(m.amplitude.sigma);
       jm["rho"] = nums(m.rho);
@@ -95,14 +100,7 @@ nlohmann::json stochastic_to_json(const std::string& file, const gyro::Stochasti
       if (m.r1) {
         const auto& r1 = *m.r1;
         nlohmann::json jr;
-        if (s.tracking) {
-          jr["north_reading_deg"] = north_deg(s, r1.centre.value);
-          jr["north_reading_dms"] = north_dms(s, r1.centre.value);
-          jr["sigma_north_arcsec"] = json_number(r1.centre.sigma);
-        } else {
-          jr["zero_position_div"] = json_number(r1.centre.value);
-          jr["sigma_zero_position_div"] = json_number(r1.centre.sigma);
-        }
+        put_centre(jr, s, r1.centre);
         jr["amplitude_" + u] = json_number(r1.amplitude.value);
         jr["sigma_amplitude_" + u] = json_number(r1.amplitude.sigma);
         jr["decay_per_half_period"] = json_number(r1.decay.value);

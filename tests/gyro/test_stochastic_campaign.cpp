@@ -98,6 +98,15 @@ TEST(StochasticCampaign, WhiteIsTheDefaultAndChangesNothing) {
   EXPECT_TRUE(said);
 }
 
+// The series of the campaign's line determination in arcsec from the first reading's degree.
+std::vector<double> sc_series_arcsec(const CampaignInput& in, double* ref_rad) {
+  const std::vector<double> un = unwrap_circle_readings(in.line.determinations[0].tracking.reversals_rad);
+  *ref_rad = std::floor(un.front() / units::kDegree) * units::kDegree;
+  std::vector<double> arcsec;
+  for (double x : un) arcsec.push_back((x - *ref_rad) / units::kArcsecond);
+  return arcsec;
+}
+
 TEST(StochasticCampaign, Markov1IsTheGlsOfR1WithTheReportedCovariance) {
   CampaignInput in = sc_tracking_campaign(20, 0.6, 3);
   in.stochastic_model = StochasticChoice::Markov1;
@@ -108,11 +117,8 @@ TEST(StochasticCampaign, Markov1IsTheGlsOfR1WithTheReportedCovariance) {
   ASSERT_EQ(d.stochastic.rho.size(), 1u);
   // Rebuild D from the reported ρ, σ_1, σ_2 and the series in arcsec from the first reading's
   // whole degree; the GLS of (R1) gives M, and N_G = M without a zero position.
-  const auto& rad = in.line.determinations[0].tracking.reversals_rad;
-  const std::vector<double> un = unwrap_circle_readings(rad);
-  const double ref = std::floor(un.front() / units::kDegree) * units::kDegree;
-  std::vector<double> arcsec;
-  for (double x : un) arcsec.push_back((x - ref) / units::kArcsecond);
+  double ref = 0.0;
+  const std::vector<double> arcsec = sc_series_arcsec(in, &ref);
   const double s1 = d.stochastic.sigma1_arcsec, s2 = d.stochastic.sigma2_arcsec;
   const Eigen::MatrixXd D = markov1_factors(20, d.stochastic.rho[0]).covariance(s1 * s1, s2 * s2);
   const R1GlsFit g = reversal_gls_nonlinear(arcsec, D);
@@ -153,15 +159,6 @@ TEST(StochasticCampaign, WhiteNoiseSigmaWarningSaysWhatGivesSigma) {
     said = said || (x.find("a-posteriori sigma is used for white noise; N_G and its sigma are from "
                            "the GLS under markov1-ml instead") != std::string::npos);
   EXPECT_TRUE(said);
-}
-
-// The series of the campaign's line determination in arcsec from the first reading's degree.
-std::vector<double> sc_series_arcsec(const CampaignInput& in, double* ref_rad) {
-  const std::vector<double> un = unwrap_circle_readings(in.line.determinations[0].tracking.reversals_rad);
-  *ref_rad = std::floor(un.front() / units::kDegree) * units::kDegree;
-  std::vector<double> arcsec;
-  for (double x : un) arcsec.push_back((x - *ref_rad) / units::kArcsecond);
-  return arcsec;
 }
 
 TEST(StochasticCampaign, Markov2AndRecommended) {
@@ -228,10 +225,8 @@ TEST(StochasticCampaign, LinearMethodUsesTheGlsOfR2) {
   const CampaignResult r = process(in);
   const DeterminationResult& d = r.determinations.at(0);
   ASSERT_FALSE(d.stochastic.fallback) << d.stochastic.reason;
-  const std::vector<double> un = unwrap_circle_readings(in.line.determinations[0].tracking.reversals_rad);
-  const double ref = std::floor(un.front() / units::kDegree) * units::kDegree;
-  std::vector<double> arcsec;
-  for (double x : un) arcsec.push_back((x - ref) / units::kArcsecond);
+  double ref = 0.0;
+  const std::vector<double> arcsec = sc_series_arcsec(in, &ref);
   const double s1 = d.stochastic.sigma1_arcsec, s2 = d.stochastic.sigma2_arcsec;
   const Eigen::MatrixXd D = markov1_factors(20, d.stochastic.rho[0]).covariance(s1 * s1, s2 * s2);
   const GlsFit g = reversal_gls(arcsec, D);
