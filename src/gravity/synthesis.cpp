@@ -5,10 +5,16 @@
 // For each order m (descending) and each of kLanes points at once, the
 // forward column recursion over n of W_n = q^{n−m} P̄_nm(t)/u^m · kScale:
 //   W_n = α_nm t q W_{n−1} − β_nm q² W_{n−2},   W_m = kScale · P̄_mm/u^m,
-// and of its t-derivative D_n = α_nm q (W_{n−1} + t D_{n−1}) − β_nm q² D_{n−2},
-// accumulates A0 = Σ C W, B0 = Σ S W, A1 = Σ (n+1) C W, B1, A2 = Σ C D, B2.
-// The orders are then combined by Horner's rule in z = u q e^{iλ}, which
-// restores the u^m q^m factors without ever forming them (no underflow).
+// accumulates A0 = Σ C W, B0 = Σ S W, K = Σ (n−m) C W, L = Σ (n−m) S W, and for the
+// t-derivative D_n = ∂W_n/∂t (A2 = Σ C D, B2 = Σ S D) one of two forms:
+//  * away from the poles, the derivative identity of the associated Legendre functions,
+//    (1 − t²) dP̄_nm/dt = −n t P̄_nm + f_nm P̄_{n−1,m}, f_nm = √((2n+1)(n²−m²)/(2n−1)), which for
+//    W reads u² D_n = f_nm q W_{n−1} − (n−m) t W_n: two sums F = Σ f C W_{n−1}, G = Σ f S W_{n−1}
+//    and A2 = (q F − t K)/u² per order — two multiply-adds per term instead of a second recursion;
+//  * near the poles (u < kIdentityMinCos in any lane of a group), where 1/u² would amplify the
+//    rounding, the recursion D_n = α_nm q (W_{n−1} + t D_{n−1}) − β_nm q² D_{n−2}.
+// A1 = Σ (n+1) C W = K + (m+1) A0. The orders are then combined by Horner's rule in
+// z = u q e^{iλ}, which restores the u^m q^m factors without ever forming them (no underflow).
 
 #include "synthesis.hpp"
 
@@ -57,86 +63,156 @@ typedef double V4 __attribute__((vector_size(4 * sizeof(double))));
 
 #define MERIDIAN_INLINE inline __attribute__((always_inline))
 
+// How a group of lanes forms the t-derivative sums (top of this file): not at all (values
+// only), by the derivative identity, by the derivative's own recursion (every lane near a
+// pole), or both (a group with lanes of each kind; each lane then takes its own form, so that
+// a point's result never depends on the points it shares a group with).
+enum class Deriv { None, Identity, Recursion, Both };
+
+// Lanes with u = cos ψ at least this use the identity, whose rounding could grow as 1/u²;
+// nearer the poles (|ψ| > 84.26°), the recursion. Against a long-double evaluation of a random
+// degree-2190 model, the north derivative's largest error was 0.5–1.0e-13 of its largest value
+// at 80°–84.2° by the identity and 0.4–1.2e-13 by the recursion (2e-14 and 1e-14 at 75°);
+// tests: GravityClosedForm.NorthDerivativeAcrossTheChangeOfForm.
+inline constexpr double kIdentityMinCos = 0.1;
+
 // The forward recursion of one column for one group of lanes, resumable: W_{k−1}, W_{k−2},
-// D_{k−1}, D_{k−2} and the six sums (A0, B0, A1, B1, A2, B2) after term k − 1.
+// D_{k−1}, D_{k−2} (Recursion, Both) and the sums after term k − 1: A0, B0, K, L, then F, G
+// (Identity, Both) and A2, B2 (Recursion, Both).
 template <class V>
 struct ColumnState {
-  V w1, w2, d1, d2, acc[6];
+  V w1, w2, d1, d2, acc[8];
 };
 
-// Term 0 of column m (W_m = sect).
+// Term 0 of column m (W_m = sect; its K, L, F, G and D terms are zero).
 template <class V>
-MERIDIAN_INLINE void column_begin(double c0, double s0, double sect, double m, ColumnState<V>& st) {
+MERIDIAN_INLINE void column_begin(double c0, double s0, double sect, ColumnState<V>& st) {
   st.w1 = sect + V{};
   st.w2 = st.d1 = st.d2 = V{};
   st.acc[0] = c0 * st.w1;
   st.acc[1] = s0 * st.w1;
-  st.acc[2] = (m + 1) * st.acc[0];
-  st.acc[3] = (m + 1) * st.acc[1];
-  st.acc[4] = st.acc[5] = V{};
+  for (int j = 2; j < 8; ++j) st.acc[j] = V{};
 }
 
 // The per-term values of one column segment that every group of a pass shares: α, β and, for
-// the radial derivative's sums, (n + 1) C̄ and (n + 1) S̄ (formed once per segment instead of
-// a running n + 1 per group, whose scalar add was a loop-carried chain).
+// the derivatives, f C̄, f S̄ (the identity's sums) and (n − m) C̄, (n − m) S̄ (one multiply-add
+// per term and group instead of a running n − m, which is a multiply and a scalar add chain).
 struct Segment {
-  alignas(64) double alpha[256], beta[256], c1[256], s1[256];
+  alignas(64) double alpha[256], beta[256], fc[256], fs[256], kc[256], ks[256];
 };
 
-// Whether the radial sums take (n + 1) C̄, (n + 1) S̄ from the segment or multiply by a running
-// n + 1. AVX-512: 5.79 → 5.31 ms for 256 points at degree 360 with the segment's values; AVX2:
-// 8.59 → 8.85 ms, within the run-to-run scatter (two more broadcast loads per term against the
-// scalar chain), so AVX2 and SSE2 keep the running n + 1.
+// The running values of one group in a column loop, as local variables (kept in registers).
 template <class V>
-inline constexpr bool kSharedNp1 = sizeof(V) >= 64;
-
-// Terms k0 … k0 + len − 1 (k0 ≥ 1) of column m: c, s point at term k0's C̄, S̄, seg holds the
-// segment's shared values, np1 = n + 1 of term k0 − 1. The state is kept in registers over the
-// loop.
-template <bool Grad, class V>
-MERIDIAN_INLINE void column_run(const double* c, const double* s, const Segment& seg, int len, double np1,
-                                const V& tq, const V& q, const V& q2, ColumnState<V>& st) {
-  V w1 = st.w1, w2 = st.w2, d1 = st.d1, d2 = st.d2;
-  V a0 = st.acc[0], b0 = st.acc[1], a1 = st.acc[2], b1 = st.acc[3], a2 = st.acc[4], b2 = st.acc[5];
-  for (int i = 0; i < len; ++i) {
-    const double ci = c[i], si = s[i], al = seg.alpha[i];
-    const V bq2 = seg.beta[i] * q2, atq = al * tq;
-    const V w = atq * w1 - bq2 * w2;
-    a0 += ci * w;
-    b0 += si * w;
-    if constexpr (Grad) {
-      // Written so that only one multiply-add depends on d1 (short chain).
-      const V d = atq * d1 + ((al * q) * w1 - bq2 * d2);
-      if constexpr (kSharedNp1<V>) {
-        a1 += seg.c1[i] * w;
-        b1 += seg.s1[i] * w;
-      } else {
-        np1 += 1;
-        const V wn = np1 * w;
-        a1 += ci * wn;
-        b1 += si * wn;
-      }
-      a2 += ci * d;
-      b2 += si * d;
-      d2 = d1;
-      d1 = d;
-    }
-    w2 = w1;
-    w1 = w;
+struct Registers {
+  V w1, w2, d1, d2, a0, b0, a1, b1, f0, f1, a2, b2;
+  explicit MERIDIAN_INLINE Registers(const ColumnState<V>& st)
+      : w1(st.w1), w2(st.w2), d1(st.d1), d2(st.d2), a0(st.acc[0]), b0(st.acc[1]), a1(st.acc[2]), b1(st.acc[3]),
+        f0(st.acc[4]), f1(st.acc[5]), a2(st.acc[6]), b2(st.acc[7]) {}
+  MERIDIAN_INLINE void store(ColumnState<V>& st) const {
+    st.w1 = w1;
+    st.w2 = w2;
+    st.d1 = d1;
+    st.d2 = d2;
+    st.acc[0] = a0;
+    st.acc[1] = b0;
+    st.acc[2] = a1;
+    st.acc[3] = b1;
+    st.acc[4] = f0;
+    st.acc[5] = f1;
+    st.acc[6] = a2;
+    st.acc[7] = b2;
   }
-  st.w1 = w1;
-  st.w2 = w2;
-  st.d1 = d1;
-  st.d2 = d2;
-  st.acc[0] = a0;
-  st.acc[1] = b0;
-  st.acc[2] = a1;
-  st.acc[3] = b1;
-  st.acc[4] = a2;
-  st.acc[5] = b2;
+};
+
+// Term i of a segment for one group. The single and the paired loop both run this function,
+// so that a lane's sums are the same bits whichever loop ran them (the compiler contracts
+// multiply-adds the same way in both).
+template <Deriv Mode, class V>
+MERIDIAN_INLINE void column_term(const double* c, const double* s, const Segment& seg, int i, const V& tq,
+                                 const V& q, const V& q2, Registers<V>& r) {
+  constexpr bool kIdentity = Mode == Deriv::Identity || Mode == Deriv::Both;
+  constexpr bool kRecursion = Mode == Deriv::Recursion || Mode == Deriv::Both;
+  const double ci = c[i], si = s[i], al = seg.alpha[i];
+  const V bq2 = seg.beta[i] * q2, atq = al * tq;
+  if constexpr (kIdentity) {
+    r.f0 += seg.fc[i] * r.w1;  // F: f_nm C̄_nm W_{n−1}
+    r.f1 += seg.fs[i] * r.w1;
+  }
+  const V w = atq * r.w1 - bq2 * r.w2;
+  r.a0 += ci * w;
+  r.b0 += si * w;
+  if constexpr (Mode != Deriv::None) {
+    r.a1 += seg.kc[i] * w;  // K: (n − m) C̄_nm W_n
+    r.b1 += seg.ks[i] * w;
+  }
+  if constexpr (kRecursion) {
+    // Written so that only one multiply-add depends on d1 (short chain).
+    const V d = atq * r.d1 + ((al * q) * r.w1 - bq2 * r.d2);
+    r.a2 += ci * d;
+    r.b2 += si * d;
+    r.d2 = r.d1;
+    r.d1 = d;
+  }
+  r.w2 = r.w1;
+  r.w1 = w;
 }
 
-// Terms per segment: the segment's shared values (8 KB) and C̄, S̄ (4 KB) stay in the L1 cache
+// Terms k0 … k0 + len − 1 (k0 ≥ 1) of column m for one group: c, s point at term k0's C̄, S̄,
+// seg holds the segment's shared values.
+template <Deriv Mode, class V>
+MERIDIAN_INLINE void column_run(const double* c, const double* s, const Segment& seg, int len, const V& tq,
+                                const V& q, const V& q2, ColumnState<V>& st) {
+  Registers<V> r(st);
+  for (int i = 0; i < len; ++i) column_term<Mode, V>(c, s, seg, i, tq, q, q2, r);
+  r.store(st);
+}
+
+// Two groups in one loop (Mode None or Identity), sharing the loads: one group alone waits on
+// W_{n−1}, a multiply-add latency, every term; two independent recursions fill that wait.
+// 256 points at degree 360: −20 % (SSE2), −15 % (AVX-512), −10 % (AVX2, whose 16 registers
+// cannot hold both groups' sums: some of them live on the stack). Each group's statements are
+// column_term's, in the same form (so the same multiply-adds and the same bits); the two groups'
+// statements are interleaved by hand, which the register allocator needs on AVX2 (column_term
+// called twice spilled twice as much).
+template <Deriv Mode, class V>
+MERIDIAN_INLINE void column_run_pair(const double* c, const double* s, const Segment& seg, int len, const V* tq,
+                                     const V* q2, ColumnState<V>* st) {
+  static_assert(Mode == Deriv::None || Mode == Deriv::Identity);
+  constexpr bool kIdentity = Mode == Deriv::Identity;
+  Registers<V> g(st[0]), h(st[1]);
+  const V tq0 = tq[0], tq1 = tq[1], q20 = q2[0], q21 = q2[1];
+  for (int i = 0; i < len; ++i) {
+    const double ci = c[i], si = s[i], al = seg.alpha[i], be = seg.beta[i];
+    if constexpr (kIdentity) {
+      const double fc = seg.fc[i], fs = seg.fs[i];
+      g.f0 += fc * g.w1;
+      g.f1 += fs * g.w1;
+      h.f0 += fc * h.w1;
+      h.f1 += fs * h.w1;
+    }
+    const V w = (al * tq0) * g.w1 - (be * q20) * g.w2;
+    const V x = (al * tq1) * h.w1 - (be * q21) * h.w2;
+    g.a0 += ci * w;
+    g.b0 += si * w;
+    h.a0 += ci * x;
+    h.b0 += si * x;
+    if constexpr (kIdentity) {
+      const double kc = seg.kc[i], ks = seg.ks[i];
+      g.a1 += kc * w;
+      g.b1 += ks * w;
+      h.a1 += kc * x;
+      h.b1 += ks * x;
+    }
+    g.w2 = g.w1;
+    g.w1 = w;
+    h.w2 = h.w1;
+    h.w1 = x;
+  }
+  g.store(st[0]);
+  h.store(st[1]);
+}
+
+// Terms per segment: the segment's shared values (12 KB) and C̄, S̄ (4 KB) stay in the L1 cache
 // while every group of the pass runs its recursion over them (a whole column at degree 2190
 // is 35 KB of C̄, S̄).
 inline constexpr int kSegmentTerms = 256;
@@ -144,7 +220,7 @@ static_assert(sizeof(Segment::alpha) == kSegmentTerms * sizeof(double));
 
 // The shared values of n = m + k, k = k0 … k0 + len − 1 (k0 ≥ 1): α_nm, β_nm as the products
 // the table-building code formed before (bit for bit), from contiguous tables so that the loop
-// vectorises, β_{m+1,m} = 0; and (n + 1) C̄_nm, (n + 1) S̄_nm when `grad`.
+// vectorises, β_{m+1,m} = 0; and when `grad`, f_nm C̄_nm, f_nm S̄_nm, k C̄_nm, k S̄_nm.
 MERIDIAN_INLINE void segment_values(const RootTables& r, int m, int k0, int len, const double* c, const double* s,
                                     bool grad, Segment& seg) {
   const double* inv = r.inv_root.data();
@@ -160,29 +236,110 @@ MERIDIAN_INLINE void segment_values(const RootTables& r, int m, int k0, int len,
     seg.beta[i] = common * root[n + m - 1] * root[n - m - 1] * m3[n];
   }
   if (k0 == 1) seg.beta[0] = 0.0;  // n = m + 1 (for m = 0, n = 1 the tables hold 1/√(−1) as 0 anyway)
-  if (grad)
-    for (int i = 0; i < len; ++i) {
-      const double np1 = n0 + i + 1;
-      seg.c1[i] = np1 * c[i];
-      seg.s1[i] = np1 * s[i];
-    }
+  if (!grad) return;
+  for (int i = 0; i < len; ++i) {
+    const int n = n0 + i;
+    const double f = p1[n] * root[n - m] * root[n + m] * inv[2 * n - 1];  // f_nm, n ≥ 1
+    const double k = k0 + i;
+    seg.fc[i] = f * c[i];
+    seg.fs[i] = f * s[i];
+    seg.kc[i] = k * c[i];
+    seg.ks[i] = k * s[i];
+  }
 }
 
-// One column m for `groups` groups of lanes: st[g] receives the sums of group g.
-template <bool Grad, class V>
-MERIDIAN_INLINE void columns(const KernelData& d, int m, const V* tq, const V* q, const V* q2, int groups,
-                             ColumnState<V>* st) {
+// One column m for `groups` groups of lanes: st[g] receives the sums of group g, in the form
+// mode[g]. Neighbouring groups by the identity (or values only) run in pairs.
+template <class V>
+MERIDIAN_INLINE void columns(const KernelData& d, int m, const V* tq, const V* q, const V* q2, const Deriv* mode,
+                             int groups, ColumnState<V>* st) {
   const std::size_t k = d.start[m];
   const double* c = d.c + k;
   const double* s = d.s + k;
   const int count = d.nmax - m + 1;
-  for (int g = 0; g < groups; ++g) column_begin(c[0], s[0], d.sect[m], m, st[g]);
+  const bool grad = mode[0] != Deriv::None;
+  for (int g = 0; g < groups; ++g) column_begin(c[0], s[0], d.sect[m], st[g]);
   Segment seg;
   for (int k0 = 1; k0 < count; k0 += kSegmentTerms) {
     const int len = std::min(count - k0, kSegmentTerms);
-    segment_values(*d.roots, m, k0, len, c + k0, s + k0, Grad && kSharedNp1<V>, seg);
-    for (int g = 0; g < groups; ++g)
-      column_run<Grad, V>(c + k0, s + k0, seg, len, m + k0, tq[g], q[g], q2[g], st[g]);
+    segment_values(*d.roots, m, k0, len, c + k0, s + k0, grad, seg);
+    const double *cs = c + k0, *ss = s + k0;
+    for (int g = 0; g < groups; ++g) {
+      const bool pair = g + 1 < groups && mode[g] == mode[g + 1];
+      switch (mode[g]) {
+        case Deriv::None:
+          if (pair) column_run_pair<Deriv::None, V>(cs, ss, seg, len, tq + g, q2 + g, st + g);
+          else column_run<Deriv::None, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
+          break;
+        case Deriv::Identity:
+          if (pair) column_run_pair<Deriv::Identity, V>(cs, ss, seg, len, tq + g, q2 + g, st + g);
+          else column_run<Deriv::Identity, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
+          break;
+        case Deriv::Recursion:
+          column_run<Deriv::Recursion, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
+          break;
+        case Deriv::Both:
+          column_run<Deriv::Both, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
+          break;
+      }
+      if (pair && (mode[g] == Deriv::None || mode[g] == Deriv::Identity)) ++g;
+    }
+  }
+}
+
+// A group's lanes in the kernel's variables, which of them are near a pole, and the form of
+// the t-derivative the group computes.
+template <class V, int W>
+struct GroupGeometry {
+  V t, q, tq, q2, inv_u2;
+  bool near_pole[W];
+  Deriv mode;
+};
+
+// For lanes (t_i, q_i), with u² = (1 − t)(1 + t) (accurate near the poles).
+template <class V, int W>
+MERIDIAN_INLINE GroupGeometry<V, W> group_geometry(const V& t, const V& q, bool grad) {
+  GroupGeometry<V, W> g;
+  g.t = t;
+  g.q = q;
+  g.tq = t * q;
+  g.q2 = q * q;
+  const V u2 = (1.0 - t) * (1.0 + t);
+  int near = 0;
+  for (int i = 0; i < W; ++i) {
+    g.near_pole[i] = !(u2[i] >= kIdentityMinCos * kIdentityMinCos);
+    near += g.near_pole[i];
+    g.inv_u2[i] = g.near_pole[i] ? 0.0 : 1.0 / u2[i];  // unused near the poles (no division by zero)
+  }
+  g.mode = !grad ? Deriv::None : near == 0 ? Deriv::Identity : near == W ? Deriv::Recursion : Deriv::Both;
+  return g;
+}
+
+// The sums of order m that the combination reads, from a group's column state: A0, B0,
+// A1 = K + (m + 1) A0, B1 = L + (m + 1) B0, and A2, B2: by the identity, (q F − t K)/u², or
+// near a pole from the recursion.
+template <bool Grad, class V, int W>
+MERIDIAN_INLINE void order_sums(const ColumnState<V>& st, int m, const GroupGeometry<V, W>& g, V out[6]) {
+  const V* a = st.acc;
+  out[0] = a[0];
+  out[1] = a[1];
+  if constexpr (Grad) {
+    const double mp1 = m + 1;
+    out[2] = a[2] + mp1 * a[0];
+    out[3] = a[3] + mp1 * a[1];
+    if (g.mode == Deriv::Recursion) {
+      out[4] = a[6];
+      out[5] = a[7];
+      return;
+    }
+    out[4] = (g.q * a[4] - g.t * a[2]) * g.inv_u2;
+    out[5] = (g.q * a[5] - g.t * a[3]) * g.inv_u2;
+    if (g.mode == Deriv::Both)
+      for (int i = 0; i < W; ++i)
+        if (g.near_pole[i]) {
+          out[4][i] = a[6][i];
+          out[5][i] = a[7][i];
+        }
   }
 }
 
@@ -202,10 +359,11 @@ MERIDIAN_INLINE void horner_step(V& hr, V& hi, const V& zr, const V& zi, const V
 template <bool Grad, class V, int W, int P>
 MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, int count, LaneSums* out) {
   struct Group {
-    V t, u, q, cl, sl, tq, q2, zr, zi;
+    V t, u, q, cl, sl, zr, zi;
     V h0r{}, h0i{}, h1r{}, h1i{}, h2r{}, h2i{}, gr{}, gi{};
   };
   Group g[P];
+  GroupGeometry<V, W> geo[P]{};
   const int groups = (count + W - 1) / W;
   for (int k = 0; k < groups; ++k) {
     Group& G = g[k];
@@ -217,23 +375,25 @@ MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, in
       G.cl[i] = p.cos_lon;
       G.sl[i] = p.sin_lon;
     }
-    G.tq = G.t * G.q;
-    G.q2 = G.q * G.q;
     G.zr = G.u * G.q * G.cl;
     G.zi = G.u * G.q * G.sl;
+    geo[k] = group_geometry<V, W>(G.t, G.q, Grad);
   }
   V tq[P]{}, qv[P]{}, q2[P]{};
+  Deriv mode[P]{};
   for (int k = 0; k < groups; ++k) {
-    tq[k] = g[k].tq;
-    qv[k] = g[k].q;
-    q2[k] = g[k].q2;
+    tq[k] = geo[k].tq;
+    qv[k] = geo[k].q;
+    q2[k] = geo[k].q2;
+    mode[k] = geo[k].mode;
   }
   ColumnState<V> st[P]{};
   for (int m = d.mmax; m >= 0; --m) {
-    columns<Grad, V>(d, m, tq, qv, q2, groups, st);
+    columns<V>(d, m, tq, qv, q2, mode, groups, st);
     for (int k = 0; k < groups; ++k) {
       Group& G = g[k];
-      const V* acc = st[k].acc;
+      V acc[6];
+      order_sums<Grad, V, W>(st[k], m, geo[k], acc);
       horner_step(G.h0r, G.h0i, G.zr, G.zi, acc[0], acc[1]);
       if constexpr (Grad) {
         horner_step(G.h1r, G.h1i, G.zr, G.zi, acc[2], acc[3]);
@@ -268,22 +428,31 @@ template <bool Grad, class V, int W, int P>
 MERIDIAN_INLINE void column_sums_impl(const KernelData& d, const double* t, const double* q, int count,
                                       std::vector<double>* out) {
   constexpr std::size_t width = Grad ? 6 : 2;
+  GroupGeometry<V, W> geo[P]{};
   V tq[P]{}, qv[P]{}, q2[P]{};
+  Deriv mode[P]{};
   const int groups = (count + W - 1) / W;
-  for (int k = 0; k < groups; ++k)
+  for (int k = 0; k < groups; ++k) {
+    V tv{}, qk{};
     for (int i = 0; i < W; ++i) {
       const int j = std::min(k * W + i, count - 1);  // spare lanes repeat the last parallel
-      qv[k][i] = q[j];
-      tq[k][i] = t[j] * q[j];
-      q2[k][i] = q[j] * q[j];
+      tv[i] = t[j];
+      qk[i] = q[j];
     }
+    geo[k] = group_geometry<V, W>(tv, qk, Grad);
+    tq[k] = geo[k].tq;
+    qv[k] = geo[k].q;
+    q2[k] = geo[k].q2;
+    mode[k] = geo[k].mode;
+  }
   for (int j = 0; j < count; ++j) out[j].resize(width * (static_cast<std::size_t>(d.mmax) + 1));
   ColumnState<V> st[P]{};
   for (int m = 0; m <= d.mmax; ++m) {
     const std::size_t o = width * static_cast<std::size_t>(m);
-    columns<Grad, V>(d, m, tq, qv, q2, groups, st);
+    columns<V>(d, m, tq, qv, q2, mode, groups, st);
     for (int k = 0; k < groups; ++k) {
-      const V* acc = st[k].acc;
+      V acc[6];
+      order_sums<Grad, V, W>(st[k], m, geo[k], acc);
       for (int i = 0; i < W && k * W + i < count; ++i) {
         double* s = out[k * W + i].data() + o;
         for (std::size_t c = 0; c < width; ++c) s[c] = acc[c][i];
@@ -303,11 +472,10 @@ typedef double V2 __attribute__((vector_size(2 * sizeof(double))));
 template <bool Grad>
 __attribute__((target("arch=x86-64-v4"))) void evaluate_v4(const KernelData& d,
                                                            const LanePoint* pts, int count, LaneSums* out) {
-  // Up to 4 points: one 256-bit pass does half the work (AMD Zen 4 splits 512-bit operations).
-  if (count <= 4)
-    evaluate_impl<Grad, V4, 4, 1>(d, pts, count, out);
-  else
-    evaluate_impl<Grad, V8, kLanes, kPointsPerPass / kLanes>(d, pts, count, out);
+  // 8 lanes whatever the count: a 256-bit pass for up to 4 points (half the work on AMD Zen 4,
+  // which splits 512-bit operations) gave other last bits than the 8-lane loop under this
+  // target, so a point's values depended on the size of its batch.
+  evaluate_impl<Grad, V8, kLanes, kPointsPerPass / kLanes>(d, pts, count, out);
 }
 
 template <bool Grad>

@@ -99,6 +99,46 @@ TEST(SimdKernels, EveryKernelAgreesWithGeographicLibAndTheOthers) {
   }
 }
 
+// A point's values are the same bits whatever batch it is evaluated in: alone, with its
+// neighbours in groups of every size, with points near a pole in its group (whose lanes take
+// the derivative's recursion while it takes the identity) or in a pair of groups.
+TEST(SimdKernels, APointsValuesDoNotDependOnItsBatch) {
+  meridian::gravity::SyntheticModelOptions o;
+  o.max_degree = 120;
+  o.seed = 5;
+  const auto model = meridian::gravity::make_synthetic_model(o);
+  std::vector<meridian::gravity::GeodeticPoint> gp;
+  // Near-pole lanes (|lat| > 84.26°, u < 0.1) scattered among the others.
+  const double lats[] = {10, 84.5, -30, 84.2, 89.9, 55, -86, 0.5, -84.1, 70, 88, -12, 84.26, -89.99, 33, 47};
+  for (int i = 0; i < 40; ++i)
+    gp.push_back({lats[i % 16] * kDeg, (17.0 * i - 150) * kDeg, 100.0 * (i % 5)});
+  for (SimdKernel k : meridian::gravity::supported_simd_kernels()) {
+    SCOPED_TRACE(std::string(to_string(k)));
+    const GravityField f = field_with(model, k);
+    const std::vector<FieldValues> whole = f.evaluate(gp);
+    for (std::size_t chunk : {1u, 2u, 3u, 4u, 5u, 7u, 8u, 9u, 13u, 16u, 17u}) {
+      for (std::size_t first = 0; first < gp.size(); first += chunk) {
+        const std::size_t n = std::min(chunk, gp.size() - first);
+        const std::vector<FieldValues> v =
+            f.evaluate(std::span<const meridian::gravity::GeodeticPoint>(gp.data() + first, n));
+        for (std::size_t i = 0; i < n; ++i) {
+          const FieldValues& a = v[i];
+          const FieldValues& b = whole[first + i];
+          SCOPED_TRACE(testing::Message() << "chunk " << chunk << " point " << first + i);
+          EXPECT_EQ(a.xi_rad, b.xi_rad);
+          EXPECT_EQ(a.eta_rad, b.eta_rad);
+          EXPECT_EQ(a.geoid_m, b.geoid_m);
+          EXPECT_EQ(a.disturbing_potential_m2_s2, b.disturbing_potential_m2_s2);
+          EXPECT_EQ(a.anomaly_m_s2, b.anomaly_m_s2);
+          EXPECT_EQ(a.dT_north_m_s2, b.dT_north_m_s2);
+          EXPECT_EQ(a.dT_east_m_s2, b.dT_east_m_s2);
+          EXPECT_EQ(a.dT_up_m_s2, b.dT_up_m_s2);
+        }
+      }
+    }
+  }
+}
+
 TEST(SimdKernels, AutoTakesTheWidestOrTheEnvironmentsChoice) {
   const auto kernels = meridian::gravity::supported_simd_kernels();
   {
