@@ -23,6 +23,20 @@ void advise_huge_pages(void* p, std::size_t bytes) noexcept {
 #endif
 }
 
+void populate_pages(void* p, std::size_t bytes) noexcept {
+#ifdef MADV_POPULATE_WRITE
+  constexpr std::size_t kPage = 4096;
+  if (bytes < (std::size_t{1} << 20)) return;
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t first = (begin + kPage - 1) / kPage * kPage;
+  const std::uintptr_t last = (begin + bytes) / kPage * kPage;
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
 std::vector<double> large_zero_vector(std::size_t n) {
   std::vector<double> v;
   v.reserve(n);

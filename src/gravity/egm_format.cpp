@@ -37,6 +37,29 @@ std::optional<double> parse_fract(std::string_view s) {
   return *a / *b;
 }
 
+// Whether every |v[k]| <= limit (false for NaN), two at a time in SSE2 vectors with four
+// independent masks: the scalar loop (one comparison and a flag per value) took 2.3 ms of a
+// 29 ms load at degree 2190.
+bool all_within(const double* v, std::uint64_t count, double limit) noexcept {
+  typedef double V2 __attribute__((vector_size(16)));
+  typedef long long M2 __attribute__((vector_size(16)));
+  const V2 hi = {limit, limit}, lo = -hi;
+  M2 ok0 = ~M2{}, ok1 = ok0, ok2 = ok0, ok3 = ok0;
+  std::uint64_t k = 0;
+  for (; k + 8 <= count; k += 8) {
+    V2 x[4];
+    std::memcpy(x, v + k, sizeof x);
+    ok0 &= (x[0] <= hi) & (x[0] >= lo);
+    ok1 &= (x[1] <= hi) & (x[1] >= lo);
+    ok2 &= (x[2] <= hi) & (x[2] >= lo);
+    ok3 &= (x[3] <= hi) & (x[3] >= lo);
+  }
+  const M2 ok = ok0 & ok1 & ok2 & ok3;
+  bool all = ok[0] != 0 && ok[1] != 0;
+  for (; k < count; ++k) all = all && std::abs(v[k]) <= limit;
+  return all;
+}
+
 class CofReader {
  public:
   explicit CofReader(const std::string& file) : file_(file), in_(file, std::ios::binary) {
@@ -85,7 +108,9 @@ class CofReader {
     need(8 * (2 * c_count - (N0 + 1)), what);
     const int n = t.max_degree < 0 ? n0 : std::min(t.max_degree, n0);
     const int m = std::min({t.max_order < 0 ? n : t.max_order, m0, n});
-    SphericalHarmonicCoefficients c(n, m);
+    // Without truncation the file fills every value (C̄, and S̄ from column m = 1 on): no zero fill.
+    SphericalHarmonicCoefficients c = n == n0 && m == m0 ? SphericalHarmonicCoefficients(n, m, SphericalHarmonicCoefficients::Unfilled{})
+                                                         : SphericalHarmonicCoefficients(n, m);
     // Fully normalised gravitational coefficients are at most 1 in absolute
     // value (C̄00 = 1; |C̄20| ≈ 4.8e-4 for the Earth); the correction set is
     // in metres, at most kMaxCorrection_m.
@@ -94,9 +119,7 @@ class CofReader {
     // A branch-free scan (NaN fails the comparison) of what was just read, while it is in cache;
     // the loop at the end finds the entry to name.
     int out_of_range = 0;
-    auto scan = [&](const double* v, std::uint64_t count) {
-      for (std::uint64_t k = 0; k < count; ++k) out_of_range |= !(std::abs(v[k]) <= limit);
-    };
+    auto scan = [&](const double* v, std::uint64_t count) { out_of_range |= !all_within(v, count, limit); };
     // C: columns m = 0..m0 of length n0 + 1 − m; S: columns m = 1..m0. Without truncation the
     // file's columns are the set's own layout: read in large chunks (S̄ from column m = 1 on).
     if (n == n0 && m == m0) {
@@ -287,7 +310,7 @@ void write_egm_files(const GravityModelData& model, const std::filesystem::path&
   auto put_set = [&](const SphericalHarmonicCoefficients& s, bool zero_c00) {
     const std::int32_t nm[2] = {s.max_degree(), s.max_order()};
     put(nm, sizeof nm);
-    std::vector<double> cv = s.c_values();
+    std::vector<double> cv(s.c_values().begin(), s.c_values().end());
     if (zero_c00) cv[0] = 0;
     put(cv.data(), cv.size() * 8);
     const std::size_t s0 = static_cast<std::size_t>(s.max_degree()) + 1;  // skip the m = 0 column

@@ -1,6 +1,7 @@
 // Readers and writers: round trips, real files (when ../shared is present),
 // and bad input rejected with the file and line named.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -228,6 +229,25 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::memcpy(nan_s.data() + nan_s.size() - 8 - 8, &nan, 8);  // before the correction set's N = M = −1
   expect(meta, nan_s, bcof, "non-finite coefficient S(10, 10) (nan) of the gravitational set");
+  // Every position of both blocks, every kind of bad value: the scan goes eight at a time in
+  // vectors and the rest one at a time, and must find each and name it.
+  {
+    const int n_max = m.coefficients.max_degree();
+    std::vector<std::string> names;  // the file's order: C̄ columns m = 0…N, then S̄ columns m = 1…N
+    for (int mm = 0; mm <= n_max; ++mm)
+      for (int nn = mm; nn <= n_max; ++nn) names.push_back(fmt::format("C({}, {})", nn, mm));
+    for (int mm = 1; mm <= n_max; ++mm)
+      for (int nn = mm; nn <= n_max; ++nn) names.push_back(fmt::format("S({}, {})", nn, mm));
+    const double bad_values[] = {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity(),
+                                 1.5, -1.0000001};
+    for (std::size_t k = 1; k < names.size(); ++k)  // C̄00 has its own check
+      for (const double b : bad_values) {
+        std::string damaged = cof;
+        std::memcpy(damaged.data() + 16 + 8 * k, &b, 8);
+        SCOPED_TRACE(testing::Message() << names[k] << " = " << b);
+        expect(meta, damaged, bcof, "coefficient " + names[k]);
+      }
+  }
   write_text("bad.egm", meta);
   write_text("bad.egm.cof", big);
   expect_parse_error([&] { (void)read_egm_file(egm, {8, 8}); }, bcof, 0, "coefficient C(5, 0) = -9.6e+301");

@@ -23,6 +23,13 @@ namespace meridian {
 /// transparent huge pages) changes nothing but speed. No effect on ranges under 2 MB.
 void advise_huge_pages(void* p, std::size_t bytes) noexcept;
 
+/// Ask the kernel to fault in every whole 4 kB page of [p, p + bytes) now, in one call
+/// (madvise MADV_POPULATE_WRITE, Linux 5.14), instead of one page fault per page on first
+/// touch: for memory that is about to be written entirely (a file read into it). Advice only:
+/// a failure (an older kernel, no memory to spare) changes nothing but speed. No effect under
+/// 1 MB.
+void populate_pages(void* p, std::size_t bytes) noexcept;
+
 /// A std::vector<double> of n zeros whose storage is advised huge pages (advise_huge_pages) before
 /// the zero fill touches it — for results that leave the numerics as std::vector. Throws
 /// std::bad_alloc.
