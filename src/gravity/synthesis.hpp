@@ -49,7 +49,7 @@ struct LaneSums {
 /// degree 2190) to build when a model is loaded.
 struct RootTables {
   std::vector<double> root, inv_root;         // √k, 1/√k (1/√0 = 0), k = 0 … 2N + 1
-  std::vector<double> r2p1, r2m1, inv_r2m3;   // √(2n+1), √(2n−1), 1/√(2n−3), n = 0 … N (0 where undefined)
+  std::vector<double> r2p1, r2m1, inv_r2m1, inv_r2m3;  // √(2n+1), √(2n−1), 1/√(2n−1), 1/√(2n−3), n = 0 … N (0 where undefined)
 };
 
 /// What the kernel reads: C̄, S̄ column-major, the index of (m, m) per column, the sectoral
