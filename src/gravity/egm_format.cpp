@@ -5,6 +5,9 @@
 #include <cctype>
 #include <cstdint>
 #include <cstring>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 #include <fstream>
 #include <limits>
 #include <string>
@@ -37,25 +40,21 @@ std::optional<double> parse_fract(std::string_view s) {
   return *a / *b;
 }
 
-// Whether every |v[k]| <= limit (false for NaN), two at a time in SSE2 vectors with four
-// independent masks: the scalar loop (one comparison and a flag per value) took 2.3 ms of a
-// 29 ms load at degree 2190.
+// Whether every |v[k]| <= limit (false for NaN), eight at a time with SSE2 compares: the scalar
+// loop (one comparison and a flag per value) took 2.3 ms of a 29 ms load at degree 2190.
 bool all_within(const double* v, std::uint64_t count, double limit) noexcept {
-  typedef double V2 __attribute__((vector_size(16)));
-  typedef long long M2 __attribute__((vector_size(16)));
-  const V2 hi = {limit, limit}, lo = -hi;
-  M2 ok0 = ~M2{}, ok1 = ok0, ok2 = ok0, ok3 = ok0;
   std::uint64_t k = 0;
-  for (; k + 8 <= count; k += 8) {
-    V2 x[4];
-    std::memcpy(x, v + k, sizeof x);
-    ok0 &= (x[0] <= hi) & (x[0] >= lo);
-    ok1 &= (x[1] <= hi) & (x[1] >= lo);
-    ok2 &= (x[2] <= hi) & (x[2] >= lo);
-    ok3 &= (x[3] <= hi) & (x[3] >= lo);
-  }
-  const M2 ok = ok0 & ok1 & ok2 & ok3;
-  bool all = ok[0] != 0 && ok[1] != 0;
+  bool all = true;
+#ifdef __SSE2__
+  const __m128d hi = _mm_set1_pd(limit), lo = _mm_set1_pd(-limit);
+  __m128d ok = _mm_castsi128_pd(_mm_set1_epi32(-1));
+  for (; k + 8 <= count; k += 8)
+    for (int j = 0; j < 8; j += 2) {
+      const __m128d x = _mm_loadu_pd(v + k + j);
+      ok = _mm_and_pd(ok, _mm_and_pd(_mm_cmple_pd(x, hi), _mm_cmpge_pd(x, lo)));  // false for NaN
+    }
+  all = _mm_movemask_pd(ok) == 3;
+#endif
   for (; k < count; ++k) all = all && std::abs(v[k]) <= limit;
   return all;
 }
