@@ -57,6 +57,11 @@ GeoidGrid read_gtx(const std::filesystem::path& path) {
   const double dlat = big_endian<double>(d.data() + 16), dlon = big_endian<double>(d.data() + 24);
   g.rows = big_endian<std::int32_t>(d.data() + 32);
   g.cols = big_endian<std::int32_t>(d.data() + 36);
+  if (g.rows == 1 || g.cols == 1)
+    throw ParseError(fmt::format("a {} x {} .gtx grid (a single {}) cannot be interpolated: this reader needs at least "
+                                 "2 rows and 2 columns",
+                                 g.rows, g.cols, g.rows == 1 ? "parallel" : "meridian"),
+                     {file, {}, "header"});
   // Negated comparisons so that NaN fails every test.
   // Steps below 1e-6 deg (0.1 m) are no geoid grid (and a denormal step made
   // the slope deflection infinite).

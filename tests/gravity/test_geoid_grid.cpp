@@ -124,6 +124,9 @@ TEST(GeoidGrid, RejectsDamagedFilesAndNoData) {
   };
   expect("short.gtx", good.substr(0, good.size() - 3), "a 5 x 5 grid needs");
   expect("hdr.gtx", good.substr(0, 20), "too short");
+  // One parallel (`gravity grid` writes it; PROJ reads it) is no surface to interpolate.
+  expect("row.gtx", gtx_bytes(1, 5, 10, 0, 1), "a 1 x 5 .gtx grid (a single parallel) cannot be interpolated");
+  expect("col.gtx", gtx_bytes(5, 1, 10, 0, 1), "a 5 x 1 .gtx grid (a single meridian) cannot be interpolated");
   expect("bad.pgm", "P2\n", "not a binary PGM");
   expect("odd.pgm", "P5\n# Offset 0\n# Scale 1\n3 3\n65535\n", "bad raster size");
   std::string nodata = good;
