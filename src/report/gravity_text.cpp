@@ -34,7 +34,9 @@ std::string gravity_point_text(const gravity::PointResult& r) {
                  "point lat {:.9f} deg, lon {:.9f} deg, h {:.3f} m\n"
                  "xi_arcsec  {:.9f}\neta_arcsec {:.9f}\ngeoid_m    {:.9f}\n",
                  units::rad_to_deg(r.point.lat_rad), units::rad_to_deg(r.point.lon_rad), r.point.height_m,
-                 units::rad_to_arcsec(r.values.xi_rad), units::rad_to_arcsec(r.values.eta_rad), r.values.geoid_m);
+                 // + 0.0: a zero printed without a sign (ξ = −0 when nothing above degree 0 is kept)
+                 units::rad_to_arcsec(r.values.xi_rad) + 0.0, units::rad_to_arcsec(r.values.eta_rad) + 0.0,
+                 r.values.geoid_m + 0.0);
   append_warnings(out, r.model);
   return out;
 }

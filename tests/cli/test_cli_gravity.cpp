@@ -234,6 +234,11 @@ TEST_F(GravityCli, ModelMetadataAsStatedByTheFileAndAWarningWhenItIsNot) {
                        "normalisation fully_normalized\n"),
             std::string::npos)
       << t.out;
+  // Nothing above degree 0 kept: zeros, printed without a minus sign (trial finding).
+  const CmdResult z = run("gravity point --model m.egm 60 25 --max-degree 0");
+  ASSERT_EQ(z.code, 0) << z.err;
+  EXPECT_NE(z.out.find("\nxi_arcsec  0.000000000\neta_arcsec 0.000000000\ngeoid_m    0.000000000\n"), std::string::npos)
+      << z.out;
   const CmdResult te = run("gravity point --model m.egm 60 25");
   EXPECT_NE(te.out.find("tide system not stated, normalisation fully normalised (not stated; the format's default)\n"),
             std::string::npos)
