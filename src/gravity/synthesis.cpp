@@ -11,8 +11,8 @@
 //    (1 − t²) dP̄_nm/dt = −n t P̄_nm + f_nm P̄_{n−1,m}, f_nm = √((2n+1)(n²−m²)/(2n−1)), which for
 //    W reads u² D_n = f_nm q W_{n−1} − (n−m) t W_n: two sums F = Σ f C W_{n−1}, G = Σ f S W_{n−1}
 //    and A2 = (q F − t K)/u² per order — two multiply-adds per term instead of a second recursion;
-//  * near the poles (u < kIdentityMinCos in any lane of a group), where 1/u² would amplify the
-//    rounding, the recursion D_n = α_nm q (W_{n−1} + t D_{n−1}) − β_nm q² D_{n−2}.
+//  * near the poles (u < kIdentityMinCos, lane by lane), where 1/u² would amplify the rounding,
+//    the recursion D_n = α_nm q (W_{n−1} + t D_{n−1}) − β_nm q² D_{n−2}.
 // A1 = Σ (n+1) C W = K + (m+1) A0. The orders are then combined by Horner's rule in
 // z = u q e^{iλ}, which restores the u^m q^m factors without ever forming them (no underflow).
 
@@ -126,9 +126,9 @@ struct Registers {
   }
 };
 
-// Term i of a segment for one group. The single and the paired loop both run this function,
-// so that a lane's sums are the same bits whichever loop ran them (the compiler contracts
-// multiply-adds the same way in both).
+// Term i of a segment for one group (column_run). column_run_pair repeats its statements in the
+// same form for two groups, so that a lane's sums are the same bits whichever loop ran them
+// (the compiler contracts multiply-adds the same way in both; tested bit for bit).
 template <Deriv Mode, class V>
 MERIDIAN_INLINE void column_term(const double* c, const double* s, const Segment& seg, int i, const V& tq,
                                  const V& q, const V& q2, Registers<V>& r) {
@@ -171,18 +171,18 @@ MERIDIAN_INLINE void column_run(const double* c, const double* s, const Segment&
 
 // Two groups in one loop (Mode None or Identity), sharing the loads: one group alone waits on
 // W_{n−1}, a multiply-add latency, every term; two independent recursions fill that wait.
-// 256 points at degree 360: −20 % (SSE2), −15 % (AVX-512), −10 % (AVX2, whose 16 registers
-// cannot hold both groups' sums: some of them live on the stack). Each group's statements are
+// 256 points at degree 360, against the same identity one group at a time: −21 % (SSE2), −8 %
+// (AVX-512), −5 % (AVX2, whose 16 registers cannot hold both groups' sums: three of them live
+// on the stack). Each group's statements are
 // column_term's, in the same form (so the same multiply-adds and the same bits); the two groups'
 // statements are interleaved by hand, which the register allocator needs on AVX2 (column_term
 // called twice spilled twice as much).
 template <Deriv Mode, class V>
-MERIDIAN_INLINE void column_run_pair(const double* c, const double* s, const Segment& seg, int len, const V* tq,
-                                     const V* q2, ColumnState<V>* st) {
+MERIDIAN_INLINE void column_run_pair(const double* c, const double* s, const Segment& seg, int len, const V& tq0,
+                                     const V& q20, const V& tq1, const V& q21, ColumnState<V>* st) {
   static_assert(Mode == Deriv::None || Mode == Deriv::Identity);
   constexpr bool kIdentity = Mode == Deriv::Identity;
   Registers<V> g(st[0]), h(st[1]);
-  const V tq0 = tq[0], tq1 = tq[1], q20 = q2[0], q21 = q2[1];
   for (int i = 0; i < len; ++i) {
     const double ci = c[i], si = s[i], al = seg.alpha[i], be = seg.beta[i];
     if constexpr (kIdentity) {
@@ -251,16 +251,44 @@ MERIDIAN_INLINE void segment_values(const RootTables& r, int m, int k0, int len,
   }
 }
 
+// A group's lanes in the kernel's variables, which of them are near a pole, and the form of
+// the t-derivative the group computes.
+template <class V, int W>
+struct GroupGeometry {
+  V t, q, tq, q2, inv_u2;
+  bool near_pole[W];
+  Deriv mode;
+};
+
+// For lanes (t_i, q_i), with u² = (1 − t)(1 + t) (accurate near the poles).
+template <class V, int W>
+MERIDIAN_INLINE GroupGeometry<V, W> group_geometry(const V& t, const V& q, bool grad) {
+  GroupGeometry<V, W> g;
+  g.t = t;
+  g.q = q;
+  g.tq = t * q;
+  g.q2 = q * q;
+  const V u2 = (1.0 - t) * (1.0 + t);
+  int near = 0;
+  for (int i = 0; i < W; ++i) {
+    g.near_pole[i] = !(u2[i] >= kIdentityMinCos * kIdentityMinCos);
+    near += g.near_pole[i];
+    g.inv_u2[i] = g.near_pole[i] ? 0.0 : 1.0 / u2[i];  // unused near the poles (no division by zero)
+  }
+  g.mode = !grad ? Deriv::None : near == 0 ? Deriv::Identity : near == W ? Deriv::Recursion : Deriv::Both;
+  return g;
+}
+
 // One column m for `groups` groups of lanes: st[g] receives the sums of group g, in the form
-// mode[g]. Neighbouring groups by the identity (or values only) run in pairs.
-template <class V>
-MERIDIAN_INLINE void columns(const KernelData& d, int m, int next_m, const V* tq, const V* q, const V* q2,
-                             const Deriv* mode, int groups, ColumnState<V>* st) {
+// geo[g].mode. Neighbouring groups by the identity (or values only) run in pairs.
+template <class V, int W>
+MERIDIAN_INLINE void columns(const KernelData& d, int m, int next_m, const GroupGeometry<V, W>* geo, int groups,
+                             ColumnState<V>* st) {
   const std::size_t k = d.start[m];
   const double* c = d.c + k;
   const double* s = d.s + k;
   const int count = d.nmax - m + 1;
-  const bool grad = mode[0] != Deriv::None;
+  const bool grad = geo[0].mode != Deriv::None;
   for (int g = 0; g < groups; ++g) column_begin(c[0], s[0], d.sect[m], st[g]);
   Segment seg;
   for (int k0 = 1; k0 < count; k0 += kSegmentTerms) {
@@ -288,54 +316,25 @@ MERIDIAN_INLINE void columns(const KernelData& d, int m, int next_m, const V* tq
     }
     const double *cs = c + k0, *ss = s + k0;
     for (int g = 0; g < groups; ++g) {
-      const bool pair = g + 1 < groups && mode[g] == mode[g + 1];
-      switch (mode[g]) {
-        case Deriv::None:
-          if (pair) column_run_pair<Deriv::None, V>(cs, ss, seg, len, tq + g, q2 + g, st + g);
-          else column_run<Deriv::None, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
-          break;
-        case Deriv::Identity:
-          if (pair) column_run_pair<Deriv::Identity, V>(cs, ss, seg, len, tq + g, q2 + g, st + g);
-          else column_run<Deriv::Identity, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
-          break;
-        case Deriv::Recursion:
-          column_run<Deriv::Recursion, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
-          break;
-        case Deriv::Both:
-          column_run<Deriv::Both, V>(cs, ss, seg, len, tq[g], q[g], q2[g], st[g]);
-          break;
+      const GroupGeometry<V, W>& a = geo[g];
+      const bool pairable = a.mode == Deriv::None || a.mode == Deriv::Identity;
+      if (pairable && g + 1 < groups && geo[g + 1].mode == a.mode) {
+        const GroupGeometry<V, W>& b = geo[g + 1];
+        if (a.mode == Deriv::None)
+          column_run_pair<Deriv::None, V>(cs, ss, seg, len, a.tq, a.q2, b.tq, b.q2, st + g);
+        else
+          column_run_pair<Deriv::Identity, V>(cs, ss, seg, len, a.tq, a.q2, b.tq, b.q2, st + g);
+        ++g;
+        continue;
       }
-      if (pair && (mode[g] == Deriv::None || mode[g] == Deriv::Identity)) ++g;
+      switch (a.mode) {
+        case Deriv::None: column_run<Deriv::None, V>(cs, ss, seg, len, a.tq, a.q, a.q2, st[g]); break;
+        case Deriv::Identity: column_run<Deriv::Identity, V>(cs, ss, seg, len, a.tq, a.q, a.q2, st[g]); break;
+        case Deriv::Recursion: column_run<Deriv::Recursion, V>(cs, ss, seg, len, a.tq, a.q, a.q2, st[g]); break;
+        case Deriv::Both: column_run<Deriv::Both, V>(cs, ss, seg, len, a.tq, a.q, a.q2, st[g]); break;
+      }
     }
   }
-}
-
-// A group's lanes in the kernel's variables, which of them are near a pole, and the form of
-// the t-derivative the group computes.
-template <class V, int W>
-struct GroupGeometry {
-  V t, q, tq, q2, inv_u2;
-  bool near_pole[W];
-  Deriv mode;
-};
-
-// For lanes (t_i, q_i), with u² = (1 − t)(1 + t) (accurate near the poles).
-template <class V, int W>
-MERIDIAN_INLINE GroupGeometry<V, W> group_geometry(const V& t, const V& q, bool grad) {
-  GroupGeometry<V, W> g;
-  g.t = t;
-  g.q = q;
-  g.tq = t * q;
-  g.q2 = q * q;
-  const V u2 = (1.0 - t) * (1.0 + t);
-  int near = 0;
-  for (int i = 0; i < W; ++i) {
-    g.near_pole[i] = !(u2[i] >= kIdentityMinCos * kIdentityMinCos);
-    near += g.near_pole[i];
-    g.inv_u2[i] = g.near_pole[i] ? 0.0 : 1.0 / u2[i];  // unused near the poles (no division by zero)
-  }
-  g.mode = !grad ? Deriv::None : near == 0 ? Deriv::Identity : near == W ? Deriv::Recursion : Deriv::Both;
-  return g;
 }
 
 // The sums of order m that the combination reads, from a group's column state: A0, B0,
@@ -374,11 +373,10 @@ MERIDIAN_INLINE void horner_step(V& hr, V& hi, const V& zr, const V& zi, const V
   hr = r;
 }
 
-// Up to P·W points as P groups of W lanes of type V (V8: kLanes points; V4 for small blocks:
-// half the work on AVX2 and on AMD Zen 4, which splits 512-bit operations in two). The groups
+// Up to P·W points as P groups of W lanes of type V (the kernel's native width). The groups
 // share each column m segment by segment while it is in the L1 cache (columns): the coefficient
-// table is streamed from memory once per pass, however narrow the vectors, and the loop keeps
-// only one group's recursion in registers.
+// table is streamed from memory once per pass, however narrow the vectors, and a loop keeps one
+// group's recursion, or a pair's, in registers.
 template <bool Grad, class V, int W, int P>
 MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, int count, LaneSums* out) {
   struct Group {
@@ -402,17 +400,9 @@ MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, in
     G.zi = G.u * G.q * G.sl;
     geo[k] = group_geometry<V, W>(G.t, G.q, Grad);
   }
-  V tq[P]{}, qv[P]{}, q2[P]{};
-  Deriv mode[P]{};
-  for (int k = 0; k < groups; ++k) {
-    tq[k] = geo[k].tq;
-    qv[k] = geo[k].q;
-    q2[k] = geo[k].q2;
-    mode[k] = geo[k].mode;
-  }
   ColumnState<V> st[P]{};
   for (int m = d.mmax; m >= 0; --m) {
-    columns<V>(d, m, m - 1, tq, qv, q2, mode, groups, st);
+    columns<V, W>(d, m, m - 1, geo, groups, st);
     for (int k = 0; k < groups; ++k) {
       Group& G = g[k];
       V acc[6];
@@ -452,8 +442,6 @@ MERIDIAN_INLINE void column_sums_impl(const KernelData& d, const double* t, cons
                                       std::vector<double>* out) {
   constexpr std::size_t width = Grad ? 6 : 2;
   GroupGeometry<V, W> geo[P]{};
-  V tq[P]{}, qv[P]{}, q2[P]{};
-  Deriv mode[P]{};
   const int groups = (count + W - 1) / W;
   for (int k = 0; k < groups; ++k) {
     V tv{}, qk{};
@@ -463,16 +451,12 @@ MERIDIAN_INLINE void column_sums_impl(const KernelData& d, const double* t, cons
       qk[i] = q[j];
     }
     geo[k] = group_geometry<V, W>(tv, qk, Grad);
-    tq[k] = geo[k].tq;
-    qv[k] = geo[k].q;
-    q2[k] = geo[k].q2;
-    mode[k] = geo[k].mode;
   }
   for (int j = 0; j < count; ++j) out[j].resize(width * (static_cast<std::size_t>(d.mmax) + 1));
   ColumnState<V> st[P]{};
   for (int m = 0; m <= d.mmax; ++m) {
     const std::size_t o = width * static_cast<std::size_t>(m);
-    columns<V>(d, m, m < d.mmax ? m + 1 : -1, tq, qv, q2, mode, groups, st);
+    columns<V, W>(d, m, m < d.mmax ? m + 1 : -1, geo, groups, st);
     for (int k = 0; k < groups; ++k) {
       V acc[6];
       order_sums<Grad, V, W>(st[k], m, geo[k], acc);
