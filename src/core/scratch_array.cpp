@@ -9,14 +9,19 @@
 namespace meridian {
 namespace {
 constexpr std::size_t kHugePage = std::size_t{2} << 20;
+
+// madvise(advice) on the whole `align`-aligned blocks inside [p, p + bytes), if any.
+[[maybe_unused]] void advise_aligned_interior(void* p, std::size_t bytes, std::size_t align, int advice) noexcept {
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t first = (begin + align - 1) / align * align;
+  const std::uintptr_t last = (begin + bytes) / align * align;
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, advice);
+}
 }  // namespace
 
 void advise_huge_pages(void* p, std::size_t bytes) noexcept {
 #ifdef MADV_HUGEPAGE
-  const auto begin = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t first = (begin + kHugePage - 1) / kHugePage * kHugePage;
-  const std::uintptr_t last = (begin + bytes) / kHugePage * kHugePage;
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  advise_aligned_interior(p, bytes, kHugePage, MADV_HUGEPAGE);
 #else
   (void)p;
   (void)bytes;
@@ -25,12 +30,7 @@ void advise_huge_pages(void* p, std::size_t bytes) noexcept {
 
 void populate_pages(void* p, std::size_t bytes) noexcept {
 #ifdef MADV_POPULATE_WRITE
-  constexpr std::size_t kPage = 4096;
-  if (bytes < (std::size_t{1} << 20)) return;
-  const auto begin = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t first = (begin + kPage - 1) / kPage * kPage;
-  const std::uintptr_t last = (begin + bytes) / kPage * kPage;
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+  if (bytes >= (std::size_t{1} << 20)) advise_aligned_interior(p, bytes, 4096, MADV_POPULATE_WRITE);
 #else
   (void)p;
   (void)bytes;
