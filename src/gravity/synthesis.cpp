@@ -379,8 +379,8 @@ MERIDIAN_INLINE void horner_step(V& hr, V& hi, const V& zr, const V& zi, const V
 // group's recursion, or a pair's, in registers.
 template <bool Grad, class V, int W, int P>
 MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, int count, LaneSums* out) {
-  struct Group {
-    V t, u, q, cl, sl, zr, zi;
+  struct Group {  // t and q are in the group's geometry
+    V u, cl, sl, zr, zi;
     V h0r{}, h0i{}, h1r{}, h1i{}, h2r{}, h2i{}, gr{}, gi{};
   };
   Group g[P];
@@ -388,17 +388,18 @@ MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, in
   const int groups = (count + W - 1) / W;
   for (int k = 0; k < groups; ++k) {
     Group& G = g[k];
+    V t{}, q{};
     for (int i = 0; i < W; ++i) {
       const LanePoint& p = pts[std::min(k * W + i, count - 1)];
-      G.t[i] = p.t;
+      t[i] = p.t;
       G.u[i] = p.u;
-      G.q[i] = p.q;
+      q[i] = p.q;
       G.cl[i] = p.cos_lon;
       G.sl[i] = p.sin_lon;
     }
-    G.zr = G.u * G.q * G.cl;
-    G.zi = G.u * G.q * G.sl;
-    geo[k] = group_geometry<V, W>(G.t, G.q, Grad);
+    G.zr = G.u * q * G.cl;
+    G.zi = G.u * q * G.sl;
+    geo[k] = group_geometry<V, W>(t, q, Grad);
   }
   ColumnState<V> st[P]{};
   for (int m = d.mmax; m >= 0; --m) {
@@ -418,15 +419,16 @@ MERIDIAN_INLINE void evaluate_impl(const KernelData& d, const LanePoint* pts, in
   }
   for (int j = 0; j < count; ++j) {
     const Group& G = g[j / W];
+    const GroupGeometry<V, W>& geo_j = geo[j / W];
     const int i = j % W;
     LaneSums& o = out[j];
-    const double q = G.q[i];
+    const double q = geo_j.q[i];
     o.v = q * G.h0r[i] * kInvScale;
     if constexpr (Grad) {
       // G e^{iλ}: real part Σ u^{m−1} m X_m, minus imaginary part the east sum.
       const double g0 = G.gr[i] * G.cl[i] - G.gi[i] * G.sl[i], g3 = -(G.gr[i] * G.sl[i] + G.gi[i] * G.cl[i]);
       o.dr = q * G.h1r[i] * kInvScale;
-      o.dn = (q * G.u[i] * G.h2r[i] - q * q * G.t[i] * g0) * kInvScale;
+      o.dn = (q * G.u[i] * G.h2r[i] - q * q * geo_j.t[i] * g0) * kInvScale;
       o.de = q * q * g3 * kInvScale;
     } else {
       o.dr = o.dn = o.de = 0;
