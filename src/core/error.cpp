@@ -24,6 +24,11 @@ void Error::add_context(const std::string& file, std::optional<int> line,
   rebuild();
 }
 
+void Error::relocate(ErrorContext where) {
+  context_ = std::move(where);
+  rebuild();
+}
+
 void Error::rebuild() {
   std::string s;
   if (!context_.file.empty()) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "meridian/io/source_map.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/model_lookup.hpp"
 #include "gravity_model_ref.hpp"
@@ -12,15 +13,11 @@
 namespace meridian::io {
 namespace {
 
-// Run `body`, giving its errors the file and line of the field they name.
-template <class F>
-auto located(const std::string& file, const FieldLines& lines, F&& body) {
-  try {
-    return body();
-  } catch (Error& e) {
-    locate_error(e, file, lines);
-    throw;
-  }
+// A field book's fields: the lines its reader recorded.
+SourceMap book(const std::string& file, const FieldLines& lines) {
+  SourceMap m;
+  m.add_document(file, lines);
+  return m;
 }
 
 }  // namespace
@@ -45,14 +42,14 @@ const gyro::DeflectionModel& DeflectionModels::get(const gyro::GravityModelRef& 
 
 ReduceJob run_reduce_file(const std::filesystem::path& path, Progress* progress) {
   ReduceJob job{read_gyro_reduce_file(path), {}};
-  job.result = located(job.file.file, job.file.lines, [&] { return gyro::process(job.file.input, progress); });
+  job.result = located(book(job.file.file, job.file.lines), [&] { return gyro::process(job.file.input, progress); });
   return job;
 }
 
 CampaignJob run_campaign_file(const std::filesystem::path& path, DeflectionModels* models, Progress* progress) {
   CampaignJob job{read_campaign_file(path), {}};
   const CampaignFile& f = job.file;
-  job.result = located(f.file, f.lines, [&] {
+  job.result = located(book(f.file, f.lines), [&] {
     DeflectionModels own;
     const gyro::DeflectionModel* deflection = nullptr;
     if (f.campaign.gravity_model) deflection = &(models ? *models : own).get(*f.campaign.gravity_model);
@@ -69,21 +66,19 @@ OrientationsJob run_orientation_files(const std::vector<std::filesystem::path>& 
     job.orientations.push_back(run_campaign_file(p, &models, progress));
     results.push_back(job.orientations.back().result);
   }
-  try {
-    job.result = gyro::combine_orientations(results);
-  } catch (Error& e) {
-    // "orientations[i]" → the file of orientation i.
-    const std::string& field = e.context().field;
-    for (std::size_t i = 0; i < paths.size(); ++i)
-      if (field == "orientations[" + std::to_string(i) + "]") e.add_context(paths[i].string());
-    throw;
+  // "orientations[i]" is the file of orientation i.
+  SourceMap files;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const std::string field = "orientations[" + std::to_string(i) + "]";
+    files.add_place(field, {paths[i].string(), std::nullopt, field});
   }
+  job.result = located(files, [&] { return gyro::combine_orientations(results); });
   return job;
 }
 
 gyro::TransitFactorCalibration run_transit_factor_file(const std::filesystem::path& path) {
   const GyroReduceFile f = read_gyro_reduce_file(path);
-  return located(f.file, f.lines, [&] { return gyro::calibrate_transit_factor(f.input); });
+  return located(book(f.file, f.lines), [&] { return gyro::calibrate_transit_factor(f.input); });
 }
 
 }  // namespace meridian::io

@@ -31,6 +31,12 @@ class Error : public std::runtime_error {
   void add_context(const std::string& file, std::optional<int> line = std::nullopt,
                    const std::string& field_prefix = {});
 
+  /// Replace the whole context by where the bad value really is: the library's field path
+  /// ("dr[12].speed_m_s") becomes the file, line and column the user wrote
+  /// ("dr.csv", 14, "speed"). Used by io::SourceMap; catch by reference, relocate and
+  /// `throw;`, so the error keeps its class (InputError stays InputError, exit codes with it).
+  void relocate(ErrorContext where);
+
   /// "file:line: field: message" with the unknown parts left out.
   const char* what() const noexcept override { return full_.c_str(); }
 
