@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "checks.hpp"
+#include "meridian/core/checks.hpp"
 #include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
@@ -22,9 +22,9 @@ void require_sigma(double s, const char* what) {
 
 void check(AzimuthKind kind, const Uncertain& v, const AzimuthReduction& r) {
   const std::string what = to_string(kind) + " azimuth";
-  detail::require_finite(v.value, what.c_str());
+  require_finite(v.value, what.c_str());
   require_sigma(v.sigma, what.c_str());
-  detail::require_finite(r.latitude_rad, "latitude");
+  require_finite(r.latitude_rad, "latitude");
   if (std::abs(r.latitude_rad) > units::kPi / 2)
     throw InputError(fmt::format("latitude {} rad ({} deg) must satisfy |lat| <= 90 deg",
                                  r.latitude_rad, units::rad_to_deg(r.latitude_rad)));
@@ -41,8 +41,8 @@ void check(AzimuthKind kind, const Uncertain& v, const AzimuthReduction& r) {
     require_sigma(r.xi_rad->sigma, "xi");
   }
   if (r.zenith_distance_rad) check_zenith_distance(*r.zenith_distance_rad);
-  detail::require_finite(r.convergence_rad, "meridian convergence");
-  if (r.arc_to_chord_rad) detail::require_finite(*r.arc_to_chord_rad, "arc-to-chord correction");
+  require_finite(r.convergence_rad, "meridian convergence");
+  if (r.arc_to_chord_rad) require_finite(*r.arc_to_chord_rad, "arc-to-chord correction");
 }
 
 // The exact steps: record γ and δ.

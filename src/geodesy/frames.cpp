@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "checks.hpp"
+#include "meridian/core/checks.hpp"
 #include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
@@ -13,7 +13,7 @@ namespace meridian::geodesy {
 namespace {
 
 void require_latitude(double lat_rad, const char* what) {
-  detail::require_finite(lat_rad, what);
+  require_finite(lat_rad, what);
   if (std::abs(lat_rad) > units::kPi / 2)
     throw InputError(fmt::format("{} {} rad ({} deg) must satisfy |lat| <= 90 deg", what, lat_rad,
                                  units::rad_to_deg(lat_rad)));
@@ -44,7 +44,7 @@ Eigen::Vector3d up_ecef(double lat_rad, double lon_rad) {
 
 Eigen::Matrix3d rotation_ecef_to_enu(double lat_rad, double lon_rad) {
   require_latitude(lat_rad, "latitude");
-  detail::require_finite(lon_rad, "longitude");
+  require_finite(lon_rad, "longitude");
   const double sp = std::sin(lat_rad), cp = std::cos(lat_rad);
   const double sl = std::sin(lon_rad), cl = std::cos(lon_rad);
   Eigen::Matrix3d r;
@@ -70,7 +70,7 @@ Eigen::Matrix3d rotation_ecef_to_ned(double lat_rad, double lon_rad) {
 
 double geocentric_latitude_rad(double lat_rad, double height_m, const Ellipsoid& e) {
   require_latitude(lat_rad, "latitude");
-  detail::require_finite(height_m, "height");
+  require_finite(height_m, "height");
   if (!std::isfinite(e.a_m) || e.a_m <= 0 || !std::isfinite(e.f) || e.f < 0 || e.f >= 1)
     throw InputError(fmt::format("invalid ellipsoid {}: a = {} m, f = {}", e.name, e.a_m, e.f));
   const double e2 = e.f * (2 - e.f);
@@ -99,22 +99,22 @@ Eigen::Matrix3d rotation_geocentric_to_enu(double lat_rad, double geocentric_lat
 Deflection deflection_from_astronomic(double astro_lat_rad, double astro_lon_rad, double lat_rad,
                                       double lon_rad) {
   require_latitude(astro_lat_rad, "astronomic latitude");
-  detail::require_finite(astro_lon_rad, "astronomic longitude");
+  require_finite(astro_lon_rad, "astronomic longitude");
   require_latitude(lat_rad, "geodetic latitude");
-  detail::require_finite(lon_rad, "geodetic longitude");
+  require_finite(lon_rad, "geodetic longitude");
   return {astro_lat_rad - lat_rad, wrap_signed_rad(astro_lon_rad - lon_rad) * std::cos(lat_rad)};
 }
 
 Eigen::Vector3d astronomic_zenith_enu(double astro_lat_rad, double astro_lon_rad, double lat_rad,
                                       double lon_rad) {
   require_latitude(astro_lat_rad, "astronomic latitude");
-  detail::require_finite(astro_lon_rad, "astronomic longitude");
+  require_finite(astro_lon_rad, "astronomic longitude");
   return rotation_ecef_to_enu(lat_rad, lon_rad) * up_ecef(astro_lat_rad, astro_lon_rad);
 }
 
 Eigen::Vector3d astronomic_zenith_enu(const Deflection& d, double lat_rad) {
   require_deflection(d);
-  detail::require_finite(lat_rad, "latitude");
+  require_finite(lat_rad, "latitude");
   if (std::abs(lat_rad) >= units::kPi / 2)
     throw InputError(fmt::format(
         "latitude {} deg: the exact zenith from (xi, eta) needs |lat| < 90 deg (eta / cos lat)",

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/angle.hpp"
+#include "meridian/core/checks.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
@@ -66,10 +67,6 @@ GeographicLib::TransverseMercator projection(const GridDefinition& d) {
 
 double prefix_m(const GridDefinition& d) {
   return d.zone_prefix ? d.zone * kZonePrefix_m : 0.0;
-}
-
-void require_finite(double v, const char* what) {
-  if (!std::isfinite(v)) throw InputError(fmt::format("{} is not finite ({})", what, v));
 }
 
 // The standard systems fix CM, k0, FE and FN; a definition that disagrees
