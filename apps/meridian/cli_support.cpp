@@ -67,6 +67,13 @@ void emit_all(std::initializer_list<Output> outputs) {
     if (o.path == "-") emit("", o.text);
 }
 
+void emit_with_report(const std::string& output, const std::string& text, const std::string& report_path,
+                      const std::function<std::string()>& html) {
+  if (report_path.empty()) return emit(output, text);
+  const std::string page = html();
+  emit_all({{output.empty() ? kStandardOutput : output, text}, {report_path, page}});
+}
+
 TerminalProgress::TerminalProgress(bool quiet) : enabled_(!quiet && ::isatty(STDERR_FILENO) == 1) {
   if (const char* d = std::getenv("MERIDIAN_PROGRESS_DELAY_S")) delay_s_ = std::atof(d);
 }

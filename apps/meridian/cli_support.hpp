@@ -40,6 +40,12 @@ void emit_all(std::initializer_list<Output> outputs);
 /// "-", the path of standard output in emit_all.
 inline const std::string kStandardOutput = "-";
 
+/// The outputs of most workflow commands: the summary `text` (text or JSON) to `output` (empty
+/// or "-": standard output) and, when `report_path` is not empty, the HTML report `html()` (built
+/// only then), all or none (emit_all). Call it after everything is computed.
+void emit_with_report(const std::string& output, const std::string& text, const std::string& report_path,
+                      const std::function<std::string()>& html);
+
 /// When `report_path` is not empty and this build has no HTML reports, throw
 /// an Error saying how to enable them, before any work is done.
 void require_html_reports_for(const std::string& report_path);

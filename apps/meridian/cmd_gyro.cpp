@@ -26,6 +26,7 @@
 #include "meridian/report/gyro_stochastic.hpp"
 #include "meridian/report/gyro_text.hpp"
 #include "meridian/report/html.hpp"
+#include "meridian/report/json_text.hpp"
 
 namespace meridian::cli {
 namespace gyro_cmd {
@@ -42,15 +43,11 @@ int run_reduce(const ReduceArgs& a) {
   const io::ReduceJob job = io::run_reduce_file(a.file, &progress);
   progress.finish();
   // Everything is computed before anything is written.
-  const std::string out = a.json ? report::reduce_to_json(job.file.file, job.result).dump(2) + "\n"
+  const std::string out = a.json ? report::json_text(report::reduce_to_json(job.file.file, job.result))
                                  : report::reduce_text(job.file.file, job.result, report::AngleFormat(job.file.input.angle_unit));
-  const std::string html =
-      a.report.empty() ? std::string()
-                       : report::render_html(report::gyro_reduce_document(job.file.file, job.file.input, job.result));
-  if (a.report.empty())
-    emit(a.output, out);
-  else
-    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
+  emit_with_report(a.output, out, a.report, [&] {
+    return report::render_html(report::gyro_reduce_document(job.file.file, job.file.input, job.result));
+  });
   return kOk;
 }
 
@@ -64,14 +61,10 @@ int run_stochastic(const StochasticArgs& a) {
   TerminalProgress progress(a.quiet);
   const io::StochasticJob job = io::run_stochastic_file(a.file, &progress);
   progress.finish();
-  const std::string html =
-      a.report.empty() ? std::string() : report::render_html(report::stochastic_document(job.file, job.result));
   const std::string out =
-      a.json ? report::stochastic_to_json(job.file, job.result).dump(2) + "\n" : report::stochastic_text(job.file, job.result);
-  if (a.report.empty())
-    emit(a.output, out);
-  else
-    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
+      a.json ? report::json_text(report::stochastic_to_json(job.file, job.result)) : report::stochastic_text(job.file, job.result);
+  emit_with_report(a.output, out, a.report,
+                   [&] { return report::render_html(report::stochastic_document(job.file, job.result)); });
   return kOk;
 }
 
@@ -98,7 +91,7 @@ int run_campaign(const CampaignArgs& a) {
   const io::CampaignJob job = io::run_campaign_file(a.file, nullptr, &progress);
   progress.finish();
   const gyro::CampaignResult& r = job.result;
-  const std::string out = a.json ? report::campaign_to_json(r).dump(2) + "\n"
+  const std::string out = a.json ? report::json_text(report::campaign_to_json(r))
                                  : report::campaign_text(r, report::AngleFormat(job.file.campaign.angle_unit));
   if (a.strict && !r.all_checks_pass()) {
     // A job that fails its checks is not filed: stdout still shows it, no file is written.
@@ -106,13 +99,9 @@ int run_campaign(const CampaignArgs& a) {
     print_failed_checks(r.checks);
     return kInputError;
   }
-  const std::string html =
-      a.report.empty() ? std::string()
-                       : report::render_html(report::gyro_campaign_document(job.file.file, job.file.campaign, r));
-  if (a.report.empty())
-    emit(a.output, out);
-  else
-    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
+  emit_with_report(a.output, out, a.report, [&] {
+    return report::render_html(report::gyro_campaign_document(job.file.file, job.file.campaign, r));
+  });
   return kOk;
 }
 
@@ -140,7 +129,7 @@ int run_orientations(const OrientationsArgs& a) {
   const io::OrientationsJob job = io::run_orientation_files(paths, &progress);
   progress.finish();
   const report::AngleFormat f(job.orientations.front().file.campaign.angle_unit);
-  const std::string out = a.json ? report::orientations_to_json(job.result).dump(2) + "\n"
+  const std::string out = a.json ? report::json_text(report::orientations_to_json(job.result))
                                  : report::orientations_text(a.files, job.result, f);
   if (a.strict && !job.result.all_checks_pass()) {
     if (a.output.empty() || a.output == "-") emit("", out);
@@ -158,7 +147,7 @@ struct TransitArgs {
 
 int run_transit_factor(const TransitArgs& a) {
   const gyro::TransitFactorCalibration c = io::run_transit_factor_file(a.file);
-  emit("", a.json ? report::transit_factor_to_json(c).dump(2) + "\n" : report::transit_factor_text(c));
+  emit("", a.json ? report::json_text(report::transit_factor_to_json(c)) : report::transit_factor_text(c));
   return kOk;
 }
 
