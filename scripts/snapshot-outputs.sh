@@ -145,6 +145,29 @@ run dov-process dov process "$w/dov.yaml" -o @W@/profile.csv --report @W@/r.html
 run dov-process-json dov process "$w/dov.yaml" --json
 run dov-convert dov convert "$w/line.csv" @W@/line.bin
 run dov-convert-back dov convert "$out/dov-convert/line.bin" @W@/line.csv
+# dov: every output path of `dov process` (profile and report to files or standard output, a
+# binary line, a line long enough for the report's thinning, a gravity model for eta_G, xi_G),
+# `dov convert` both ways with an unread column, and `dov simulate`'s option checks
+run dov-process-stdout dov process "$w/dov.yaml" -q -o - --report @W@/r.html
+run dov-process-report-stdout dov process "$w/dov.yaml" --json --report -
+sed "s|^line: .*|line: $out/dov-simulate-bin/line.bin|" "$w/dov.yaml" > "$out/dov-bin.yaml"
+run dov-process-bin dov process "$out/dov-bin.yaml" --json -o @W@/profile.csv
+run dov-simulate-long dov simulate --hours 1.2 --rate-hz 2 --seed 5 --transport-rate --out @W@/line.csv --config @W@/dov.yaml
+run dov-process-long dov process "$out/dov-simulate-long/dov.yaml" -o @W@/profile.csv --report @W@/r.html
+awk -F, '/^#/ {print; next} {s=$1; for (i = 2; i <= NF; i++) if (i != 24 && i != 25) s = s "," $i; print s}' "$w/line.csv" > "$out/dov-nomodel.csv"
+{ sed "s|^line: .*|line: $out/dov-nomodel.csv|" "$w/dov.yaml"; echo "gravity_model: {model: $syn, max_degree: 20}"; } > "$out/dov-gm.yaml"
+run dov-process-gravity-model dov process "$out/dov-gm.yaml" -o @W@/profile.csv --report @W@/r.html
+run dov-process-gravity-model-json dov process "$out/dov-gm.yaml" --json
+run dov-simulate-stdout dov simulate --hours 0.002 --rate-hz 1 --seed 2 --heading 10d30 --out -
+run dov-simulate-bin-config dov simulate --hours 0.01 --seed 6 --sigma-ins-arcsec 0 --binary --out @W@/l.bin --config @W@/c.yaml
+run dov-process-bin-config dov process "$out/dov-simulate-bin-config/c.yaml"
+awk -F, 'BEGIN {OFS = ","} /^#/ {print; next} {print $0, (NR == 3 ? "status,truth_eta_arcsecs" : "ok,1")}' "$w/line.csv" > "$out/dov-extra.csv"
+run dov-convert-extra dov convert "$out/dov-extra.csv" @W@/extra.bin
+run dov-convert-stdout dov convert "$out/dov-convert/line.bin" -
+run dov-convert-nomodel dov convert "$out/dov-nomodel.csv" @W@/n.bin
+run dov-convert-nomodel-back dov convert "$out/dov-convert-nomodel/n.bin" @W@/n.csv
+sed "s|^line: .*|line: $out/dov-extra.csv|" "$w/dov.yaml" > "$out/dov-extra.yaml"
+run dov-process-extra dov process "$out/dov-extra.yaml" --json
 
 # --- nav
 for s in A B C D; do run nav-simulate-$s nav simulate --scenario $s --seed 2 --out @W@/job --fixes-every-s 120; done
@@ -188,6 +211,47 @@ sed "s|line.csv|$out/bad-line3.csv|" "$w/dov.yaml" > "$out/bad-dov3.yaml"
 run err-dov-lat dov process "$out/bad-dov3.yaml" --json
 sed "s|^\(sigma_obs_arcsec:\).*|\1 -1|" "$w/dov.yaml" > "$out/dov-bad-sigma.yaml"
 run err-dov-config dov process "$out/dov-bad-sigma.yaml"
+# dov: where each kind of error is located (line file and column, binary sample, configuration key)
+dov_line() { sed "s|^line: .*|line: $1|" "$w/dov.yaml"; }
+awk -F, 'BEGIN {OFS = ","} NR == 12 {$15 = "2"} 1' "$w/line.csv" > "$out/dov-ortho.csv"
+dov_line "$out/dov-ortho.csv" > "$out/dov-ortho.yaml"
+run err-dov-ortho dov process "$out/dov-ortho.yaml"
+awk -F, 'BEGIN {OFS = ","} NR == 20 {$6 = 1; $7 = 0; $8 = 0; $9 = 0; $10 = 1; $11 = 0; $12 = 0; $13 = 0; $14 = 1} 1' "$w/line.csv" > "$out/dov-diff.csv"
+dov_line "$out/dov-diff.csv" > "$out/dov-diff.yaml"
+run err-dov-difference dov process "$out/dov-diff.yaml" --json
+{ dov_line "$w/line.csv"; echo "max_step_s: 0.1"; } > "$out/dov-step.yaml"
+run err-dov-step dov process "$out/dov-step.yaml"
+{ dov_line "$w/line.csv"; echo "statistics_start_s: 100000"; } > "$out/dov-stat.yaml"
+run err-dov-statistics dov process "$out/dov-stat.yaml"
+{ dov_line "$w/line.csv"; echo "gravity_model: {model: $syn}"; } > "$out/dov-both.yaml"
+run err-dov-both-model-sources dov process "$out/dov-both.yaml"
+dov_line "$out/dov-nomodel.csv" > "$out/dov-none.yaml"
+run err-dov-no-model-values dov process "$out/dov-none.yaml"
+{ dov_line "$out/dov-nomodel.csv"; echo "gravity_model: {model: no-such-model-xyz}"; } > "$out/dov-nogm.yaml"
+run err-dov-model-not-found dov process "$out/dov-nogm.yaml"
+awk -F, 'BEGIN {OFS = ","} NR == 30 {$4 = "2e7"} 1' "$out/dov-nomodel.csv" > "$out/dov-high.csv"
+{ dov_line "$out/dov-high.csv"; echo "gravity_model: {model: $syn}"; } > "$out/dov-high.yaml"
+run err-dov-model-height dov process "$out/dov-high.yaml"
+head -n 4 "$w/line.csv" > "$out/dov-short.csv"
+dov_line "$out/dov-short.csv" > "$out/dov-short.yaml"
+run err-dov-short dov process "$out/dov-short.yaml"
+{ dov_line "$w/line.csv"; echo "sigma_obs_arcsecs: 1"; } > "$out/dov-typo.yaml"
+run err-dov-typo dov process "$out/dov-typo.yaml"
+awk -F, 'BEGIN {OFS = ","} NR == 40 {$1 = "0.25"} 1' "$w/line.csv" > "$out/dov-rev.csv"
+run err-dov-rev-convert dov convert "$out/dov-rev.csv" @W@/rev.bin
+dov_line "$out/err-dov-rev-convert/rev.bin" > "$out/dov-rev.yaml"
+run err-dov-rev-bin dov process "$out/dov-rev.yaml"
+run err-dov-outputs-same dov process "$w/dov.yaml" -o @W@/x.html --report @W@/x.html
+run err-dov-output-is-input dov process "$w/dov.yaml" -o "$w/line.csv"
+run err-dov-report-dir dov process "$w/dov.yaml" -o @W@/p.csv --report @W@/no/such/dir/r.html
+run err-dov-convert-same dov convert "$w/line.csv" "$w/line.csv"
+run err-dov-sim-lat dov simulate --latitude 95 --out @W@/l.csv
+run err-dov-sim-rate dov simulate --rate-hz 0 --out @W@/l.csv
+run err-dov-sim-track dov simulate --hours 100 --heading 0 --speed-m-s 100 --out @W@/l.csv
+run err-dov-sim-config-stdout dov simulate --hours 0.01 --out - --config @W@/c.yaml
+run err-dov-sim-binary-stdout dov simulate --hours 0.01 --binary --out -
+run err-dov-sim-same dov simulate --hours 0.01 --out @W@/a.yaml --config @W@/a.yaml
+run err-dov-sim-config-dir dov simulate --hours 0.01 --out @W@/l.csv --config @W@/no/such/dir/c.yaml
 c=examples/nav-scenario-c
 for k in "sigma_speed_m_s: -1" "initial: {x_m: 7.49, y_m: 1.36, sigma_m: 0}" "segment_s: 0" "projection: {central_meridian_deg: 500}"; do
   key=${k%%:*}
@@ -201,6 +265,15 @@ if [ -d "$build/python/meridian" ]; then
   runpy py-campaign 'import meridian.gyro as g, json; print(json.dumps(g.campaign("examples/campaign.yaml").to_dict(), sort_keys=True, default=str))'
   runpy py-maglev 'import meridian.maglev as m, json; print(json.dumps(m.reduce_files("examples/maglev-disturbed.csv", scale_A_s_per_rad=8000, latitude_deg=35).to_dict(), sort_keys=True, default=str))'
   runpy py-dov "import meridian.dov as d, json, os; r=d.process(os.environ['W']+'/../dov-simulate/dov.yaml'); print(json.dumps(r.to_dict(), sort_keys=True, default=str)[:200000])"
+  runpy py-dov-profile "import meridian.dov as d, json, os; r=d.process(os.environ['W']+'/../dov-simulate/dov.yaml'); print(json.dumps({k: v.tolist() for k, v in r.profile.to_dict().items()}))"
+  runpy py-dov-arrays "import meridian.dov as d, json; l=d.simulate(hours=0.02, seed=3, transport_rate=True); r=d.process(l, sigma_model_arcsec=2, transport_rate=True); print(json.dumps(r.to_dict(), sort_keys=True)); print(json.dumps({k: v.tolist() for k, v in r.profile.to_dict().items()})); print(json.dumps({k: v.tolist() for k, v in l.to_dict().items()}))"
+  runpy py-dov-read-line "import meridian.dov as d, json, os; o=os.environ['W']+'/..'; print(json.dumps({k: v.tolist() for k, v in d.read_line(o+'/dov-simulate-bin/line.bin').to_dict().items()})); print(json.dumps({k: v.tolist() for k, v in d.read_line(o+'/dov-nomodel.csv').to_dict().items()})); d.read_line(o+'/dov-extra.csv')"
+  runpy py-dov-errors "import meridian.dov as d, numpy as np, os
+l = dict(d.simulate(hours=0.01, seed=3).to_dict()); l['speed_m_s'] = l['speed_m_s'].copy(); l['speed_m_s'][4] = -1
+for f in (lambda: d.process(l), lambda: d.process(d.simulate(hours=0.01), gate_alpha=2), lambda: d.process(d.simulate(hours=0.01), gravity_model={'model': 'x'}), lambda: d.process(os.environ['W'] + '/../dov-ortho.yaml'), lambda: d.simulate(latitude_deg=95), lambda: d.simulate(hours=100, heading_deg=0, speed_m_s=100)):
+    try: f()
+    except Exception as e: print(type(e).__name__, e.file, e.line, e.field, e)
+" 
   runpy py-nav 'import meridian.nav as n, json; print(json.dumps(n.process("examples/nav-scenario-c/nav.yaml").to_dict(), sort_keys=True, default=str)[:200000])'
   runpy py-gravity "import meridian.gravity as g, numpy as np; m=g.GravityModel.open('$syn'); print(repr(m.deflection(np.array([10.,20.]), np.array([30.,40.]))))"
 fi
