@@ -22,6 +22,8 @@
 #include "meridian/dov/streaming.hpp"
 #include "meridian/io/dov_binary.hpp"
 #include "meridian/io/dov_files.hpp"
+#include "meridian/io/dov_jobs.hpp"
+#include "meridian/io/dov_writers.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -74,7 +76,7 @@ void rate(benchmark::State& state, std::size_t n) {
 void run_config(benchmark::State& state, const std::string& config) {
   const io::DovConfig c = io::read_dov_config(config);
   for (auto _ : state) {
-    dov::LineResult r = io::run_dov_stream(c, {});
+    dov::Result r = io::run_dov_stream(c, {});
     benchmark::DoNotOptimize(r.summary.mean_nis);
   }
   rate(state, line().input.samples.size());
@@ -108,7 +110,7 @@ void DovProcessFromMemory(benchmark::State& state) {
       const dov::Input& i_;
       std::size_t at_ = 0;
     } source(in);
-    dov::LineResult r = dov::process_stream(source, in.options, {});
+    dov::Result r = dov::process_stream(source, in.options, {});
     benchmark::DoNotOptimize(r.summary.mean_nis);
   }
   rate(state, in.samples.size());

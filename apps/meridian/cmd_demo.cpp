@@ -20,6 +20,7 @@
 #include "meridian/report/gyro_json.hpp"
 #include "meridian/report/gyro_text.hpp"
 #include "meridian/report/html.hpp"
+#include "meridian/report/json_text.hpp"
 #include "meridian/report/nav_html.hpp"
 #include "meridian/report/nav_outputs.hpp"
 
@@ -85,19 +86,18 @@ void run_deflection(const fs::path& out, std::vector<fs::path>& written) {
   so.duration_s = 0.5 * 3600.0;
   so.seed = 4;
   so.initial_attitude_error_rad = Eigen::Vector3d(1.5, -2.0, 4.0) * units::kArcsecond;
-  dov::Input in = dov::simulate(so);
-  const dov::Result r = dov::process(in);
   const std::string title = "simulated half-hour line (dov simulate --hours 0.5 --seed 4 "
                             "--phi-e-arcsec 1.5 --phi-n-arcsec -2 --phi-u-arcsec 4)";
+  dov::Input in = dov::simulate(so);
+  in.origin = {title, "made in memory by the simulator, not written", {}};
+  const dov::Result r = dov::process(in);
   std::cout << "\nmeridian demo: dynamic deflection of the vertical, " << title << "\n\n"
-            << report::dov_summary_text(r, in.options);
+            << report::dov_summary_text(r);
   written.push_back(out / "dov-demo.json");
-  emit(written.back().string(), report::dov_summary_to_json(r, in.options).dump(2) + "\n");
+  emit(written.back().string(), report::json_text(report::dov_summary_to_json(r)));
   if (report::html_reports_available()) {
     written.push_back(out / "dov-demo.html");
-    emit(written.back().string(),
-         report::render_html(report::dov_document(
-                               r, in.options, title, "made in memory by the simulator, not written")));
+    emit(written.back().string(), report::render_html(report::dov_document(r)));
   }
 }
 

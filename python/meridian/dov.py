@@ -31,7 +31,6 @@ truth_eta_arcsec, truth_xi_arcsec.
 
 import json
 import os
-import re
 import tempfile
 import warnings
 
@@ -44,12 +43,6 @@ __all__ = ["process", "read_line", "simulate", "LINE_COLUMNS"]
 #: The arrays of a line (the truth columns are optional).
 LINE_COLUMNS = ("time_s", "lat_deg", "lon_deg", "height_m", "speed_m_s", "lgu_body_to_nav", "ins_body_to_nav",
                 "model_eta_arcsec", "model_xi_arcsec", "truth_eta_arcsec", "truth_xi_arcsec")
-
-# dov::Sample / dov::Truth members (radians) → the arrays they came from.
-_MEMBER = {"time_s": "time_s", "lat_rad": "lat_deg", "lon_rad": "lon_deg", "height_m": "height_m",
-           "speed_m_s": "speed_m_s", "lgu_body_to_nav": "lgu_body_to_nav", "ins_body_to_nav": "ins_body_to_nav",
-           "model_eta_rad": "model_eta_arcsec", "model_xi_rad": "model_xi_arcsec",
-           "eta_rad": "truth_eta_arcsec", "xi_rad": "truth_xi_arcsec"}
 
 
 def _result(out):
@@ -71,13 +64,6 @@ def _line(line):
     if ("truth_eta_arcsec" in cols) != ("truth_xi_arcsec" in cols):
         raise InputError("give both truth_eta_arcsec and truth_xi_arcsec, or neither", field="truth_eta_arcsec")
     return cols
-
-
-def _relocate(e):
-    """samples[k].lat_rad → lat_deg[k] (the argument's array and element)."""
-    m = re.fullmatch(r"(?:samples|truth)\[(\d+)\]\.(\w+)", e.field or "")
-    if m and m.group(2) in _MEMBER:
-        e.field = f"{_MEMBER[m.group(2)]}[{m.group(1)}]"
 
 
 def process(source, **options) -> Result:
@@ -105,12 +91,11 @@ def process(source, **options) -> Result:
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             json.dump({"line": "<arrays>", **options}, f)
-        try:
+        try:  # an error about a sample names its array and element ("lat_deg[3]"): the runner's
             return _result(_core.dov.process_arrays(cols, path))
         except Error as e:
             if e.file == path:
                 e.file, e.line = "<options>", None
-            _relocate(e)
             raise
     finally:
         os.unlink(path)

@@ -231,10 +231,12 @@ constexpr filter::TransitionKernel<State::size> kTransitionKernel =
     filter::structured_transition_kernel<State::size, transition_structure()>();
 
 /// The forward pass of process_stream: one sample at a time.
+/// The forward pass of process_stream: one sample at a time, steps 1–5 of deflection.hpp.
 class Forward {
  public:
-  /// `epochs` receives each epoch in `layout` (nullptr when it has no doubles).
-  Forward(const Options& o, double reference_speed, LineResult& out, EpochLayout layout,
+  /// `epochs` receives each epoch in `layout` (nullptr when it has no doubles); notes go to
+  /// out.notes, counts to out.summary.
+  Forward(const Options& o, double reference_speed, Result& out, EpochLayout layout,
           filter::detail::RecordStore* epochs)
       : o_(o),
         H_(observation_matrix()),
@@ -263,67 +265,108 @@ class Forward {
 
   void add(const Sample& s, const Truth* truth) {
     const std::size_t k = n_;
-    if (truth) {
-      const auto field = [&](const char* m) { return fmt::format("truth[{}].{}", k, m); };
-      if (!std::isfinite(truth->eta_rad) || !std::isfinite(truth->xi_rad))
-        throw InputError("true deflection is not finite", ErrorContext{{}, {}, field("eta_rad")});
-      if (truth->state && !truth->state->allFinite())
-        throw InputError("true state is not finite", ErrorContext{{}, {}, field("state")});
-      if (k == 0) have_states_ = truth->state.has_value();
-      if (truth->state.has_value() != have_states_)
-        throw InputError("a true state is given for some samples only",
-                         ErrorContext{{}, {}, field("state")});
-    }
+    if (truth) check_truth(*truth, k);
     check_sample(s, k, o_);
-    if (k > 0) {
-      const double dt = s.time_s - prev_time_;
-      if (!(dt > 0.0))
-        bad_sample(k, "time_s",
-                   fmt::format("time {} s is not after the previous sample's {} s", s.time_s,
-                               prev_time_));
-      if (dt > o_.max_step_s)
-        bad_sample(k, "time_s",
-                   fmt::format("gap of {} s after the previous sample exceeds options.max_step_s "
-                               "= {} s",
-                               dt, o_.max_step_s));
-      const double lat = 0.5 * (s.lat_rad + prev_lat_);
-      const double speed = 0.5 * (s.speed_m_s + prev_speed_);
-      const bool stationary = is_stationary(speed, o_.model);
-      if (stationary) ++stationary_steps_;
-      if (o_.transport_rate && s.time_s - baseline_time_ >= o_.transport_rate_baseline_s) {
-        // Options::transport_rate: the mean rates over the baseline that closes here.
-        const double span = s.time_s - baseline_time_;
-        const double dlon = std::remainder(s.lon_rad - baseline_lon_, 2.0 * units::kPi);
-        transport_rate_ = transport_rate(0.5 * (s.lat_rad + baseline_lat_),
-                                         (s.lat_rad - baseline_lat_) / span, dlon / span);
-        baseline_time_ = s.time_s;
-        baseline_lat_ = s.lat_rad;
-        baseline_lon_ = s.lon_rad;
-        ++out_.summary.transport_rate_updates;
-      }
-      if (!cache_.valid || std::abs(dt - cache_.dt_s) > o_.step_tolerance * cache_.dt_s ||
-          std::abs(lat - cache_.lat_rad) > o_.rediscretise_latitude_rad ||
-          std::abs(speed - cache_.speed_m_s) > o_.rediscretise_speed_m_s ||
-          stationary != cache_.stationary || transport_rate_ != cache_.transport_rate_rad_s) {
-        cache_.step =
-            discrete_model(lat, speed, dt, o_.model, o_.discretisation, transport_rate_);
-        cache_.valid = true;
-        cache_.dt_s = dt;
-        cache_.lat_rad = lat;
-        cache_.speed_m_s = speed;
-        cache_.stationary = stationary;
-        cache_.transport_rate_rad_s = transport_rate_;
-        ++out_.summary.discretisations;
-      }
-      kf_.predict(cache_.step);
-    } else {
-      t0_ = s.time_s;
-      baseline_time_ = s.time_s;
-      baseline_lat_ = s.lat_rad;
-      baseline_lon_ = s.lon_rad;
+    if (k > 0)
+      predict(s, k);
+    else
+      start(s);
+    const AttitudeDifference d = observe(s, k);
+    const filter::Innovation<Obs::size> in = update(s, d);
+    const EpochResult e = epoch_result(s, truth, d, in, k);
+    if (layout_.full)
+      pack(e, have_states_ ? &*truth->state : nullptr, epochs_->append(k));
+    else if (epochs_)
+      pack_slim(layout_, s, truth, epochs_->append(k));
+    accumulate(s, truth, e);
+    prev_time_ = s.time_s;
+    prev_lat_ = s.lat_rad;
+    prev_speed_ = s.speed_m_s;
+    ++n_;
+  }
+
+  std::size_t size() const { return n_; }
+  double t0() const { return t0_; }
+  double last_time() const { return prev_time_; }
+  bool have_states() const { return have_states_; }
+  std::size_t stationary_steps() const { return stationary_steps_; }
+  filter::SmootherStorage<State::size>& storage() { return storage_; }
+
+  Accumulator nis_, sf_eta_, sf_xi_, m_eta_, m_xi_, f_eta_, f_xi_, nees_f_;
+
+ private:
+  // The truth of sample k: finite, and a true state for every sample or for none.
+  void check_truth(const Truth& truth, std::size_t k) {
+    const auto field = [&](const char* m) { return fmt::format("truth[{}].{}", k, m); };
+    if (!std::isfinite(truth.eta_rad) || !std::isfinite(truth.xi_rad))
+      throw InputError("true deflection is not finite", ErrorContext{{}, {}, field("eta_rad")});
+    if (truth.state && !truth.state->allFinite())
+      throw InputError("true state is not finite", ErrorContext{{}, {}, field("state")});
+    if (k == 0) have_states_ = truth.state.has_value();
+    if (truth.state.has_value() != have_states_)
+      throw InputError("a true state is given for some samples only",
+                       ErrorContext{{}, {}, field("state")});
+  }
+
+  // Epoch 0: the start of the line and of the first transport-rate baseline.
+  void start(const Sample& s) {
+    t0_ = s.time_s;
+    baseline_time_ = s.time_s;
+    baseline_lat_ = s.lat_rad;
+    baseline_lon_ = s.lon_rad;
+  }
+
+  // Step 3: predict over t_k − t_{k−1} with the model of the step, re-discretised only when
+  // the step's length, mean latitude or speed, the stationarity or ω_en changed.
+  void predict(const Sample& s, std::size_t k) {
+    const double dt = s.time_s - prev_time_;
+    if (!(dt > 0.0))
+      bad_sample(k, "time_s",
+                 fmt::format("time {} s is not after the previous sample's {} s", s.time_s,
+                             prev_time_));
+    if (dt > o_.max_step_s)
+      bad_sample(k, "time_s",
+                 fmt::format("gap of {} s after the previous sample exceeds options.max_step_s "
+                             "= {} s",
+                             dt, o_.max_step_s));
+    const double lat = 0.5 * (s.lat_rad + prev_lat_);
+    const double speed = 0.5 * (s.speed_m_s + prev_speed_);
+    const bool stationary = is_stationary(speed, o_.model);
+    if (stationary) ++stationary_steps_;
+    if (o_.transport_rate && s.time_s - baseline_time_ >= o_.transport_rate_baseline_s)
+      close_baseline(s);
+    if (!cache_.valid || std::abs(dt - cache_.dt_s) > o_.step_tolerance * cache_.dt_s ||
+        std::abs(lat - cache_.lat_rad) > o_.rediscretise_latitude_rad ||
+        std::abs(speed - cache_.speed_m_s) > o_.rediscretise_speed_m_s ||
+        stationary != cache_.stationary || transport_rate_ != cache_.transport_rate_rad_s) {
+      cache_.step = discrete_model(lat, speed, dt, o_.model, o_.discretisation, transport_rate_);
+      cache_.valid = true;
+      cache_.dt_s = dt;
+      cache_.lat_rad = lat;
+      cache_.speed_m_s = speed;
+      cache_.stationary = stationary;
+      cache_.transport_rate_rad_s = transport_rate_;
+      ++out_.summary.discretisations;
     }
+    kf_.predict(cache_.step);
+  }
+
+  // Options::transport_rate: the mean rates over the baseline that closes at `s`.
+  void close_baseline(const Sample& s) {
+    const double span = s.time_s - baseline_time_;
+    const double dlon = std::remainder(s.lon_rad - baseline_lon_, 2.0 * units::kPi);
+    transport_rate_ = transport_rate(0.5 * (s.lat_rad + baseline_lat_),
+                                     (s.lat_rad - baseline_lat_) / span, dlon / span);
+    baseline_time_ = s.time_s;
+    baseline_lat_ = s.lat_rad;
+    baseline_lon_ = s.lon_rad;
+    ++out_.summary.transport_rate_updates;
+  }
+
+  // Step 2: ΔΦ of sample k, within max_attitude_difference_rad. Both matrices make the
+  // difference: an error names neither one alone.
+  AttitudeDifference observe(const Sample& s, std::size_t k) const {
     const Eigen::Matrix3d c = attitude_difference_matrix(s.lgu_body_to_nav, s.ins_body_to_nav);
-    // Both matrices make the difference: the error names neither one alone.
     AttitudeDifference d;
     try {
       d = extract(c, o_.extraction, kDifferenceField);
@@ -338,12 +381,22 @@ class Forward {
                              "options.max_attitude_difference_rad): do they describe the same "
                              "body and frame order?",
                              size / units::kDegree, o_.max_attitude_difference_rad / units::kDegree));
+    return d;
+  }
+
+  // Step 4: the update with y = [ΔΦ_E − ξ_G, ΔΦ_N + η_G]ᵀ; its record goes to the smoother.
+  filter::Innovation<Obs::size> update(const Sample& s, const AttitudeDifference& d) {
     filter::Vector<Obs::size> y;
     y(Obs::east) = d.east_rad - s.model_xi_rad;
     y(Obs::north) = d.north_rad + s.model_eta_rad;
     const filter::Innovation<Obs::size> in = kf_.update(y, H_, R_);
     storage_.append(kf_);  // compact records: P⁻ recomputed when read back
+    return in;
+  }
 
+  // Step 5: the epoch's outputs of the forward pass (the smoothed ones come backward).
+  EpochResult epoch_result(const Sample& s, const Truth* truth, const AttitudeDifference& d,
+                           const filter::Innovation<Obs::size>& in, std::size_t k) {
     EpochResult e;
     e.time_s = s.time_s;
     e.lat_rad = s.lat_rad;
@@ -363,42 +416,26 @@ class Forward {
     if (have_states_)
       e.nees_filtered = filter::nees<State::size>(*truth->state, kf_.estimate(),
                                                   static_cast<Eigen::Index>(k));
-    if (layout_.full)
-      pack(e, have_states_ ? &*truth->state : nullptr, epochs_->append(k));
-    else if (epochs_)
-      pack_slim(layout_, s, truth, epochs_->append(k));
-
-    // Forward statistics.
-    if (s.time_s - t0_ >= o_.statistics_start_s) {
-      ++out_.summary.statistics_epochs;
-      if (e.accepted) nis_.add(e.nis);
-      sf_eta_.add(e.filtered.sigma_eta_rad * e.filtered.sigma_eta_rad);
-      sf_xi_.add(e.filtered.sigma_xi_rad * e.filtered.sigma_xi_rad);
-      if (truth) {
-        const auto sq = [](double v) { return v * v; };
-        m_eta_.add(sq(e.model_eta_rad - truth->eta_rad));
-        m_xi_.add(sq(e.model_xi_rad - truth->xi_rad));
-        f_eta_.add(sq(e.filtered.eta_rad - truth->eta_rad));
-        f_xi_.add(sq(e.filtered.xi_rad - truth->xi_rad));
-      }
-      if (have_states_) nees_f_.add(*e.nees_filtered);
-    }
-    prev_time_ = s.time_s;
-    prev_lat_ = s.lat_rad;
-    prev_speed_ = s.speed_m_s;
-    ++n_;
+    return e;
   }
 
-  std::size_t size() const { return n_; }
-  double t0() const { return t0_; }
-  double last_time() const { return prev_time_; }
-  bool have_states() const { return have_states_; }
-  std::size_t stationary_steps() const { return stationary_steps_; }
-  filter::SmootherStorage<State::size>& storage() { return storage_; }
+  // The forward statistics of the epochs with t − t₀ ≥ statistics_start_s.
+  void accumulate(const Sample& s, const Truth* truth, const EpochResult& e) {
+    if (!(s.time_s - t0_ >= o_.statistics_start_s)) return;
+    ++out_.summary.statistics_epochs;
+    if (e.accepted) nis_.add(e.nis);
+    sf_eta_.add(e.filtered.sigma_eta_rad * e.filtered.sigma_eta_rad);
+    sf_xi_.add(e.filtered.sigma_xi_rad * e.filtered.sigma_xi_rad);
+    if (truth) {
+      const auto sq = [](double v) { return v * v; };
+      m_eta_.add(sq(e.model_eta_rad - truth->eta_rad));
+      m_xi_.add(sq(e.model_xi_rad - truth->xi_rad));
+      f_eta_.add(sq(e.filtered.eta_rad - truth->eta_rad));
+      f_xi_.add(sq(e.filtered.xi_rad - truth->xi_rad));
+    }
+    if (have_states_) nees_f_.add(*e.nees_filtered);
+  }
 
-  Accumulator nis_, sf_eta_, sf_xi_, m_eta_, m_xi_, f_eta_, f_xi_, nees_f_;
-
- private:
   const Options& o_;
   ObservationMatrix H_;
   ObservationCovariance R_;
@@ -406,7 +443,7 @@ class Forward {
   filter::SmootherStorage<State::size> storage_;
   EpochLayout layout_;
   filter::detail::RecordStore* epochs_;
-  LineResult& out_;
+  Result& out_;
   ModelCache cache_;
   std::size_t n_ = 0;
   std::size_t stationary_steps_ = 0;
@@ -415,6 +452,287 @@ class Forward {
   // Options::transport_rate: the open baseline's first sample and the current ω_en (ENU).
   double baseline_time_ = 0.0, baseline_lat_ = 0.0, baseline_lon_ = 0.0;
   Eigen::Vector3d transport_rate_ = Eigen::Vector3d::Zero();
+};
+
+/// The epochs a Result keeps (EpochOutputs::keep_epochs): every `every`-th epoch, the spacing
+/// doubled whenever more than `at_most` are held, so memory stays bounded.
+class KeptEpochs {
+ public:
+  KeptEpochs(std::size_t at_most, std::optional<std::size_t> line_size) : at_most_(at_most) {
+    if (at_most_ > 0 && line_size) kept_.reserve(std::min(at_most_, *line_size));
+  }
+  void add(const EpochResult& e) {
+    if (at_most_ == 0 || seen_++ % every_ != 0) return;
+    kept_.push_back(e);
+    if (kept_.size() > at_most_) {
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < kept_.size(); i += 2) kept_[j++] = kept_[i];
+      kept_.resize(j);
+      every_ *= 2;
+    }
+  }
+  std::vector<EpochResult> take() { return std::move(kept_); }
+  std::size_t every() const { return every_; }
+
+ private:
+  std::size_t at_most_;
+  std::vector<EpochResult> kept_;
+  std::size_t every_ = 1;
+  std::size_t seen_ = 0;
+};
+
+/// process_stream step by step (streaming.hpp): the samples up to the first moving one, the
+/// forward pass, the backward pass (the smoother), the epochs handed out in time order, the
+/// summary; the Result is built here, once.
+class LineRun {
+ public:
+  LineRun(SampleSource& source, const Options& o, const EpochOutputs& outputs, Progress* progress)
+      : source_(source),
+        o_(o),
+        outputs_(outputs),
+        progress_(progress),
+        have_truth_(source.has_truth()),
+        total_(source.size_hint().value_or(0)),
+        hand_out_(static_cast<bool>(outputs.sink) || outputs.keep_epochs > 0),
+        passes_(hand_out_ ? 3 : 2),
+        kept_(outputs.keep_epochs, source.size_hint()) {
+    result_.options = o;
+  }
+
+  Result run() {
+    read_until_moving();
+    forward();
+    check_line();
+    backward();
+    hand_out();
+    report_progress(progress_, n_ * passes_, n_ * passes_, "done");
+    summarise();
+    result_.origin = source_.origin();
+    for (std::string& n : source_.notes()) result_.notes.push_back(std::move(n));
+    for (std::string& w : source_.warnings()) result_.warnings.push_back(std::move(w));
+    result_.epochs = kept_.take();
+    result_.epoch_stride = kept_.every();
+    if (progress_) progress_->finish();
+    return std::move(result_);
+  }
+
+ private:
+  // The next chunk of the source into chunk_, chunk_truth_; false at the end.
+  bool next_chunk() {
+    if (source_.next(chunk_, chunk_truth_, kChunk) == 0) return false;
+    if (have_truth_ && chunk_truth_.size() != chunk_.size())
+      throw InputError(fmt::format("truth has {} entries for {} samples (give none or one per "
+                                   "sample)",
+                                   chunk_truth_.size(), chunk_.size()),
+                       ErrorContext{{}, {}, "truth"});
+    return true;
+  }
+
+  // Samples wait in pending_ until the first moving one gives the reference speed of the
+  // initial x-variance (a stationary start), then stream straight through.
+  void read_until_moving() {
+    const auto moving = [&](const Sample& s) {
+      return std::isfinite(s.speed_m_s) && s.speed_m_s >= 0.0 &&
+             !is_stationary(s.speed_m_s, o_.model);
+    };
+    for (;;) {
+      if (!next_chunk()) {
+        exhausted_ = true;
+        return;
+      }
+      pending_.insert(pending_.end(), chunk_.begin(), chunk_.end());
+      pending_truth_.insert(pending_truth_.end(), chunk_truth_.begin(), chunk_truth_.end());
+      const auto first = std::find_if(chunk_.begin(), chunk_.end(), moving);
+      if (first != chunk_.end()) {
+        reference_speed_ = first->speed_m_s;
+        return;
+      }
+    }
+  }
+
+  // Pass 1: every sample through the filter; the epochs' forward outputs to epochs_.
+  void forward() {
+    layout_.full = hand_out_;
+    layout_.truth = have_truth_;
+    layout_.states =
+        have_truth_ && !pending_truth_.empty() && pending_truth_.front().state.has_value();
+    if (layout_.doubles() > 0)
+      epochs_.emplace("MRDN-DVF", State::size, layout_.doubles(), o_.storage);
+    fw_.emplace(o_, reference_speed_, result_, layout_, epochs_ ? &*epochs_ : nullptr);
+    feed(pending_, pending_truth_);
+    pending_ = {};
+    pending_truth_ = {};
+    while (!exhausted_ && next_chunk()) feed(chunk_, chunk_truth_);
+    n_ = fw_->size();
+  }
+
+  void feed(const std::vector<Sample>& s, const std::vector<Truth>& t) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      fw_->add(s[i], have_truth_ ? &t[i] : nullptr);
+      if (fw_->size() % kProgressStride == 0)
+        report_progress(progress_, fw_->size(), total_ * passes_, "filtering");
+    }
+  }
+
+  // A line to smooth and epochs in its statistics.
+  void check_line() {
+    if (n_ < 2)
+      throw InputError(fmt::format("a line needs at least 2 samples, has {}", n_),
+                       ErrorContext{{}, {}, "samples"});
+    result_.summary.epochs = n_;
+    if (result_.summary.statistics_epochs == 0)
+      throw InputError(fmt::format("options.statistics_start_s = {} s leaves no epoch in the "
+                                   "statistics (the line lasts {} s)",
+                                   o_.statistics_start_s, fw_->last_time() - fw_->t0()),
+                       ErrorContext{{}, {}, "options.statistics_start_s"});
+  }
+
+  // Pass 2: the smoother, last epoch first, joined with each epoch's forward outputs; the
+  // completed epochs to done_ (when they are handed out).
+  void backward() {
+    if (hand_out_) done_.emplace("MRDN-DVS", State::size, kRecordDoubles, o_.storage);
+    std::optional<filter::detail::RecordStore::ReverseReader> forward_records;
+    if (epochs_) forward_records.emplace(epochs_->read_reverse());
+    // Time strictly increases, so the epochs with t − t₀ ≥ statistics_start_s are the last
+    // statistics_epochs ones: the slim records need not carry the time.
+    const std::size_t first_statistics_epoch = n_ - result_.summary.statistics_epochs;
+    EpochResult e;
+    StateVector state;
+    std::size_t done = 0;
+    filter::rts_smooth(fw_->storage(), [&](Eigen::Index k, const filter::Estimate<State::size>& sm) {
+      if (forward_records) {
+        const double* p = forward_records->next();
+        if (layout_.full)
+          unpack(p, e, &state);
+        else
+          unpack_slim(layout_, p, e, state);
+      }
+      smoothed(e, state, k, sm);
+      if (static_cast<std::size_t>(k) >= first_statistics_epoch) accumulate_smoothed(e);
+      if (k == 0) {
+        result_.summary.eps_u_rad_s = e.smoothed.eps_u_rad_s;
+        result_.summary.sigma_eps_u_rad_s = e.smoothed.sigma_eps_u_rad_s;
+      }
+      if (done_) pack(e, nullptr, done_->append(static_cast<std::uint64_t>(k)));
+      if (++done % kProgressStride == 0)
+        report_progress(progress_, n_ + done, n_ * passes_, "smoothing");
+    });
+  }
+
+  // The smoothed estimate of epoch k (and its NEES with the true state).
+  void smoothed(EpochResult& e, const StateVector& state, Eigen::Index k,
+                const filter::Estimate<State::size>& sm) const {
+    e.smoothed.eta_rad = e.model_eta_rad + sm.x(State::delta_eta);
+    e.smoothed.xi_rad = e.model_xi_rad + sm.x(State::delta_xi);
+    e.smoothed.sigma_eta_rad = sm.sigma(State::delta_eta);
+    e.smoothed.sigma_xi_rad = sm.sigma(State::delta_xi);
+    e.smoothed.eps_u_rad_s = sm.x(State::eps_u);
+    e.smoothed.sigma_eps_u_rad_s = sm.sigma(State::eps_u);
+    if (fw_->have_states()) e.nees_smoothed = filter::nees<State::size>(state, sm, k);
+  }
+
+  void accumulate_smoothed(const EpochResult& e) {
+    ss_eta_.add(e.smoothed.sigma_eta_rad * e.smoothed.sigma_eta_rad);
+    ss_xi_.add(e.smoothed.sigma_xi_rad * e.smoothed.sigma_xi_rad);
+    if (e.truth) {
+      const auto sq = [](double v) { return v * v; };
+      s_eta_.add(sq(e.smoothed.eta_rad - e.truth->eta_rad));
+      s_xi_.add(sq(e.smoothed.xi_rad - e.truth->xi_rad));
+    }
+    if (fw_->have_states()) nees_s_.add(*e.nees_smoothed);
+  }
+
+  // Pass 3: the epochs in time order (the last record of the backward pass is epoch 0) to the
+  // sink and to the kept epochs.
+  void hand_out() {
+    if (!done_) return;
+    auto reader = done_->read_reverse();
+    EpochResult e;
+    std::size_t k = 0;
+    while (const double* p = reader.next()) {
+      unpack(p, e, nullptr);
+      if (outputs_.sink) outputs_.sink(e);
+      kept_.add(e);
+      if (++k % kProgressStride == 0)
+        report_progress(progress_, 2 * n_ + k, 3 * n_, "writing");
+    }
+  }
+
+  // The summary's statistics, its warnings (NIS, transport rate, gate) and notes.
+  void summarise() {
+    Summary& sum = result_.summary;
+    const Forward& fw = *fw_;
+    sum.mean_nis = fw.nis_.mean();
+    if (fw.nis_.n > 0) {
+      sum.nis_interval =
+          filter::average_interval(Obs::size, static_cast<std::int64_t>(fw.nis_.n), 0.95);
+      if (!sum.nis_interval.contains(sum.mean_nis))
+        result_.warnings.push_back(fmt::format(
+            "mean NIS {:.3f} is outside its 95 % interval [{:.3f}, {:.3f}]: the noise model "
+            "(σ_model, r, P₀) does not fit the data",
+            sum.mean_nis, sum.nis_interval.lower, sum.nis_interval.upper));
+    }
+    if (o_.transport_rate && sum.transport_rate_updates == 0)
+      result_.warnings.push_back(fmt::format(
+          "transport_rate: no baseline of {} s closed within the line ({} s): ω_en stayed 0, so "
+          "the line was processed with the Earth-rate model (give a shorter "
+          "transport_rate_baseline_s)",
+          o_.transport_rate_baseline_s, fw.last_time() - fw.t0()));
+    warn_about_the_gate();
+    sum.rms_sigma_filtered = {fw.sf_eta_.rms(), fw.sf_xi_.rms()};
+    sum.rms_sigma_smoothed = {ss_eta_.rms(), ss_xi_.rms()};
+    if (have_truth_) {
+      sum.rms_model = EtaXi{fw.m_eta_.rms(), fw.m_xi_.rms()};
+      sum.rms_filtered = EtaXi{fw.f_eta_.rms(), fw.f_xi_.rms()};
+      sum.rms_smoothed = EtaXi{s_eta_.rms(), s_xi_.rms()};
+    }
+    if (fw.have_states()) {
+      sum.mean_nees_filtered = fw.nees_f_.mean();
+      sum.mean_nees_smoothed = nees_s_.mean();
+    }
+    if (fw.stationary_steps() > 0)
+      result_.notes.push_back(fmt::format(
+          "{} of {} steps stationary (V < {} m/s): δη, δξ held constant, x_E, x_N frozen; "
+          "standing still η is not observable (the direction (φ_N, φ_U, δη) += c·(1, tan L, 1) "
+          "leaves every observation unchanged), so while the carrier stands its σ(η) stays near "
+          "the model's and η̂ may be no better than η_G",
+          fw.stationary_steps(), n_ - 1, o_.model.stationary_speed_m_s));
+  }
+
+  // The mean NIS is over the accepted updates only, so a gate that rejects far more than its
+  // α·N can hide a misfit there: say so (α·N plus 3 binomial σ plus 2).
+  void warn_about_the_gate() {
+    if (!(o_.gate_alpha > 0.0)) return;
+    const std::size_t rejected = result_.summary.rejected;
+    const double expected = o_.gate_alpha * static_cast<double>(n_);
+    const double limit = expected + 3.0 * std::sqrt(expected * (1.0 - o_.gate_alpha)) + 2.0;
+    if (static_cast<double>(rejected) > limit)
+      result_.warnings.push_back(fmt::format(
+          "the innovation gate rejected {} of {} updates, about {:.0f} expected at alpha = {:g}: "
+          "the noise model (sigma_model, r, P0) does not fit the data or the line has blunders; "
+          "the mean NIS above is over the accepted updates only",
+          rejected, n_, expected, o_.gate_alpha));
+  }
+
+  SampleSource& source_;
+  const Options& o_;
+  const EpochOutputs& outputs_;
+  Progress* progress_;
+  const bool have_truth_;
+  const std::size_t total_;  // samples, 0: unknown
+  const bool hand_out_;      // a sink or kept epochs: pass 3
+  const std::size_t passes_;
+  Result result_;
+  KeptEpochs kept_;
+  std::vector<Sample> pending_, chunk_;
+  std::vector<Truth> pending_truth_, chunk_truth_;
+  bool exhausted_ = false;
+  double reference_speed_ = 0.0;
+  EpochLayout layout_;
+  std::optional<filter::detail::RecordStore> epochs_, done_;
+  std::optional<Forward> fw_;
+  std::size_t n_ = 0;
+  Accumulator ss_eta_, ss_xi_, s_eta_, s_xi_, nees_s_;
 };
 
 /// The samples of an Input, one chunk.
@@ -435,6 +753,7 @@ class VectorSource final : public SampleSource {
   }
   bool has_truth() const override { return !in_.truth.empty(); }
   std::optional<std::size_t> size_hint() const override { return in_.samples.size(); }
+  Origin origin() const override { return in_.origin; }
 
  private:
   const Input& in_;
@@ -468,189 +787,10 @@ void validate(const Options& o) {
                  "statistics_start_s", "finite and ≥ 0", o.statistics_start_s);
 }
 
-LineResult process_stream(SampleSource& source, const Options& o, const EpochSink& sink,
-                          Progress* progress) {
-  validate(o);
-  LineResult out;
-  const bool have_truth = source.has_truth();
-  const std::size_t total = source.size_hint().value_or(0);  // 0: unknown
-  const auto progress_total = [&](std::size_t passes) { return total * passes; };
-  const std::size_t passes = sink ? 3 : 2;
-
-  // Samples wait here until the first moving one gives the reference speed of the initial
-  // x-variance (a stationary start), then stream straight through.
-  std::vector<Sample> pending, chunk;
-  std::vector<Truth> pending_truth, chunk_truth;
-  double reference_speed = 0.0;
-  const auto moving = [&](const Sample& s) {
-    return std::isfinite(s.speed_m_s) && s.speed_m_s >= 0.0 && !is_stationary(s.speed_m_s, o.model);
-  };
-  bool exhausted = false;
-  for (;;) {
-    if (source.next(chunk, chunk_truth, kChunk) == 0) {
-      exhausted = true;
-      break;
-    }
-    if (have_truth && chunk_truth.size() != chunk.size())
-      throw InputError(fmt::format("truth has {} entries for {} samples (give none or one per "
-                                   "sample)",
-                                   chunk_truth.size(), chunk.size()),
-                       ErrorContext{{}, {}, "truth"});
-    pending.insert(pending.end(), chunk.begin(), chunk.end());
-    pending_truth.insert(pending_truth.end(), chunk_truth.begin(), chunk_truth.end());
-    const auto first = std::find_if(chunk.begin(), chunk.end(), moving);
-    if (first != chunk.end()) {
-      reference_speed = first->speed_m_s;
-      break;
-    }
-  }
-
-  EpochLayout layout;
-  layout.full = static_cast<bool>(sink);
-  layout.truth = have_truth;
-  layout.states = have_truth && !pending_truth.empty() && pending_truth.front().state.has_value();
-  std::optional<filter::detail::RecordStore> epochs;
-  if (layout.doubles() > 0) epochs.emplace("MRDN-DVF", State::size, layout.doubles(), o.storage);
-  Forward fw(o, reference_speed, out, layout, epochs ? &*epochs : nullptr);
-  const auto feed = [&](const std::vector<Sample>& s, const std::vector<Truth>& t) {
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      fw.add(s[i], have_truth ? &t[i] : nullptr);
-      if (fw.size() % kProgressStride == 0)
-        report_progress(progress, fw.size(), progress_total(passes), "filtering");
-    }
-  };
-  feed(pending, pending_truth);
-  pending = {};
-  pending_truth = {};
-  while (!exhausted && source.next(chunk, chunk_truth, kChunk) > 0) {
-    if (have_truth && chunk_truth.size() != chunk.size())
-      throw InputError(fmt::format("truth has {} entries for {} samples (give none or one per "
-                                   "sample)",
-                                   chunk_truth.size(), chunk.size()),
-                       ErrorContext{{}, {}, "truth"});
-    feed(chunk, chunk_truth);
-  }
-  const std::size_t n = fw.size();
-  if (n < 2)
-    throw InputError(fmt::format("a line needs at least 2 samples, has {}", n),
-                     ErrorContext{{}, {}, "samples"});
-  Summary& sum = out.summary;
-  sum.epochs = n;
-  if (sum.statistics_epochs == 0)
-    throw InputError(fmt::format("options.statistics_start_s = {} s leaves no epoch in the "
-                                 "statistics (the line lasts {} s)",
-                                 o.statistics_start_s, fw.last_time() - fw.t0()),
-                     ErrorContext{{}, {}, "options.statistics_start_s"});
-
-  // Backward: the smoother joined with each epoch's forward outputs.
-  const bool have_states = fw.have_states();
-  std::optional<filter::detail::RecordStore> done_store;
-  if (sink) done_store.emplace("MRDN-DVS", State::size, kRecordDoubles, o.storage);
-  Accumulator ss_eta, ss_xi, s_eta, s_xi, nees_s;
-  std::optional<filter::detail::RecordStore::ReverseReader> forward_records;
-  if (epochs) forward_records.emplace(epochs->read_reverse());
-  // Time strictly increases, so the epochs with t − t₀ ≥ statistics_start_s are the last
-  // statistics_epochs ones: the slim records need not carry the time.
-  const std::size_t first_statistics_epoch = n - sum.statistics_epochs;
-  EpochResult e;
-  StateVector state;
-  std::size_t done = 0;
-  filter::rts_smooth(fw.storage(), [&](Eigen::Index k, const filter::Estimate<State::size>& sm) {
-    if (forward_records) {
-      const double* p = forward_records->next();
-      if (layout.full)
-        unpack(p, e, &state);
-      else
-        unpack_slim(layout, p, e, state);
-    }
-    e.smoothed.eta_rad = e.model_eta_rad + sm.x(State::delta_eta);
-    e.smoothed.xi_rad = e.model_xi_rad + sm.x(State::delta_xi);
-    e.smoothed.sigma_eta_rad = sm.sigma(State::delta_eta);
-    e.smoothed.sigma_xi_rad = sm.sigma(State::delta_xi);
-    e.smoothed.eps_u_rad_s = sm.x(State::eps_u);
-    e.smoothed.sigma_eps_u_rad_s = sm.sigma(State::eps_u);
-    if (have_states) e.nees_smoothed = filter::nees<State::size>(state, sm, k);
-    if (static_cast<std::size_t>(k) >= first_statistics_epoch) {
-      ss_eta.add(e.smoothed.sigma_eta_rad * e.smoothed.sigma_eta_rad);
-      ss_xi.add(e.smoothed.sigma_xi_rad * e.smoothed.sigma_xi_rad);
-      if (e.truth) {
-        const auto sq = [](double v) { return v * v; };
-        s_eta.add(sq(e.smoothed.eta_rad - e.truth->eta_rad));
-        s_xi.add(sq(e.smoothed.xi_rad - e.truth->xi_rad));
-      }
-      if (have_states) nees_s.add(*e.nees_smoothed);
-    }
-    if (k == 0) {
-      sum.eps_u_rad_s = e.smoothed.eps_u_rad_s;
-      sum.sigma_eps_u_rad_s = e.smoothed.sigma_eps_u_rad_s;
-    }
-    if (done_store) pack(e, nullptr, done_store->append(static_cast<std::uint64_t>(k)));
-    if (++done % kProgressStride == 0)
-      report_progress(progress, n + done, n * passes, "smoothing");
-  });
-
-  // The epochs in time order: the last record of the backward pass is epoch 0.
-  if (done_store) {
-    auto reader = done_store->read_reverse();
-    std::size_t k = 0;
-    while (const double* p = reader.next()) {
-      unpack(p, e, nullptr);
-      sink(e);
-      if (++k % kProgressStride == 0)
-        report_progress(progress, 2 * n + k, 3 * n, "writing");
-    }
-  }
-  report_progress(progress, n * passes, n * passes, "done");
-
-  // Summary.
-  sum.mean_nis = fw.nis_.mean();
-  if (fw.nis_.n > 0) {
-    sum.nis_interval =
-        filter::average_interval(Obs::size, static_cast<std::int64_t>(fw.nis_.n), 0.95);
-    if (!sum.nis_interval.contains(sum.mean_nis))
-      out.warnings.push_back(fmt::format(
-          "mean NIS {:.3f} is outside its 95 % interval [{:.3f}, {:.3f}]: the noise model "
-          "(σ_model, r, P₀) does not fit the data",
-          sum.mean_nis, sum.nis_interval.lower, sum.nis_interval.upper));
-  }
-  if (o.transport_rate && sum.transport_rate_updates == 0)
-    out.warnings.push_back(fmt::format(
-        "transport_rate: no baseline of {} s closed within the line ({} s): ω_en stayed 0, so the "
-        "line was processed with the Earth-rate model (give a shorter "
-        "transport_rate_baseline_s)",
-        o.transport_rate_baseline_s, fw.last_time() - fw.t0()));
-  // The mean NIS is over the accepted updates only, so a gate that rejects far more than its
-  // α·N can hide a misfit there: say so (α·N plus 3 binomial σ plus 2).
-  if (o.gate_alpha > 0.0) {
-    const double expected = o.gate_alpha * static_cast<double>(n);
-    const double limit = expected + 3.0 * std::sqrt(expected * (1.0 - o.gate_alpha)) + 2.0;
-    if (static_cast<double>(sum.rejected) > limit)
-      out.warnings.push_back(fmt::format(
-          "the innovation gate rejected {} of {} updates, about {:.0f} expected at alpha = {:g}: "
-          "the noise model (sigma_model, r, P0) does not fit the data or the line has blunders; "
-          "the mean NIS above is over the accepted updates only",
-          sum.rejected, n, expected, o.gate_alpha));
-  }
-  sum.rms_sigma_filtered = {fw.sf_eta_.rms(), fw.sf_xi_.rms()};
-  sum.rms_sigma_smoothed = {ss_eta.rms(), ss_xi.rms()};
-  if (have_truth) {
-    sum.rms_model = EtaXi{fw.m_eta_.rms(), fw.m_xi_.rms()};
-    sum.rms_filtered = EtaXi{fw.f_eta_.rms(), fw.f_xi_.rms()};
-    sum.rms_smoothed = EtaXi{s_eta.rms(), s_xi.rms()};
-  }
-  if (have_states) {
-    sum.mean_nees_filtered = fw.nees_f_.mean();
-    sum.mean_nees_smoothed = nees_s.mean();
-  }
-  if (fw.stationary_steps() > 0)
-    out.notes.push_back(fmt::format(
-        "{} of {} steps stationary (V < {} m/s): δη, δξ held constant, x_E, x_N frozen; "
-        "standing still η is not observable (the direction (φ_N, φ_U, δη) += c·(1, tan L, 1) "
-        "leaves every observation unchanged), so while the carrier stands its σ(η) stays near "
-        "the model's and η̂ may be no better than η_G",
-        fw.stationary_steps(), n - 1, o.model.stationary_speed_m_s));
-  if (progress) progress->finish();
-  return out;
+Result process_stream(SampleSource& source, const Options& options, const EpochOutputs& outputs,
+                      Progress* progress) {
+  validate(options);
+  return LineRun(source, options, outputs, progress).run();
 }
 
 Result process(const Input& input, Progress* progress) {
@@ -661,14 +801,7 @@ Result process(const Input& input, Progress* progress) {
                                  input.truth.size(), input.samples.size()),
                      ErrorContext{{}, {}, "truth"});
   VectorSource source(input);
-  Result result;
-  result.epochs.reserve(input.samples.size());
-  LineResult line = process_stream(
-      source, input.options, [&](const EpochResult& e) { result.epochs.push_back(e); }, progress);
-  result.summary = line.summary;
-  result.notes = std::move(line.notes);
-  result.warnings = std::move(line.warnings);
-  return result;
+  return process_stream(source, input.options, EpochOutputs{{}, kAllEpochs}, progress);
 }
 
 }  // namespace meridian::dov

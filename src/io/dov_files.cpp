@@ -3,37 +3,28 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <memory>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/dov/euler.hpp"
-#include "meridian/dov/streaming.hpp"
-#include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/track.hpp"
 #include "meridian/io/dov_binary.hpp"
 #include "meridian/io/record_reader.hpp"
+#include "dov_names.hpp"
 #include "gravity_model_ref.hpp"
 
 namespace meridian::io {
 namespace {
 
 constexpr double kAs = units::kArcsecond;
-
-std::string element_name(const char* prefix, int i, int j) {
-  return fmt::format("{}_{}{}", prefix, i + 1, j + 1);
-}
 
 struct LineColumns {
   std::size_t time = 0, lat = 0, lon = 0, height = 0, speed = 0;
@@ -86,7 +77,7 @@ LineColumns find_columns(RecordReader& rr) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         std::string& name = (lgu ? c.lgu_names : c.ins_names)[3 * i + j];
-        name = element_name(p, i, j);
+        name = detail::dov_element_column(p, i, j);
         (lgu ? c.lgu : c.ins)[3 * i + j] = rr.require_column(name);
       }
   }
@@ -120,15 +111,11 @@ std::string sample_column(const std::string& member, bool lgu_euler, bool ins_eu
     return euler ? fmt::format("{0}_heading_deg, {0}_pitch_deg, {0}_roll_deg", p)
                  : fmt::format("{0}_11…{0}_33", p);
   };
-  if (member == "lat_rad") return "lat_deg";
-  if (member == "lon_rad") return "lon_deg";
-  if (member == "model_eta_rad") return "model_eta_arcsec";
-  if (member == "model_xi_rad") return "model_xi_arcsec";
   if (member == "lgu_body_to_nav") return attitude("lgu", lgu_euler);
   if (member == "ins_body_to_nav") return attitude("ins", ins_euler);
   if (member == "attitude_difference")
     return attitude("lgu", lgu_euler) + ", " + attitude("ins", ins_euler);
-  return member;  // time_s, height_m, speed_m_s: the same name
+  return dov_line_column(member);
 }
 
 /// The binary format's name of a dov::Sample member (the record's fields, dov_binary.hpp).
@@ -139,19 +126,15 @@ std::string binary_column(const std::string& member) {
   return member;  // the record's fields carry the member names
 }
 
-/// "samples[12].time_s" → 12; the filter's "epoch 12" (= samples[12]) → 12.
-std::optional<std::size_t> sample_index(const std::string& field) {
-  std::string digits;
-  for (const std::string prefix : {"samples[", "epoch "}) {
-    if (field.rfind(prefix, 0) != 0) continue;
-    for (std::size_t i = prefix.size(); i < field.size() && field[i] >= '0' && field[i] <= '9'; ++i)
-      digits += field[i];
-  }
-  if (digits.empty() || digits.size() > 18) return std::nullopt;
-  return static_cast<std::size_t>(std::stoull(digits));
-}
-
 }  // namespace
+
+std::string dov_line_column(const std::string& member) {
+  if (member == "lat_rad") return "lat_deg";
+  if (member == "lon_rad") return "lon_deg";
+  if (member == "model_eta_rad") return "model_eta_arcsec";
+  if (member == "model_xi_rad") return "model_xi_arcsec";
+  return member;
+}
 
 struct DovLineReader::Impl {
   std::ifstream file;
@@ -297,62 +280,10 @@ DovLine read_dov_line_file(const std::string& path) {
 }
 
 
-std::string dov_line_csv_header(bool model, bool truth, const std::string& settings) {
-  std::string out = "# meridian dov line: C_b^n (lgu_ij) and C_b^n' (ins_ij), rows E, N, U\n";
-  if (!settings.empty()) {
-    std::string one_line = settings;
-    for (char& ch : one_line)
-      if (ch == '\n' || ch == '\r') ch = ' ';
-    out += "# " + one_line + "\n";
-  }
-  out += "time_s,lat_deg,lon_deg,height_m,speed_m_s";
-  for (const char* p : {"lgu", "ins"})
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) out += "," + element_name(p, i, j);
-  if (model) out += ",model_eta_arcsec,model_xi_arcsec";
-  if (truth) out += ",truth_eta_arcsec,truth_xi_arcsec";
-  out += "\n";
-  return out;
-}
+namespace {
 
-void append_dov_line_csv_rows(std::string& out, const std::vector<dov::Sample>& samples,
-                              const std::vector<dov::Truth>& truth, bool model,
-                              bool truth_columns) {
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    const dov::Sample& s = samples[k];
-    out += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", s.time_s,
-                       s.lat_rad / units::kDegree, s.lon_rad / units::kDegree, s.height_m,
-                       s.speed_m_s);
-    for (const Eigen::Matrix3d* m : {&s.lgu_body_to_nav, &s.ins_body_to_nav})
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) out += fmt::format(",{:.17g}", (*m)(i, j));
-    if (model) out += fmt::format(",{:.17g},{:.17g}", s.model_eta_rad / kAs, s.model_xi_rad / kAs);
-    if (truth_columns)
-      out += fmt::format(",{:.17g},{:.17g}", truth[k].eta_rad / kAs, truth[k].xi_rad / kAs);
-    out += "\n";
-  }
-}
-
-std::string dov_line_csv(const dov::Input& input, const std::string& settings) {
-  const bool truth = !input.truth.empty();
-  std::string out = dov_line_csv_header(true, truth, settings);
-  append_dov_line_csv_rows(out, input.samples, input.truth, true, truth);
-  return out;
-}
-
-DovConfig read_dov_config(const std::string& path) {
-  const Node root = Node::load_file(path);
-  root.allow_only({"line", "zeta", "sigma_model_arcsec", "correlation_length_m",
-                   "stationary_speed_m_s", "sigma_obs_arcsec", "sigma_obs_east_arcsec",
-                   "sigma_obs_north_arcsec", "initial", "discretisation", "extraction",
-                   "max_step_s", "gate_alpha", "statistics_start_s", "gravity_model",
-                   "transport_rate", "transport_rate_baseline_s"});
-  DovConfig c;
-  c.file = path;
-  dov::Options& o = c.options;
-  const std::filesystem::path line = root.require("line").string();
-  c.line_path = (line.is_absolute() ? line : std::filesystem::path(path).parent_path() / line)
-                    .string();
+// The model-error and observation keys (arc-seconds in the file, radians in the options).
+void read_noise_keys(const Node& root, dov::Options& o) {
   if (auto n = root.get("zeta")) o.model.zeta = n->positive_number();
   if (auto n = root.get("sigma_model_arcsec")) o.model.sigma_model_rad = n->positive_number() * kAs;
   if (auto n = root.get("correlation_length_m")) o.model.correlation_length_m = n->positive_number();
@@ -365,18 +296,23 @@ DovConfig read_dov_config(const std::string& path) {
   }
   if (auto n = root.get("sigma_obs_east_arcsec")) o.sigma_obs_east_rad = n->positive_number() * kAs;
   if (auto n = root.get("sigma_obs_north_arcsec")) o.sigma_obs_north_rad = n->positive_number() * kAs;
-  if (auto init = root.get("initial")) {
-    init->allow_only({"phi_e_arcsec", "phi_n_arcsec", "phi_u_arcsec", "eps_u_deg_per_h",
-                      "delta_arcsec", "x_arcsec_s"});
-    dov::InitialSigmas& s = o.initial;
-    if (auto n = init->get("phi_e_arcsec")) s.phi_e_rad = n->positive_number() * kAs;
-    if (auto n = init->get("phi_n_arcsec")) s.phi_n_rad = n->positive_number() * kAs;
-    if (auto n = init->get("phi_u_arcsec")) s.phi_u_rad = n->positive_number() * kAs;
-    if (auto n = init->get("eps_u_deg_per_h"))
-      s.eps_u_rad_s = n->positive_number() * units::kDegree / 3600.0;
-    if (auto n = init->get("delta_arcsec")) s.delta_rad = n->positive_number() * kAs;
-    if (auto n = init->get("x_arcsec_s")) s.x_rad_s = n->positive_number() * kAs;
-  }
+}
+
+// `initial:` the σ of the initial state.
+void read_initial(const Node& init, dov::InitialSigmas& s) {
+  init.allow_only({"phi_e_arcsec", "phi_n_arcsec", "phi_u_arcsec", "eps_u_deg_per_h",
+                   "delta_arcsec", "x_arcsec_s"});
+  if (auto n = init.get("phi_e_arcsec")) s.phi_e_rad = n->positive_number() * kAs;
+  if (auto n = init.get("phi_n_arcsec")) s.phi_n_rad = n->positive_number() * kAs;
+  if (auto n = init.get("phi_u_arcsec")) s.phi_u_rad = n->positive_number() * kAs;
+  if (auto n = init.get("eps_u_deg_per_h"))
+    s.eps_u_rad_s = n->positive_number() * units::kDegree / 3600.0;
+  if (auto n = init.get("delta_arcsec")) s.delta_rad = n->positive_number() * kAs;
+  if (auto n = init.get("x_arcsec_s")) s.x_rad_s = n->positive_number() * kAs;
+}
+
+// The method keys: discretisation, extraction, steps, transport rate, gate, statistics.
+void read_method_keys(const Node& root, dov::Options& o) {
   if (auto n = root.get("discretisation")) {
     const std::string v = n->string();
     if (v == "exact")
@@ -407,226 +343,42 @@ DovConfig read_dov_config(const std::string& path) {
     o.gate_alpha = a;
   }
   if (auto n = root.get("statistics_start_s")) o.statistics_start_s = n->non_negative_number();
-  if (auto g = root.get("gravity_model")) {
-    // As in gyro campaign files: a file beside the configuration, a path, or a model name.
-    g->allow_only({"model", "max_degree"});
-    DovGravityModel m;
-    m.source = g->require("model").string();
-    m.lookup = detail::model_lookup_path(path, m.source);
-    if (auto v = g->get("max_degree")) {
-      m.max_degree = v->integer();
-      if (m.max_degree < 2) v->fail("max_degree must be at least 2");
-    }
-    c.gravity_model = m;
-  }
-  c.lines = root.visited_lines();
-  return c;
 }
 
-namespace {
-
-/// The global model that gives η_G, ξ_G (loaded once) and the note that says so.
-struct ModelValues {
-  gravity::GravityModelData data;
-  std::optional<gravity::GravityField> field;
-  gravity::TrackOptions track;
-  std::string note;
-};
-
-std::unique_ptr<ModelValues> load_model_values(const DovConfig& config) {
-  const DovGravityModel& ref = *config.gravity_model;
-  auto m = std::make_unique<ModelValues>();
-  try {
-    m->data = detail::load_named_model(ref.lookup, ref.max_degree);
-  } catch (Error& e) {
-    if (e.context().file.empty()) locate_error(e, config.file, config.lines);
-    throw;
+// `gravity_model:` as in gyro campaign files: a file beside the configuration at `path`, a
+// path, or a model name.
+DovGravityModel read_gravity_model(const Node& g, const std::string& path) {
+  g.allow_only({"model", "max_degree"});
+  DovGravityModel m;
+  m.source = g.require("model").string();
+  m.lookup = detail::model_lookup_path(path, m.source);
+  if (auto v = g.get("max_degree")) {
+    m.max_degree = v->integer();
+    if (m.max_degree < 2) v->fail("max_degree must be at least 2");
   }
-  m->field.emplace(std::move(m->data));  // takes the coefficients (the metadata stays)
-  m->note = fmt::format(
-      "model values eta_G, xi_G from the gravity model {} (degree {}): the astronomic deflection "
-      "of its plumb line at each sample, evaluated along the line within {}\"",
-      m->data.name.empty() ? ref.source : m->data.name, m->field->max_degree(),
-      m->track.tolerance_rad / kAs);
   return m;
 }
 
-/// A DovLineReader as the workflow's sample source: with a gravity model reads blocks of kBlock
-/// samples (the track evaluator's chunk) and fills in the model values, without one reads the
-/// chunks the workflow asks for straight into its vectors; either way it
-/// remembers where each sample is in the file (for a CSV, line = k + offset with the offset
-/// stored only where it changes: flat memory for the usual file).
-class LineSource final : public dov::SampleSource {
- public:
-  static constexpr std::size_t kBlock = std::size_t{1} << 16;
-
-  LineSource(DovLineReader& reader, const ModelValues* model) : reader_(reader), model_(model) {}
-
-  std::size_t next(std::vector<dov::Sample>& samples, std::vector<dov::Truth>& truth,
-                   std::size_t max) override {
-    if (!model_) {
-      // Nothing to fill in: read straight into the caller's vectors (swapped with the
-      // reader's, both keep their capacity) instead of copying each sample out of a block.
-      if (!reader_.next(block_, std::max<std::size_t>(max, 1))) {
-        samples.clear();
-        truth.clear();
-        return 0;
-      }
-      begin_block();
-      samples.swap(block_.samples);
-      truth.swap(block_.truth);
-      return block_size_;
-    }
-    if (at_ == block_.samples.size()) {
-      if (!reader_.next(block_, kBlock)) {
-        samples.clear();
-        truth.clear();
-        return 0;
-      }
-      begin_block();
-      fill_model_values();
-    }
-    const std::size_t n = std::min(std::max<std::size_t>(max, 1), block_size_ - at_);
-    const auto from = static_cast<std::ptrdiff_t>(at_);
-    const auto to = static_cast<std::ptrdiff_t>(at_ + n);
-    samples.assign(block_.samples.begin() + from, block_.samples.begin() + to);
-    truth.clear();
-    if (!block_.truth.empty()) truth.assign(block_.truth.begin() + from, block_.truth.begin() + to);
-    at_ += n;
-    return n;
-  }
-  bool has_truth() const override { return reader_.has_truth(); }
-  std::optional<std::size_t> size_hint() const override {
-    if (const auto c = reader_.count()) return static_cast<std::size_t>(*c);
-    return std::nullopt;
-  }
-
-  /// Where sample k (of the whole line) is: "line.csv:LINE: column" or "line.bin: sample k:
-  /// member".
-  ErrorContext context(std::size_t k, const std::string& member) const {
-    if (reader_.binary() || offsets_.empty() || k < offsets_.front().first)
-      return {reader_.source(), std::nullopt,
-              member.empty() ? fmt::format("sample {}", k)
-                             : fmt::format("sample {}: {}", k, reader_.column_of(member))};
-    auto it = std::upper_bound(offsets_.begin(), offsets_.end(), k,
-                               [](std::size_t v, const auto& e) { return v < e.first; });
-    --it;
-    return {reader_.source(), static_cast<int>(static_cast<long long>(k) + it->second),
-            reader_.column_of(member)};
-  }
-
- private:
-  // block_ holds the samples that follow the last block: note where they are in the file.
-  void begin_block() {
-    first_ += block_size_;
-    block_size_ = block_.samples.size();
-    at_ = 0;
-    for (std::size_t i = 0; i < block_.lines.size(); ++i) {
-      const long long offset = static_cast<long long>(block_.lines[i]) -
-                               static_cast<long long>(first_ + i);
-      if (offsets_.empty() || offsets_.back().second != offset)
-        offsets_.emplace_back(first_ + i, offset);
-    }
-  }
-  // η_G, ξ_G of the block from the model: the astronomic deflection along the line.
-  void fill_model_values() {
-    const std::size_t n = block_.samples.size();
-    points_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const dov::Sample& s = block_.samples[i];
-      points_[i] = {s.lat_rad, s.lon_rad, s.height_m};
-    }
-    gravity::TrackResult values;
-    try {
-      values = gravity::evaluate_track(*model_->field, points_, gravity::Quantities::Deflection,
-                                       model_->track);
-    } catch (Error& e) {
-      // "points[i]": the sample's place in the line file
-      const std::string& f = e.context().field;
-      std::size_t i = 0;
-      if (f.rfind("points[", 0) == 0) i = std::strtoull(f.c_str() + 7, nullptr, 10);
-      ErrorContext c = context(first_ + std::min(i, n - 1), {});
-      c.field = reader_.binary() ? c.field + ": lat_rad, lon_rad, height_m"
-                                 : std::string("lat_deg, lon_deg, height_m");
-      throw InputError(e.message(), c);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      dov::Sample& s = block_.samples[i];
-      s.model_eta_rad = values.values[i].eta_astro_rad;
-      s.model_xi_rad = values.values[i].xi_astro_rad;
-    }
-  }
-
-  DovLineReader& reader_;
-  const ModelValues* model_;
-  DovLine block_;
-  std::size_t first_ = 0;       // index of block_'s first sample in the line
-  std::size_t block_size_ = 0;  // samples in block_
-  std::size_t at_ = 0;          // next sample of block_ to hand out
-  std::vector<std::pair<std::size_t, long long>> offsets_;  // (first sample, line − k)
-  std::vector<gravity::GeodeticPoint> points_;
-};
-
 }  // namespace
 
-dov::LineResult run_dov_stream(const DovConfig& config, const dov::EpochSink& sink,
-                               Progress* progress) {
-  DovLineReader reader(config.line_path);
-  if (config.gravity_model && reader.has_model_values()) {
-    InputError e(fmt::format("{} has model_eta_arcsec, model_xi_arcsec columns and the "
-                             "configuration names a gravity model: give one source of eta_G, xi_G",
-                             reader.source()),
-                 {"", std::nullopt, "gravity_model"});
-    locate_error(e, config.file, config.lines);
-    throw e;
-  }
-  if (!config.gravity_model && !reader.has_model_values())
-    throw InputError("no model_eta_arcsec, model_xi_arcsec columns and no gravity_model in the "
-                     "configuration: the filter needs the global model's eta_G, xi_G",
-                     {reader.source(), std::nullopt, {}});
-  const std::unique_ptr<ModelValues> model =
-      config.gravity_model ? load_model_values(config) : nullptr;
-  LineSource source(reader, model.get());
-  try {
-    dov::LineResult r = dov::process_stream(source, config.options, sink, progress);
-    if (model) r.notes.push_back(model->note);
-    const std::vector<std::string> ignored = reader.ignored_columns();
-    if (!ignored.empty())
-      r.warnings.push_back(fmt::format(
-          "{}: column{} {} not used (a misspelt optional column such as model_eta_arcsec or "
-          "truth_eta_arcsec is not read; docs/file-formats.md lists the names)",
-          reader.source(), ignored.size() == 1 ? "" : "s",
-          fmt::format("{} {}", fmt::join(ignored, ", "), ignored.size() == 1 ? "is" : "are")));
-    return r;
-  } catch (Error& e) {
-    if (progress) progress->finish();
-    const auto k = sample_index(e.context().field);
-    if (k) {
-      // "samples[k].member" → "line.csv:LINE: column" (binary: "line.bin: sample k: member")
-      const std::string& f = e.context().field;
-      const auto dot = f.find("].");
-      const std::string member = dot == std::string::npos ? std::string() : f.substr(dot + 2);
-      const ErrorContext c = source.context(*k, member);
-      const std::string msg = e.message();
-      if (dynamic_cast<ParseError*>(&e)) throw ParseError(msg, c);
-      if (dynamic_cast<InputError*>(&e)) throw InputError(msg, c);
-      if (dynamic_cast<NumericalError*>(&e)) throw NumericalError(msg, c);
-      if (dynamic_cast<IoError*>(&e)) throw IoError(msg, c);
-      throw Error(msg, c);
-    }
-    if (e.context().file.empty()) locate_error(e, config.file, config.lines);
-    throw;
-  }
-}
-
-dov::Result run_dov(const DovConfig& config, Progress* progress) {
-  dov::Result r;
-  dov::LineResult line = run_dov_stream(
-      config, [&](const dov::EpochResult& e) { r.epochs.push_back(e); }, progress);
-  r.summary = line.summary;
-  r.notes = std::move(line.notes);
-  r.warnings = std::move(line.warnings);
-  return r;
+DovConfig read_dov_config(const std::string& path) {
+  const Node root = Node::load_file(path);
+  root.allow_only({"line", "zeta", "sigma_model_arcsec", "correlation_length_m",
+                   "stationary_speed_m_s", "sigma_obs_arcsec", "sigma_obs_east_arcsec",
+                   "sigma_obs_north_arcsec", "initial", "discretisation", "extraction",
+                   "max_step_s", "gate_alpha", "statistics_start_s", "gravity_model",
+                   "transport_rate", "transport_rate_baseline_s"});
+  DovConfig c;
+  c.file = path;
+  const std::filesystem::path line = root.require("line").string();
+  c.line_path = (line.is_absolute() ? line : std::filesystem::path(path).parent_path() / line)
+                    .string();
+  read_noise_keys(root, c.options);
+  if (auto init = root.get("initial")) read_initial(*init, c.options.initial);
+  read_method_keys(root, c.options);
+  if (auto g = root.get("gravity_model")) c.gravity_model = read_gravity_model(*g, path);
+  c.lines = root.visited_lines();
+  return c;
 }
 
 }  // namespace meridian::io

@@ -12,7 +12,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::size_t kMaxDrawn = 2000;  // epochs per plot: a 10 Hz day would be 864 000
+constexpr std::size_t kMaxDrawn = kDovReportEpochs / 2;  // epochs per plot (a 10 Hz day: 864 000)
 
 double arcsec(double rad) { return units::rad_to_arcsec(rad); }
 
@@ -115,21 +115,15 @@ std::string pair_text(const dov::EtaXi& v) {
   return fmt::format("η {:.3f}″, ξ {:.3f}″", arcsec(v.eta_rad), arcsec(v.xi_rad));
 }
 
-}  // namespace
-
-Document dov_document(const dov::Result& r, const dov::Options& o, const std::string& input,
-                      const std::string& line_file, const std::string& model_source,
-                      std::size_t epochs_per_result) {
-  const std::size_t thinned = std::max<std::size_t>(1, epochs_per_result);
+// The report's header: where the line came from and the model it was processed with.
+std::vector<KeyValue> dov_header(const dov::Result& r) {
+  const dov::Options& o = r.options;
+  const dov::Origin& from = r.origin;
   const dov::Summary& s = r.summary;
-  Document doc;
-  doc.title = "Dynamic deflection of the vertical";
-  doc.subtitle = input;
-  doc.footer = report_generator();
-  doc.header = {
-      {"input", input},
-      {"line", line_file.empty() ? input : line_file},
-      {"global model", model_source.empty() ? "η_G, ξ_G columns of the line" : model_source},
+  return {
+      {"input", from.input},
+      {"line", from.line.empty() ? from.input : from.line},
+      {"global model", from.model.empty() ? "η_G, ξ_G columns of the line" : from.model},
       {"epochs", fmt::format("{} ({} in the statistics)", s.epochs, s.statistics_epochs)},
       {"model error", fmt::format("second-order Gauss–Markov, σ {:.2f}″, ζ {:.3f}, λ {:.0f} m",
                                   arcsec(o.model.sigma_model_rad), o.model.zeta,
@@ -143,9 +137,12 @@ Document dov_document(const dov::Result& r, const dov::Options& o, const std::st
       {"attitude dynamics",
        o.transport_rate ? fmt::format("Earth rate + transport rate from the track ({} s baselines, "
                                       "{} closed)",
-                                      o.transport_rate_baseline_s, r.summary.transport_rate_updates)
+                                      o.transport_rate_baseline_s, s.transport_rate_updates)
                         : std::string("Earth rate only")}};
+}
 
+// The summary section: σ, ε_U, the NIS check, the figures and the signs.
+Section dov_summary_section(const dov::Summary& s) {
   Section summary{"summary", "Summary", {}, 2};
   summary.blocks.push_back(
       Highlight{"smoothed σ (quadratic mean)", pair_text(s.rms_sigma_smoothed),
@@ -176,7 +173,19 @@ Document dov_document(const dov::Result& r, const dov::Options& o, const std::st
       "δη̂, δξ̂, the estimate's departure from the global model, under the model-error model "
       "(σ_model, ζ, λ). An error of the global model that is constant over the whole line is "
       "not observable from the attitude difference and is not in σ."});
-  doc.sections.push_back(summary);
+  return summary;
+}
+
+}  // namespace
+
+Document dov_document(const dov::Result& r) {
+  const std::size_t thinned = std::max<std::size_t>(1, r.epoch_stride);
+  Document doc;
+  doc.title = "Dynamic deflection of the vertical";
+  doc.subtitle = r.origin.input;
+  doc.footer = report_generator();
+  doc.header = dov_header(r);
+  doc.sections.push_back(dov_summary_section(r.summary));
 
   Section profile{"profile", "Profile", {}, 2};
   profile.blocks.push_back(component_plot(r, true, thinned));

@@ -25,6 +25,8 @@
 #include "meridian/dov/streaming.hpp"
 #include "meridian/io/dov_binary.hpp"
 #include "meridian/io/dov_files.hpp"
+#include "meridian/io/dov_jobs.hpp"
+#include "meridian/io/dov_writers.hpp"
 
 // A named namespace: the unity build joins this file with test_io_dov.cpp.
 namespace dov_binary_test {
@@ -210,8 +212,9 @@ TEST(DovStreaming, BinaryAndCsvLinesGiveTheSameProfileThroughTheRunner) {
   }
   EXPECT_EQ(a.summary.rms_smoothed->xi_rad, b.summary.rms_smoothed->xi_rad);
   // the streaming runner without a sink: the same summary, no epochs kept anywhere
-  const dov::LineResult s =
+  const dov::Result s =
       io::run_dov_stream(io::read_dov_config((dir / "bin.yaml").string()), {});
+  EXPECT_TRUE(s.epochs.empty());
   EXPECT_EQ(s.summary.rms_smoothed->eta_rad, a.summary.rms_smoothed->eta_rad);
   EXPECT_EQ(s.summary.mean_nis, a.summary.mean_nis);
   EXPECT_EQ(s.summary.eps_u_rad_s, a.summary.eps_u_rad_s);
@@ -282,8 +285,8 @@ TEST(DovStreaming, EpochsInTimeOrderSpilledOrNotAndALongStationaryStart) {
   stop.options.storage.memory_limit_bytes = 0;
   OneByOne source(stop);
   std::vector<dov::EpochResult> got;
-  const dov::LineResult line = dov::process_stream(
-      source, stop.options, [&](const dov::EpochResult& e) { got.push_back(e); });
+  const dov::Result line = dov::process_stream(
+      source, stop.options, {[&](const dov::EpochResult& e) { got.push_back(e); }});
   ASSERT_EQ(got.size(), mem.epochs.size());
   for (std::size_t k = 0; k < got.size(); ++k) {
     const dov::EpochResult &a = mem.epochs[k], &b = got[k];
@@ -297,6 +300,33 @@ TEST(DovStreaming, EpochsInTimeOrderSpilledOrNotAndALongStationaryStart) {
     }
   }
   EXPECT_EQ(line.summary.rms_smoothed->xi_rad, mem.summary.rms_smoothed->xi_rad);
+}
+
+// The epochs a streamed Result keeps for a report (EpochOutputs::keep_epochs = n): every k-th
+// epoch from epoch 0, k the smallest power of two with ⌈N/k⌉ ≤ n; the sink still gets them all.
+TEST(DovStreaming, KeptEpochsAreEveryKthWithTheSmallestPowerOfTwo) {
+  dov::Input in = small_line(600.0);  // 601 epochs
+  in.origin = {"a line in memory", "", ""};
+  in.options.gate_alpha = 0.01;
+  const dov::Result all = dov::process(in);
+  const std::size_t n = all.epochs.size();
+  EXPECT_EQ(all.epoch_stride, 1u);
+  EXPECT_EQ(all.options.gate_alpha, 0.01);  // the Result carries its options and origin
+  EXPECT_EQ(all.origin.input, "a line in memory");
+  for (const std::size_t at_most : {std::size_t{1}, std::size_t{50}, std::size_t{1000}, n}) {
+    std::size_t k = 1;
+    while ((n + k - 1) / k > at_most) k *= 2;
+    OneByOne source(in);
+    std::size_t handed = 0;
+    const dov::Result kept = dov::process_stream(
+        source, in.options, {[&](const dov::EpochResult&) { ++handed; }, at_most});
+    EXPECT_EQ(handed, n);
+    EXPECT_EQ(kept.epoch_stride, k) << at_most;
+    ASSERT_EQ(kept.epochs.size(), (n + k - 1) / k) << at_most;
+    for (std::size_t i = 0; i < kept.epochs.size(); ++i)
+      EXPECT_EQ(kept.epochs[i].time_s, all.epochs[i * k].time_s) << at_most << " " << i;
+    EXPECT_EQ(kept.summary.mean_nis, all.summary.mean_nis);
+  }
 }
 
 }  // namespace dov_binary_test

@@ -21,6 +21,8 @@
 #include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/synthetic.hpp"
 #include "meridian/io/dov_files.hpp"
+#include "meridian/io/dov_jobs.hpp"
+#include "meridian/io/dov_writers.hpp"
 
 namespace {
 
@@ -285,12 +287,17 @@ TEST(DovFiles, ColumnsTheLineDoesNotUseAreWarnedAbout) {
   EXPECT_EQ(b.warnings.size(), a.warnings.size() + 1);
 }
 
+// A synthetic gravity model to `degree`, written as the EGM files of `stem` (stem.egm, …).
+void write_synthetic_model(const std::filesystem::path& stem, int degree) {
+  gravity::SyntheticModelOptions mo;
+  mo.max_degree = degree;
+  mo.seed = 5;
+  gravity::write_egm_files(gravity::make_synthetic_model(mo), stem);
+}
+
 TEST(DovFiles, GravityModelGivesTheModelValues) {
   const auto dir = temp_dir("gravity");
-  gravity::SyntheticModelOptions mo;
-  mo.max_degree = 180;
-  mo.seed = 5;
-  gravity::write_egm_files(gravity::make_synthetic_model(mo), dir / "syn");
+  write_synthetic_model(dir / "syn", 180);
   const dov::Input in = small_line();
   write(dir / "line.csv", without_model_columns(io::dov_line_csv(in)));
   write(dir / "dov.yaml", "line: line.csv\ngravity_model: {model: syn.egm, max_degree: 120}\n");
@@ -331,6 +338,42 @@ TEST(DovFiles, GravityModelGivesTheModelValues) {
   const InputError missing = run_error(dir / "missing.yaml");
   EXPECT_EQ(std::filesystem::path(missing.context().file), dir / "missing.yaml") << missing.what();
   EXPECT_EQ(missing.context().line, 3) << missing.what();
+  std::filesystem::remove_all(dir);
+}
+
+// A sample the model cannot be evaluated at (a height beyond its range) is named by its own
+// line, not by the first sample of the block the model values are computed for; a line too short
+// to smooth is named by the line file, not the configuration; Result::origin names the three.
+TEST(DovFiles, ErrorsOfTheModelPointsAndTheWholeLineNameTheLineFile) {
+  const auto dir = temp_dir("places");
+  write_synthetic_model(dir / "syn", 24);
+  dov::Input in = small_line();
+  in.samples[50].height_m = 2.0e7;  // gravity::kMaxHeight_m is 1e7
+  write(dir / "line.csv", without_model_columns(io::dov_line_csv(in)));
+  write(dir / "dov.yaml", "line: line.csv\ngravity_model: {model: syn.egm}\n");
+  const InputError high = run_error(dir / "dov.yaml");
+  EXPECT_EQ(std::filesystem::path(high.context().file), dir / "line.csv") << high.what();
+  EXPECT_EQ(high.context().line, 53) << high.what();  // comment, header, samples 0 … 50
+  EXPECT_EQ(high.context().field, "lat_deg, lon_deg, height_m") << high.what();
+  EXPECT_NE(std::string(high.what()).find("height"), std::string::npos) << high.what();
+
+  const std::string csv = io::dov_line_csv(small_line());
+  const std::size_t first_sample = csv.find('\n', csv.find('\n') + 1) + 1;
+  write(dir / "short.csv", csv.substr(0, csv.find('\n', first_sample) + 1));  // one sample
+  write(dir / "short.yaml", "line: short.csv\n");
+  const InputError short_line = run_error(dir / "short.yaml");
+  EXPECT_EQ(std::filesystem::path(short_line.context().file), dir / "short.csv") << short_line.what();
+  EXPECT_FALSE(short_line.context().line.has_value());
+  EXPECT_NE(std::string(short_line.what()).find("at least 2 samples, has 1"), std::string::npos)
+      << short_line.what();
+
+  write(dir / "good.csv", without_model_columns(io::dov_line_csv(small_line())));
+  write(dir / "good.yaml", "line: good.csv\ngravity_model: {model: syn.egm, max_degree: 12}\n");
+  const dov::Result r = io::run_dov_stream(io::read_dov_config((dir / "good.yaml").string()), {});
+  EXPECT_EQ(std::filesystem::path(r.origin.input), dir / "good.yaml");
+  EXPECT_EQ(std::filesystem::path(r.origin.line), dir / "good.csv");
+  EXPECT_EQ(r.origin.model, "syn.egm (to degree 12)");
+  EXPECT_TRUE(r.epochs.empty());  // no epochs kept unless asked
   std::filesystem::remove_all(dir);
 }
 

@@ -6,6 +6,7 @@
 /// the whole line (filter module), giving per epoch η, ξ filtered and smoothed with σ.
 ///
 ///   Input (samples, optional truth, Options) → process() → Result (epochs, summary)
+///   SampleSource (a line of any length) → process_stream() → EpochSink, Result (streaming.hpp)
 ///
 /// Per sample k (epoch k of the filter; epoch 0 is the first sample):
 ///  1. checks: time finite and strictly increasing, step ≤ Options::max_step_s; position
@@ -112,10 +113,21 @@ struct Options {
   filter::StorageOptions storage;   ///< where the smoother's records spill
 };
 
+/// Where a line came from, as its writers name it (the report's header): text only, set by
+/// whoever made the line — io's runner from the configuration, the line file and the gravity
+/// model it names (io/dov_jobs.hpp), a caller with a line made in memory by a description.
+/// Empty members are not known.
+struct Origin {
+  std::string input;  ///< the configuration file, or what made a line in memory
+  std::string line;   ///< the line file; empty: `input` itself
+  std::string model;  ///< what gave η_G, ξ_G ("egm96 (to degree 360)"); empty: the line's values
+};
+
 struct Input {
   std::vector<Sample> samples;  ///< at least 2
   std::vector<Truth> truth;     ///< empty, or one per sample
   Options options;
+  Origin origin;  ///< copied into Result::origin
 };
 
 /// A deflection estimate of one epoch (filtered or smoothed).
@@ -177,17 +189,24 @@ struct Summary {
   double sigma_eps_u_rad_s = 0.0;  ///< its σ
 };
 
+/// The result of a line, self-describing: with the options and origin the writers show.
 struct Result {
-  std::vector<EpochResult> epochs;  ///< one per sample, in time order
+  Options options;  ///< the options the line was processed with
+  Origin origin;    ///< where the line came from (Input::origin, SampleSource::origin)
+  /// process(): one per sample, in time order. A streamed line (process_stream): the epochs
+  /// EpochOutputs::keep_epochs asks for — none, all, or every epoch_stride-th one.
+  std::vector<EpochResult> epochs;
+  std::size_t epoch_stride = 1;  ///< epochs holds epoch 0, epoch_stride, 2·epoch_stride, …
   Summary summary;
-  std::vector<std::string> notes;     ///< defaults used, stationary epochs
-  std::vector<std::string> warnings;  ///< e.g. NIS outside its interval
+  std::vector<std::string> notes;     ///< defaults used, stationary epochs; the source's last
+  std::vector<std::string> warnings;  ///< e.g. NIS outside its interval; the source's last
 };
 
 /// Throws InputError (field "options.<name>") unless every option is in range.
 void validate(const Options& options);
 
-/// Run filter and smoother over the line (file comment).
+/// Run filter and smoother over the line (file comment): process_stream over the Input's
+/// vectors, every epoch kept in Result::epochs.
 Result process(const Input& input, Progress* progress = nullptr);
 
 }  // namespace meridian::dov

@@ -1,8 +1,9 @@
 #pragma once
 /// \file dov_files.hpp
-/// Files of the dynamic deflection-of-the-vertical workflow (docs/deflection.md, "Files"):
-/// the line CSV (reader and writer), the YAML/JSON configuration, and the runner that reads
-/// both, calls dov::process and names the file and line of an error.
+/// Readers of the dynamic deflection-of-the-vertical workflow (docs/deflection.md, "Files"):
+/// the line CSV (and, by content, the binary line of dov_binary.hpp) and the YAML/JSON
+/// configuration. Their writers are dov_writers.hpp, the runners that read both, load the
+/// gravity model and call dov::process_stream dov_jobs.hpp.
 ///
 /// Line CSV (record_reader.hpp: comma, semicolon or whitespace, `#` comments, CRLF): a header
 /// line naming the columns (any order; ASCII case ignored), one sample per line:
@@ -21,10 +22,11 @@
 ///   truth_eta_arcsec, truth_xi_arcsec   optional (simulations): the true η, ξ (″), both or none
 ///
 /// Frames and signs: attitude_difference.hpp and geodesy/frames.hpp. The compact binary format
-/// is dov_binary.hpp (read_dov_line_file tells them by content); it holds matrices only. The whole line is read into memory (about 300 bytes per
-/// sample). Errors: ParseError/InputError with the source, the line and the column
-/// ("line.csv:17: lgu_23: \"x\" is not a number"), InputError naming the header line for a
-/// missing column, IoError when the file cannot be opened.
+/// is dov_binary.hpp (read_dov_line_file tells them by content); it holds matrices only.
+/// read_dov_line* read the whole line into memory (about 300 bytes per sample); DovLineReader
+/// reads it a chunk at a time. Errors: ParseError/InputError with the source, the line and the
+/// column ("line.csv:17: lgu_23: \"x\" is not a number"), InputError naming the header line for
+/// a missing column, IoError when the file cannot be opened.
 
 #include <cstdint>
 #include <istream>
@@ -34,9 +36,7 @@
 #include <vector>
 
 #include "meridian/core/error.hpp"
-#include "meridian/core/progress.hpp"
 #include "meridian/dov/deflection.hpp"
-#include "meridian/dov/streaming.hpp"
 #include "meridian/io/document.hpp"
 
 namespace meridian::io {
@@ -49,7 +49,7 @@ struct DovLine {
   std::vector<dov::Truth> truth;
   std::vector<int> lines;
   /// false when the file has no model_eta_arcsec, model_xi_arcsec columns (the model values
-  /// are then NaN until a gravity model fills them: run_dov).
+  /// are then NaN until a gravity model fills them: dov_jobs.hpp).
   bool has_model_values = true;
   /// true: read from the binary format (dov_binary.hpp); `lines` is then empty and errors
   /// name "sample k" instead of a file line.
@@ -79,8 +79,8 @@ class DovLineReader {
   bool has_model_values() const;
   bool has_truth() const;
   /// CSV header columns the line does not use, as written (empty for the binary format): a
-  /// misspelt optional column (model_eta_arcsec, truth_eta_arcsec, …) is not read, and
-  /// run_dov_stream warns about each.
+  /// misspelt optional column (model_eta_arcsec, truth_eta_arcsec, …) is not read, and the
+  /// runners (dov_jobs.hpp) warn about each.
   std::vector<std::string> ignored_columns() const;
   /// The number of samples when the format states it up front (binary), else nullopt.
   std::optional<std::uint64_t> count() const;
@@ -101,19 +101,11 @@ DovLine read_dov_line(std::istream& in, const std::string& source);
 DovLine read_dov_line_file(const std::string& path);
 
 
-/// The line CSV of `input` (the columns above, truth columns when input.truth is not empty,
-/// every number with 17 significant digits so that a read gives the same doubles back).
-/// `settings`, when not empty, is written as a `# ` comment line before the header (the
-/// simulator's settings; the reader skips comments).
-std::string dov_line_csv(const dov::Input& input, const std::string& settings = {});
-
-/// The comment and header lines of a line CSV as dov_line_csv writes them; `model`: the
-/// model_eta_arcsec, model_xi_arcsec columns, `truth`: truth_eta_arcsec, truth_xi_arcsec.
-std::string dov_line_csv_header(bool model, bool truth, const std::string& settings = {});
-/// Append the rows of samples[k] (and truth[k] when `truth`; truth.size() == samples.size()
-/// then) under a dov_line_csv_header(model, truth), 17 significant digits.
-void append_dov_line_csv_rows(std::string& out, const std::vector<dov::Sample>& samples,
-                              const std::vector<dov::Truth>& truth, bool model, bool truth_columns);
+/// The line file's column of a scalar dov::Sample member, as the files and the Python package's
+/// arrays name it: "lat_rad" → "lat_deg", "lon_rad" → "lon_deg", "model_eta_rad" →
+/// "model_eta_arcsec", "model_xi_rad" → "model_xi_arcsec"; any other member as given (time_s,
+/// height_m, speed_m_s are their own columns).
+std::string dov_line_column(const std::string& member);
 
 /// The global gravity model a configuration names (`gravity_model: {model: …, max_degree: …}`).
 struct DovGravityModel {
@@ -154,24 +146,5 @@ struct DovConfig {
 /// Read a configuration (YAML or JSON). Throws ParseError/InputError with file, line and key,
 /// IoError when the file cannot be read.
 DovConfig read_dov_config(const std::string& path);
-
-/// Read config.line_path, run dov::process with config.options and return the result. With
-/// config.gravity_model, η_G, ξ_G of every sample are the astronomic deflection of the model's
-/// plumb line at the sample's position, ξ = Φ − φ, η = (Λ − λ)·cos φ (the gyro runner's
-/// quantity; gravity/gravity_field.hpp, xi_astro_rad and eta_astro_rad), evaluated along the
-/// line by gravity::evaluate_track within 1e-4″, and a note names the model and its degree.
-/// Exactly one source of model values: a line with model columns and a configuration that
-/// names a model, or neither, is an InputError. Errors about a sample ("samples[k].member")
-/// get the line file's name, the sample's line and the CSV column, errors about options and
-/// the model the configuration's file, line and key.
-dov::Result run_dov(const DovConfig& config, Progress* progress = nullptr);
-
-/// run_dov for a line of any length (dov/streaming.hpp): the line is read a block of 65 536
-/// samples at a time into the filter (binary or CSV by content), and each epoch's result goes
-/// to `sink` in time order (may be empty). Memory stays flat; errors as run_dov, a binary
-/// line's naming "line.bin: sample k: member". run_dov is this with a sink that keeps the
-/// epochs.
-dov::LineResult run_dov_stream(const DovConfig& config, const dov::EpochSink& sink,
-                               Progress* progress = nullptr);
 
 }  // namespace meridian::io

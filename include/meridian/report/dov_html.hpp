@@ -16,12 +16,14 @@
 
 namespace meridian::report {
 
-/// The report of `result`, computed with `options`; `input` names the configuration,
-/// `line_file` the line and `model_source` the gravity model that gave η_G, ξ_G (empty: the
-/// line's model columns) in the header. `epochs_per_result` > 1 says result.epochs is already
-/// thinned to one epoch in that many (a streamed line; the captions count both thinnings).
-Document dov_document(const dov::Result& result, const dov::Options& options,
-                      const std::string& input, const std::string& line_file = {},
-                      const std::string& model_source = {}, std::size_t epochs_per_result = 1);
+/// The epochs a report of a streamed line needs kept (dov::EpochOutputs::keep_epochs): twice
+/// the 2000 it draws per plot, so that its own stride still draws every k-th epoch of the line.
+inline constexpr std::size_t kDovReportEpochs = 4000;
+
+/// The report of `result`: its origin in the header (the configuration, the line file, and the
+/// gravity model that gave η_G, ξ_G — or the line's model columns), its options, summary,
+/// epochs and notes. result.epoch_stride > 1 says result.epochs is already thinned to one epoch
+/// in that many (a streamed line; the captions count both thinnings).
+Document dov_document(const dov::Result& result);
 
 }  // namespace meridian::report
