@@ -75,6 +75,8 @@ std::string maglev_truth_comment(const std::string& made_by, const maglev::TwoPo
 /// `constant_deviation_sigma_A` (the prior bias). A stored calibration (the
 /// JSON of `maglev calibrate --json`, `kind: maglev-calibration`) is read the
 /// same way: its K and I*. Every key is optional; errors name file:line:key.
+/// The same struct holds the values a front end gives beside the files
+/// (io::MaglevReduceSetup::given, maglev_jobs.hpp).
 struct MaglevConstants {
   std::optional<Uncertain> scale_A_s_per_rad;
   std::optional<double> latitude_rad;
