@@ -136,6 +136,49 @@ if [ -d "$shared/cases/maglev-field" ]; then
   run case-maglev-jump maglev reduce "$d/jump-28-1.csv" "$d/jump-28-2.csv" --scale 8000 --latitude 35 --json
   for c in cal-F-example cal_gon_clean; do run case-maglev-$c maglev calibrate "$d/$c.csv" --latitude 35 --json; done
 fi
+# Every input and option of the maglev runners (constants and calibration files, the chain, the
+# processing options, denoise levels, the simulator's bursts) and the errors they locate.
+mg=$out/maglev-simulate
+printf 'scale_A_s_per_rad: 8000\nscale_sigma_A_s_per_rad: 2.5\nlatitude: "35 00 00"\ncircle_reading1: 12.5\nconstant_deviation_A: 1.75e-5\nconstant_deviation_sigma_A: 1e-7\n' > "$out/maglev-constants.yaml"
+run maglev-reduce-config maglev reduce examples/maglev-disturbed.csv --config "$out/maglev-constants.yaml" --json --report @W@/r.html
+run maglev-reduce-config-text maglev reduce examples/maglev-disturbed.csv --config "$out/maglev-constants.yaml" --scale 7990 --reading1 "10 00 00" --prior-bias 2e-5
+run maglev-reduce-two maglev reduce "$mg/s-1.csv" "$mg/s-2.csv" --scale 8000 --scale-sigma 3 --latitude "35 30 00" --reading1 45 --reading1-sigma-arcsec 2 --target "47 10 00" --target-sigma-arcsec 1.5 --instrument-constant "0 01 30" --instrument-constant-sigma-arcsec 3 --eta-arcsec 4.5 --eta-sigma-arcsec 0.5 --convergence-deg 0.3 --json
+run maglev-reduce-two-text maglev reduce "$mg/s-1.csv" "$mg/s-2.csv" --scale 8000 --latitude 35 --target 47 --no-denoise -o @W@/r.txt --report @W@/r.html
+run maglev-reduce-noprocess maglev reduce examples/maglev-disturbed.csv --scale 8000 --latitude 35 --no-process --json --report @W@/r.html
+run maglev-reduce-options maglev reduce examples/maglev-disturbed.csv --scale 8000 --latitude 35 --segment 100 --alpha 0.01 --lags 5 --wavelet db6 --level 3 --mode periodization --threshold hard --rule sure --json
+run maglev-reduce-cal-config maglev reduce examples/maglev-disturbed.csv --config "$out/maglev-constants.yaml" --calibration "$out/maglev-calibrate-json/cal.json" --json
+run maglev-denoise-level maglev denoise "$mg/s-1.csv" --wavelet db2 --level 3 --mode periodization --threshold hard --rule sure
+run maglev-simulate-burst maglev simulate --alpha1=0.7 --samples=800 --rate-hz=20 --ar1-phi=0.5 --ar1-sigma=2e-6 --drift=1e-9 --burst=1:5:15:2e-3:6e-4:0.5:8 --burst=2:3:9:1e-3:2e-4:0.5:4 --seed=9 --one-file --out @W@/b
+run maglev-simulate-cal-full maglev simulate --calibration-azimuths=-3,-1.5,0,1.5,3 --slope-ratio1=1.01 --slope-ratio2=0.99 --best-azimuth=0.11459 --constant-deviation=1.75e-5 --latitude=40 --scale=9000 --samples=2000 --seed=5 --out @W@/c
+run maglev-calibrate-report maglev calibrate "$out/maglev-simulate-cal-full/c-calibration.csv" --latitude 40 --nominal-scale 9000 --alpha 0.01 -o @W@/c.txt --report @W@/c.html
+awk 'NR<=3{print; next} {print NR-3 ",0.01"}' "$mg/s-1.csv" > "$out/maglev-const.csv"
+printf 'time,current\n0,0.01\n1,0.02\n2,0.01\n' > "$out/maglev-short.csv"
+printf 'time,current,position\n0,0.01,1\n1,0.02,1\n' > "$out/maglev-one.csv"
+printf 'azimuth,mean1,sigma1,mean2,sigma2\n0,1,1,2,1\n0,1.1,1,2.1,1\n' > "$out/maglev-cal-few.csv"
+printf 'azimuth,mean1,sigma1,mean2,sigma2\n-1,1,0.1,2,0.1\n0,1,0.1,2,0.1\n1,1,0.1,2,0.1\n' > "$out/maglev-cal-parallel.csv"
+printf 'latitude: 35\n' > "$out/maglev-no-k.yaml"
+printf 'scale_A_s_per_rad: 8000\n' > "$out/maglev-no-lat.yaml"
+printf 'scale_A_s_per_rad: -8000\nlatitude: 35\n' > "$out/maglev-bad-k.yaml"
+printf 'scale_A_s_per_rad: 8000\nlatitude: 35\nlattitude: 3\n' > "$out/maglev-typo.yaml"
+run err-maglev-const maglev reduce "$out/maglev-const.csv" "$mg/s-2.csv" --scale 8000 --latitude 35
+run err-maglev-short maglev reduce "$out/maglev-short.csv" "$mg/s-2.csv" --scale 8000 --latitude 35
+run err-maglev-short-one maglev reduce "$out/maglev-short.csv" --scale 8000 --latitude 35
+run err-maglev-one-position maglev reduce "$out/maglev-one.csv" --scale 8000 --latitude 35
+run err-maglev-alpha1 maglev reduce "$mg/s-1.csv" "$mg/s-2.csv" --scale 10 --latitude 35 --json
+run err-maglev-missing maglev reduce "$out/maglev-nothing.csv" --scale 8000 --latitude 35
+run err-maglev-no-k maglev reduce examples/maglev-disturbed.csv --config "$out/maglev-no-k.yaml"
+run err-maglev-no-lat maglev reduce examples/maglev-disturbed.csv --config "$out/maglev-no-lat.yaml"
+run err-maglev-bad-k maglev reduce examples/maglev-disturbed.csv --config "$out/maglev-bad-k.yaml"
+run err-maglev-typo maglev reduce examples/maglev-disturbed.csv --config "$out/maglev-typo.yaml"
+run err-maglev-cal-missing maglev reduce examples/maglev-disturbed.csv --calibration "$out/maglev-nothing.json" --latitude 35
+run err-maglev-latitude maglev reduce examples/maglev-disturbed.csv --scale 8000 --latitude "35 70 00"
+run err-maglev-denoise-const maglev denoise "$out/maglev-const.csv" --level 2
+run err-maglev-denoise-deep maglev denoise "$mg/s-1.csv" --level 9
+run err-maglev-cal-few maglev calibrate "$out/maglev-cal-few.csv" --latitude 35
+run err-maglev-cal-parallel maglev calibrate "$out/maglev-cal-parallel.csv" --latitude 35 --json
+run err-maglev-cal-latitude maglev calibrate examples/maglev-calibration.csv --latitude 95
+run err-maglev-sim-burst maglev simulate --samples 300 --burst 1:500:600:2e-3:6e-4:0.5:8 --out @W@/x
+run err-maglev-sim-burst-text maglev simulate --samples 300 --burst 1:5:x --out @W@/x
 
 # --- dov
 run dov-simulate dov simulate --hours 0.05 --rate-hz 2 --seed 4 --out @W@/line.csv --config @W@/dov.yaml
@@ -264,6 +307,42 @@ if [ -d "$build/python/meridian" ]; then
   runpy py-gyro 'import meridian.gyro as g, json; print(json.dumps(g.reduce("examples/tracking.yaml").to_dict(), sort_keys=True, default=str))'
   runpy py-campaign 'import meridian.gyro as g, json; print(json.dumps(g.campaign("examples/campaign.yaml").to_dict(), sort_keys=True, default=str))'
   runpy py-maglev 'import meridian.maglev as m, json; print(json.dumps(m.reduce_files("examples/maglev-disturbed.csv", scale_A_s_per_rad=8000, latitude_deg=35).to_dict(), sort_keys=True, default=str))'
+  runpy py-maglev-api "
+import meridian.maglev as m, json, os, numpy as np
+def show(name, r): print(name, json.dumps(r.to_dict(), sort_keys=True, default=str))
+def fail(name, f):
+    try: f(); print(name, 'no error')
+    except Exception as e: print(name, type(e).__name__, repr(str(e)), getattr(e, 'file', None), getattr(e, 'line', None), getattr(e, 'field', None))
+out = os.environ['W'] + '/..'
+p1, p2 = m.simulate(alpha1_deg=0.8, samples=1500, rate_hz=20, ar1_phi=0.6, ar1_sigma_A=2e-6, bursts=[(1, 20, 40, 2e-3, 6e-4, 0.5, 8)], seed=5)
+print('sim', repr(p1.current_A[:5].tolist()), repr(p2.time_s[:3].tolist()), len(p1), len(p2))
+r = m.reduce(p1, p2, scale_A_s_per_rad=8000, latitude_deg=35, target_deg='45 30 00', eta_arcsec=4.5, prior_bias_A=2e-4, reading1_deg=10)
+show('arrays', r)
+print('series', r.series1.kept.sum(), repr(r.series1.cleaned_A[100:103].tolist()), repr(r.series2.time_s[:2].tolist()))
+show('files-config', m.reduce_files('examples/maglev-disturbed.csv', config=out + '/maglev-constants.yaml', rule='sure', level=4))
+show('files-cal', m.reduce_files('examples/maglev-disturbed.csv', calibration=out + '/maglev-calibrate-json/cal.json', latitude_deg=35, process=False))
+show('two-files', m.reduce_files(out + '/maglev-simulate/s-1.csv', out + '/maglev-simulate/s-2.csv', scale_A_s_per_rad=8000, latitude_deg=35))
+d = m.denoise(p1.current_A, full=True)
+print('denoise', d.level, repr(d.noise_sigma), repr(d.values[:3].tolist()), d.thresholds)
+print('denoise3', repr(m.denoise(p1.current_A[:300], wavelet='db6', level=3, mode='periodization', threshold='hard')[:3].tolist()))
+t = m.simulate_calibration([-3, -1, 1, 3], slope_ratio1=1.01, slope_ratio2=0.99, best_azimuth_deg=0.1, constant_deviation_A=1e-5, samples=2000, seed=4)
+print('simcal', json.dumps({k: t[k].tolist() for k in ['azimuth_deg', 'mean1_A', 'sigma1_A', 'mean2_A', 'sigma2_A']}))
+show('cal-arrays', m.calibrate(t, latitude_deg=35, nominal_scale_A_s_per_rad=8000))
+show('cal-file', m.calibrate('examples/maglev-calibration.csv', latitude_deg=35, alpha=0.01))
+fail('err-nan', lambda: m.reduce((p1.time_s, np.where(np.arange(len(p1)) == 7, np.nan, p1.current_A)), p2, scale_A_s_per_rad=8000, latitude_deg=35))
+fail('err-no-k', lambda: m.reduce(p1, p2, latitude_deg=35))
+fail('err-no-lat', lambda: m.reduce(p1, p2, scale_A_s_per_rad=8000))
+fail('err-no-k-config', lambda: m.reduce_files('examples/maglev-disturbed.csv', config=out + '/maglev-no-k.yaml'))
+fail('err-const', lambda: m.reduce_files(out + '/maglev-const.csv', out + '/maglev-simulate/s-2.csv', scale_A_s_per_rad=8000, latitude_deg=35))
+fail('err-short', lambda: m.reduce_files(out + '/maglev-short.csv', out + '/maglev-simulate/s-2.csv', scale_A_s_per_rad=8000, latitude_deg=35))
+fail('err-alpha1', lambda: m.reduce(p1, p2, scale_A_s_per_rad=10, latitude_deg=35))
+fail('err-missing', lambda: m.reduce_files(out + '/nothing.csv', scale_A_s_per_rad=8000, latitude_deg=35))
+fail('err-cal-few', lambda: m.calibrate(out + '/maglev-cal-few.csv', latitude_deg=35))
+fail('err-cal-arrays', lambda: m.calibrate({'azimuth_deg': [-1, 0, 1], 'mean1_A': [1, 2, 3], 'sigma1_A': [1, 1, 1], 'mean2_A': [3, 2, 1], 'sigma2_A': [1, np.nan, 1]}, latitude_deg=35))
+fail('err-denoise-nan', lambda: m.denoise([1.0, np.nan, 2.0] * 20))
+fail('err-denoise-deep', lambda: m.denoise(p1.current_A[:100], level=8))
+fail('err-sim-burst', lambda: m.simulate(samples=300, bursts=[(1, 500, 600, 2e-3, 6e-4, 0.5, 8)]))
+"
   runpy py-dov "import meridian.dov as d, json, os; r=d.process(os.environ['W']+'/../dov-simulate/dov.yaml'); print(json.dumps(r.to_dict(), sort_keys=True, default=str)[:200000])"
   runpy py-dov-profile "import meridian.dov as d, json, os; r=d.process(os.environ['W']+'/../dov-simulate/dov.yaml'); print(json.dumps({k: v.tolist() for k, v in r.profile.to_dict().items()}))"
   runpy py-dov-arrays "import meridian.dov as d, json; l=d.simulate(hours=0.02, seed=3, transport_rate=True); r=d.process(l, sigma_model_arcsec=2, transport_rate=True); print(json.dumps(r.to_dict(), sort_keys=True)); print(json.dumps({k: v.tolist() for k, v in r.profile.to_dict().items()})); print(json.dumps({k: v.tolist() for k, v in l.to_dict().items()}))"

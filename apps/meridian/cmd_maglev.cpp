@@ -1,6 +1,5 @@
 // meridian maglev reduce | denoise | simulate | calibrate
 
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -13,15 +12,13 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
-#include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/io/maglev_files.hpp"
-#include "meridian/maglev/calibration.hpp"
-#include "meridian/maglev/denoise.hpp"
-#include "meridian/maglev/reduce.hpp"
+#include "meridian/io/maglev_jobs.hpp"
 #include "meridian/maglev/simulator.hpp"
 #include "meridian/report/html.hpp"
+#include "meridian/report/json_text.hpp"
 #include "meridian/report/maglev_html.hpp"
 #include "meridian/report/maglev_json.hpp"
 #include "meridian/report/maglev_text.hpp"
@@ -34,7 +31,7 @@ ErrorContext option(const char* name) { return ErrorContext{"", std::nullopt, na
 
 struct DenoiseArgs {
   std::string wavelet = "db4", mode = "symmetric", threshold = "soft", rule = "universal";
-  int level = 6;
+  int level = maglev::kDefaultLevel;
   maglev::DenoiseOptions options() const {
     maglev::DenoiseOptions o;
     o.wavelet_order = maglev::Wavelet::from_name(wavelet).order();
@@ -61,6 +58,18 @@ CLI::Validator open_unit_interval() {
         return {};
       },
       "in (0, 1)");
+}
+
+CLI::Validator segment_length() {
+  return CLI::Validator(
+      [](std::string& t) -> std::string {
+        char* end = nullptr;
+        const long v = std::strtol(t.c_str(), &end, 10);
+        return !t.empty() && *end == '\0' && (v == 0 || v >= 32)
+                   ? std::string()
+                   : t + " is not 0 (automatic) or at least 32";
+      },
+      "0 or >= 32");
 }
 
 void add_denoise_options(CLI::App* c, DenoiseArgs& d) {
@@ -98,79 +107,54 @@ struct ReduceArgs {
   int lags = 10;
   DenoiseArgs d;
   std::string output;
+
+  // --target and what goes with it: the azimuth chain.
+  maglev::ChainSetup chain() const {
+    maglev::ChainSetup c;
+    c.target_reading_rad = {angle_option(target, "--target"),
+                            units::arcsec_to_rad(target_sigma_arcsec)};
+    c.instrument_constant_rad = {angle_option(instrument_constant, "--instrument-constant"),
+                                 units::arcsec_to_rad(constant_sigma_arcsec)};
+    if (eta_arcsec)
+      c.eta_rad =
+          Uncertain{units::arcsec_to_rad(*eta_arcsec), units::arcsec_to_rad(eta_sigma_arcsec)};
+    c.convergence_rad = units::deg_to_rad(convergence_deg);
+    return c;
+  }
+
+  // The options as the runner takes them: the files, the values that win over them, the
+  // processing options.
+  io::MaglevReduceSetup setup() const {
+    io::MaglevReduceSetup s;
+    s.constants_file = config;
+    s.calibration_file = calibration;
+    if (scale) s.given.scale_A_s_per_rad = Uncertain{*scale, scale_sigma};
+    if (!latitude.empty()) s.given.latitude_rad = angle_option(latitude, "--latitude");
+    if (!reading1.empty()) s.given.circle_reading1_rad = angle_option(reading1, "--reading1");
+    if (prior_bias) s.given.constant_deviation_A = Uncertain{*prior_bias, prior_bias_sigma};
+    s.reading1_sigma_rad = units::arcsec_to_rad(reading1_sigma_arcsec);
+    if (!target.empty()) s.chain = chain();
+    s.options.process = !no_process;
+    s.options.denoise = !no_denoise;
+    s.options.stationarity.segment_length = segment;
+    s.options.stationarity.alpha = alpha;
+    s.options.stationarity.autocovariance_lags = lags;
+    s.options.denoising = d.options();
+    s.names = {"--scale", "--latitude", "--config", "--calibration"};
+    return s;
+  }
 };
 
 int run_reduce(const ReduceArgs& a) {
   require_html_reports_for(a.report);
-  maglev::ReduceInput in;
-  io::MaglevConstants k;
-  if (!a.config.empty()) k = io::read_maglev_constants(a.config);
-  if (!a.calibration.empty()) {
-    const auto c = io::read_maglev_constants(a.calibration);
-    if (c.scale_A_s_per_rad) k.scale_A_s_per_rad = c.scale_A_s_per_rad;
-    if (c.constant_deviation_A) k.constant_deviation_A = c.constant_deviation_A;
-  }
-  if (a.scale) k.scale_A_s_per_rad = Uncertain{*a.scale, a.scale_sigma};
-  if (!a.latitude.empty()) k.latitude_rad = angle_option(a.latitude, "--latitude");
-  if (!a.reading1.empty()) k.circle_reading1_rad = angle_option(a.reading1, "--reading1");
-  if (!k.scale_A_s_per_rad)
-    throw InputError("the scale K is needed: --scale, --config or --calibration",
-                     option("--scale"));
-  if (!k.latitude_rad)
-    throw InputError("the latitude is needed: --latitude or --config", option("--latitude"));
-  in.scale_A_s_per_rad = *k.scale_A_s_per_rad;
-  in.latitude_rad = *k.latitude_rad;
-  in.circle_reading1_rad = {k.circle_reading1_rad.value_or(0.0),
-                            units::arcsec_to_rad(a.reading1_sigma_arcsec)};
-  if (a.prior_bias) k.constant_deviation_A = Uncertain{*a.prior_bias, a.prior_bias_sigma};
-  in.options.prior_bias_A = k.constant_deviation_A;
-  in.options.process = !a.no_process;
-  in.options.denoise = !a.no_denoise;
-  in.options.stationarity.segment_length = a.segment;
-  in.options.stationarity.alpha = a.alpha;
-  in.options.stationarity.autocovariance_lags = a.lags;
-  in.options.denoising = a.d.options();
-  if (!a.target.empty()) {
-    maglev::ChainSetup c;
-    c.target_reading_rad = {angle_option(a.target, "--target"),
-                            units::arcsec_to_rad(a.target_sigma_arcsec)};
-    c.instrument_constant_rad = {angle_option(a.instrument_constant, "--instrument-constant"),
-                                 units::arcsec_to_rad(a.constant_sigma_arcsec)};
-    if (a.eta_arcsec)
-      c.eta_rad =
-          Uncertain{units::arcsec_to_rad(*a.eta_arcsec), units::arcsec_to_rad(a.eta_sigma_arcsec)};
-    c.convergence_rad = units::deg_to_rad(a.convergence_deg);
-    in.chain = c;
-  }
-  io::MaglevSeriesFile f1, f2;
-  if (a.files.size() == 1) {
-    auto p = io::read_maglev_two_positions(a.files[0]);
-    f1 = std::move(p.first);
-    f2 = std::move(p.second);
-  } else if (a.files.size() == 2) {
-    f1 = io::read_maglev_series_file(a.files[0], 1);
-    f2 = io::read_maglev_series_file(a.files[1], 2);
-  } else {
-    throw InputError("give one file with a position column, or two files (position 1, position 2)",
-                     option("FILES"));
-  }
-  in.position1 = f1.series;
-  in.position2 = f2.series;
   TerminalProgress progress(a.quiet);
-  const auto r = io::run_maglev_reduce(in, f1, f2, &progress);
+  const maglev::ReduceResult r = io::run_maglev_reduce_files(a.files, a.setup(), &progress);
   progress.finish();
-  std::string input = a.files[0];
-  if (a.files.size() == 2) input += ", " + a.files[1];
   // Everything is computed before anything is written.
-  const std::string html = a.report.empty()
-                               ? std::string()
-                               : report::render_html(report::maglev_reduce_document(r, in, input));
-  const std::string out = a.json ? report::maglev_reduce_to_json(r, in).dump(2) + "\n"
+  const std::string out = a.json ? report::json_text(report::maglev_reduce_to_json(r))
                                  : report::maglev_reduce_text(r);
-  if (a.report.empty())
-    emit(a.output, out);
-  else
-    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
+  emit_with_report(a.output, out, a.report,
+                   [&] { return report::render_html(report::maglev_reduce_document(r)); });
   return kOk;
 }
 
@@ -181,32 +165,12 @@ struct DenoiseCmdArgs {
 };
 
 int run_denoise(const DenoiseCmdArgs& a) {
-  const auto f = io::read_maglev_series_file(a.file, 0);
-  auto opts = a.d.options();
-  // The default level 6 is lowered to what a short series allows (as reduce does); an explicit
+  maglev::DenoiseOptions options = a.d.options();
+  // Level 0: the default, lowered to what a short series allows (as reduce does); an explicit
   // --level is taken as asked and refused when too deep.
-  if (!a.level_given)
-    opts.level = std::max(
-        1, std::min(opts.level, maglev::max_level(f.series.current_A.size(),
-                                                  maglev::Wavelet(opts.wavelet_order))));
-  maglev::DenoiseResult r;
-  try {
-    maglev::validate_series(f.series, "series");
-    r = maglev::denoise(f.series.current_A, opts);
-  } catch (Error& e) {
-    e.add_context(f.file);
-    throw;
-  }
-  maglev::PositionSeries out{f.series.time_s, r.values};
-  std::string thresholds;
-  for (double l : r.thresholds) thresholds += fmt::format(" {:.6g}", l);
-  const std::string header = fmt::format(
-      "meridian maglev denoise: {} levels {}, mode {}, {} {} threshold\nnoise sigma {:.6g} A; "
-      "thresholds (level 1 "
-      "first):{}",
-      maglev::Wavelet(opts.wavelet_order).name(), opts.level, maglev::to_string(opts.mode),
-      maglev::to_string(opts.rule), maglev::to_string(opts.kind), r.noise_sigma, thresholds);
-  emit(a.output, io::maglev_series_csv(out, header));
+  if (!a.level_given) options.level = 0;
+  const maglev::SeriesDenoising r = io::run_maglev_denoise_file(a.file, options);
+  emit(a.output, io::maglev_series_csv(r.series, report::maglev_denoise_text(r.denoising)));
   return kOk;
 }
 
@@ -220,10 +184,13 @@ struct SimulateArgs {
   std::vector<std::string> calibration_azimuths;
   double slope_ratio1 = 1.0, slope_ratio2 = 1.0, constant_deviation = 0.0;
   std::string best_azimuth = "0";
+
+  maglev::DeterminationSimulation determination() const;
+  maglev::CalibrationSimulation calibration() const;
 };
 
-maglev::Burst parse_burst(const std::string& text, int& position) {
-  // position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz
+// --burst position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz
+maglev::PositionBurst parse_burst(const std::string& text) {
   std::vector<double> v;
   std::size_t b = 0;
   while (b <= text.size()) {
@@ -245,57 +212,54 @@ maglev::Burst parse_burst(const std::string& text, int& position) {
             "with position 1 or 2",
             text),
         option("--burst"));
-  position = static_cast<int>(v[0]);
-  return {v[1], v[2], v[3], v[4], v[5], v[6]};
+  return {static_cast<int>(v[0]), {v[1], v[2], v[3], v[4], v[5], v[6]}};
+}
+
+maglev::DeterminationSimulation SimulateArgs::determination() const {
+  maglev::DeterminationSimulation s;
+  s.truth.latitude_rad = angle_option(latitude, "--latitude");
+  s.truth.alpha1_rad = angle_option(alpha1, "--alpha1");
+  s.truth.scale_A_s_per_rad = scale;
+  s.truth.bias_A = bias;
+  s.truth.circle_reading1_rad = angle_option(reading1, "--reading1");
+  s.noise = noise;
+  for (const auto& b : bursts) s.bursts.push_back(parse_burst(b));
+  s.seed = seed;
+  return s;
+}
+
+maglev::CalibrationSimulation SimulateArgs::calibration() const {
+  maglev::CalibrationSimulation s;
+  s.latitude_rad = angle_option(latitude, "--latitude");
+  for (const auto& a : calibration_azimuths)
+    s.azimuths_rad.push_back(angle_option(a, "--calibration-azimuths"));
+  s.scale_A_s_per_rad = scale;
+  s.slope_ratio1 = slope_ratio1;
+  s.slope_ratio2 = slope_ratio2;
+  s.best_azimuth_rad = angle_option(best_azimuth, "--best-azimuth");
+  s.constant_deviation_A = constant_deviation;
+  s.noise = noise;
+  s.seed = seed;
+  return s;
 }
 
 int run_simulate(const SimulateArgs& a, const std::string& command) {
-  const double lat = angle_option(a.latitude, "--latitude");
   if (!a.calibration_azimuths.empty()) {
-    maglev::CalibrationTruth t;
-    for (const auto& s : a.calibration_azimuths)
-      t.azimuths_rad.push_back(angle_option(s, "--calibration-azimuths"));
-    const double A = a.scale * units::kEarthRotationRate_rad_s * std::cos(lat);
-    t.slope1_A = A * a.slope_ratio1;
-    t.slope2_A = -A * a.slope_ratio2;
-    t.best_azimuth_rad = angle_option(a.best_azimuth, "--best-azimuth");
-    t.constant_deviation_A = a.constant_deviation;
-    t.latitude_rad = lat;
-    const auto in = maglev::simulate_calibration(t, a.noise, a.seed);
-    emit(a.out + "-calibration.csv", io::maglev_calibration_csv(in, "made by: " + command));
+    const maglev::CalibrationInput table = maglev::simulate_calibration(a.calibration());
+    emit(a.out + "-calibration.csv", io::maglev_calibration_csv(table, "made by: " + command));
     return kOk;
   }
-  maglev::TwoPositionTruth t;
-  t.alpha1_rad = angle_option(a.alpha1, "--alpha1");
-  t.scale_A_s_per_rad = a.scale;
-  t.bias_A = a.bias;
-  t.latitude_rad = lat;
-  t.circle_reading1_rad = angle_option(a.reading1, "--reading1");
-  maglev::NoiseSpec s1 = a.noise, s2 = a.noise;
-  s2.start_s = a.noise.start_s + static_cast<double>(a.noise.samples) / a.noise.rate_hz + 30.0;
-  for (const auto& b : a.bursts) {
-    int pos = 1;
-    maglev::Burst burst = parse_burst(b, pos);
-    // Burst times count from the start of their position's series.
-    maglev::NoiseSpec& s = pos == 1 ? s1 : s2;
-    burst.begin_s += s.start_s;
-    burst.end_s += s.start_s;
-    s.bursts.push_back(burst);
-  }
-  const auto in = maglev::simulate_determination(t, s1, s2, a.seed);
-  const std::string header = fmt::format(
-      "made by: {}\ntruth: alpha1 {:.6f} deg, K {} A*s/rad, b {} A, latitude {:.6f} deg, r1 {:.6f} "
-      "deg",
-      command, units::rad_to_deg(t.alpha1_rad), t.scale_A_s_per_rad, t.bias_A,
-      units::rad_to_deg(lat), units::rad_to_deg(t.circle_reading1_rad));
+  const maglev::DeterminationSimulation sim = a.determination();
+  const maglev::ReduceInput in = maglev::simulate_determination(sim);
+  const std::string header = io::maglev_truth_comment(command, sim.truth);
   if (a.one_file) {
     emit(a.out + ".csv", io::maglev_two_position_csv(in.position1, in.position2, header));
-  } else {
-    const std::string p1 = io::maglev_series_csv(in.position1, header + "\nposition 1");
-    const std::string p2 = io::maglev_series_csv(in.position2, header + "\nposition 2");
-    emit(a.out + "-1.csv", p1);
-    emit(a.out + "-2.csv", p2);
+    return kOk;
   }
+  const std::string p1 = io::maglev_series_csv(in.position1, header + "\nposition 1");
+  const std::string p2 = io::maglev_series_csv(in.position2, header + "\nposition 2");
+  emit(a.out + "-1.csv", p1);
+  emit(a.out + "-2.csv", p2);
   return kOk;
 }
 
@@ -308,38 +272,16 @@ struct CalibrateArgs {
 
 int run_calibrate(const CalibrateArgs& a) {
   require_html_reports_for(a.report);
-  auto in = io::read_maglev_calibration_table(a.file);
-  in.latitude_rad = angle_option(a.latitude, "--latitude");
-  in.alpha = a.alpha;
-  in.nominal_scale_A_s_per_rad = a.nominal_scale;
-  maglev::CalibrationResult r;
-  try {
-    r = maglev::calibrate(in);
-  } catch (Error& e) {
-    e.add_context(a.file);
-    throw;
-  }
-  const std::string html =
-      a.report.empty() ? std::string()
-                       : report::render_html(report::maglev_calibration_document(r, in, a.file));
-  const std::string out = a.json ? report::maglev_calibration_to_json(r).dump(2) + "\n"
+  const maglev::CalibrationResult r = io::run_maglev_calibrate_file(
+      a.file, angle_option(a.latitude, "--latitude"), a.alpha, a.nominal_scale);
+  const std::string out = a.json ? report::json_text(report::maglev_calibration_to_json(r))
                                  : report::maglev_calibration_text(r);
-  if (a.report.empty())
-    emit(a.output, out);
-  else
-    emit_all({{a.output.empty() ? kStandardOutput : a.output, out}, {a.report, html}});
+  emit_with_report(a.output, out, a.report,
+                   [&] { return report::render_html(report::maglev_calibration_document(r)); });
   return kOk;
 }
 
-}  // namespace
-}  // namespace maglev_cmd
-
-void add_maglev_commands(CLI::App& app, int& exit_code) {
-  using namespace maglev_cmd;  // the command's option structs and run functions
-  CLI::App* mg =
-      app.add_subcommand("maglev", "Magnetically suspended gyro: two-position north seeking");
-  mg->require_subcommand(1);
-
+void add_reduce_command(CLI::App* mg, int& exit_code) {
   auto ra = std::make_shared<ReduceArgs>();
   CLI::App* red =
       mg->add_subcommand("reduce", "Two-position determination from rotor-current series (CSV)");
@@ -379,15 +321,7 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   red->add_flag("--no-denoise", ra->no_denoise, "Stationarity tests without wavelet denoising");
   red->add_option("--segment", ra->segment,
                   "Segment length in samples, >= 32 (0: about 20 segments)")
-      ->check(CLI::Validator(
-          [](std::string& t) -> std::string {
-            char* end = nullptr;
-            const long v = std::strtol(t.c_str(), &end, 10);
-            return !t.empty() && *end == '\0' && (v == 0 || v >= 32)
-                       ? std::string()
-                       : t + " is not 0 (automatic) or at least 32";
-          },
-          "0 or >= 32"))
+      ->check(segment_length())
       ->capture_default_str();
   red->add_option("--alpha", ra->alpha, "Significance level per position (family-wise)")
       ->check(open_unit_interval())
@@ -412,7 +346,9 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
       throw CLI::RequiredError("--latitude (or --config giving latitude)");
     exit_code = guarded([&] { return run_reduce(*ra); });
   });
+}
 
+void add_denoise_command(CLI::App* mg, int& exit_code) {
   auto da = std::make_shared<DenoiseCmdArgs>();
   CLI::App* den = mg->add_subcommand(
       "denoise",
@@ -425,7 +361,27 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
     da->level_given = den->get_option("--level")->count() > 0;
     exit_code = guarded([&] { return run_denoise(*da); });
   });
+}
 
+// The simulate command as typed (the options given, `--name=value`), for the files' header.
+std::string simulate_command_line(const CLI::App* sim) {
+  std::string cmd = "meridian maglev simulate";
+  for (const CLI::Option* o : sim->get_options()) {
+    if (o->count() == 0 || o->get_lnames().empty()) continue;
+    const std::string name = o->get_lnames().front();
+    if (name == "help" || name == "out") continue;
+    cmd += " --" + name;
+    if (o->get_expected_min() == 0) continue;
+    std::string value;
+    for (const auto& r : o->results()) value += (value.empty() ? "" : ",") + r;
+    if (o->get_lnames().front() == "burst")
+      value = fmt::format("{}", fmt::join(o->results(), " --burst="));
+    cmd += "=" + value;
+  }
+  return cmd;
+}
+
+void add_simulate_command(CLI::App* mg, int& exit_code) {
   auto sa = std::make_shared<SimulateArgs>();
   CLI::App* sim = mg->add_subcommand(
       "simulate", "Simulate a determination (CSV per position) or a calibration table");
@@ -464,22 +420,11 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sim->add_option("--out", sa->out, "Output prefix")->capture_default_str();
   sim->callback([sa, sim, &exit_code] {
-    std::string cmd = "meridian maglev simulate";
-    for (const CLI::Option* o : sim->get_options()) {
-      if (o->count() == 0 || o->get_lnames().empty()) continue;
-      const std::string name = o->get_lnames().front();
-      if (name == "help" || name == "out") continue;
-      cmd += " --" + name;
-      if (o->get_expected_min() == 0) continue;
-      std::string value;
-      for (const auto& r : o->results()) value += (value.empty() ? "" : ",") + r;
-      if (o->get_lnames().front() == "burst")
-        value = fmt::format("{}", fmt::join(o->results(), " --burst="));
-      cmd += "=" + value;
-    }
-    exit_code = guarded([&] { return run_simulate(*sa, cmd); });
+    exit_code = guarded([&] { return run_simulate(*sa, simulate_command_line(sim)); });
   });
+}
 
+void add_calibrate_command(CLI::App* mg, int& exit_code) {
   auto ca = std::make_shared<CalibrateArgs>();
   CLI::App* cal = mg->add_subcommand(
       "calibrate", "Multi-angle calibration: lines, trend deviation, alpha*, I*, K");
@@ -496,6 +441,19 @@ void add_maglev_commands(CLI::App& app, int& exit_code) {
   cal->add_option("--report", ca->report,
                   "Also write a self-contained HTML report (lines, residuals) to this file");
   cal->callback([ca, &exit_code] { exit_code = guarded([&] { return run_calibrate(*ca); }); });
+}
+
+}  // namespace
+}  // namespace maglev_cmd
+
+void add_maglev_commands(CLI::App& app, int& exit_code) {
+  CLI::App* mg =
+      app.add_subcommand("maglev", "Magnetically suspended gyro: two-position north seeking");
+  mg->require_subcommand(1);
+  maglev_cmd::add_reduce_command(mg, exit_code);
+  maglev_cmd::add_denoise_command(mg, exit_code);
+  maglev_cmd::add_simulate_command(mg, exit_code);
+  maglev_cmd::add_calibrate_command(mg, exit_code);
 }
 
 }  // namespace meridian::cli

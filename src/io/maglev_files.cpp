@@ -4,7 +4,6 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
-#include <regex>
 
 #include <fmt/format.h>
 
@@ -238,6 +237,14 @@ std::string maglev_calibration_csv(const maglev::CalibrationInput& in,
   return out;
 }
 
+std::string maglev_truth_comment(const std::string& made_by, const maglev::TwoPositionTruth& t) {
+  return fmt::format(
+      "made by: {}\ntruth: alpha1 {:.6f} deg, K {} A*s/rad, b {} A, latitude {:.6f} deg, r1 {:.6f} "
+      "deg",
+      made_by, units::rad_to_deg(t.alpha1_rad), t.scale_A_s_per_rad, t.bias_A,
+      units::rad_to_deg(t.latitude_rad), units::rad_to_deg(t.circle_reading1_rad));
+}
+
 MaglevConstants read_maglev_constants(const std::string& path) {
   const Node root = Node::load_file(path);
   MaglevConstants c;
@@ -246,49 +253,20 @@ MaglevConstants read_maglev_constants(const std::string& path) {
   if (!calibration)
     root.allow_only({"scale_A_s_per_rad", "scale_sigma_A_s_per_rad", "latitude", "circle_reading1",
                      "constant_deviation_A", "constant_deviation_sigma_A"});
-  try {
-    if (auto k = root.get("scale_A_s_per_rad")) {
-      Uncertain u{k->positive_number(), 0.0};
-      if (auto s = root.get("scale_sigma_A_s_per_rad")) u.sigma = s->non_negative_number();
-      c.scale_A_s_per_rad = u;
-    }
-    if (auto l = root.get("latitude")) c.latitude_rad = l->angle().rad();
-    if (auto r = root.get("circle_reading1")) c.circle_reading1_rad = r->angle().rad();
-    if (auto b = root.get("constant_deviation_A")) {
-      Uncertain u{b->number(), 0.0};
-      if (auto s = root.get("constant_deviation_sigma_A")) u.sigma = s->non_negative_number();
-      c.constant_deviation_A = u;
-    }
-  } catch (Error& e) {
-    if (e.context().file.empty()) e.add_context(path);
-    throw;
+  // io::Node's errors name file, line and key.
+  if (auto k = root.get("scale_A_s_per_rad")) {
+    Uncertain u{k->positive_number(), 0.0};
+    if (auto s = root.get("scale_sigma_A_s_per_rad")) u.sigma = s->non_negative_number();
+    c.scale_A_s_per_rad = u;
+  }
+  if (auto l = root.get("latitude")) c.latitude_rad = l->angle().rad();
+  if (auto r = root.get("circle_reading1")) c.circle_reading1_rad = r->angle().rad();
+  if (auto b = root.get("constant_deviation_A")) {
+    Uncertain u{b->number(), 0.0};
+    if (auto s = root.get("constant_deviation_sigma_A")) u.sigma = s->non_negative_number();
+    c.constant_deviation_A = u;
   }
   return c;
-}
-
-maglev::ReduceResult run_maglev_reduce(const maglev::ReduceInput& input, const MaglevSeriesFile& f1,
-                                       const MaglevSeriesFile& f2, Progress* progress) {
-  try {
-    return maglev::process(input, progress);
-  } catch (Error& e) {
-    // positionK[.field[i]]: the file of that position, and the sample's line when indexed.
-    static const std::regex re(R"(^position([12])(?:\.(time_s|current_A)(?:\[(\d+)\])?)?)");
-    std::smatch m;
-    const std::string field = e.context().field;
-    if (e.context().file.empty() && std::regex_search(field, m, re)) {
-      const MaglevSeriesFile& f = m[1] == "1" ? f1 : f2;
-      std::optional<int> line;
-      if (m[3].matched) {
-        const auto i = static_cast<std::size_t>(std::stoul(m[3].str()));
-        if (i < f.lines.size()) line = f.lines[i];
-      }
-      std::string name = m[2].matched ? (m[2] == "time_s" ? "time" : "current") : field;
-      ErrorContext c{f.file, line, name};
-      if (dynamic_cast<NumericalError*>(&e)) throw NumericalError(e.message(), c);
-      throw InputError(e.message(), c);
-    }
-    throw;
-  }
 }
 
 }  // namespace meridian::io

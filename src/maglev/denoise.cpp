@@ -166,12 +166,26 @@ void threshold(const CoefficientViews& c, std::size_t n, const DenoiseOptions& o
 
 }  // namespace
 
+int default_level(std::size_t n, const Wavelet& wavelet) {
+  return std::max(1, std::min(kDefaultLevel, max_level(n, wavelet)));
+}
+
 DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options) {
   const Wavelet wavelet(options.wavelet_order);
   DenoiseResult r;
+  r.options = options;
   // wavedec, the thresholds in place, waverec: one scratch array for all levels.
   r.values = edit_coefficients(x, wavelet, options.mode, options.level,
                                [&](const CoefficientViews& c) { threshold(c, x.size(), options, r); });
+  return r;
+}
+
+SeriesDenoising denoise_series(const PositionSeries& s, DenoiseOptions options) {
+  if (options.level == 0) options.level = default_level(s.current_A.size(), Wavelet(options.wavelet_order));
+  validate_series(s, "series");
+  SeriesDenoising r;  // not an aggregate initialiser: GCC 12 destroys a partly built one twice on a throw
+  r.denoising = denoise(s.current_A, options);
+  r.series = {s.time_s, r.denoising.values};
   return r;
 }
 

@@ -93,4 +93,42 @@ CalibrationInput simulate_calibration(const CalibrationTruth& truth, const Noise
   return in;
 }
 
+std::pair<NoiseSpec, NoiseSpec> position_noise(const DeterminationSimulation& sim) {
+  const NoiseSpec& n = sim.noise;
+  std::pair<NoiseSpec, NoiseSpec> s{n, n};
+  s.second.start_s = n.start_s + static_cast<double>(n.samples) / n.rate_hz + sim.pause_s;
+  for (const PositionBurst& b : sim.bursts) {
+    if (b.position != 1 && b.position != 2)
+      throw InputError(fmt::format("a burst of position {} (1 or 2)", b.position));
+    NoiseSpec& p = b.position == 1 ? s.first : s.second;
+    Burst burst = b.burst;
+    burst.begin_s += p.start_s;
+    burst.end_s += p.start_s;
+    p.bursts.push_back(burst);
+  }
+  return s;
+}
+
+ReduceInput simulate_determination(const DeterminationSimulation& sim) {
+  const auto [s1, s2] = position_noise(sim);
+  return simulate_determination(sim.truth, s1, s2, sim.seed);
+}
+
+CalibrationTruth calibration_truth(const CalibrationSimulation& sim) {
+  CalibrationTruth t;
+  t.azimuths_rad = sim.azimuths_rad;
+  const double A =
+      sim.scale_A_s_per_rad * units::kEarthRotationRate_rad_s * std::cos(sim.latitude_rad);
+  t.slope1_A = A * sim.slope_ratio1;
+  t.slope2_A = -A * sim.slope_ratio2;
+  t.best_azimuth_rad = sim.best_azimuth_rad;
+  t.constant_deviation_A = sim.constant_deviation_A;
+  t.latitude_rad = sim.latitude_rad;
+  return t;
+}
+
+CalibrationInput simulate_calibration(const CalibrationSimulation& sim) {
+  return simulate_calibration(calibration_truth(sim), sim.noise, sim.seed);
+}
+
 }  // namespace meridian::maglev

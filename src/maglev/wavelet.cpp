@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "meridian/core/checks.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/scratch_array.hpp"
 
@@ -39,13 +40,6 @@ std::span<const double> scaling_filter(int order) {
   }
   throw InputError(fmt::format("Daubechies wavelet db{} is not available (db2 … db10)", order),
                    ErrorContext{{}, std::nullopt, "wavelet"});
-}
-
-void require_finite(std::span<const double> x, const char* what) {
-  if (x.empty()) throw InputError(fmt::format("{} is empty", what));
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (!std::isfinite(x[i]))
-      throw InputError(fmt::format("{} sample {} is not a finite number", what, i));
 }
 
 // Half-sample symmetric extension: index m of the infinite extension → index in [0, n).

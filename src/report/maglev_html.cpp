@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -23,8 +24,8 @@ std::string solution_text(const maglev::TwoPositionSolution& s) {
                      units::rad_to_arcsec(s.north_rad.sigma), s.bias_A.value);
 }
 
-Plot series_plot(const char* name, const maglev::PositionResult& p,
-                 const maglev::PositionSeries& s) {
+Plot series_plot(const char* name, const maglev::PositionResult& p) {
+  const maglev::PositionSeries& s = p.series;
   const std::size_t n = s.current_A.size();
   const std::size_t step = std::max<std::size_t>(1, (n + kMaxPoints - 1) / kMaxPoints);
   json values = json::array();
@@ -74,21 +75,9 @@ Table segment_table(const maglev::StationarityResult& st) {
                        st.segment_alpha);
   return t;
 }
-}  // namespace
 
-Document maglev_reduce_document(const maglev::ReduceResult& r, const maglev::ReduceInput& in,
-                                const std::string& input) {
-  Document doc;
-  doc.title = "Maglev gyro two-position determination";
-  doc.subtitle = input;
-  doc.footer = report_generator();
-  doc.header = {{"input", input},
-                {"scale K", fmt::format("{:.6f} ± {:.4f} A·s/rad", in.scale_A_s_per_rad.value,
-                                        in.scale_A_s_per_rad.sigma)},
-                {"latitude", format_dms(Angle::radians(in.latitude_rad))},
-                {"directive amplitude A", fmt::format("{:.9g} A", r.amplitude_A.value)},
-                {"processing", in.options.process ? "stationarity tests, wavelet denoising"
-                                                  : "none (plain means)"}};
+// The result section: α1 and N_G, the estimators side by side, notes and warnings.
+Section reduce_result_section(const maglev::ReduceResult& r) {
   Section res{"result", "Result", {}, 2};
   res.blocks.push_back(Highlight{
       "α1 (processed)",
@@ -114,40 +103,30 @@ Document maglev_reduce_document(const maglev::ReduceResult& r, const maglev::Red
   res.blocks.push_back(kv);
   if (!r.notes.empty()) res.blocks.push_back(Notes{"Notes", r.notes, false});
   if (!r.warnings.empty()) res.blocks.push_back(Notes{"Warnings", r.warnings, true});
-  doc.sections.push_back(res);
-  const maglev::PositionResult* ps[2] = {&r.position1, &r.position2};
-  const maglev::PositionSeries* ss[2] = {&in.position1, &in.position2};
-  for (int k = 0; k < 2; ++k) {
-    const auto& p = *ps[k];
-    const std::string name = fmt::format("Position {}", k + 1);
-    Section sec{fmt::format("position{}", k + 1), name, {}, 2};
-    sec.blocks.push_back(KeyValueList{
-        "Statistics",
-        {{"samples (kept)", fmt::format("{} ({})", p.samples, p.kept_samples)},
-         {"mean of all samples", fmt::format("{:.10g} ± {:.3g} A", p.raw.mean, p.raw.sigma)},
-         {"mean cleaned, kept",
-          fmt::format("{:.10g} ± {:.3g} A (n_eff {:.0f})", p.cleaned_mean_A.value,
-                      p.cleaned_mean_A.sigma, p.kept.n_eff)},
-         {"variance raw / cleaned kept",
-          fmt::format("{:.3e} / {:.3e} A²", p.variance_raw_A2, p.variance_cleaned_A2)}}});
-    sec.blocks.push_back(series_plot(name.c_str(), p, *ss[k]));
-    if (p.stationarity) sec.blocks.push_back(segment_table(*p.stationarity));
-    doc.sections.push_back(sec);
-  }
-  return doc;
+  return res;
 }
 
-Document maglev_calibration_document(const maglev::CalibrationResult& r,
-                                     const maglev::CalibrationInput& in, const std::string& input) {
-  Document doc;
-  doc.title = "Maglev gyro multi-angle calibration";
-  doc.subtitle = input;
-  doc.footer = report_generator();
-  doc.header = {{"input", input},
-                {"set-ups", std::to_string(in.setups.size())},
-                {"latitude", format_dms(Angle::radians(in.latitude_rad))}};
-  Section res{"calibration", "Result", {}, 2};
-  res.blocks.push_back(KeyValueList{
+// A position's section: its statistics, the raw and cleaned series, the segments.
+Section position_section(int k, const maglev::PositionResult& p) {
+  const std::string name = fmt::format("Position {}", k);
+  Section sec{fmt::format("position{}", k), name, {}, 2};
+  sec.blocks.push_back(KeyValueList{
+      "Statistics",
+      {{"samples (kept)", fmt::format("{} ({})", p.samples, p.kept_samples)},
+       {"mean of all samples", fmt::format("{:.10g} ± {:.3g} A", p.raw.mean, p.raw.sigma)},
+       {"mean cleaned, kept",
+        fmt::format("{:.10g} ± {:.3g} A (n_eff {:.0f})", p.cleaned_mean_A.value,
+                    p.cleaned_mean_A.sigma, p.kept.n_eff)},
+       {"variance raw / cleaned kept",
+        fmt::format("{:.3e} / {:.3e} A²", p.variance_raw_A2, p.variance_cleaned_A2)}}});
+  sec.blocks.push_back(series_plot(name.c_str(), p));
+  if (p.stationarity) sec.blocks.push_back(segment_table(*p.stationarity));
+  return sec;
+}
+
+// The calibration's lines, intersection and K.
+KeyValueList calibration_lines(const maglev::CalibrationResult& r) {
+  return KeyValueList{
       "Lines I = k·sin α + c",
       {{"position 1",
         fmt::format("k = {:.9g} ± {:.3g} A/rad, c = {:.9g} ± {:.3g} A",
@@ -168,11 +147,14 @@ Document maglev_calibration_document(const maglev::CalibrationResult& r,
        {"constant deviation I*", fmt::format("{:.6e} ± {:.3g} A", r.constant_deviation_A.value,
                                              r.constant_deviation_A.sigma)},
        {"K from the slopes", fmt::format("{:.6f} ± {:.4f} A·s/rad", r.scale_A_s_per_rad.value,
-                                         r.scale_A_s_per_rad.sigma)}}});
-  if (!r.warnings.empty()) res.blocks.push_back(Notes{"Warnings", r.warnings, true});
+                                         r.scale_A_s_per_rad.sigma)}}};
+}
+
+// The position means against the set-up azimuth, and the residuals of the line fits.
+std::pair<Plot, Plot> calibration_plots(const maglev::CalibrationResult& r) {
   json values = json::array();
-  for (std::size_t i = 0; i < in.setups.size(); ++i) {
-    const auto& s = in.setups[i];
+  for (std::size_t i = 0; i < r.setups.size(); ++i) {
+    const auto& s = r.setups[i];
     const double a = units::rad_to_deg(s.azimuth_rad);
     values.push_back(
         {{"a", a}, {"I", s.mean1_A.value}, {"p", "position 1"}, {"v", r.position1.residuals_A[i]}});
@@ -197,8 +179,8 @@ Document maglev_calibration_document(const maglev::CalibrationResult& r,
               {{"x", enc["x"]},
                {"color", enc["color"]},
                {"y", {{"field", "I"}, {"type", "quantitative"}}}}}}})}};
-  res.blocks.push_back(Plot{"Position means against the set-up azimuth", means,
-                            "Points: the means; lines join them."});
+  Plot means_plot{"Position means against the set-up azimuth", means,
+                  "Points: the means; lines join them."};
   json resid = {
       {"width", 600},
       {"height", 200},
@@ -209,7 +191,47 @@ Document maglev_calibration_document(const maglev::CalibrationResult& r,
         {"color", enc["color"]},
         {"y",
          {{"field", "v"}, {"type", "quantitative"}, {"title", "residual fit − observed (A)"}}}}}};
-  res.blocks.push_back(Plot{"Residuals of the line fits", resid, ""});
+  return {means_plot, Plot{"Residuals of the line fits", resid, ""}};
+}
+
+
+// A report on the input `source` (subtitle and first header line) with the rest of its header.
+Document maglev_document(std::string title, const std::string& source, std::vector<KeyValue> header) {
+  Document doc;
+  doc.title = std::move(title);
+  doc.subtitle = source;
+  doc.footer = report_generator();
+  doc.header = {{"input", source}};
+  doc.header.insert(doc.header.end(), header.begin(), header.end());
+  return doc;
+}
+}  // namespace
+
+Document maglev_reduce_document(const maglev::ReduceResult& r) {
+  Document doc = maglev_document(
+      "Maglev gyro two-position determination", r.source,
+      {{"scale K", fmt::format("{:.6f} ± {:.4f} A·s/rad", r.scale_A_s_per_rad.value,
+                               r.scale_A_s_per_rad.sigma)},
+       {"latitude", format_dms(Angle::radians(r.latitude_rad))},
+       {"directive amplitude A", fmt::format("{:.9g} A", r.amplitude_A.value)},
+       {"processing",
+        r.options.process ? "stationarity tests, wavelet denoising" : "none (plain means)"}});
+  doc.sections.push_back(reduce_result_section(r));
+  doc.sections.push_back(position_section(1, r.position1));
+  doc.sections.push_back(position_section(2, r.position2));
+  return doc;
+}
+
+Document maglev_calibration_document(const maglev::CalibrationResult& r) {
+  Document doc = maglev_document("Maglev gyro multi-angle calibration", r.source,
+                                 {{"set-ups", std::to_string(r.setups.size())},
+                                  {"latitude", format_dms(Angle::radians(r.latitude_rad))}});
+  Section res{"calibration", "Result", {}, 2};
+  res.blocks.push_back(calibration_lines(r));
+  if (!r.warnings.empty()) res.blocks.push_back(Notes{"Warnings", r.warnings, true});
+  auto [means, residuals] = calibration_plots(r);
+  res.blocks.push_back(std::move(means));
+  res.blocks.push_back(std::move(residuals));
   doc.sections.push_back(res);
   return doc;
 }

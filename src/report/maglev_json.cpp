@@ -15,7 +15,8 @@ json solution(const maglev::TwoPositionSolution& s) {
           {"bias_sigma_A", s.bias_A.sigma}};
 }
 
-json position(const maglev::PositionResult& p, const maglev::PositionSeries& series) {
+json position(const maglev::PositionResult& p) {
+  const maglev::PositionSeries& series = p.series;
   json j = {{"samples", p.samples},
             {"kept_samples", p.kept_samples},
             {"mean_all_A", p.raw.mean},
@@ -59,13 +60,13 @@ json position(const maglev::PositionResult& p, const maglev::PositionSeries& ser
 }
 }  // namespace
 
-json maglev_reduce_to_json(const maglev::ReduceResult& r, const maglev::ReduceInput& in) {
+json maglev_reduce_to_json(const maglev::ReduceResult& r) {
   json j = {{"amplitude_A", r.amplitude_A.value},
-            {"scale_A_s_per_rad", in.scale_A_s_per_rad.value},
-            {"latitude_deg", units::rad_to_deg(in.latitude_rad)},
-            {"processed", in.options.process},
-            {"position1", position(r.position1, in.position1)},
-            {"position2", position(r.position2, in.position2)},
+            {"scale_A_s_per_rad", r.scale_A_s_per_rad.value},
+            {"latitude_deg", units::rad_to_deg(r.latitude_rad)},
+            {"processed", r.options.process},
+            {"position1", position(r.position1)},
+            {"position2", position(r.position2)},
             {"result", solution(r.processed)},
             {"plain", solution(r.plain)},
             {"notes", r.notes},
@@ -87,8 +88,8 @@ json maglev_reduce_to_json(const maglev::ReduceResult& r, const maglev::ReduceIn
         {"grid_sigma_arcsec", units::rad_to_arcsec(c.grid_azimuth_rad.sigma)},
         {"notes", c.notes}};
   }
-  if (in.options.process && in.options.denoise) {
-    const auto& d = in.options.denoising;
+  if (r.options.process && r.options.denoise) {
+    const auto& d = r.options.denoising;
     j["denoising"] = {{"wavelet", maglev::Wavelet(d.wavelet_order).name()},
                       {"level", d.level},
                       {"mode", maglev::to_string(d.mode)},

@@ -113,4 +113,15 @@ std::string maglev_calibration_text(const maglev::CalibrationResult& r) {
   return out;
 }
 
+std::string maglev_denoise_text(const maglev::DenoiseResult& r) {
+  const maglev::DenoiseOptions& o = r.options;
+  std::string thresholds;
+  for (double l : r.thresholds) thresholds += fmt::format(" {:.6g}", l);
+  return fmt::format(
+      "meridian maglev denoise: {} levels {}, mode {}, {} {} threshold\nnoise sigma {:.6g} A; "
+      "thresholds (level 1 first):{}",
+      maglev::Wavelet(o.wavelet_order).name(), o.level, maglev::to_string(o.mode),
+      maglev::to_string(o.rule), maglev::to_string(o.kind), r.noise_sigma, thresholds);
+}
+
 }  // namespace meridian::report

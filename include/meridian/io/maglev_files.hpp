@@ -16,6 +16,9 @@
 /// increase`): ParseError for unreadable values, InputError for a missing
 /// position, a position other than 1 or 2, too few columns, empty series;
 /// IoError when a file cannot be opened.
+///
+/// The runners that read these files and call the maglev module are in
+/// maglev_jobs.hpp.
 
 #include <istream>
 #include <optional>
@@ -25,6 +28,7 @@
 
 #include "meridian/maglev/calibration.hpp"
 #include "meridian/maglev/reduce.hpp"
+#include "meridian/maglev/simulator.hpp"
 
 namespace meridian::io {
 
@@ -61,6 +65,9 @@ std::string maglev_two_position_csv(const maglev::PositionSeries& p1,
 /// A calibration table (azimuth in decimal degrees).
 std::string maglev_calibration_csv(const maglev::CalibrationInput& in,
                                    const std::string& header_comment = {});
+/// The header comment of a simulated determination's files: "made by: `made_by`" and a line
+/// with the truth (α_1, φ and r_1 in degrees, K in A·s/rad, b in A).
+std::string maglev_truth_comment(const std::string& made_by, const maglev::TwoPositionTruth& truth);
 
 /// Instrument constants from a YAML or JSON file (io::Node): `scale_A_s_per_rad`
 /// (K, > 0), `scale_sigma_A_s_per_rad`, `latitude` (DMS or degrees),
@@ -68,6 +75,8 @@ std::string maglev_calibration_csv(const maglev::CalibrationInput& in,
 /// `constant_deviation_sigma_A` (the prior bias). A stored calibration (the
 /// JSON of `maglev calibrate --json`, `kind: maglev-calibration`) is read the
 /// same way: its K and I*. Every key is optional; errors name file:line:key.
+/// The same struct holds the values a front end gives beside the files
+/// (io::MaglevReduceSetup::given, maglev_jobs.hpp).
 struct MaglevConstants {
   std::optional<Uncertain> scale_A_s_per_rad;
   std::optional<double> latitude_rad;
@@ -75,10 +84,5 @@ struct MaglevConstants {
   std::optional<Uncertain> constant_deviation_A;
 };
 MaglevConstants read_maglev_constants(const std::string& path);
-
-/// Run a reduction: process(input), and give an error about a sample
-/// (`position1.time_s[17]`) the file and line it came from.
-maglev::ReduceResult run_maglev_reduce(const maglev::ReduceInput& input, const MaglevSeriesFile& f1,
-                                       const MaglevSeriesFile& f2, Progress* progress = nullptr);
 
 }  // namespace meridian::io

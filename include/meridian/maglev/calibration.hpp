@@ -21,6 +21,8 @@
 ///   deviation is not constant: a calibration defect (reported as such).
 ///
 /// Units: α in radians, currents in A, slopes in A (per unit of sin α), K in A·s/rad.
+/// The runner io::run_maglev_calibrate_file reads a table and calls calibrate();
+/// the Result carries the table and latitude its writers show.
 /// Errors: InputError for fewer than 3 set-ups, non-finite values, σ ≤ 0,
 /// fewer than 2 distinct azimuths; NumericalError for parallel lines
 /// (k_1 = k_2: no intersection) or |sin α*| ≥ 1.
@@ -41,6 +43,7 @@ struct CalibrationSetup {
 };
 
 struct CalibrationInput {
+  std::string source;  ///< what the table is, for reports (its file); may be empty
   std::vector<CalibrationSetup> setups;
   double latitude_rad = 0.0;
   double alpha = 0.05;                              ///< significance level of the tests
@@ -56,6 +59,11 @@ struct LineFit {
 };
 
 struct CalibrationResult {
+  // What was fitted (CalibrationInput), for the writers.
+  std::string source;                      ///< CalibrationInput::source
+  std::vector<CalibrationSetup> setups;    ///< the table, in its order (residuals follow it)
+  double latitude_rad = 0.0;
+
   LineFit position1, position2, mean_line;
   Uncertain trend_deviation_A_per_rad;  ///< k_1 + k_2
   double trend_z = 0.0;

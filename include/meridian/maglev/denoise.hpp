@@ -28,12 +28,17 @@
 /// non-finite, level not possible for n and the wavelet). σ = 0 (more than
 /// half of d_1 exactly zero) gives λ = 0: the series is returned as
 /// reconstructed, unchanged to rounding.
+///
+/// `maglev denoise` is denoise_series(): a whole position series, validated
+/// (series.hpp), its level kDefaultLevel lowered to what a short series allows
+/// unless one is asked.
 
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "meridian/maglev/series.hpp"
 #include "meridian/maglev/wavelet.hpp"
 
 namespace meridian::maglev {
@@ -56,7 +61,15 @@ struct DenoiseOptions {
   ThresholdRule rule = ThresholdRule::Universal;
 };
 
+/// The decomposition level `maglev denoise` and `maglev reduce` use when none is asked.
+inline constexpr int kDefaultLevel = 6;
+
+/// kDefaultLevel lowered to the deepest level a series of n samples allows with `wavelet`
+/// (max_level), and at least 1 (denoise() then refuses a series too short for any level).
+int default_level(std::size_t n, const Wavelet& wavelet);
+
 struct DenoiseResult {
+  DenoiseOptions options;           ///< the options used (the level actually used)
   std::vector<double> values;       ///< the denoised series, same length as the input
   double noise_sigma = 0.0;         ///< σ = median(|d_1|)/0.6745 (units of the samples)
   std::vector<double> thresholds;   ///< λ per detail level, [0] = level 1 (finest) … [p−1]
@@ -77,5 +90,16 @@ double sure_threshold(std::span<const double> x);
 
 /// Denoise `x` (see the file comment). Throws as the file comment says.
 DenoiseResult denoise(std::span<const double> x, const DenoiseOptions& options);
+
+/// A whole series denoised (`maglev denoise`): its times as given, its currents denoised.
+struct SeriesDenoising {
+  PositionSeries series;    ///< time_s as given; current_A the denoised values
+  DenoiseResult denoising;  ///< σ, λ per level, the options used (values as series.current_A)
+};
+
+/// Validate `s` (validate_series, field "series": "series.current_A") and denoise its currents;
+/// `options.level` 0 means default_level(n): the default, lowered for a short series (an asked
+/// level is taken as asked and refused when too deep). Throws InputError.
+SeriesDenoising denoise_series(const PositionSeries& s, DenoiseOptions options);
 
 }  // namespace meridian::maglev

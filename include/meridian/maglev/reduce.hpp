@@ -6,8 +6,11 @@
 /// kept and rejected per position, and the plain, median and Huber results
 /// beside the processed one.
 ///
-///   ReduceInput (io::read_maglev_reduce) → process() → ReduceResult
-///   → report::maglev_reduce_text / maglev_reduce_to_json
+///   ReduceInput (io::maglev_reduce_input and the series readers) → process()
+///   → ReduceResult → report::maglev_reduce_text / maglev_reduce_to_json /
+///   maglev_reduce_document. The runner io::run_maglev_reduce_files does all
+///   of it for files; the Result carries what its writers show (the constants
+///   and options used, each position's series).
 ///
 /// Processing of each position (options.process):
 ///  1. stationarity.hpp: segments, mean and autocovariance tests, stable
@@ -34,11 +37,12 @@
 /// Azimuth chain: with a target reading, the gyro azimuth A_G = r_T − N_G and
 /// gyro::azimuth_chain (instrument constant E, Laplace, convergence).
 ///
-/// Errors (field paths for io::locate_error): InputError for an empty or
-/// constant series ("position1.current_A"), too few samples, non-monotonic
-/// time ("position2.time_s"), non-finite samples, times and currents of
-/// different lengths, bad options; NumericalError for no stable segment or
-/// |(Ī_1 − Ī_2)/(2A)| > 1 ("alpha1").
+/// Errors (field paths, which the runner's io::SourceMap turns into file:line:
+/// column): InputError for an empty or constant series ("position1.current_A"),
+/// non-monotonic time ("position2.time_s[17]"), non-finite samples, times and
+/// currents of different lengths (series.hpp), too few samples for the
+/// segments and bad options ("position1.segment_length"); NumericalError for
+/// no stable segment ("position1") or |(Ī_1 − Ī_2)/(2A)| > 1 ("alpha1").
 
 #include <optional>
 #include <string>
@@ -49,22 +53,17 @@
 #include "meridian/gyro/azimuth_chain.hpp"
 #include "meridian/maglev/denoise.hpp"
 #include "meridian/maglev/model.hpp"
+#include "meridian/maglev/series.hpp"
 #include "meridian/maglev/series_statistics.hpp"
 #include "meridian/maglev/stationarity.hpp"
 
 namespace meridian::maglev {
 
-/// One position's rotor-current series.
-struct PositionSeries {
-  std::vector<double> time_s;     ///< strictly increasing
-  std::vector<double> current_A;  ///< same length, finite
-};
-
 struct ReduceOptions {
   bool process = true;  ///< stationarity tests and denoising; false: plain means of all samples
   StationarityOptions stationarity;
   bool denoise = true;  ///< wavelet denoising of the kept runs (when process)
-  DenoiseOptions denoising{.wavelet_order = 4, .level = 6};
+  DenoiseOptions denoising{.wavelet_order = 4, .level = kDefaultLevel};
   double huber_k = 1.345;  ///< tuning of the Huber mean (units of the MAD scale)
   /// Prior bias b₀ for the symmetry check (e.g. I* of a calibration), A.
   std::optional<Uncertain> prior_bias_A;
@@ -79,6 +78,7 @@ struct ChainSetup {
 };
 
 struct ReduceInput {
+  std::string source;             ///< what the series are, for reports (their files); may be empty
   Uncertain scale_A_s_per_rad;    ///< K
   double latitude_rad = 0.0;      ///< φ
   Uncertain circle_reading1_rad;  ///< r_1 (spin-axis circle reading at position 1)
@@ -87,8 +87,9 @@ struct ReduceInput {
   ReduceOptions options;
 };
 
-/// One position: its statistics before and after processing.
+/// One position: its series and its statistics before and after processing.
 struct PositionResult {
+  PositionSeries series;  ///< as given (times of the segments, the raw samples)
   std::size_t samples = 0;
   MeanEstimate raw;                                ///< all samples, unprocessed
   std::optional<StationarityResult> stationarity;  ///< when processed
@@ -107,6 +108,12 @@ struct PositionResult {
 };
 
 struct ReduceResult {
+  // What was reduced (ReduceInput), for the writers.
+  std::string source;            ///< ReduceInput::source
+  Uncertain scale_A_s_per_rad;   ///< K
+  double latitude_rad = 0.0;     ///< φ
+  ReduceOptions options;         ///< as given (denoising.level as asked; PositionResult::denoise_levels as used)
+
   Uncertain amplitude_A;  ///< A = K·ω_e·cos φ
   PositionResult position1, position2;
   TwoPositionSolution processed;  ///< from the cleaned kept means (= plain without processing)
@@ -124,9 +131,5 @@ struct ReduceResult {
 
 /// Process one determination (see the file comment).
 ReduceResult process(const ReduceInput& in, Progress* progress = nullptr);
-
-/// Validate one series (lengths, finiteness, strictly increasing time, not
-/// constant); `field` prefixes the error field ("position1"). Throws InputError.
-void validate_series(const PositionSeries& s, const std::string& field);
 
 }  // namespace meridian::maglev

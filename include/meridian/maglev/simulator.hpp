@@ -20,6 +20,7 @@
 /// sample (its times are on the series' clock, which starts at start_s).
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "meridian/maglev/calibration.hpp"
@@ -78,5 +79,49 @@ struct CalibrationTruth {
 /// with σ by mean_with_autocorrelation. Throws as simulate_series.
 CalibrationInput simulate_calibration(const CalibrationTruth& truth, const NoiseSpec& spec,
                                       std::uint64_t seed);
+
+/// A burst of interference on one position, its times counted from the start of that
+/// position's series.
+struct PositionBurst {
+  int position = 1;  ///< 1 or 2
+  Burst burst;
+};
+
+/// A determination as `maglev simulate` records it (and meridian.maglev.simulate): both positions
+/// with the noise of `noise` (its bursts ignored), position 2 starting `pause_s` after position 1
+/// ends, the bursts placed on their position's clock.
+struct DeterminationSimulation {
+  TwoPositionTruth truth;
+  NoiseSpec noise;  ///< of both positions; position 1 starts at noise.start_s
+  std::vector<PositionBurst> bursts;
+  double pause_s = 30.0;
+  std::uint64_t seed = 1;  ///< position 1; position 2 seed + 1
+};
+
+/// The noise of each position of `sim` (position 2's start and both positions' bursts placed).
+/// Throws InputError for a burst of a position other than 1 or 2.
+std::pair<NoiseSpec, NoiseSpec> position_noise(const DeterminationSimulation& sim);
+
+/// simulate_determination(truth, position_noise(sim), seed).
+ReduceInput simulate_determination(const DeterminationSimulation& sim);
+
+/// A calibration experiment as `maglev simulate --calibration-azimuths` describes it: the
+/// slopes as ratios of the ideal ±A, A = K·ω_e·cos φ (k_1 = ratio1·A, k_2 = −ratio2·A).
+struct CalibrationSimulation {
+  std::vector<double> azimuths_rad;  ///< α_j
+  double scale_A_s_per_rad = 8000.0;  ///< K
+  double latitude_rad = 0.6;          ///< φ
+  double slope_ratio1 = 1.0, slope_ratio2 = 1.0;
+  double best_azimuth_rad = 0.0;      ///< α*
+  double constant_deviation_A = 0.0;  ///< I*
+  NoiseSpec noise;
+  std::uint64_t seed = 1;
+};
+
+/// The lines of `sim`.
+CalibrationTruth calibration_truth(const CalibrationSimulation& sim);
+
+/// simulate_calibration(calibration_truth(sim), sim.noise, sim.seed).
+CalibrationInput simulate_calibration(const CalibrationSimulation& sim);
 
 }  // namespace meridian::maglev

@@ -15,11 +15,9 @@
 
 namespace meridian::report {
 
-/// `input` names the file(s) in the header.
-Document maglev_reduce_document(const maglev::ReduceResult& r, const maglev::ReduceInput& in,
-                                const std::string& input);
+/// The header names the Result's source (the files read).
+Document maglev_reduce_document(const maglev::ReduceResult& r);
 
-Document maglev_calibration_document(const maglev::CalibrationResult& r,
-                                     const maglev::CalibrationInput& in, const std::string& input);
+Document maglev_calibration_document(const maglev::CalibrationResult& r);
 
 }  // namespace meridian::report

@@ -14,8 +14,8 @@
 
 namespace meridian::report {
 
-/// `in` gives the sample times of the segments and the options used.
-nlohmann::json maglev_reduce_to_json(const maglev::ReduceResult& r, const maglev::ReduceInput& in);
+/// The Result carries the constants and options used and the series (the segments' times).
+nlohmann::json maglev_reduce_to_json(const maglev::ReduceResult& r);
 nlohmann::json maglev_calibration_to_json(const maglev::CalibrationResult& r);
 
 }  // namespace meridian::report
