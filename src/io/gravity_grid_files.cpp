@@ -499,6 +499,15 @@ std::string_view to_string(GridFileFormat f) noexcept {
   return "?";
 }
 
+std::string_view display_name(GridFileFormat f) noexcept {
+  switch (f) {
+    case GridFileFormat::NetCdf: return "NetCDF";
+    case GridFileFormat::Csv: return "CSV";
+    case GridFileFormat::Gtx: return "GTX";
+  }
+  return "?";
+}
+
 GridFileFormat grid_file_format_for(const std::filesystem::path& path) {
   const std::string ext = detail::lower(path.extension().string());
   if (ext == ".nc" || ext == ".grd" || ext == ".cdf") return GridFileFormat::NetCdf;
