@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -28,9 +27,11 @@
 #include "meridian/core/units.hpp"
 #include "meridian/gravity/gravity_circle.hpp"
 #include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/points.hpp"
 #include "meridian/gravity/synthetic.hpp"
+#include "meridian/io/gravity_jobs.hpp"
+#include "meridian/io/gravity_model_lookup.hpp"
+#include "meridian/io/source_map.hpp"
 
 namespace py = pybind11;
 
@@ -48,11 +49,10 @@ struct Model {
   unsigned threads = 1;  ///< threads of a batch (FieldOptions::threads resolved)
 };
 
-Model make_model(mg::GravityModelData data, unsigned threads) {
-  auto field = std::make_shared<const mg::GravityField>(std::move(data), mg::FieldOptions{false, threads});
-  mg::ModelInfo info = mg::model_info(data, *field);
-  std::vector<std::string> warnings = mg::model_warnings(info);
-  return {std::move(info), std::move(warnings), std::move(field),
+// A model loaded (or made) the CLI's way (io/gravity_jobs.hpp), for Python.
+Model make_model(io::LoadedModel loaded, unsigned threads) {
+  std::vector<std::string> warnings = mg::model_warnings(loaded.info);
+  return {std::move(loaded.info), std::move(warnings), std::make_shared<const mg::GravityField>(std::move(loaded.field)),
           threads ? threads : std::max(1u, std::thread::hardware_concurrency())};
 }
 
@@ -98,23 +98,22 @@ py::tuple evaluate(const Model& model, const Array& lat_deg, const Array& lon_de
     for (std::size_t i = 0; i < n; ++i) {
       try {
         mg::GravityField::check_point(point(i));
-      } catch (const Error& e) {
-        throw InputError(e.message(), {"", std::nullopt, fmt::format("{}[{}]", argument_name(e.context().field), i)});
+      } catch (Error& e) {
+        e.relocate({"", std::nullopt, fmt::format("{}[{}]", argument_name(e.context().field), i)});
+        throw;
       }
     }
     std::vector<mg::GeodeticPoint> points(std::min(n, kChunk));
     for (std::size_t i0 = 0; i0 < n; i0 += kChunk) {
       const std::size_t m = std::min(kChunk, n - i0);
       for (std::size_t k = 0; k < m; ++k) points[k] = point(i0 + k);
-      std::vector<mg::FieldValues> v;
-      try {
-        v = model.field->evaluate(std::span<const mg::GeodeticPoint>(points.data(), m), what);
-      } catch (const NumericalError& e) {
-        // The engine numbers the points of this chunk; say which of the caller's it was.
-        std::size_t k = 0;
-        if (std::sscanf(e.context().field.c_str(), "points[%zu]", &k) != 1) throw;
-        throw NumericalError(e.message(), {"", std::nullopt, fmt::format("points[{}]", i0 + k)});
-      }
+      // The engine numbers the points of this chunk; errors name the caller's.
+      io::SourceMap caller_points;
+      caller_points.add_rows("points", [i0](std::size_t k, const std::string&) {
+        return ErrorContext{"", std::nullopt, fmt::format("points[{}]", i0 + k)};
+      });
+      const std::vector<mg::FieldValues> v = io::located(
+          caller_points, [&] { return model.field->evaluate(std::span<const mg::GeodeticPoint>(points.data(), m), what); });
       for (std::size_t k = 0; k < m; ++k) {
         xo[i0 + k] = units::rad_to_arcsec(v[k].xi_rad);
         eo[i0 + k] = units::rad_to_arcsec(v[k].eta_rad);
@@ -146,9 +145,10 @@ py::tuple grid(const Model& model, const Array& lat_deg, const Array& lon_deg, d
     auto check = [&](const mg::GeodeticPoint& p, const char* name, std::size_t i) {
       try {
         mg::GravityField::check_point(p);
-      } catch (const Error& e) {
+      } catch (Error& e) {
         const std::string arg = argument_name(e.context().field);
-        throw InputError(e.message(), {"", std::nullopt, arg == "h_m" ? arg : fmt::format("{}[{}]", name, i)});
+        e.relocate({"", std::nullopt, arg == "h_m" ? arg : fmt::format("{}[{}]", name, i)});
+        throw;
       }
     };
     for (std::size_t i = 0; i < rows; ++i) check({units::deg_to_rad(lat[i]), 0.0, h_m}, "lat_deg", i);
@@ -223,10 +223,10 @@ void bind_gravity(py::module_& m) {
       "open",
       [](const std::string& name_or_path, int max_degree, unsigned threads) {
         py::gil_scoped_release released;
-        return make_model(mg::load_model(name_or_path, {max_degree, -1}), threads);
+        return make_model(io::load_gravity_field({name_or_path, max_degree, threads}), threads);
       },
       py::arg("name_or_path"), py::arg("max_degree") = -1, py::arg("threads") = 0,
-      "Load a model (.gfc, .egm, or a name on the GeographicLib search path; gravity/model_lookup.hpp)");
+      "Load a model (.gfc, .egm, or a name on the GeographicLib search path; io/gravity_model_lookup.hpp)");
   m.def(
       "synthetic",
       [](int degree, std::uint64_t seed, unsigned threads) {
@@ -234,13 +234,13 @@ void bind_gravity(py::module_& m) {
         mg::SyntheticModelOptions o;
         o.max_degree = degree;
         o.seed = seed;
-        return make_model(mg::make_synthetic_model(o), threads);
+        return make_model(io::prepare_model(mg::make_synthetic_model(o), threads), threads);
       },
       py::arg("degree"), py::arg("seed"), py::arg("threads") = 0,
       "A synthetic model (gravity/synthetic.hpp make_synthetic_model)");
   m.def("search_path", [] {
     std::vector<std::string> r;
-    for (const auto& p : mg::gravity_search_path()) r.push_back(p.string());
+    for (const auto& p : io::gravity_search_path()) r.push_back(p.string());
     return r;
   });
 }
