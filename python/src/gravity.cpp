@@ -7,10 +7,6 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <exception>
-#include <mutex>
 #include <thread>
 #include <cstddef>
 #include <memory>
@@ -125,9 +121,10 @@ py::tuple evaluate(const Model& model, const Array& lat_deg, const Array& lon_de
 }
 
 // ξ, η (″) and, when `geoid`, N (m) on the grid lat_deg (rows) × lon_deg (columns) at
-// one height: a GravityCircle per row (gravity/gravity_circle.hpp: the Legendre sums once
-// per latitude, then O(max order) per longitude; the same values as GravityField::evaluate
-// to rounding), rows spread over the model's threads. Arrays of shape (rows, columns).
+// one height: gravity::evaluate_parallels (gravity/gravity_circle.hpp: a GravityCircle per
+// row, the Legendre sums once per latitude, then O(max order) per longitude; the same values
+// as GravityField::evaluate to rounding), rows spread over the model's threads. Arrays of
+// shape (rows, columns).
 // Errors: InputError "lat_deg[i]", "lon_deg[j]", "h_m" for bad input (checked before any
 // work); NumericalError "points[i, j]" for a value that is not finite.
 py::tuple grid(const Model& model, const Array& lat_deg, const Array& lon_deg, double h_m, bool geoid) {
@@ -153,40 +150,18 @@ py::tuple grid(const Model& model, const Array& lat_deg, const Array& lon_deg, d
     };
     for (std::size_t i = 0; i < rows; ++i) check({units::deg_to_rad(lat[i]), 0.0, h_m}, "lat_deg", i);
     for (std::size_t j = 0; j < cols; ++j) check({0.0, units::deg_to_rad(lon[j]), h_m}, "lon_deg", j);
-    std::vector<double> lon_rad(cols);
+    std::vector<double> lat_rad(rows), lon_rad(cols);
+    for (std::size_t i = 0; i < rows; ++i) lat_rad[i] = units::deg_to_rad(lat[i]);
     for (std::size_t j = 0; j < cols; ++j) lon_rad[j] = units::deg_to_rad(lon[j]);
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-    auto work = [&] {
-      try {
-        for (std::size_t i; (i = next.fetch_add(1)) < rows;) {
-          const mg::GravityCircle circle(*model.field, units::deg_to_rad(lat[i]), h_m, what);
-          for (std::size_t j = 0; j < cols; ++j) {
-            const mg::FieldValues v = circle.evaluate(lon_rad[j]);
-            const std::size_t k = i * cols + j;
-            xo[k] = units::rad_to_arcsec(v.xi_rad);
-            eo[k] = units::rad_to_arcsec(v.eta_rad);
-            if (no) no[k] = v.geoid_m;
-            if (!std::isfinite(xo[k]) || !std::isfinite(eo[k]) || (no && !std::isfinite(no[k])))
-              throw NumericalError("the model gives a value that is not finite here: its coefficients, GM or "
-                                   "reference radius are out of range",
-                                   {"", std::nullopt, fmt::format("points[{}, {}]", i, j)});
-          }
-        }
-      } catch (...) {
-        next = rows;  // the others stop at their next row
-        const std::lock_guard lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-      }
-    };
-    const std::size_t nthreads = std::min<std::size_t>(model.threads, rows);
-    {
-      std::vector<std::jthread> pool;
-      for (std::size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
-      work();
-    }
-    if (failure) std::rethrow_exception(failure);
+    mg::evaluate_parallels(*model.field, lat_rad, lon_rad, h_m, what, model.threads,
+                           [&](std::size_t i, std::span<const mg::FieldValues> v) {
+                             for (std::size_t j = 0; j < cols; ++j) {
+                               const std::size_t k = i * cols + j;
+                               xo[k] = units::rad_to_arcsec(v[j].xi_rad);
+                               eo[k] = units::rad_to_arcsec(v[j].eta_rad);
+                               if (no) no[k] = v[j].geoid_m;
+                             }
+                           });
   }
   return py::make_tuple(xi, eta, geoid ? py::object(*geoid_m) : py::object(py::none()));
 }
