@@ -21,12 +21,12 @@
 #include <vector>
 
 #include "meridian/core/units.hpp"
-#include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/gravity_circle.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/grid_synthesis.hpp"
-#include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/synthetic.hpp"
+#include "meridian/io/gravity_egm.hpp"
+#include "meridian/io/gravity_model_lookup.hpp"
 
 namespace {
 
@@ -50,7 +50,7 @@ std::string model_name(int degree) {
   o.max_degree = degree;
   o.seed = 2024;
   const std::string name = "bench" + std::to_string(degree);
-  mg::write_egm_files(mg::make_synthetic_model(o), dir() / name);
+  meridian::io::write_egm_files(mg::make_synthetic_model(o), dir() / name);
   return made[degree] = name;
 }
 
@@ -64,7 +64,7 @@ Models& models(int degree, unsigned threads = 1, mg::SimdKernel kernel = mg::Sim
   Models& m = cache[{degree, threads, kernel}];
   if (!m.meridian) {
     const std::string name = model_name(degree);
-    m.meridian = std::make_unique<mg::GravityField>(mg::read_egm_file(dir() / (name + ".egm")),
+    m.meridian = std::make_unique<mg::GravityField>(meridian::io::read_egm_file(dir() / (name + ".egm")),
                                                     mg::FieldOptions{false, threads, kernel});
     m.geographiclib = std::make_unique<GeographicLib::GravityModel>(name, dir().string());
   }
@@ -159,7 +159,7 @@ void BM_Meridian_DeflectionModelFile(benchmark::State& st) {
     st.SkipWithError("set MERIDIAN_BENCH_MODEL to a model file or name");
     return;
   }
-  const mg::GravityField f(mg::load_model(model));
+  const mg::GravityField f(meridian::io::load_model(model));
   const auto n = static_cast<std::size_t>(st.range(0));
   std::vector<mg::GeodeticPoint> pts(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -237,15 +237,15 @@ void BM_GeographicLib_GlobalGrid(benchmark::State& st) {
 // Loading a model from the binary .egm.cof (read + synthesis tables).
 void BM_Meridian_Load(benchmark::State& st) {
   const fs::path p = dir() / (model_name(static_cast<int>(st.range(0))) + ".egm");
-  for (auto _ : st) benchmark::DoNotOptimize(mg::GravityField(mg::read_egm_file(p)));
+  for (auto _ : st) benchmark::DoNotOptimize(mg::GravityField(meridian::io::read_egm_file(p)));
 }
 // The two parts of loading: reading the file, and the engine's tables from the coefficients.
 void BM_Meridian_LoadRead(benchmark::State& st) {
   const fs::path p = dir() / (model_name(static_cast<int>(st.range(0))) + ".egm");
-  for (auto _ : st) benchmark::DoNotOptimize(mg::read_egm_file(p));
+  for (auto _ : st) benchmark::DoNotOptimize(meridian::io::read_egm_file(p));
 }
 void BM_Meridian_LoadTables(benchmark::State& st) {
-  const auto data = mg::read_egm_file(dir() / (model_name(static_cast<int>(st.range(0))) + ".egm"));
+  const auto data = meridian::io::read_egm_file(dir() / (model_name(static_cast<int>(st.range(0))) + ".egm"));
   for (auto _ : st) benchmark::DoNotOptimize(mg::GravityField(data));
 }
 void BM_GeographicLib_Load(benchmark::State& st) {

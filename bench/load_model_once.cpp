@@ -9,8 +9,8 @@
 #ifdef MERIDIAN_LOAD_REFERENCE
 #include <GeographicLib/GravityModel.hpp>
 #else
-#include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/gravity_field.hpp"
+#include "meridian/io/gravity_egm.hpp"
 #endif
 
 int main(int argc, char** argv) {
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   const GeographicLib::GravityModel g(argv[2], argv[1]);
   std::printf("%d\n", g.Degree());
 #else
-  const meridian::gravity::GravityField f(meridian::gravity::read_egm_file(std::string(argv[1]) + "/" + argv[2] + ".egm"));
+  const meridian::gravity::GravityField f(meridian::io::read_egm_file(std::string(argv[1]) + "/" + argv[2] + ".egm"));
   std::printf("%d\n", f.max_degree());
 #endif
   return 0;

@@ -119,6 +119,52 @@ if [ -d "$shared/cases/geoid-grids" ]; then
   done
 fi
 run gravity-geoid-own gravity geoid-grid --grid "$out/gravity-grid-gtx-syn-egm/g.gtx" 12.5 33 --json
+# The model's other formats and ways of naming it, truncation, threads.
+run gravity-point-syn-gfc gravity point --model "$out/gravity-synth/syn.gfc" -- -33.5 "151 12 36" 20 --max-degree 10
+run gravity-point-syn-cof gravity point --model "$out/gravity-synth/syn.egm.cof" 45 -170 --json --threads 1
+run gravity-points-quiet-syn gravity points --model "$syn" --input "$out/points.csv" -q -o @W@/p.csv --max-degree 12
+run gravity-grid-json-gtx gravity grid --model "$syn" --region d --spacing 30 --quantities geoid -o @W@/g.gtx --json -q
+run gravity-grid-all-q gravity grid --model "$syn" --region 10/14/40/43 --spacing 1d --quantities xi,eta,geoid,anomaly,dg_east,dg_north,dg_up -o @W@/g.csv -q
+run gravity-grid-fft gravity grid --model "$syn" --region 0/360/-80/80 --spacing 20d/10d --path fft -o @W@/g.nc --json
+# Per-node heights from a NetCDF grid at the same nodes (the geoid of a first run, in metres).
+"$M" gravity grid --model "$syn" --region 100/104/20/23 --spacing 1d --quantities geoid -o "$out/h.nc" -q > /dev/null 2>&1
+run gravity-grid-heights gravity grid --model "$syn" --region 100/104/20/23 --spacing 1d -o @W@/g.csv --height-grid "$out/h.nc?geoid"
+run gravity-grid-heights-json gravity grid --model "$syn" --region 100/104/20/23 --spacing 1d -o @W@/g.csv --height-grid "$out/h.nc" --json
+run gravity-geoid-own-bilinear gravity geoid-grid --grid "$out/gravity-grid-gtx-syn-egm/g.gtx" -- -89 181 --interpolation bilinear
+# Errors of the gravity commands: messages, files and lines named, exit codes.
+printf 'not a model\n' > "$out/model.txt"
+head -n 40 "$out/gravity-synth/syn.gfc" > "$out/short.gfc"
+sed 's/^radius .*/radius -1/' "$out/gravity-synth/syn.gfc" > "$out/badradius.gfc"
+cp "$syn" "$out/trunc.egm"; head -c 300 "$syn.cof" > "$out/trunc.egm.cof"
+printf 'EGMF-2\n' > "$out/v2.egm"
+printf 'P5\n# Offset -100\n4 3\n65535\n' > "$out/short.pgm"
+printf 'not a grid' > "$out/grid.txt"
+run err-gravity-model-missing gravity point --model no_such_model_xyz 10 10
+run err-gravity-model-empty gravity point --model "" 10 10
+run err-gravity-model-format gravity point --model "$out/model.txt" 10 10
+run err-gravity-gfc-short gravity points --model "$out/short.gfc" --input "$out/points.csv"
+run err-gravity-gfc-radius gravity point --model "$out/badradius.gfc" 10 10 --json
+run err-gravity-egm-trunc gravity grid --model "$out/trunc.egm" --region 0/10/0/10 --spacing 5 -o @W@/g.csv
+run err-gravity-egm-version gravity point --model "$out/v2.egm" 10 10
+run err-gravity-point-lat gravity point --model "$syn" 95 10
+run err-gravity-point-h gravity point --model "$syn" 10 10 -- -20000
+run err-gravity-points-input gravity points --model "$syn" --input "$out/no-such-points.csv"
+run err-gravity-points-outdir gravity points --model "$syn" --input "$out/points.csv" -o "$out/no-such-dir/p.csv"
+run err-gravity-grid-quantity gravity grid --model "$syn" --region 0/10/0/10 --spacing 5 --quantities xi,rho -o @W@/g.csv
+run err-gravity-grid-ext gravity grid --model "$syn" --region 0/10/0/10 --spacing 5 -o @W@/g.tif
+run err-gravity-grid-gtx gravity grid --model "$syn" --region 0/10/0/10 --spacing 5 -o @W@/g.gtx
+run err-gravity-grid-region gravity grid --model "$syn" --region 0/10/20/10 --spacing 5 -o @W@/g.csv
+run err-gravity-grid-fft gravity grid --model "$syn" --region 0/10/0/10 --spacing 7 --path fft -o @W@/g.csv
+run err-gravity-grid-heights gravity grid --model "$syn" --region 100/105/20/23 --spacing 1d -o @W@/g.csv --height-grid "$out/h.nc"
+run err-gravity-grid-model gravity grid --model no_such_model_xyz --region 0/10/0/10 --spacing 5 -o @W@/g.csv
+run err-geoid-grid-ext gravity geoid-grid --grid "$out/grid.txt" 10 10
+run err-geoid-grid-pgm gravity geoid-grid --grid "$out/short.pgm" 10 10
+run err-geoid-grid-interp gravity geoid-grid --grid "$out/gravity-grid-gtx-syn-egm/g.gtx" 10 10 --interpolation cubic
+run err-geoid-grid-lat gravity geoid-grid --grid "$out/gravity-grid-gtx-syn-egm/g.gtx" 91 10
+run err-geoid-grid-missing gravity geoid-grid --grid "$out/no-such.gtx" 10 10
+if [ -d "$shared/cases/geoid-grids" ]; then
+  run err-geoid-grid-outside gravity geoid-grid --grid "$shared/cases/geoid-grids/tile.gtx" 50 50 --json
+fi
 
 # --- maglev
 run maglev-reduce maglev reduce examples/maglev-disturbed.csv --scale 8000 --latitude 35
@@ -302,6 +348,20 @@ for k in "sigma_speed_m_s: -1" "initial: {x_m: 7.49, y_m: 1.36, sigma_m: 0}" "se
   run err-nav-$key nav process "$out/nav-$key.yaml"
 done
 
+# --- gravity models named by a campaign and a deflection line (loaded through io_gravity)
+sed -e '/^    eta_arcsec:/d' -e '/^    eta_sigma_arcsec:/d' examples/campaign.yaml > "$out/campaign-model.yaml"
+printf 'gravity_model:\n  model: %s\n  max_degree: 20\n' "$syn" >> "$out/campaign-model.yaml"
+run gyro-campaign-model gyro campaign "$out/campaign-model.yaml" --json
+sed 's|^  model: .*|  model: no_such_model_xyz|' "$out/campaign-model.yaml" > "$out/campaign-nomodel.yaml"
+run err-gyro-campaign-model gyro campaign "$out/campaign-nomodel.yaml"
+sed 's|^  model: .*|  model: short.gfc|' "$out/campaign-model.yaml" > "$out/campaign-badmodel.yaml"
+run err-gyro-campaign-badmodel gyro campaign "$out/campaign-badmodel.yaml"
+awk -F, -v OFS=, '/^#/ {print; next} {$24 = $25 = ""; print}' "$out/dov-simulate/line.csv" | sed 's/,,,/,/' > "$out/line-nomodel.csv"
+printf 'line: %s\ngravity_model:\n  model: %s\n  max_degree: 20\n' "$out/line-nomodel.csv" "$syn" > "$out/dov-model.yaml"
+run dov-process-model dov process "$out/dov-model.yaml" --json
+sed 's|^  model: .*|  model: no_such_model_xyz|' "$out/dov-model.yaml" > "$out/dov-nomodel.yaml"
+run err-dov-process-model dov process "$out/dov-nomodel.yaml"
+
 # --- the Python package, when built
 if [ -d "$build/python/meridian" ]; then
   runpy py-gyro 'import meridian.gyro as g, json; print(json.dumps(g.reduce("examples/tracking.yaml").to_dict(), sort_keys=True, default=str))'
@@ -355,6 +415,13 @@ for f in (lambda: d.process(l), lambda: d.process(d.simulate(hours=0.01), gate_a
 " 
   runpy py-nav 'import meridian.nav as n, json; print(json.dumps(n.process("examples/nav-scenario-c/nav.yaml").to_dict(), sort_keys=True, default=str)[:200000])'
   runpy py-gravity "import meridian.gravity as g, numpy as np; m=g.GravityModel.open('$syn'); print(repr(m.deflection(np.array([10.,20.]), np.array([30.,40.]))))"
+  gfc="$out/gravity-synth/syn.gfc"
+  runpy py-gravity-open "import meridian.gravity as g, numpy as np, json; m=g.GravityModel.open('$gfc', max_degree=12, threads=1); print(json.dumps(m.info, sort_keys=True)); print(m.warnings, m.max_degree); d=m.deflection([[10.,20.],[-30,45]], [30.,40.], 100.); print(repr(d)); print(repr(m.grid(np.array([-10.,0,10]), np.array([0.,90,180,270]), 0.)))"
+  runpy py-gravity-synthetic "import meridian.gravity as g, json; m=g.synthetic_model(degree=30, seed=4, threads=1); print(json.dumps(m.info, sort_keys=True)); print(repr(m.deflection(12.5, -60., geoid=False)))"
+  runpy py-gravity-errors "import meridian.gravity as g
+for f in (lambda: g.GravityModel.open('no_such_model_xyz'), lambda: g.GravityModel.open('$out/short.gfc'), lambda: g.GravityModel.open('$syn').deflection([10., 95.], 0.), lambda: g.GravityModel.open('$syn').grid([10., 0.], [0., float('nan')])):
+    try: f()
+    except Exception as e: print(type(e).__name__, e, getattr(e, 'field', None))"
 fi
 for f in "$out"/*.*; do normalise "$f"; done
 echo "snapshot: $(ls -d "$out"/*/ | wc -l) runs in $out"

@@ -7,11 +7,6 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <cstdio>
-#include <exception>
-#include <mutex>
 #include <thread>
 #include <cstddef>
 #include <memory>
@@ -28,9 +23,11 @@
 #include "meridian/core/units.hpp"
 #include "meridian/gravity/gravity_circle.hpp"
 #include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/model_lookup.hpp"
 #include "meridian/gravity/points.hpp"
 #include "meridian/gravity/synthetic.hpp"
+#include "meridian/io/gravity_jobs.hpp"
+#include "meridian/io/gravity_model_lookup.hpp"
+#include "meridian/io/source_map.hpp"
 
 namespace py = pybind11;
 
@@ -48,11 +45,10 @@ struct Model {
   unsigned threads = 1;  ///< threads of a batch (FieldOptions::threads resolved)
 };
 
-Model make_model(mg::GravityModelData data, unsigned threads) {
-  auto field = std::make_shared<const mg::GravityField>(std::move(data), mg::FieldOptions{false, threads});
-  mg::ModelInfo info = mg::model_info(data, *field);
-  std::vector<std::string> warnings = mg::model_warnings(info);
-  return {std::move(info), std::move(warnings), std::move(field),
+// A model loaded (or made) the CLI's way (io/gravity_jobs.hpp), for Python.
+Model make_model(io::LoadedModel loaded, unsigned threads) {
+  std::vector<std::string> warnings = mg::model_warnings(loaded.info);
+  return {std::move(loaded.info), std::move(warnings), std::make_shared<const mg::GravityField>(std::move(loaded.field)),
           threads ? threads : std::max(1u, std::thread::hardware_concurrency())};
 }
 
@@ -98,23 +94,22 @@ py::tuple evaluate(const Model& model, const Array& lat_deg, const Array& lon_de
     for (std::size_t i = 0; i < n; ++i) {
       try {
         mg::GravityField::check_point(point(i));
-      } catch (const Error& e) {
-        throw InputError(e.message(), {"", std::nullopt, fmt::format("{}[{}]", argument_name(e.context().field), i)});
+      } catch (Error& e) {
+        e.relocate({"", std::nullopt, fmt::format("{}[{}]", argument_name(e.context().field), i)});
+        throw;
       }
     }
     std::vector<mg::GeodeticPoint> points(std::min(n, kChunk));
     for (std::size_t i0 = 0; i0 < n; i0 += kChunk) {
       const std::size_t m = std::min(kChunk, n - i0);
       for (std::size_t k = 0; k < m; ++k) points[k] = point(i0 + k);
-      std::vector<mg::FieldValues> v;
-      try {
-        v = model.field->evaluate(std::span<const mg::GeodeticPoint>(points.data(), m), what);
-      } catch (const NumericalError& e) {
-        // The engine numbers the points of this chunk; say which of the caller's it was.
-        std::size_t k = 0;
-        if (std::sscanf(e.context().field.c_str(), "points[%zu]", &k) != 1) throw;
-        throw NumericalError(e.message(), {"", std::nullopt, fmt::format("points[{}]", i0 + k)});
-      }
+      // The engine numbers the points of this chunk; errors name the caller's.
+      io::SourceMap caller_points;
+      caller_points.add_rows("points", [i0](std::size_t k, const std::string&) {
+        return ErrorContext{"", std::nullopt, fmt::format("points[{}]", i0 + k)};
+      });
+      const std::vector<mg::FieldValues> v = io::located(
+          caller_points, [&] { return model.field->evaluate(std::span<const mg::GeodeticPoint>(points.data(), m), what); });
       for (std::size_t k = 0; k < m; ++k) {
         xo[i0 + k] = units::rad_to_arcsec(v[k].xi_rad);
         eo[i0 + k] = units::rad_to_arcsec(v[k].eta_rad);
@@ -126,9 +121,10 @@ py::tuple evaluate(const Model& model, const Array& lat_deg, const Array& lon_de
 }
 
 // ξ, η (″) and, when `geoid`, N (m) on the grid lat_deg (rows) × lon_deg (columns) at
-// one height: a GravityCircle per row (gravity/gravity_circle.hpp: the Legendre sums once
-// per latitude, then O(max order) per longitude; the same values as GravityField::evaluate
-// to rounding), rows spread over the model's threads. Arrays of shape (rows, columns).
+// one height: gravity::evaluate_parallels (gravity/gravity_circle.hpp: a GravityCircle per
+// row, the Legendre sums once per latitude, then O(max order) per longitude; the same values
+// as GravityField::evaluate to rounding), rows spread over the model's threads. Arrays of
+// shape (rows, columns).
 // Errors: InputError "lat_deg[i]", "lon_deg[j]", "h_m" for bad input (checked before any
 // work); NumericalError "points[i, j]" for a value that is not finite.
 py::tuple grid(const Model& model, const Array& lat_deg, const Array& lon_deg, double h_m, bool geoid) {
@@ -146,47 +142,26 @@ py::tuple grid(const Model& model, const Array& lat_deg, const Array& lon_deg, d
     auto check = [&](const mg::GeodeticPoint& p, const char* name, std::size_t i) {
       try {
         mg::GravityField::check_point(p);
-      } catch (const Error& e) {
+      } catch (Error& e) {
         const std::string arg = argument_name(e.context().field);
-        throw InputError(e.message(), {"", std::nullopt, arg == "h_m" ? arg : fmt::format("{}[{}]", name, i)});
+        e.relocate({"", std::nullopt, arg == "h_m" ? arg : fmt::format("{}[{}]", name, i)});
+        throw;
       }
     };
     for (std::size_t i = 0; i < rows; ++i) check({units::deg_to_rad(lat[i]), 0.0, h_m}, "lat_deg", i);
     for (std::size_t j = 0; j < cols; ++j) check({0.0, units::deg_to_rad(lon[j]), h_m}, "lon_deg", j);
-    std::vector<double> lon_rad(cols);
+    std::vector<double> lat_rad(rows), lon_rad(cols);
+    for (std::size_t i = 0; i < rows; ++i) lat_rad[i] = units::deg_to_rad(lat[i]);
     for (std::size_t j = 0; j < cols; ++j) lon_rad[j] = units::deg_to_rad(lon[j]);
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_mutex;
-    auto work = [&] {
-      try {
-        for (std::size_t i; (i = next.fetch_add(1)) < rows;) {
-          const mg::GravityCircle circle(*model.field, units::deg_to_rad(lat[i]), h_m, what);
-          for (std::size_t j = 0; j < cols; ++j) {
-            const mg::FieldValues v = circle.evaluate(lon_rad[j]);
-            const std::size_t k = i * cols + j;
-            xo[k] = units::rad_to_arcsec(v.xi_rad);
-            eo[k] = units::rad_to_arcsec(v.eta_rad);
-            if (no) no[k] = v.geoid_m;
-            if (!std::isfinite(xo[k]) || !std::isfinite(eo[k]) || (no && !std::isfinite(no[k])))
-              throw NumericalError("the model gives a value that is not finite here: its coefficients, GM or "
-                                   "reference radius are out of range",
-                                   {"", std::nullopt, fmt::format("points[{}, {}]", i, j)});
-          }
-        }
-      } catch (...) {
-        next = rows;  // the others stop at their next row
-        const std::lock_guard lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-      }
-    };
-    const std::size_t nthreads = std::min<std::size_t>(model.threads, rows);
-    {
-      std::vector<std::jthread> pool;
-      for (std::size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
-      work();
-    }
-    if (failure) std::rethrow_exception(failure);
+    mg::evaluate_parallels(*model.field, lat_rad, lon_rad, h_m, what, model.threads,
+                           [&](std::size_t i, std::span<const mg::FieldValues> v) {
+                             for (std::size_t j = 0; j < cols; ++j) {
+                               const std::size_t k = i * cols + j;
+                               xo[k] = units::rad_to_arcsec(v[j].xi_rad);
+                               eo[k] = units::rad_to_arcsec(v[j].eta_rad);
+                               if (no) no[k] = v[j].geoid_m;
+                             }
+                           });
   }
   return py::make_tuple(xi, eta, geoid ? py::object(*geoid_m) : py::object(py::none()));
 }
@@ -223,10 +198,10 @@ void bind_gravity(py::module_& m) {
       "open",
       [](const std::string& name_or_path, int max_degree, unsigned threads) {
         py::gil_scoped_release released;
-        return make_model(mg::load_model(name_or_path, {max_degree, -1}), threads);
+        return make_model(io::load_gravity_field({name_or_path, max_degree, threads}), threads);
       },
       py::arg("name_or_path"), py::arg("max_degree") = -1, py::arg("threads") = 0,
-      "Load a model (.gfc, .egm, or a name on the GeographicLib search path; gravity/model_lookup.hpp)");
+      "Load a model (.gfc, .egm, or a name on the GeographicLib search path; io/gravity_model_lookup.hpp)");
   m.def(
       "synthetic",
       [](int degree, std::uint64_t seed, unsigned threads) {
@@ -234,13 +209,13 @@ void bind_gravity(py::module_& m) {
         mg::SyntheticModelOptions o;
         o.max_degree = degree;
         o.seed = seed;
-        return make_model(mg::make_synthetic_model(o), threads);
+        return make_model(io::prepare_model(mg::make_synthetic_model(o), threads), threads);
       },
       py::arg("degree"), py::arg("seed"), py::arg("threads") = 0,
       "A synthetic model (gravity/synthetic.hpp make_synthetic_model)");
   m.def("search_path", [] {
     std::vector<std::string> r;
-    for (const auto& p : mg::gravity_search_path()) r.push_back(p.string());
+    for (const auto& p : io::gravity_search_path()) r.push_back(p.string());
     return r;
   });
 }

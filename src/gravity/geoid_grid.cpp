@@ -1,146 +1,17 @@
 #include "meridian/gravity/geoid_grid.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <iterator>
 #include <numbers>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
-#include "meridian/core/utf8.hpp"
 
 namespace meridian::gravity {
 namespace {
 
-constexpr double kMinStep_deg = 1e-6;
-
 constexpr double kDeg = std::numbers::pi / 180;
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw IoError("cannot open geoid grid", {p.string(), {}, ""});
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-template <class T>
-T big_endian(const char* p) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, p, sizeof b);
-  if constexpr (std::endian::native == std::endian::little) std::reverse(b, b + sizeof b);
-  T v;
-  std::memcpy(&v, b, sizeof v);
-  return v;
-}
-
-// Whole turns of 360° in the columns: wrap when cols·Δλ reaches 360° (with
-// or without a repeated first column) and 360°/Δλ is a whole number.
-void finish_longitudes(GeoidGrid& g, double dlon_deg) {
-  const double period = 360.0 / dlon_deg;
-  if (!(period <= g.cols + 1.0)) return;  // regional (also keeps lround in range)
-  const long cols360 = std::lround(period);
-  g.wraps_longitude = std::abs(period - static_cast<double>(cols360)) < 1e-9 * period && g.cols >= cols360;
-  g.lon_period_cols = g.wraps_longitude ? static_cast<int>(cols360) : 0;
-}
-
-GeoidGrid read_gtx(const std::filesystem::path& path) {
-  const std::string file = path.string(), d = slurp(path);
-  if (d.size() < 40) throw ParseError("file too short for a .gtx header (40 bytes)", {file, {}, "header"});
-  GeoidGrid g;
-  g.source_file = file;
-  g.format = "gtx";
-  const double lat0 = big_endian<double>(d.data()), lon0 = big_endian<double>(d.data() + 8);
-  const double dlat = big_endian<double>(d.data() + 16), dlon = big_endian<double>(d.data() + 24);
-  g.rows = big_endian<std::int32_t>(d.data() + 32);
-  g.cols = big_endian<std::int32_t>(d.data() + 36);
-  if (g.rows == 1 || g.cols == 1)
-    throw ParseError(fmt::format("a {} x {} .gtx grid (a single {}) cannot be interpolated: this reader needs at least "
-                                 "2 rows and 2 columns",
-                                 g.rows, g.cols, g.rows == 1 ? "parallel" : "meridian"),
-                     {file, {}, "header"});
-  // Negated comparisons so that NaN fails every test.
-  // Steps below 1e-6 deg (0.1 m) are no geoid grid (and a denormal step made
-  // the slope deflection infinite).
-  const bool ok = lat0 >= -90 && lat0 <= 90 && lon0 >= -360 && lon0 <= 360 && dlat >= kMinStep_deg && dlat <= 180 &&
-                  dlon >= kMinStep_deg && dlon <= 360 && g.rows >= 2 && g.cols >= 2 &&
-                  lat0 + (g.rows - 1) * dlat <= 90 + 1e-9 && (g.cols - 1) * dlon <= 360 + 1e-9;
-  if (!ok)
-    throw ParseError(fmt::format("implausible .gtx header: origin {} {}, step {} {}, size {} x {}", lat0, lon0, dlat, dlon,
-                                 g.rows, g.cols),
-                     {file, {}, "header"});
-  const std::size_t n = static_cast<std::size_t>(g.rows) * static_cast<std::size_t>(g.cols);
-  if ((d.size() - 40) % 4 != 0 || (d.size() - 40) / 4 != n)
-    throw ParseError(fmt::format("file has {} bytes, a {} x {} grid needs {}", d.size(), g.rows, g.cols, 40 + 4 * n),
-                     {file, {}, "data"});
-  g.first_lat_rad = lat0 * kDeg;
-  g.first_lon_rad = lon0 * kDeg;
-  g.dlat_rad = dlat * kDeg;
-  g.dlon_rad = dlon * kDeg;
-  g.f32_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) g.f32_[k] = big_endian<float>(d.data() + 40 + 4 * k);
-  finish_longitudes(g, dlon);
-  return g;
-}
-
-GeoidGrid read_pgm(const std::filesystem::path& path) {
-  const std::string file = path.string(), d = slurp(path);
-  std::size_t pos = 0;
-  int line = 0;
-  auto next_line = [&]() -> std::string {
-    const std::size_t e = d.find('\n', pos);
-    if (e == std::string::npos) throw ParseError("truncated PGM header", {file, line, "header"});
-    std::string s = d.substr(pos, e - pos);
-    pos = e + 1;
-    ++line;
-    return s;
-  };
-  if (next_line() != "P5") throw ParseError("not a binary PGM (first line must be P5)", {file, 1, "header"});
-  GeoidGrid g;
-  g.source_file = file;
-  g.format = "pgm";
-  bool have_offset = false, have_scale = false;
-  std::string s;
-  while (true) {
-    s = next_line();
-    if (s.empty()) continue;
-    if (s[0] != '#') break;
-    if (const auto bad = first_invalid_utf8(s))
-      throw ParseError(fmt::format("header comment is not UTF-8 text (byte 0x{:02X} at column {})",
-                                   static_cast<unsigned char>(s[*bad]), *bad + 1),
-                       {file, line, "header"});
-    std::istringstream is(s.substr(1));
-    std::string key, value;
-    is >> key;
-    std::getline(is >> std::ws, value);
-    while (!value.empty() && std::isspace(static_cast<unsigned char>(value.back()))) value.pop_back();
-    if (!key.empty() && !g.metadata.count(key)) g.metadata.emplace(key, value);
-    std::istringstream num(value);
-    if (key == "Offset") have_offset = static_cast<bool>(num >> g.offset_m_) && std::isfinite(g.offset_m_);
-    if (key == "Scale") have_scale = static_cast<bool>(num >> g.scale_m_) && g.scale_m_ > 0 && std::isfinite(g.scale_m_);
-  }
-  std::istringstream size(s);
-  if (!(size >> g.cols >> g.rows) || g.cols < 2 || g.rows < 2 || g.cols % 2 || g.rows % 2 == 0)
-    throw ParseError("bad raster size \"" + s + "\" (need even width, odd height)", {file, line, "size"});
-  const int size_line = line;
-  if (next_line() != "65535") throw ParseError("maxval must be 65535 (16-bit)", {file, size_line + 1, "maxval"});
-  if (!have_offset || !have_scale) throw ParseError("missing # Offset or positive # Scale comment", {file, {}, "header"});
-  const std::size_t n = static_cast<std::size_t>(g.rows) * static_cast<std::size_t>(g.cols);
-  if ((d.size() - pos) % 2 != 0 || (d.size() - pos) / 2 != n)
-    throw ParseError(fmt::format("{} data bytes, a {} x {} raster needs {}", d.size() - pos, g.cols, g.rows, 2 * n),
-                     {file, {}, "data"});
-  g.u16_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) g.u16_[k] = big_endian<std::uint16_t>(d.data() + pos + 2 * k);
-  g.first_lat_rad = std::numbers::pi / 2;
-  g.dlat_rad = -std::numbers::pi / (g.rows - 1);
-  g.first_lon_rad = 0;
-  g.dlon_rad = 2 * std::numbers::pi / g.cols;
-  finish_longitudes(g, 360.0 / g.cols);
-  return g;
-}
 
 // Keys' cubic convolution weights (a = −1/2) for fraction x ∈ [0, 1];
 // exactly (0, 1, 0, 0) at x = 0 and (0, 0, 1, 0) at x = 1.
@@ -244,12 +115,14 @@ std::string node_description(const GeoidGrid& g, int r, int c) {
 
 }  // namespace
 
-GeoidGrid read_geoid_grid(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".gtx") return read_gtx(path);
-  if (ext == ".pgm") return read_pgm(path);
-  throw InputError("unknown geoid grid format \"" + ext + "\" (expected .gtx or .pgm)", {path.string(), {}, ""});
+// Whole turns of 360° in the columns: wrap when cols·Δλ reaches 360° (with
+// or without a repeated first column) and 360°/Δλ is a whole number.
+void GeoidGrid::set_longitude_period(double dlon_deg) noexcept {
+  const double period = 360.0 / dlon_deg;
+  if (!(period <= cols + 1.0)) return;  // regional (also keeps lround in range)
+  const long cols360 = std::lround(period);
+  wraps_longitude = std::abs(period - static_cast<double>(cols360)) < 1e-9 * period && cols >= cols360;
+  lon_period_cols = wraps_longitude ? static_cast<int>(cols360) : 0;
 }
 
 std::optional<double> GeoidGrid::node_m(int r, int c) const noexcept {

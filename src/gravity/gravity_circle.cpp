@@ -1,14 +1,31 @@
 #include "meridian/gravity/gravity_circle.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <mutex>
+#include <thread>
+
+#include <fmt/format.h>
+
 
 #include "astronomic.hpp"
+#include "not_finite.hpp"
 #include "synthesis.hpp"
 
 namespace meridian::gravity {
 namespace {
 using detail::kNaN;
+
+// The values asked for are finite at node (i, j) of evaluate_parallels, or a NumericalError.
+void check_node(const FieldValues& v, Quantities what, std::size_t i, std::size_t j) {
+  const bool ok = (!includes(what, Quantities::Deflection) || (std::isfinite(v.xi_rad) && std::isfinite(v.eta_rad))) &&
+                  (!includes(what, Quantities::Geoid) || std::isfinite(v.geoid_m));
+  if (!ok) throw detail::model_value_not_finite(fmt::format("points[{}, {}]", i, j));
+}
+
 }  // namespace
 
 // Column sums at the point's height (gradient) and, for the geoid, at h = 0.
@@ -92,6 +109,39 @@ std::vector<FieldValues> GravityCircle::evaluate(std::span<const double> lon_rad
   out.reserve(lon_rad.size());
   for (double l : lon_rad) out.push_back(evaluate(l));
   return out;
+}
+
+void evaluate_parallels(const GravityField& field, std::span<const double> lat_rad, std::span<const double> lon_rad,
+                        double height_m, Quantities what, unsigned threads, const ParallelSink& sink) {
+  const std::size_t rows = lat_rad.size(), cols = lon_rad.size();
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&] {
+    try {
+      std::vector<FieldValues> values(cols);
+      for (std::size_t i; (i = next.fetch_add(1)) < rows;) {
+        const GravityCircle circle(field, lat_rad[i], height_m, what);
+        for (std::size_t j = 0; j < cols; ++j) {
+          values[j] = circle.evaluate(lon_rad[j]);
+          check_node(values[j], what, i, j);
+        }
+        sink(i, values);
+      }
+    } catch (...) {
+      next = rows;  // the others stop at their next row
+      const std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  };
+  const unsigned wanted = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t nthreads = std::min<std::size_t>(wanted, rows);
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t t = 1; t < nthreads; ++t) pool.emplace_back(work);
+    work();
+  }
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace meridian::gravity

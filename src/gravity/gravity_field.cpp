@@ -13,6 +13,7 @@
 
 #include "meridian/core/error.hpp"
 #include "astronomic.hpp"
+#include "not_finite.hpp"
 #include "synthesis.hpp"
 
 namespace meridian::gravity {
@@ -166,10 +167,7 @@ void check_finite_values(const FieldValues& v, Quantities what, std::size_t inde
                              std::isfinite(v.dT_north_m_s2) && std::isfinite(v.dT_up_m_s2) &&
                              std::isfinite(v.xi_astro_rad) && std::isfinite(v.eta_astro_rad))) &&
                   (!geoid || std::isfinite(v.geoid_m));
-  if (!ok)
-    throw NumericalError("the model gives a value that is not finite here: its coefficients, GM or reference radius "
-                         "are out of range",
-                         {"", {}, fmt::format("points[{}]", index)});
+  if (!ok) throw detail::model_value_not_finite(fmt::format("points[{}]", index));
 }
 
 }  // namespace

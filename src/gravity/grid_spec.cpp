@@ -84,6 +84,17 @@ GridQuantity grid_quantity_from_string(std::string_view name) {
                    {"", {}, "quantities"});
 }
 
+std::vector<GridQuantity> parse_grid_quantities(std::string_view list) {
+  std::vector<GridQuantity> quantities;
+  for (std::size_t start = 0; start <= list.size();) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string_view name = list.substr(start, comma - start);
+    if (!name.empty()) quantities.push_back(grid_quantity_from_string(name));
+    start = comma + 1;
+  }
+  return quantities;
+}
+
 std::string_view to_string(GridRegistration r) noexcept {
   return r == GridRegistration::Pixel ? "pixel" : "gridline";
 }

@@ -365,6 +365,63 @@ GridSynthesisResult synthesize_with_heights(const GravityField& field, const Gri
 
 std::size_t row_bytes(const GridSpec& spec) { return spec.columns() * spec.quantities.size() * sizeof(double); }
 
+// What the FFT path shares between rows: one c2r plan of length Nλ (job.plan), the phases
+// e^{imλ0} of the grid's first longitude (job.phase) and one worker per thread.
+std::unique_ptr<C2rPlan> prepare_fft(Job& job, std::vector<std::unique_ptr<FftWorker>>& workers) {
+  const std::size_t n = job.spec.samples_per_turn();
+  auto plan = std::make_unique<C2rPlan>(static_cast<int>(n));
+  job.plan = plan.get();
+  int orders = job.field.max_order() + 1;
+  if (const detail::SynthesisTable* c = job.field.correction_table()) orders = std::max(orders, c->max_order() + 1);
+  const double lon0 = job.spec.lon_rad(0);
+  job.phase.resize(static_cast<std::size_t>(orders));
+  for (int m = 0; m < orders; ++m) job.phase[static_cast<std::size_t>(m)] = std::polar(1.0, m * lon0);
+  for (auto& w : workers) w = std::make_unique<FftWorker>(n);
+  return plan;
+}
+
+// Rows [first, first + count) into `out` (per_row values each), spread over the threads:
+// blocks of consecutive rows, at most kBlockParallels (FFT path) and small enough that every
+// thread gets one; one row each on the per-parallel path. Every value is checked finite. The
+// first error of any thread stops the others and is rethrown.
+void compute_rows(const Job& job, std::size_t first, std::size_t count, unsigned threads,
+                  const std::vector<std::unique_ptr<FftWorker>>& workers, double* out_rows) {
+  const std::size_t per_row = job.columns * job.spec.quantities.size();
+  const std::size_t block =
+      job.path == GridPath::Fft ? std::clamp<std::size_t>((count + threads - 1) / threads, 1, detail::kBlockParallels)
+                                : 1;
+  const std::size_t items = (count + block - 1) / block;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::vector<std::exception_ptr> errors(threads);
+  auto work = [&](unsigned t) {
+    try {
+      for (std::size_t k; !failed.load(std::memory_order_relaxed) && (k = next.fetch_add(1)) < items;) {
+        const std::size_t k0 = k * block, n_rows = std::min(block, count - k0);
+        double* out = out_rows + k0 * per_row;
+        if (job.path == GridPath::Fft)
+          block_fft(job, first + k0, n_rows, *workers[t], out);
+        else
+          row_parallel(job, first + k0, out);
+        for (std::size_t i = 0; i < n_rows; ++i) check_finite(job.spec, first + k0 + i, out + i * per_row, job.columns);
+      }
+    } catch (...) {
+      errors[t] = std::current_exception();
+      failed = true;
+    }
+  };
+  const unsigned active = static_cast<unsigned>(std::min<std::size_t>(threads, items));
+  if (active <= 1) {
+    work(0);
+  } else {
+    std::vector<std::jthread> pool;
+    pool.reserve(active);
+    for (unsigned t = 0; t < active; ++t) pool.emplace_back(work, t);
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
 }  // namespace
 
 std::string_view to_string(GridPath p) noexcept {
@@ -431,58 +488,15 @@ GridSynthesisResult synthesize_grid(const GravityField& field, const GridSpec& s
   std::unique_ptr<C2rPlan> plan;
   std::vector<std::unique_ptr<FftWorker>> workers(threads);
   if (job.path == GridPath::Fft) {
-    const std::size_t n = spec.samples_per_turn();
-    result.fft_length = n;
-    plan = std::make_unique<C2rPlan>(static_cast<int>(n));
-    job.plan = plan.get();
-    int orders = field.max_order() + 1;
-    if (const detail::SynthesisTable* c = field.correction_table()) orders = std::max(orders, c->max_order() + 1);
-    const double lon0 = spec.lon_rad(0);
-    job.phase.resize(static_cast<std::size_t>(orders));
-    for (int m = 0; m < orders; ++m) job.phase[static_cast<std::size_t>(m)] = std::polar(1.0, m * lon0);
-    for (auto& w : workers) w = std::make_unique<FftWorker>(n);
+    plan = prepare_fft(job, workers);
+    result.fft_length = spec.samples_per_turn();
   }
 
   std::vector<double> buffer(batch * per_row);
   report_progress(progress, 0, rows, "parallels");
   for (std::size_t first = 0; first < rows; first += batch) {
     const std::size_t count = std::min(batch, rows - first);
-    // Work items: blocks of consecutive rows, at most kBlockParallels (FFT path) and small
-    // enough that every thread gets one; one row each on the per-parallel path.
-    const std::size_t block =
-        job.path == GridPath::Fft
-            ? std::clamp<std::size_t>((count + threads - 1) / threads, 1, detail::kBlockParallels)
-            : 1;
-    const std::size_t items = (count + block - 1) / block;
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> failed{false};
-    std::vector<std::exception_ptr> errors(threads);
-    auto work = [&](unsigned t) {
-      try {
-        for (std::size_t k; !failed.load(std::memory_order_relaxed) && (k = next.fetch_add(1)) < items;) {
-          const std::size_t k0 = k * block, n_rows = std::min(block, count - k0);
-          double* out = buffer.data() + k0 * per_row;
-          if (job.path == GridPath::Fft)
-            block_fft(job, first + k0, n_rows, *workers[t], out);
-          else
-            row_parallel(job, first + k0, out);
-          for (std::size_t i = 0; i < n_rows; ++i) check_finite(spec, first + k0 + i, out + i * per_row, job.columns);
-        }
-      } catch (...) {
-        errors[t] = std::current_exception();
-        failed = true;
-      }
-    };
-    const unsigned active = static_cast<unsigned>(std::min<std::size_t>(threads, items));
-    if (active <= 1) {
-      work(0);
-    } else {
-      std::vector<std::jthread> pool;
-      pool.reserve(active);
-      for (unsigned t = 0; t < active; ++t) pool.emplace_back(work, t);
-    }
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
+    compute_rows(job, first, count, threads, workers, buffer.data());
     for (std::size_t k = 0; k < count; ++k) {
       const std::size_t j = first + k;
       sink(GridRow{j, spec.lat_deg(j), job.columns, std::span<const double>(buffer.data() + k * per_row, per_row)});

@@ -40,4 +40,24 @@ std::vector<FieldValues> evaluate_points(const GravityField& field,
   return evaluate_track(field, points, Quantities::All, to).values;
 }
 
+PointsResult process_points(PointSource& source, const GravityField& field, const ModelInfo& model,
+                            const PointsOptions& options, const PointSink& sink, Progress* progress,
+                            std::size_t sample_capacity) {
+  PointsResult result{source.name(), model, options, PointsSummary(sample_capacity)};
+  const std::size_t chunk = points_chunk_size(options);
+  std::vector<GeodeticPoint> points;
+  std::size_t done = 0;
+  while (source.next(points, chunk)) {
+    const std::vector<FieldValues> values = evaluate_points(field, points, options);
+    sink(points, values);
+    result.summary.add(points, values);
+    done += points.size();
+    if (source.size_bytes() > 0)
+      report_progress(progress, source.bytes_read(), source.size_bytes(), "points (bytes of input)");
+    else
+      report_progress(progress, done, 0, "points");
+  }
+  return result;
+}
+
 }  // namespace meridian::gravity

@@ -24,6 +24,7 @@
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/core/version.hpp"
+#include "gravity_text.hpp"
 
 namespace meridian::io {
 namespace {
@@ -310,9 +311,107 @@ class GtxGridWriter final : public StreamGridWriter {
   std::size_t columns_;
 };
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
+// A NetCDF call's status: IoError "cannot read WHAT: …" naming the file unless it succeeded.
+void nc_ok(int status, const char* what, const std::string& file) {
+  if (status != NC_NOERR) throw IoError(fmt::format("cannot read {}: {}", what, nc_strerror(status)), {file, std::nullopt, {}});
+}
+
+// The height variable: `variable` when named (FILE?VAR), else the file's only two-dimensional
+// one (its name into `variable`).
+int height_variable(int ncid, std::string& variable, const ErrorContext& where) {
+  int var = -1;
+  if (variable.empty()) {
+    int nvars = 0;
+    nc_ok(nc_inq_nvars(ncid, &nvars), "the variables", where.file);
+    std::vector<std::string> names;
+    for (int v = 0; v < nvars; ++v) {
+      int nd = 0;
+      char name[NC_MAX_NAME + 1] = {};
+      nc_ok(nc_inq_varndims(ncid, v, &nd), "the variables", where.file);
+      nc_ok(nc_inq_varname(ncid, v, name), "the variables", where.file);
+      if (nd == 2) names.emplace_back(name), var = v;
+    }
+    if (names.size() != 1)
+      throw InputError(fmt::format("the height grid has {} two-dimensional variables; name one as FILE?VARIABLE",
+                                   names.size()),
+                       where);
+    variable = names.front();
+  } else if (nc_inq_varid(ncid, variable.c_str(), &var) != NC_NOERR) {
+    throw InputError(fmt::format("the height grid has no variable \"{}\"", variable), where);
+  }
+  return var;
+}
+
+// The two dimensions of a height variable, with their coordinate variables' values.
+struct HeightAxes {
+  std::string name[2];
+  std::size_t length[2] = {0, 0};
+  std::vector<double> coordinates[2];
+};
+
+HeightAxes height_axes(int ncid, int var, const std::string& variable, const ErrorContext& where) {
+  int nd = 0, dims[NC_MAX_VAR_DIMS] = {};
+  nc_ok(nc_inq_varndims(ncid, var, &nd), "the variable", where.file);
+  if (nd != 2) throw InputError(fmt::format("variable \"{}\" has {} dimensions, not 2", variable, nd), where);
+  nc_ok(nc_inq_vardimid(ncid, var, dims), "the variable", where.file);
+  HeightAxes axes;
+  for (int k = 0; k < 2; ++k) {
+    char name[NC_MAX_NAME + 1] = {};
+    nc_ok(nc_inq_dim(ncid, dims[k], name, &axes.length[k]), "the dimensions", where.file);
+    axes.name[k] = name;
+    int cv = 0;
+    if (nc_inq_varid(ncid, name, &cv) != NC_NOERR)
+      throw InputError(fmt::format("dimension \"{}\" has no coordinate variable", axes.name[k]), where);
+    axes.coordinates[k].resize(axes.length[k]);
+    nc_ok(nc_get_var_double(ncid, cv, axes.coordinates[k].data()), "the coordinates", where.file);
+  }
+  return axes;
+}
+
+// The axes are (lat, lon) with exactly the spec's nodes (latitudes south to north or north to
+// south, longitudes modulo 360°); returns whether the rows run south to north.
+bool check_height_nodes(const HeightAxes& axes, const GridSpec& spec, const std::string& variable,
+                        const ErrorContext& where) {
+  const std::size_t rows = spec.rows(), columns = spec.columns();
+  const std::string d0 = detail::lower(axes.name[0]), d1 = detail::lower(axes.name[1]);
+  if (!(d0 == "lat" || d0 == "latitude" || d0 == "y") || !(d1 == "lon" || d1 == "longitude" || d1 == "x"))
+    throw InputError(fmt::format("variable \"{}\" has dimensions ({}, {}); expected (lat, lon)", variable,
+                                 axes.name[0], axes.name[1]),
+                     where);
+  if (axes.length[0] != rows || axes.length[1] != columns)
+    throw InputError(fmt::format("the height grid has {} x {} nodes (lon x lat), the grid {} x {}", axes.length[1],
+                                 axes.length[0], columns, rows),
+                     where);
+  const std::vector<double>& lats = axes.coordinates[0];
+  const bool south_first = rows < 2 || lats.front() <= lats.back();
+  for (std::size_t j = 0; j < rows; ++j) {
+    const double lat = lats[south_first ? j : rows - 1 - j];
+    if (!(std::abs(lat - spec.lat_deg(j)) <= 1e-9))
+      throw InputError(fmt::format("the height grid's latitude {} is not the grid's node latitude {} (row {})", lat,
+                                   spec.lat_deg(j), j),
+                       where);
+  }
+  for (std::size_t i = 0; i < columns; ++i) {
+    double d = axes.coordinates[1][i] - spec.lon_deg(i);
+    d -= 360.0 * std::round(d / 360.0);
+    if (!(std::abs(d) <= 1e-9))
+      throw InputError(fmt::format("the height grid's longitude {} is not the grid's node longitude {} (column {})",
+                                   axes.coordinates[1][i], spec.lon_deg(i), i),
+                       where);
+  }
+  return south_first;
+}
+
+// A `units` attribute, when the variable has one, says metres.
+void check_height_units(int ncid, int var, const std::string& variable, const ErrorContext& where) {
+  std::size_t n = 0;
+  if (nc_inq_attlen(ncid, var, "units", &n) != NC_NOERR) return;
+  std::string units(n, '\0');
+  nc_ok(nc_get_att_text(ncid, var, "units", units.data()), "the units", where.file);
+  while (!units.empty() && (units.back() == '\0' || units.back() == ' ')) units.pop_back();
+  const std::string u = detail::lower(units);
+  if (u != "m" && u != "meter" && u != "meters" && u != "metre" && u != "metres")
+    throw InputError(fmt::format("variable \"{}\" is in \"{}\"; heights must be in metres", variable, units), where);
 }
 
 }  // namespace
@@ -326,79 +425,9 @@ GridHeightFile::GridHeightFile(const std::string& path, const GridSpec& spec)
   if (const int st = nc_open(file_.c_str(), NC_NOWRITE, &ncid_); st != NC_NOERR)
     throw IoError(fmt::format("cannot open the height grid: {}", nc_strerror(st)), {file_, std::nullopt, {}});
   try {
-    auto ok = [&](int st, const char* what) {
-      if (st != NC_NOERR) throw IoError(fmt::format("cannot read {}: {}", what, nc_strerror(st)), {file_, std::nullopt, {}});
-    };
-    if (variable_.empty()) {
-      int nvars = 0;
-      ok(nc_inq_nvars(ncid_, &nvars), "the variables");
-      std::vector<std::string> names;
-      for (int v = 0; v < nvars; ++v) {
-        int nd = 0;
-        char name[NC_MAX_NAME + 1] = {};
-        ok(nc_inq_varndims(ncid_, v, &nd), "the variables");
-        ok(nc_inq_varname(ncid_, v, name), "the variables");
-        if (nd == 2) names.emplace_back(name), var_ = v;
-      }
-      if (names.size() != 1)
-        throw InputError(fmt::format("the height grid has {} two-dimensional variables; name one as FILE?VARIABLE",
-                                     names.size()),
-                         where);
-      variable_ = names.front();
-    } else if (nc_inq_varid(ncid_, variable_.c_str(), &var_) != NC_NOERR) {
-      throw InputError(fmt::format("the height grid has no variable \"{}\"", variable_), where);
-    }
-    int nd = 0, dims[NC_MAX_VAR_DIMS] = {};
-    ok(nc_inq_varndims(ncid_, var_, &nd), "the variable");
-    if (nd != 2) throw InputError(fmt::format("variable \"{}\" has {} dimensions, not 2", variable_, nd), where);
-    ok(nc_inq_vardimid(ncid_, var_, dims), "the variable");
-    std::string dim_name[2];
-    std::size_t len[2] = {0, 0};
-    std::vector<double> coord[2];
-    for (int k = 0; k < 2; ++k) {
-      char name[NC_MAX_NAME + 1] = {};
-      ok(nc_inq_dim(ncid_, dims[k], name, &len[k]), "the dimensions");
-      dim_name[k] = name;
-      int cv = 0;
-      if (nc_inq_varid(ncid_, name, &cv) != NC_NOERR)
-        throw InputError(fmt::format("dimension \"{}\" has no coordinate variable", dim_name[k]), where);
-      coord[k].resize(len[k]);
-      ok(nc_get_var_double(ncid_, cv, coord[k].data()), "the coordinates");
-    }
-    const std::string d0 = lower(dim_name[0]), d1 = lower(dim_name[1]);
-    if (!(d0 == "lat" || d0 == "latitude" || d0 == "y") || !(d1 == "lon" || d1 == "longitude" || d1 == "x"))
-      throw InputError(fmt::format("variable \"{}\" has dimensions ({}, {}); expected (lat, lon)", variable_,
-                                   dim_name[0], dim_name[1]),
-                       where);
-    if (len[0] != rows_ || len[1] != columns_)
-      throw InputError(fmt::format("the height grid has {} x {} nodes (lon x lat), the grid {} x {}", len[1], len[0],
-                                   columns_, rows_),
-                       where);
-    south_first_ = rows_ < 2 || coord[0].front() <= coord[0].back();
-    for (std::size_t j = 0; j < rows_; ++j) {
-      const double lat = coord[0][south_first_ ? j : rows_ - 1 - j];
-      if (!(std::abs(lat - spec.lat_deg(j)) <= 1e-9))
-        throw InputError(fmt::format("the height grid's latitude {} is not the grid's node latitude {} (row {})", lat,
-                                     spec.lat_deg(j), j),
-                         where);
-    }
-    for (std::size_t i = 0; i < columns_; ++i) {
-      double d = coord[1][i] - spec.lon_deg(i);
-      d -= 360.0 * std::round(d / 360.0);
-      if (!(std::abs(d) <= 1e-9))
-        throw InputError(fmt::format("the height grid's longitude {} is not the grid's node longitude {} (column {})",
-                                     coord[1][i], spec.lon_deg(i), i),
-                         where);
-    }
-    if (std::size_t n = 0; nc_inq_attlen(ncid_, var_, "units", &n) == NC_NOERR) {
-      std::string units(n, '\0');
-      ok(nc_get_att_text(ncid_, var_, "units", units.data()), "the units");
-      while (!units.empty() && (units.back() == '\0' || units.back() == ' ')) units.pop_back();
-      const std::string u = lower(units);
-      if (u != "m" && u != "meter" && u != "meters" && u != "metre" && u != "metres")
-        throw InputError(fmt::format("variable \"{}\" is in \"{}\"; heights must be in metres", variable_, units),
-                         where);
-    }
+    var_ = height_variable(ncid_, variable_, where);
+    south_first_ = check_height_nodes(height_axes(ncid_, var_, variable_, where), spec, variable_, where);
+    check_height_units(ncid_, var_, variable_, where);
     has_fill_ = nc_get_att_double(ncid_, var_, "_FillValue", &fill_) == NC_NOERR;
     for (std::size_t j = 0; j < rows_; ++j) lat_deg_.push_back(spec.lat_deg(j));
     for (std::size_t i = 0; i < columns_; ++i) lon_deg_.push_back(spec.lon_deg(i));
@@ -470,9 +499,17 @@ std::string_view to_string(GridFileFormat f) noexcept {
   return "?";
 }
 
+std::string_view display_name(GridFileFormat f) noexcept {
+  switch (f) {
+    case GridFileFormat::NetCdf: return "NetCDF";
+    case GridFileFormat::Csv: return "CSV";
+    case GridFileFormat::Gtx: return "GTX";
+  }
+  return "?";
+}
+
 GridFileFormat grid_file_format_for(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = detail::lower(path.extension().string());
   if (ext == ".nc" || ext == ".grd" || ext == ".cdf") return GridFileFormat::NetCdf;
   if (ext == ".csv") return GridFileFormat::Csv;
   if (ext == ".gtx") return GridFileFormat::Gtx;

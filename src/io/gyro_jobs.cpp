@@ -7,7 +7,6 @@
 #include "meridian/core/error.hpp"
 #include "meridian/io/source_map.hpp"
 #include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/model_lookup.hpp"
 #include "gravity_model_ref.hpp"
 
 namespace meridian::io {

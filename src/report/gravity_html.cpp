@@ -177,9 +177,10 @@ Section definitions_section(const gravity::PointsOptions& o) {
 
 }  // namespace
 
-Document gravity_points_document(const std::string& input, const gravity::ModelInfo& model,
-                                 const gravity::PointsOptions& options,
-                                 const gravity::PointsSummary& summary) {
+Document gravity_points_document(const gravity::PointsResult& result) {
+  const std::string& input = result.input;
+  const gravity::ModelInfo& model = result.model;
+  const gravity::PointsSummary& summary = result.summary;
   Document doc;
   doc.title = "Deflection of the vertical and geoid heights at points";
   doc.subtitle = input;
@@ -195,7 +196,7 @@ Document gravity_points_document(const std::string& input, const gravity::ModelI
                 {"model reference radius", fmt::format("{} m", model.radius_m)},
                 {"tide system", model.tide_system.empty() ? "not stated by the file" : model.tide_system},
                 {"normalisation", gravity::normalization_text(model)},
-                {"evaluation", evaluation_text(options)},
+                {"evaluation", evaluation_text(result.options)},
                 {"points", std::to_string(summary.count())}};
   if (const auto warnings = gravity::model_warnings(model); !warnings.empty()) {
     Section w{"warnings", "Warnings", {}, 2};
@@ -208,7 +209,7 @@ Document gravity_points_document(const std::string& input, const gravity::ModelI
     for (const Quantity& q : kQuantities) maps.blocks.push_back(map_plot(q, summary));
     doc.sections.push_back(maps);
   }
-  doc.sections.push_back(definitions_section(options));
+  doc.sections.push_back(definitions_section(result.options));
   return doc;
 }
 

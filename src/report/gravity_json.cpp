@@ -63,4 +63,31 @@ nlohmann::json geoid_grid_to_json(const gravity::GridPointResult& r) {
   return j;
 }
 
+nlohmann::json gravity_grid_to_json(const gravity::GridRunResult& r) {
+  const gravity::GridSpec& spec = r.spec;
+  const bool per_node = !r.height_grid.empty();
+  json q = json::array();
+  for (const gravity::GridFileQuantity& x : r.quantities)
+    q.push_back({{"name", x.name}, {"units", x.units}, {"long_name", x.long_name}});
+  return {{"output", r.output},
+          {"format", r.format},
+          {"model", r.model.name},
+          {"model_file", r.model.source_file},
+          {"max_degree", r.model.max_degree},
+          {"region_deg", {spec.west_deg, spec.east_deg, spec.south_deg, spec.north_deg}},
+          {"lon_spacing_deg", spec.lon_spacing_deg},
+          {"lat_spacing_deg", spec.lat_spacing_deg},
+          {"registration", std::string(gravity::to_string(spec.registration))},
+          {"height_m", per_node ? json(nullptr) : json(spec.height_m)},
+          {"height_grid", per_node ? json(r.height_grid) : json(nullptr)},
+          {"rows", r.synthesis.rows},
+          {"columns", r.synthesis.columns},
+          {"nodes", spec.nodes()},
+          {"quantities", q},
+          {"path_used", std::string(gravity::to_string(r.synthesis.path_used))},
+          {"fft_length", r.synthesis.fft_length},
+          {"threads", r.synthesis.threads},
+          {"elapsed_s", r.elapsed_s}};
+}
+
 }  // namespace meridian::report

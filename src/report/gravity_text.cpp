@@ -28,6 +28,12 @@ std::string model_text(const gravity::ModelInfo& model) {
   return out;
 }
 
+std::string model_warnings_text(const gravity::ModelInfo& model) {
+  std::string out;
+  append_warnings(out, model);
+  return out;
+}
+
 std::string gravity_point_text(const gravity::PointResult& r) {
   std::string out = model_lines(r.model);
   fmt::format_to(std::back_inserter(out),
@@ -56,6 +62,30 @@ std::string geoid_grid_text(const gravity::GridPointResult& r) {
   for (const std::string& n : r.notes) fmt::format_to(std::back_inserter(out), "note: {}\n", n);
   for (const std::string& w : r.grid.warnings) fmt::format_to(std::back_inserter(out), "warning: {}\n", w);
   return out;
+}
+
+std::string gravity_grid_text(const gravity::GridRunResult& r) {
+  std::string names;
+  for (const gravity::GridFileQuantity& q : r.quantities)
+    names += fmt::format("{}{} [{}]", names.empty() ? "" : ", ", q.name, q.units);
+  const gravity::GridSynthesisResult& s = r.synthesis;
+  return fmt::format("wrote {} ({}): {} x {} nodes (lon x lat, {} registration), {}\n"
+                     "heights {}\npath {}{}, {}, {:.2f} s\n",
+                     r.output, r.format_label, s.columns, s.rows, gravity::to_string(r.spec.registration), names,
+                     r.height_grid.empty() ? fmt::format("{} m at every node", r.spec.height_m)
+                                           : "per node from " + r.height_grid,
+                     gravity::to_string(s.path_used),
+                     s.fft_length ? fmt::format(" (one real FFT of length {} per parallel and quantity)", s.fft_length)
+                     : s.per_node_heights ? std::string(" (every node as a scattered point: per-node heights)")
+                                          : std::string(" (GravityCircle per parallel)"),
+                     s.per_node_heights ? std::string("parallels in order, each one's nodes over the threads")
+                                        : fmt::format("{} thread(s) over parallels", s.threads),
+                     r.elapsed_s);
+}
+
+std::string synthetic_model_text(const gravity::SyntheticModelFiles& r) {
+  return fmt::format("wrote {0}.gfc, {0}.egm, {0}.egm.cof (model {1}, degree {2}, seed {3})\n", r.prefix,
+                     r.model_name, r.options.max_degree, r.options.seed);
 }
 
 }  // namespace meridian::report

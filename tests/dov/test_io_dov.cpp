@@ -16,9 +16,9 @@
 #include "dov_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/dov/simulator.hpp"
-#include "meridian/gravity/egm_format.hpp"
+#include "meridian/io/gravity_egm.hpp"
 #include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/model_lookup.hpp"
+#include "meridian/io/gravity_model_lookup.hpp"
 #include "meridian/gravity/synthetic.hpp"
 #include "meridian/io/dov_files.hpp"
 #include "meridian/io/dov_jobs.hpp"
@@ -292,7 +292,7 @@ void write_synthetic_model(const std::filesystem::path& stem, int degree) {
   gravity::SyntheticModelOptions mo;
   mo.max_degree = degree;
   mo.seed = 5;
-  gravity::write_egm_files(gravity::make_synthetic_model(mo), stem);
+  io::write_egm_files(gravity::make_synthetic_model(mo), stem);
 }
 
 TEST(DovFiles, GravityModelGivesTheModelValues) {
@@ -308,7 +308,7 @@ TEST(DovFiles, GravityModelGivesTheModelValues) {
   ASSERT_EQ(r.epochs.size(), in.samples.size());
   // η_G, ξ_G are the astronomic deflection of the truncated model at each sample (not ξ for η)
   const gravity::GravityField field(
-      gravity::load_model((dir / "syn.egm").string(), gravity::Truncation{120, -1}));
+      io::load_model((dir / "syn.egm").string(), gravity::Truncation{120, -1}));
   double largest_arcsec = 0.0, max_diff_arcsec = 0.0;
   for (std::size_t k = 0; k < in.samples.size(); k += 10) {
     const dov::Sample& s = in.samples[k];

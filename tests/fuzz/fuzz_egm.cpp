@@ -1,8 +1,8 @@
-// GeographicLib .egm metadata + .egm.cof coefficients (gravity/egm_format.hpp).
+// GeographicLib .egm metadata + .egm.cof coefficients (io/gravity_egm.hpp).
 // One input holds both files: the text, the separator kSplit, the binary.
 #include <string_view>
 
-#include "meridian/gravity/egm_format.hpp"
+#include "meridian/io/gravity_egm.hpp"
 #include "model_check.hpp"
 
 namespace {
@@ -18,7 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       at == std::string_view::npos ? std::string_view() : in.substr(at + kSplit.size());
   const auto p = write("model.egm", meta);
   write("model.egm.cof", cof);
-  expect_value_or_error([&] { check_model(meridian::gravity::read_egm_file(p)); });
-  expect_value_or_error([&] { check_model(meridian::gravity::read_egm_file(p, {2, 1})); });
+  expect_value_or_error([&] { check_model(meridian::io::read_egm_file(p)); });
+  expect_value_or_error([&] { check_model(meridian::io::read_egm_file(p, {2, 1})); });
   return 0;
 }

@@ -9,6 +9,7 @@
 
 #include "fuzz_support.hpp"
 #include "meridian/gravity/geoid_grid.hpp"
+#include "meridian/io/gravity_geoid_grid.hpp"
 
 namespace meridian_fuzz {
 

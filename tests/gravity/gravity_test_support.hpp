@@ -14,9 +14,9 @@
 #include <unistd.h>
 
 #include "meridian/core/units.hpp"
-#include "meridian/gravity/egm_format.hpp"
+#include "meridian/io/gravity_egm.hpp"
 #include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/icgem.hpp"
+#include "meridian/io/gravity_icgem.hpp"
 #include "meridian/gravity/synthetic.hpp"
 
 namespace gtest_gravity {
@@ -51,7 +51,7 @@ inline std::string synthetic_files(int degree, std::uint64_t seed = 20260) {
   o.seed = seed;
   const auto model = meridian::gravity::make_synthetic_model(o);
   const std::string name = "syn" + std::to_string(degree) + "_" + std::to_string(seed);
-  meridian::gravity::write_egm_files(model, scratch_dir() / name);
+  meridian::io::write_egm_files(model, scratch_dir() / name);
   done[key] = name;
   return name;
 }

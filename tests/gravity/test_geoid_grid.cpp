@@ -13,6 +13,7 @@
 #include "gravity_test_support.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gravity/geoid_grid.hpp"
+#include "meridian/io/gravity_geoid_grid.hpp"
 #include "test_units.hpp"
 
 namespace {
@@ -74,7 +75,7 @@ std::string gtx_bytes(int rows, int cols, double lat0, double lon0, double step)
 TEST(GeoidGrid, PgmBilinearMatchesGeographicLibGeoid) {
   const std::string name = write_pgm("synthgeoid");
   const GeographicLib::Geoid gl(name, scratch_dir().string(), false);
-  const auto g = meridian::gravity::read_geoid_grid(scratch_dir() / (name + ".pgm"));
+  const auto g = meridian::io::read_geoid_grid(scratch_dir() / (name + ".pgm"));
   EXPECT_TRUE(g.wraps_longitude);
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> lat(-90, 90), lon(-180, 360);
@@ -92,7 +93,7 @@ TEST(GeoidGrid, PgmBilinearMatchesGeographicLibGeoid) {
 TEST(GeoidGrid, GtxBicubicReproducesQuadraticsAndFallbackSlopes) {
   const fs::path p = scratch_dir() / "quad.gtx";
   std::ofstream(p, std::ios::binary) << gtx_bytes(41, 61, 30, 100, 0.25);
-  const auto g = meridian::gravity::read_geoid_grid(p);
+  const auto g = meridian::io::read_geoid_grid(p);
   EXPECT_FALSE(g.wraps_longitude);
   for (double la = 30.6; la < 39.5; la += 1.37)
     for (double lo = 100.6; lo < 114.5; lo += 2.11) {
@@ -115,7 +116,7 @@ TEST(GeoidGrid, RejectsDamagedFilesAndNoData) {
     const fs::path p = scratch_dir() / name;
     std::ofstream(p, std::ios::binary) << bytes;
     try {
-      (void)meridian::gravity::read_geoid_grid(p);
+      (void)meridian::io::read_geoid_grid(p);
       ADD_FAILURE() << frag;
     } catch (const meridian::InputError& e) {
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
@@ -136,7 +137,7 @@ TEST(GeoidGrid, RejectsDamagedFilesAndNoData) {
   nodata.replace(40 + 4 * 12, 4, be);  // centre node
   const fs::path p = scratch_dir() / "nodata.gtx";
   std::ofstream(p, std::ios::binary) << nodata;
-  const auto g = meridian::gravity::read_geoid_grid(p);
+  const auto g = meridian::io::read_geoid_grid(p);
   EXPECT_THROW(meridian::gravity::grid_geoid_height_m(g, 2.1 * kDeg, 2.1 * kDeg), meridian::InputError);
   EXPECT_NO_THROW(meridian::gravity::grid_geoid_height_m(g, 0.5 * kDeg, 3.5 * kDeg, GridInterpolation::Bilinear));
 }
@@ -200,7 +201,7 @@ fs::path shared_case(const std::string& name) {
 }
 
 TEST(GeoidGridCases, GlobalGridFromMinus180WithoutRepeatedColumnWraps) {
-  const auto g = gg::read_geoid_grid(write_bytes("w180.gtx", west180_bytes()));
+  const auto g = meridian::io::read_geoid_grid(write_bytes("w180.gtx", west180_bytes()));
   EXPECT_TRUE(g.wraps_longitude);
   EXPECT_EQ(g.lon_period_cols, 36);
   // In the last cell (170° E – 180°) and across it, in every spelling of the longitude.
@@ -219,7 +220,7 @@ TEST(GeoidGridCases, GlobalGridFromMinus180WithoutRepeatedColumnWraps) {
     EXPECT_NO_THROW((void)gg::evaluate_grid_point(g, la * kDeg, lo * kDeg));
   }
   // The same grid with the repeated column at +180° is global too, with the same heights.
-  const auto r = gg::read_geoid_grid(write_bytes(
+  const auto r = meridian::io::read_geoid_grid(write_bytes(
       "w180rep.gtx", gtx_of(19, 37, -90, -180, 10, [](int a, int c) { return cm_surface(-90 + 10 * a, -180 + 10 * c); })));
   EXPECT_TRUE(r.wraps_longitude);
   EXPECT_EQ(gg::grid_geoid_height_m(r, 9.9959 * kDeg, 175.3 * kDeg), gg::grid_geoid_height_m(g, 9.9959 * kDeg, 175.3 * kDeg));
@@ -228,7 +229,7 @@ TEST(GeoidGridCases, GlobalGridFromMinus180WithoutRepeatedColumnWraps) {
 TEST(GeoidGridCases, SharedWest180CaseWhenPresent) {
   const fs::path p = shared_case("west-180.gtx");
   if (!fs::exists(p)) GTEST_SKIP() << p << " not present (optional data; the generated grid is tested above)";
-  const auto g = gg::read_geoid_grid(p);
+  const auto g = meridian::io::read_geoid_grid(p);
   // The value, computed with GeographicLib's GeoidEval -l on the grid as .pgm ...
   EXPECT_NEAR(gg::grid_geoid_height_m(g, 9.9959 * kDeg, 175.3 * kDeg, GridInterpolation::Bilinear), -15.715771, 1e-6);
   // ... and again here with GeographicLib::Geoid on the .pgm written from this file.
@@ -241,12 +242,12 @@ TEST(GeoidGridCases, RegionalLongitudesAreComparedModulo360) {
     return [lon0](int r, int c) { return 10 + 0.1 * r + 0.05 * c + 0 * lon0; };
   };
   // 230°–250° E, 1° steps: −124.5° is 235.5° E.
-  const auto a = gg::read_geoid_grid(write_bytes("east230.gtx", gtx_of(11, 21, 40, 230, 1, plane(230))));
+  const auto a = meridian::io::read_geoid_grid(write_bytes("east230.gtx", gtx_of(11, 21, 40, 230, 1, plane(230))));
   EXPECT_FALSE(a.wraps_longitude);
   EXPECT_NEAR(gg::grid_geoid_height_m(a, 45.25 * kDeg, -124.5 * kDeg), 10 + 0.1 * 5.25 + 0.05 * 5.5, 1e-5);
   EXPECT_NEAR(gg::grid_geoid_height_m(a, 45.25 * kDeg, 235.5 * kDeg), 10 + 0.1 * 5.25 + 0.05 * 5.5, 1e-5);
   // 172°–190° E across the antimeridian: −179° is 181° E; 180° and −180° are the same column.
-  const auto b = gg::read_geoid_grid(write_bytes("anti.gtx", gtx_of(6, 19, -20, 172, 1, plane(172))));
+  const auto b = meridian::io::read_geoid_grid(write_bytes("anti.gtx", gtx_of(6, 19, -20, 172, 1, plane(172))));
   for (double lon : {-179.0, 181.0, 541.0})
     EXPECT_NEAR(gg::grid_geoid_height_m(b, -17.5 * kDeg, lon * kDeg), 10 + 0.1 * 2.5 + 0.05 * 9, 1e-5) << lon;
   EXPECT_NEAR(gg::grid_geoid_height_m(b, -17.5 * kDeg, -180 * kDeg), gg::grid_geoid_height_m(b, -17.5 * kDeg, 180 * kDeg),
@@ -340,7 +341,7 @@ void check_tile(const gg::GeoidGrid& g) {
 }
 
 TEST(GeoidGridCases, TileWithNoDataNodes) {
-  const auto g = gg::read_geoid_grid(write_bytes("tile.gtx", tile_bytes()));
+  const auto g = meridian::io::read_geoid_grid(write_bytes("tile.gtx", tile_bytes()));
   EXPECT_FALSE(g.node_m(3, 3).has_value());  // −88.8888
   EXPECT_FALSE(g.node_m(0, 5).has_value());  // 9999
   EXPECT_NEAR(*g.node_m(1, 1), tile_plane(56.5, 21.5), 1e-5);
@@ -350,13 +351,13 @@ TEST(GeoidGridCases, TileWithNoDataNodes) {
 TEST(GeoidGridCases, SharedTileCaseWhenPresent) {
   const fs::path p = shared_case("tile.gtx");
   if (!fs::exists(p)) GTEST_SKIP() << p << " not present (optional data; the generated tile is tested above)";
-  check_tile(gg::read_geoid_grid(p));
+  check_tile(meridian::io::read_geoid_grid(p));
 }
 
 TEST(GeoidGridCases, ImplausibleHeadersAreRejectedBeforeUse) {
   auto rejected = [](const std::string& name, const std::string& bytes) {
     const fs::path p = write_bytes(name, bytes);
-    EXPECT_THROW((void)gg::read_geoid_grid(p), meridian::ParseError) << name;
+    EXPECT_THROW((void)meridian::io::read_geoid_grid(p), meridian::ParseError) << name;
   };
   auto flat = [](int, int) { return 1.0; };
   rejected("wide.gtx", gtx_of(3, 40, 0, 0, 10, flat));        // 390° of columns

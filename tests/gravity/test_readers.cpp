@@ -14,14 +14,14 @@
 #include "meridian/core/atomic_file.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/gravity/gravity_field.hpp"
-#include "meridian/gravity/model_lookup.hpp"
+#include "meridian/io/gravity_model_lookup.hpp"
 
 namespace {
 
 using namespace gtest_gravity;
 using meridian::gravity::GravityModelData;
-using meridian::gravity::read_egm_file;
-using meridian::gravity::read_icgem_file;
+using meridian::io::read_egm_file;
+using meridian::io::read_icgem_file;
 
 fs::path write_text(const std::string& name, const std::string& text) {
   const fs::path p = scratch_dir() / name;
@@ -165,8 +165,8 @@ TEST(EgmFormat, WriteReadRoundTripIsExactAndMatchesIcgem) {
   o.max_degree = 50;
   o.seed = 77;
   const GravityModelData m = meridian::gravity::make_synthetic_model(o);
-  meridian::gravity::write_egm_files(m, scratch_dir() / "rt");
-  meridian::write_file_atomically(scratch_dir() / "rt.gfc", meridian::gravity::format_icgem(m));
+  meridian::io::write_egm_files(m, scratch_dir() / "rt");
+  meridian::write_file_atomically(scratch_dir() / "rt.gfc", meridian::io::format_icgem(m));
   const GravityModelData e = read_egm_file(scratch_dir() / "rt.egm");
   const GravityModelData g = read_icgem_file(scratch_dir() / "rt.gfc");
   EXPECT_EQ(e.coefficients.c_values(), m.coefficients.c_values());
@@ -190,7 +190,7 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   meridian::gravity::SyntheticModelOptions o;
   o.max_degree = 10;
   const GravityModelData m = meridian::gravity::make_synthetic_model(o);
-  meridian::gravity::write_egm_files(m, scratch_dir() / "dmg");
+  meridian::io::write_egm_files(m, scratch_dir() / "dmg");
   const std::string meta = slurp(scratch_dir() / "dmg.egm"), cof = slurp(scratch_dir() / "dmg.egm.cof");
   const fs::path egm = scratch_dir() / "bad.egm", bcof = scratch_dir() / "bad.egm.cof";
   auto expect = [&](const std::string& meta_text, const std::string& cof_bytes, const fs::path& named, const std::string& frag) {
@@ -258,11 +258,11 @@ TEST(EgmFormat, RejectsDamagedFiles) {
   GravityModelData wc = m;
   wc.correction = meridian::gravity::GeoidCorrection{meridian::gravity::SphericalHarmonicCoefficients(2, 2), 1.0, 0.0};
   wc.correction->coefficients.set(1, 1, 0.5, 1e300);
-  meridian::gravity::write_egm_files(wc, scratch_dir() / "corr");
+  meridian::io::write_egm_files(wc, scratch_dir() / "corr");
   expect_parse_error([&] { (void)read_egm_file(scratch_dir() / "corr.egm"); }, scratch_dir() / "corr.egm.cof", 0,
                      "coefficient S(1, 1) = 1e+300 m of the correction set is beyond 1000 m");
   wc.correction->coefficients.set(1, 1, 0.5, 2.5);
-  meridian::gravity::write_egm_files(wc, scratch_dir() / "corr");
+  meridian::io::write_egm_files(wc, scratch_dir() / "corr");
   EXPECT_NO_THROW((void)read_egm_file(scratch_dir() / "corr.egm"));
   std::string latin1 = meta;
   latin1.replace(latin1.find("Description"), 11, "Description caf\xE9");
@@ -272,12 +272,12 @@ TEST(EgmFormat, RejectsDamagedFiles) {
 TEST(ModelLookup, FindsModelsByNameInGeographicLibDirectories) {
   const std::string name = synthetic_files(20);
   ::setenv("GEOGRAPHICLIB_GRAVITY_PATH", scratch_dir().c_str(), 1);
-  EXPECT_EQ(meridian::gravity::resolve_model(name), scratch_dir() / (name + ".egm"));
-  EXPECT_EQ(meridian::gravity::resolve_model((scratch_dir() / (name + ".egm.cof")).string()),
+  EXPECT_EQ(meridian::io::resolve_model(name), scratch_dir() / (name + ".egm"));
+  EXPECT_EQ(meridian::io::resolve_model((scratch_dir() / (name + ".egm.cof")).string()),
             scratch_dir() / (name + ".egm"));
-  EXPECT_EQ(meridian::gravity::load_model(name).coefficients.max_degree(), 20);
+  EXPECT_EQ(meridian::io::load_model(name).coefficients.max_degree(), 20);
   try {
-    (void)meridian::gravity::resolve_model("no_such_model_xyz");
+    (void)meridian::io::resolve_model("no_such_model_xyz");
     FAIL();
   } catch (const meridian::InputError& e) {
     EXPECT_NE(std::string(e.what()).find(scratch_dir().string()), std::string::npos) << e.what();

@@ -51,7 +51,7 @@ GravityField field_with(const meridian::gravity::GravityModelData& m, SimdKernel
 TEST(SimdKernels, EveryKernelAgreesWithGeographicLibAndTheOthers) {
   const std::string name = synthetic_files(360);
   const GeographicLib::GravityModel gl(name, scratch_dir().string());
-  const auto model = meridian::gravity::read_egm_file(scratch_dir() / (name + ".egm"));
+  const auto model = meridian::io::read_egm_file(scratch_dir() / (name + ".egm"));
   const auto pts = test_points(40, 11);
   std::vector<meridian::gravity::GeodeticPoint> gp;
   for (const auto& p : pts) gp.push_back(geodetic(p));

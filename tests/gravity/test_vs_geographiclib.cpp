@@ -55,7 +55,7 @@ void report(const char* what, const MaxDiff& d) {
 TEST(GravityVsGeographicLib, SyntheticDegree360) {
   const std::string name = synthetic_files(360);
   const GeographicLib::GravityModel gl(name, scratch_dir().string());
-  const GravityModelData m = meridian::gravity::read_egm_file(scratch_dir() / (name + ".egm"));
+  const GravityModelData m = meridian::io::read_egm_file(scratch_dir() / (name + ".egm"));
   const GravityField field(m);
   const auto pts = test_points(60, 7);
   report("degree 360", compare(field, gl, pts));
@@ -64,7 +64,7 @@ TEST(GravityVsGeographicLib, SyntheticDegree360) {
 TEST(GravityVsGeographicLib, SyntheticDegree2190AtAFewPoints) {
   const std::string name = synthetic_files(2190);
   const GeographicLib::GravityModel gl(name, scratch_dir().string());
-  const GravityField field(meridian::gravity::read_egm_file(scratch_dir() / (name + ".egm")));
+  const GravityField field(meridian::io::read_egm_file(scratch_dir() / (name + ".egm")));
   ASSERT_EQ(field.max_degree(), 2190);
   const std::vector<TestPoint> pts = {{89.7, 12.5, 3000}, {-90, 0, 0}, {37.3, -122.1, -500}, {-12.9, 100.2, 10000},
                                       {0.1, 179.9, 0}};
@@ -74,7 +74,7 @@ TEST(GravityVsGeographicLib, SyntheticDegree2190AtAFewPoints) {
 TEST(GravityVsGeographicLib, TruncationOnLoadMatchesGeographicLibTruncation) {
   const std::string name = synthetic_files(360);
   const GeographicLib::GravityModel gl(name, scratch_dir().string(), 120, 80);
-  const GravityField field(meridian::gravity::read_egm_file(scratch_dir() / (name + ".egm"), {120, 80}));
+  const GravityField field(meridian::io::read_egm_file(scratch_dir() / (name + ".egm"), {120, 80}));
   EXPECT_EQ(field.max_degree(), 120);
   EXPECT_EQ(field.max_order(), 80);
   compare(field, gl, test_points(20, 11));
@@ -83,7 +83,7 @@ TEST(GravityVsGeographicLib, TruncationOnLoadMatchesGeographicLibTruncation) {
 TEST(GravityVsGeographicLib, CircleMatchesGravityCircle) {
   const std::string name = synthetic_files(360);
   const GeographicLib::GravityModel gl(name, scratch_dir().string());
-  const GravityField field(meridian::gravity::read_egm_file(scratch_dir() / (name + ".egm")));
+  const GravityField field(meridian::io::read_egm_file(scratch_dir() / (name + ".egm")));
   for (const double lat : {-89.9, 12.0, 60.5}) {
     const GeographicLib::GravityCircle glc = gl.Circle(lat, 0.0);
     const meridian::gravity::GravityCircle c(field, lat * meridian::units::kDegree, 0.0);
@@ -109,9 +109,9 @@ TEST(GravityVsGeographicLib, GeoidCorrectionSetAndHeightOffset) {
     for (int k = 0; k <= n; ++k) corr.set(n, k, 0.3 / (n + 1) * std::cos(n * 7.0 + k), 0.2 / (n + 1) * std::sin(n + 3.0 * k));
   m.correction = meridian::gravity::GeoidCorrection{corr, 1.5, -0.41};
   m.name = "corrtest";
-  meridian::gravity::write_egm_files(m, scratch_dir() / "corrtest");
+  meridian::io::write_egm_files(m, scratch_dir() / "corrtest");
   const GeographicLib::GravityModel gl("corrtest", scratch_dir().string());
-  const GravityField field(meridian::gravity::read_egm_file(scratch_dir() / "corrtest.egm"));
+  const GravityField field(meridian::io::read_egm_file(scratch_dir() / "corrtest.egm"));
   for (const auto& p : test_points(10, 3)) {
     const auto v = field.evaluate(geodetic(p), meridian::gravity::Quantities::Geoid);
     EXPECT_NEAR(v.geoid_m, gl.GeoidHeight(p.lat_deg, p.lon_deg), 1e-9) << p.lat_deg << " " << p.lon_deg;
@@ -124,7 +124,7 @@ TEST(GravityVsGeographicLib, DegreeZeroTermMatchesWMinusU) {
   // includes that term in the gradient; its returned T does not).
   const std::string name = synthetic_files(360);
   const GeographicLib::GravityModel gl(name, scratch_dir().string());
-  const GravityField field(meridian::gravity::read_egm_file(scratch_dir() / (name + ".egm")), {true, 1});
+  const GravityField field(meridian::io::read_egm_file(scratch_dir() / (name + ".egm")), {true, 1});
   for (const auto& p : test_points(5, 9)) {
     double x, y, z, gx, gy, gz, ux, uy, uz, dx, dy, dz;
     gl.ReferenceEllipsoid().Earth().Forward(p.lat_deg, p.lon_deg, p.h_m, x, y, z);
@@ -142,7 +142,7 @@ TEST(GravityVsGeographicLib, AstronomicDeflectionFromGravityVector) {
   // (Gravity(): g in the local geodetic east-north-up frame).
   const std::string name = synthetic_files(360);
   const GeographicLib::GravityModel gl(name, scratch_dir().string());
-  const GravityField field(meridian::gravity::read_egm_file(scratch_dir() / (name + ".egm")));
+  const GravityField field(meridian::io::read_egm_file(scratch_dir() / (name + ".egm")));
   double worst = 0, worst_vs_spherical = 0;
   for (const auto& p : test_points(30, 13)) {
     double gx, gy, gz;
@@ -165,10 +165,10 @@ TEST(GravityVsGeographicLib, RealEgm96WhenAvailable) {
   const fs::path dir = shared_gravity_dir();
   if (!fs::exists(dir / "egm96.egm")) GTEST_SKIP() << "../shared/data/gravity/egm96.egm not present (optional data)";
   const GeographicLib::GravityModel gl("egm96", dir.string());
-  const GravityField field(meridian::gravity::read_egm_file(dir / "egm96.egm"));
+  const GravityField field(meridian::io::read_egm_file(dir / "egm96.egm"));
   report("EGM96 .egm", compare(field, gl, test_points(12, 21)));
   // The ICGEM copy of the same coefficients gives the same field.
-  const GravityField gfc(meridian::gravity::read_icgem_file(dir / "egm96.gfc"));
+  const GravityField gfc(meridian::io::read_icgem_file(dir / "egm96.gfc"));
   report("EGM96 .gfc", compare(gfc, gl, test_points(12, 22)));
 }
 

@@ -134,19 +134,23 @@ TEST(GravityJobs, StreamsEveryChunkAndSummarisesEveryPoint) {
   gravity::SyntheticModelOptions o;
   o.max_degree = 12;
   o.seed = 3;
-  const gravity::GravityField field(gravity::make_synthetic_model(o));
+  const io::LoadedModel model = io::prepare_model(gravity::make_synthetic_model(o));
+  const gravity::GravityField& field = model.field;
   io::PointsInput input((dir / "pts.csv").string());
   EXPECT_EQ(input.size_bytes(), fs::file_size(dir / "pts.csv"));
   std::string csv;
   int writes = 0;
   RecordingProgress progress;
-  const auto summary = io::run_gravity_points(
-      input, field, gravity::PointsOptions{},
+  const gravity::PointsResult result = io::run_gravity_points(
+      input, field, model.info, gravity::PointsOptions{},
       [&](std::string_view t) {
         csv += t;
         ++writes;
       },
       &progress, 100);
+  const gravity::PointsSummary& summary = result.summary;
+  EXPECT_EQ(result.input, (dir / "pts.csv").string());
+  EXPECT_EQ(result.model.max_degree, 12);
   EXPECT_EQ(summary.count(), static_cast<std::uint64_t>(n));
   EXPECT_EQ(writes, 1 + (n + 16383) / 16384);  // the header, then one write per chunk
   EXPECT_EQ(progress.last_done, progress.last_total);

@@ -14,13 +14,12 @@
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
-#include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/synthetic.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/io/gyro_files.hpp"
 #include "meridian/io/gyro_jobs.hpp"
 #include "meridian/io/gyro_writers.hpp"
-#include "meridian/gravity/egm_format.hpp"
+#include "meridian/io/gravity_egm.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/synthetic.hpp"
 
@@ -212,7 +211,7 @@ TEST(GyroFiles, CampaignGravityModelBesideTheFile) {
   auto truth = gyro::example_campaign_truth();
   truth.give_eta = false;  // so the model is used
   const auto sim = gyro::simulate_campaign(truth, 5);
-  gravity::write_egm_files(gravity::make_synthetic_model({30, 2, 1e-5}), d.write("m.txt", "").parent_path() / "m");
+  io::write_egm_files(gravity::make_synthetic_model({30, 2, 1e-5}), d.write("m.txt", "").parent_path() / "m");
   std::string yaml = io::campaign_file_yaml(sim.input);
   const auto good = d.write("c.yaml", yaml + "gravity_model: {model: m.egm, eta_sigma_arcsec: 2}\n");
   // The reader names the model; it does not load it.

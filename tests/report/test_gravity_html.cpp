@@ -56,7 +56,7 @@ TEST(GravityPointsDocument, HasSummaryMapsAndDefinitions) {
   for (int n : {1, 37, 250}) {
     const std::size_t capacity = 100;
     const auto s = summary_of(n, capacity);
-    const Document d = gravity_points_document("pts.csv", kModel, {}, s);
+    const Document d = gravity_points_document({"pts.csv", kModel, {}, s});
     ASSERT_NE(find_section(d, "summary"), nullptr);
     ASSERT_NE(find_section(d, "maps"), nullptr);
     ASSERT_NE(find_section(d, "definitions"), nullptr);
@@ -88,7 +88,7 @@ TEST(GravityPointsDocument, StatisticsTableAndHeader) {
   const auto s = summary_of(3, 100);  // xi = -3", -2", -1"; N = 30, 30.01, 30.02
   gravity::PointsOptions track;
   track.track_tolerance_rad = 1e-3 * units::kArcsecond;
-  const Document d = gravity_points_document("line.csv", {"m", "m.egm", 60, 360, 3.986004415e14, 6378136.3, "", "", ""}, track, s);
+  const Document d = gravity_points_document({"line.csv", {"m", "m.egm", 60, 360, 3.986004415e14, 6378136.3, "", "", ""}, track, s});
   const Section* sum = find_section(d, "summary");
   ASSERT_NE(sum, nullptr);
   const Table* stats = nullptr;
@@ -121,7 +121,7 @@ TEST(GravityPointsDocument, StatisticsTableAndHeader) {
   ASSERT_EQ(wn->items.size(), 1u);
   EXPECT_NE(wn->items[0].find("does not state its tide system"), std::string::npos);
   // A model that states it has no warning section.
-  EXPECT_EQ(find_section(gravity_points_document("line.csv", kModel, track, s), "warnings"), nullptr);
+  EXPECT_EQ(find_section(gravity_points_document({"line.csv", kModel, track, s}), "warnings"), nullptr);
   // The sign convention is stated.
   const Section* def = find_section(d, "definitions");
   ASSERT_NE(def, nullptr);
@@ -134,7 +134,7 @@ TEST(GravityPointsDocument, StatisticsTableAndHeader) {
 }
 
 TEST(GravityPointsDocument, NoPointsNoMaps) {
-  const Document d = gravity_points_document("<stdin>", kModel, {}, gravity::PointsSummary());
+  const Document d = gravity_points_document({"<stdin>", kModel, {}, gravity::PointsSummary()});
   EXPECT_EQ(find_section(d, "maps"), nullptr);
   EXPECT_TRUE(plots(d).empty());
   EXPECT_NE(find_section(d, "summary"), nullptr);

@@ -1,12 +1,11 @@
 #pragma once
 /// \file geoid_grid.hpp
-/// Geoid height grids: PROJ/NOAA `.gtx` (e.g. Debian proj-data's
-/// `egm96_15.gtx`) and GeographicLib `.pgm` geoid files, with bilinear or
-/// bicubic interpolation. Deflections from differencing a grid are a
-/// labelled fallback only (see grid_deflection_fallback).
+/// Geoid height grids (the nodes of a PROJ/NOAA `.gtx` or GeographicLib `.pgm`
+/// file, read by io/gravity_geoid_grid.hpp), with bilinear or bicubic
+/// interpolation. Deflections from differencing a grid are a labelled fallback
+/// only (see grid_deflection_fallback).
 
 #include <cstdint>
-#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -53,21 +52,17 @@ class GeoidGrid {
   /// kGtxNoData, a value that is not finite, or |value| > kMaxGeoidHeight_m.
   std::optional<double> node_m(int r, int c) const noexcept;
 
+  /// Set wraps_longitude and lon_period_cols from `cols` and the longitude step as the file
+  /// states it, `dlon_deg` (degrees): the grid wraps when cols·Δλ reaches 360° (with or
+  /// without a repeated first column) and 360°/Δλ is a whole number (to 1e-9 relative).
+  /// Readers call it once the geometry is set.
+  void set_longitude_period(double dlon_deg) noexcept;
+
   // Storage (readers fill one of them).
   std::vector<float> f32_;          ///< gtx: float32 heights, −88.8888 = no data
   std::vector<std::uint16_t> u16_;  ///< pgm: raw pixels, height = offset + scale · pixel
   double offset_m_ = 0, scale_m_ = 1;
 };
-
-/// Read a `.gtx` (big-endian header: south latitude, west longitude, Δlat,
-/// Δlon in degrees, rows, cols; then float32 heights, south row first) or a
-/// GeographicLib `.pgm` (P5, 16-bit, `# Offset`, `# Scale`, rows from 90°N,
-/// columns from 0°E over 360°). Errors (ParseError/IoError naming the file):
-/// bad header (a `.gtx` origin outside [−90°, 90°] × [−360°, 360°], steps not
-/// in [1e-6°, 180°] and [1e-6°, 360°], fewer than 2 rows or columns, rows beyond the
-/// pole, columns spanning more than 360° plus one repeated column), sizes,
-/// truncated or over-long data, `.pgm` header text that is not UTF-8.
-GeoidGrid read_geoid_grid(const std::filesystem::path& path);
 
 enum class GridInterpolation { Bilinear, Bicubic };
 

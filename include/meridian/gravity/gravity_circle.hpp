@@ -5,6 +5,8 @@
 /// Legendre sums are formed once; each longitude then costs O(M).
 /// Results are the same quantities, to rounding, as GravityField::evaluate.
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -36,5 +38,19 @@ class GravityCircle {
   std::unique_ptr<Impl> impl_;
   double lat_rad_ = 0, height_m_ = 0;
 };
+
+/// Receives row `row` of evaluate_parallels: the values at every longitude, in order.
+using ParallelSink = std::function<void(std::size_t row, std::span<const FieldValues> values)>;
+
+/// The model on the grid `lat_rad` (rows) × `lon_rad` (columns, any values) at one
+/// ellipsoidal height: a GravityCircle per row, rows spread over `threads` threads (0 =
+/// std::thread::hardware_concurrency(); never more than rows). `sink` gets each row once,
+/// from the worker threads and in no particular order (it must accept distinct rows
+/// concurrently). Throws as GravityCircle for a bad latitude or height; NumericalError
+/// with field "points[i, j]" when ξ, η (Deflection) or N (Geoid) is not finite at row i,
+/// column j (a model whose coefficients, GM or radius are out of range); the first error of
+/// any thread stops the others and is rethrown, as is whatever the sink throws.
+void evaluate_parallels(const GravityField& field, std::span<const double> lat_rad, std::span<const double> lon_rad,
+                        double height_m, Quantities what, unsigned threads, const ParallelSink& sink);
 
 }  // namespace meridian::gravity

@@ -108,7 +108,7 @@ class GravityField {
   /// model's coefficients.
   explicit GravityField(const GravityModelData& model, FieldOptions options = {});
   /// As above, but takes the coefficients over from `model` instead of copying them (38 MB at
-  /// degree 2190): `GravityField(read_egm_file(path))` loads a model without a copy. `model`
+  /// degree 2190): `GravityField(io::read_egm_file(path))` loads a model without a copy. `model`
   /// keeps its metadata (name, GM, radius, correction, … for model_info) and is left with an
   /// all-zero degree-0 coefficient set.
   explicit GravityField(GravityModelData&& model, FieldOptions options = {});

@@ -49,6 +49,9 @@ std::string_view to_string(GridQuantity q) noexcept;
 /// Inverse of to_string (also accepts "n" for geoid, "dg" for anomaly).
 /// Throws InputError naming the accepted names.
 GridQuantity grid_quantity_from_string(std::string_view name);
+/// A comma-separated list of names ("xi,eta,geoid"), each as grid_quantity_from_string, in
+/// order; empty names are skipped (repeats are left for GridSpec::validate to refuse).
+std::vector<GridQuantity> parse_grid_quantities(std::string_view list);
 /// "gridline" or "pixel".
 std::string_view to_string(GridRegistration r) noexcept;
 

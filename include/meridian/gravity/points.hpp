@@ -2,21 +2,27 @@
 /// \file points.hpp
 /// The `gravity point` / `gravity points` workflow: ξ, η and N of a model
 /// at given points, a chunk at a time so a line of millions of samples
-/// streams through in flat memory.
+/// streams through in flat memory. The streaming contract:
 ///
-///   points (io::GravityPointReader, a chunk at a time) → evaluate_points()
-///   → io CSV writer, PointsSummary (points_summary.hpp) over the whole run
-///   → report::gravity_points_document
+///   PointSource (io: the `lat,lon[,h]` reader, a chunk at a time)
+///     → process_points: evaluate_points() per chunk → PointSink (io: the CSV writer)
+///     → PointsResult (the input's name, the model, the options and the PointsSummary of
+///       every point, built here once) → report::gravity_points_document
 ///
-/// (io::run_gravity_points does the loop.) No I/O here.
+/// io::run_gravity_points (io/gravity_jobs.hpp) opens the input, loads the
+/// model and connects the two ends. No I/O here.
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "meridian/core/progress.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "meridian/gravity/gravity_model.hpp"
+#include "meridian/gravity/points_summary.hpp"
 
 namespace meridian::gravity {
 
@@ -84,5 +90,43 @@ std::size_t points_chunk_size(const PointsOptions& options) noexcept;
 std::vector<FieldValues> evaluate_points(const GravityField& field,
                                          std::span<const GeodeticPoint> points,
                                          const PointsOptions& options);
+
+/// Where the points of a `gravity points` run come from, in order, a chunk at a time.
+class PointSource {
+ public:
+  virtual ~PointSource() = default;
+  /// Replace `out` with the next points, at most `max` (≥ 1); false when none are left.
+  /// Errors are the source's (a reader names the file and line).
+  virtual bool next(std::vector<GeodeticPoint>& out, std::size_t max) = 0;
+  /// How results name the input ("points.csv", "<stdin>").
+  virtual std::string name() const = 0;
+  /// Progress in bytes of input: bytes_read() of size_bytes(); a size of 0 (unknown, as for
+  /// standard input) makes progress count points instead.
+  virtual std::uint64_t bytes_read() const { return 0; }
+  virtual std::uint64_t size_bytes() const { return 0; }
+};
+
+/// Receives each evaluated chunk in input order; values[i] belongs to points[i].
+using PointSink = std::function<void(std::span<const GeodeticPoint> points, std::span<const FieldValues> values)>;
+
+/// `gravity points`: what a run evaluated, everything its writers need (the CSV rows went to
+/// the sink as they were computed).
+struct PointsResult {
+  std::string input;      ///< PointSource::name()
+  ModelInfo model;        ///< the model, as its file states it
+  PointsOptions options;  ///< as used
+  PointsSummary summary;  ///< statistics of every point, a thinned sample for maps
+};
+
+/// Read every chunk of `source` (points_chunk_size(options) points), evaluate it
+/// (evaluate_points), hand it to `sink`, add it to the summary; return the result of the
+/// whole run. `model` describes `field` (model_info). `progress`, when given, is told the
+/// bytes read of the source's size ("points (bytes of input)") or, without a size, the points
+/// done ("points"); finish() is left to the caller. Errors: the source's, evaluate_points',
+/// the sink's, PointsSummary::add's. A chunk with a bad point never reaches the sink: the
+/// chunks before it have.
+PointsResult process_points(PointSource& source, const GravityField& field, const ModelInfo& model,
+                            const PointsOptions& options, const PointSink& sink, Progress* progress = nullptr,
+                            std::size_t sample_capacity = PointsSummary::kDefaultSampleCapacity);
 
 }  // namespace meridian::gravity

@@ -4,6 +4,7 @@
 /// depend on files that cannot be shipped.
 
 #include <cstdint>
+#include <string>
 
 #include "meridian/gravity/gravity_model.hpp"
 
@@ -20,5 +21,13 @@ struct SyntheticModelOptions {
 /// for n ≥ 2 independent Gaussian C̄_nm, S̄_nm with σ = kaula_scale/n²
 /// (portable generator: SplitMix64 + Box–Muller). Reference field WGS84.
 GravityModelData make_synthetic_model(const SyntheticModelOptions& options);
+
+/// `gravity synth-model`: a synthetic model and the files it was written to (the Result of
+/// io::write_synthetic_model, for report::synthetic_model_text).
+struct SyntheticModelFiles {
+  std::string prefix;             ///< the files are PREFIX.gfc, PREFIX.egm and PREFIX.egm.cof
+  std::string model_name;         ///< GravityModelData::name
+  SyntheticModelOptions options;  ///< as used
+};
 
 }  // namespace meridian::gravity

@@ -138,7 +138,7 @@ struct DovConfig {
   dov::Options options;
   /// The global model that gives η_G, ξ_G at every sample (as in gyro campaign files: a file
   /// beside the configuration, a path, or a name looked up where GeographicLib keeps its
-  /// models, gravity/model_lookup.hpp); absent: the line's model columns.
+  /// models, io/gravity_model_lookup.hpp); absent: the line's model columns.
   std::optional<DovGravityModel> gravity_model;
   FieldLines lines;  ///< lines of the configuration's keys
 };

@@ -40,6 +40,8 @@ enum class GridFileFormat { NetCdf, Csv, Gtx };
 GridFileFormat grid_file_format_for(const std::filesystem::path& path);
 /// "netcdf", "csv" or "gtx" (the `format` of `gravity grid --json`).
 std::string_view to_string(GridFileFormat f) noexcept;
+/// "NetCDF", "CSV" or "GTX" (the text summary of `gravity grid`).
+std::string_view display_name(GridFileFormat f) noexcept;
 
 /// CSV is meant for small grids: more nodes than this are refused (InputError, field "--output").
 inline constexpr std::uint64_t kMaxCsvGridNodes = 1'000'000;

@@ -1,13 +1,12 @@
 #pragma once
 /// \file gravity_html.hpp
 /// The HTML report document of `meridian gravity points --report`: built
-/// from the run's summary (gravity::PointsSummary) and its thinned sample,
-/// so a run of any length streams. Render with render_html().
+/// from the run's result (gravity::PointsResult: its summary and thinned
+/// sample), so a run of any length streams. Render with render_html().
 
 #include <string>
 
 #include "meridian/gravity/points.hpp"
-#include "meridian/gravity/points_summary.hpp"
 #include "meridian/report/html.hpp"
 
 namespace meridian::report {
@@ -23,8 +22,6 @@ namespace meridian::report {
 ///   geodetic), the evaluation (full model, or along-track interpolation
 ///   and its tolerance).
 /// The header names the input, the model (name, file, degree) and the options.
-Document gravity_points_document(const std::string& input, const gravity::ModelInfo& model,
-                                 const gravity::PointsOptions& options,
-                                 const gravity::PointsSummary& summary);
+Document gravity_points_document(const gravity::PointsResult& result);
 
 }  // namespace meridian::report

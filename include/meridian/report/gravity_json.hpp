@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meridian/gravity/geoid_grid.hpp"
+#include "meridian/gravity/grid_run.hpp"
 #include "meridian/gravity/points.hpp"
 
 namespace meridian::report {
@@ -20,5 +21,11 @@ nlohmann::json gravity_point_to_json(const gravity::PointResult& r);
 /// longitude_deg, geoid_m, fallback_xi_arcsec, fallback_eta_arcsec,
 /// fallback_method.
 nlohmann::json geoid_grid_to_json(const gravity::GridPointResult& r);
+
+/// `meridian gravity grid --json`: output, format, model, model_file, max_degree,
+/// region_deg [W, E, S, N], lon_spacing_deg, lat_spacing_deg, registration, height_m (null
+/// with per-node heights), height_grid (null without), rows, columns, nodes, quantities
+/// [{name, units, long_name}], path_used, fft_length, threads, elapsed_s.
+nlohmann::json gravity_grid_to_json(const gravity::GridRunResult& r);
 
 }  // namespace meridian::report

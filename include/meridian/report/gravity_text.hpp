@@ -7,7 +7,9 @@
 #include <string>
 
 #include "meridian/gravity/geoid_grid.hpp"
+#include "meridian/gravity/grid_run.hpp"
 #include "meridian/gravity/points.hpp"
+#include "meridian/gravity/synthetic.hpp"
 
 namespace meridian::report {
 
@@ -16,6 +18,10 @@ namespace meridian::report {
 /// normalisation …" ("not stated" where the file does not say), then a
 /// "warning: " line for each gravity::model_warnings.
 std::string model_text(const gravity::ModelInfo& model);
+
+/// Only model_text's "warning: " lines (`gravity points -q`, `gravity grid -q`/`--json` on
+/// stderr); empty when there is nothing to warn about.
+std::string model_warnings_text(const gravity::ModelInfo& model);
 
 /// `meridian gravity point`: model_text's lines, the point (degrees, 9
 /// decimals; h in m, 3), xi_arcsec, eta_arcsec, geoid_m (9 decimals), then
@@ -27,5 +33,15 @@ std::string gravity_point_text(const gravity::PointResult& r);
 /// (arc-seconds, 3 decimals) labelled with their method, or "unavailable"
 /// with the reason; then notes (interpolation used) and warnings.
 std::string geoid_grid_text(const gravity::GridPointResult& r);
+
+/// `meridian gravity grid`: three lines — "wrote FILE (FORMAT): C x R nodes (lon x lat,
+/// REGISTRATION registration), NAME [UNITS], …", where the heights came from, and the path
+/// used (FFT length, or GravityCircle per parallel, or per-node points), the threads and the
+/// wall time (s, 2 decimals).
+std::string gravity_grid_text(const gravity::GridRunResult& r);
+
+/// `meridian gravity synth-model`: "wrote PREFIX.gfc, PREFIX.egm, PREFIX.egm.cof (model NAME,
+/// degree N, seed S)".
+std::string synthetic_model_text(const gravity::SyntheticModelFiles& r);
 
 }  // namespace meridian::report

@@ -1,15 +1,39 @@
 #pragma once
-// Private helpers shared by the text readers.
+// Private helpers of the gravity model and geoid grid readers (io_gravity): whole files, blank-
+// separated tokens, numbers with Fortran exponents, lower case. One home, so that the readers,
+// built as one unity batch, share them instead of defining file-local copies.
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-namespace meridian::gravity::detail {
+#include "meridian/core/error.hpp"
+
+namespace meridian::io::detail {
+
+/// The bytes of `path`. Throws IoError "cannot open <what>" or "error reading <what>" naming it.
+inline std::string read_whole_file(const std::filesystem::path& path, std::string_view what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot open " + std::string(what), {path.string(), {}, ""});
+  std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw IoError("error reading " + std::string(what), {path.string(), {}, ""});
+  return s;
+}
+
+/// `s` in ASCII lower case.
+inline std::string lower(std::string_view s) {
+  std::string r(s);
+  std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return r;
+}
 
 /// Split on blanks (spaces, tabs, CR).
 inline void split_fields(std::string_view line, std::vector<std::string_view>& out) {
@@ -45,4 +69,4 @@ inline std::optional<int> parse_int(std::string_view tok) {
   return v;
 }
 
-}  // namespace meridian::gravity::detail
+}  // namespace meridian::io::detail
