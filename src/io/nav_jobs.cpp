@@ -1,21 +1,18 @@
-// The navigation configuration, the NMEA 0183 adapter and the runner (io/nav_files.hpp).
+// The navigation configuration, the NMEA 0183 adapter, the job reader and the runner
+// (io/nav_files.hpp).
 #include <algorithm>
-#include <array>
-#include <iterator>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
-#include <set>
-#include <tuple>
 #include <string>
 #include <system_error>
 #include <utility>
 #include <variant>
 #include <vector>
 
-#include <Eigen/Core>
 #include <fmt/format.h>
 
 #include "meridian/core/atomic_file.hpp"

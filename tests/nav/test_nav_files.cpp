@@ -890,6 +890,38 @@ TEST_F(NavFilesDir, RunNavProcessesAPlaneLine) {
   EXPECT_NE(r.result.find(nav::Method::Rts), nullptr);
 }
 
+// The Result describes itself: the projection of its plane, the file and line of each
+// rejected observation (the blunder of l.csv line 62: row 61, k = 30, station A).
+TEST_F(NavFilesDir, RunNavResultCarriesItsProjectionAndSources) {
+  const double x0 = 4983000.0, y0 = 500000.0;
+  std::string dr = "time_s,speed_m_s,heading_deg\n", lops = "time_s,type,station,station2,value,sigma_m\n";
+  for (int k = 0; k <= 60; ++k) {
+    dr += std::to_string(5 * k) + ",5,90\n";
+    const double y = 25.0 * k;
+    lops += std::to_string(5 * k) + ",range,A,," + std::to_string(std::hypot(1000.0, y) + (k == 30 ? 500.0 : 0.0)) +
+            ",5\n";
+    lops += std::to_string(5 * k) + ",range,B,," + std::to_string(std::hypot(1000.0, 2000.0 - y)) + ",5\n";
+  }
+  write("dr.csv", dr);
+  write("l.csv", lops);
+  write("s.csv", "name,x_m,y_m\nA," + std::to_string(x0 + 1000.0) + "," + std::to_string(y0) + "\nB," +
+                     std::to_string(x0 - 1000.0) + "," + std::to_string(y0 + 2000.0) + "\n");
+  const io::NavRun r = io::run_nav(io::read_nav_config(write(
+      "nav.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\nprojection: {type: utm, zone: 32}\ninitial: {x_m: " +
+                      std::to_string(x0) + ", y_m: " + std::to_string(y0) + "}\n")));
+  ASSERT_TRUE(r.result.projection);
+  EXPECT_EQ(r.result.projection->zone, 32);
+  bool blunder = false;
+  for (const nav::RejectedObservation& o : r.result.rejected) {
+    EXPECT_EQ(o.source, "l.csv:" + std::to_string(2 + o.index)) << o.reason;
+    blunder |= o.index == 60;
+  }
+  EXPECT_TRUE(blunder);
+  bool plane = false;
+  for (const std::string& n : r.result.notes) plane |= n.rfind("plane: ", 0) == 0;
+  EXPECT_TRUE(plane);
+}
+
 TEST_F(NavFilesDir, AnInitialFixBeforeTheFirstEpochIsMovedThereAndUsedOnce) {
   // The trial's j9 job: exact DR 5.5 m/s east from t = 0, exact fixes at t = −4 s (0, −22)
   // and t = 600 s (0, 3300), σ 1 m, no initial: → the fix moved to t = 0 is (0, 0), the truth:
