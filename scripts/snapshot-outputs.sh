@@ -347,6 +347,46 @@ for k in "sigma_speed_m_s: -1" "initial: {x_m: 7.49, y_m: 1.36, sigma_m: 0}" "se
   { grep -v "^$key:" $c/nav.yaml | sed "s|^\(dr\|stations\|lops\|truth\): \(.*\)|\1: $root/$c/\2|"; echo "$k"; } > "$out/nav-$key.yaml"
   run err-nav-$key nav process "$out/nav-$key.yaml"
 done
+# nav: every place an error is located (the reader's rows and keys, the plane, nav::process),
+# the CLI's checks of options against the result, several files to inspect, a geographic job.
+n="$out/nav-cases"; mkdir -p "$n"
+abs() { sed -E "s#^(dr|stations|lops|truth|fixes): (.*)#\1: $root/$c/\2#" "$@"; }
+printf 'time_s,type,station,station2,value,sigma_m,chain\n0,range,A,,20000,50,\n5,range,Q,,20000,50,\n' > "$n/lops-unknown.csv"
+printf 'time_s,type,station,station2,value,sigma_m,chain\n0,range,A,,20000,50,\n5,range_difference,A,A,20,50,\n' > "$n/lops-same.csv"
+printf 'time_s,type,station,station2,value,sigma_m,chain\n0,range,A,,20000,50,\n10,time_difference,A,B,3,50,X\n' > "$n/lops-td.csv"
+printf 'name,lat_deg,lon_deg\nA,45.2,7.6\nB,45.1,7.8\nC,44.9,7.7\n' > "$n/stations-geo.csv"
+printf 'time_s,x_m,y_m\n0,0,0\n5,1,1\n5,2,2\n' > "$n/truth-repeat.csv"
+awk -F, 'NR==40{$1=$1+200}NR>40&&NF==3&&$1+0==$1{$1=$1+200}1' OFS=, $c/dr.csv > "$n/dr-gap.csv"
+printf 'time_s,x_m,y_m,sigma_m\n3,10,10,5\n' > "$n/fixes.csv"
+for k in lops-unknown lops-same lops-td truth-repeat dr-gap stations-geo stations-far bins fixes-initial sigma-kind; do
+  case $k in
+    lops-*) abs $c/nav.yaml | sed "s|^lops: .*|lops: $n/$k.csv|" ;;
+    truth-repeat) abs $c/nav.yaml | sed "s|^truth: .*|truth: $n/$k.csv|" ;;
+    dr-gap) abs $c/nav.yaml | sed "s|^dr: .*|dr: $n/dr-gap.csv|" ;;
+    stations-geo) abs $c/nav.yaml | sed "s|^stations: .*|stations: $n/stations-geo.csv|" ;;
+    stations-far) abs $c/nav.yaml | sed "s|^stations: .*|stations: $n/stations-geo.csv|; s|^initial: .*|initial: {lat: 45, lon: 7.7}|"
+                  echo "projection: {type: utm, zone: 40}" ;;
+    bins) abs $c/nav.yaml | sed "s|^statistics_bin_s: .*|statistics_bin_s: 1e-9|" ;;
+    fixes-initial) abs $c/nav.yaml | grep -v '^initial:' | sed "s|^truth: .*|fixes: $n/fixes.csv|" ;;
+    sigma-kind) abs $c/nav.yaml; echo "sigma_velocity_m_s: 0.1" ;;
+  esac > "$n/$k.yaml"
+  [ $k = lops-td ] && echo 'chains: [{name: X, propagation_speed_m_s: 3e8, estimate_offset: true}]' >> "$n/$k.yaml"
+  run nav-case-$k nav process "$n/$k.yaml" --json
+done
+abs $c/nav.yaml | grep -v '^initial:' | sed "s|^truth: .*|fixes: $n/fixes.csv|" > "$n/no-initial.yaml"
+printf 'time_s,x_m,y_m,sigma_m\n30,10,10,5\n' > "$n/fixes.csv"
+run err-nav-case-no-initial nav process "$n/no-initial.yaml"
+run err-nav-geojson-plane nav process $c/nav.yaml --geojson @W@/t.geojson
+run err-nav-method-missing nav process $c/nav.yaml -o @W@/t.csv --method fix-closure
+run err-nav-output-over-input nav process $c/nav.yaml -o $c/dr.csv
+run err-nav-outputs-same nav process $c/nav.yaml -o @W@/t.csv --rejected @W@/t.csv
+for f in "$n"/*; do normalise "$f"; done
+run nav-process-c-fixes nav process "$out/nav-simulate-C/job/nav.yaml" --method fix-closure -o @W@/t.csv --rejected @W@/rej.csv
+if [ -d "$shared/data/nmea" ]; then
+  run nav-inspect-several nav inspect "$shared"/data/nmea/nbp1406-gyro.nmea "$shared"/data/nmea/plaka-sailboat-4h.nmea
+  run nav-inspect-several-json nav inspect "$shared"/data/nmea/nbp1406-gyro.nmea "$shared"/data/nmea/plaka-sailboat-4h.nmea --json
+  run nav-nbp1406-rts-track nav process examples/nav-nbp1406.yaml -o @W@/t.csv --quiet
+fi
 
 # --- gravity models named by a campaign and a deflection line (loaded through io_gravity)
 sed -e '/^    eta_arcsec:/d' -e '/^    eta_sigma_arcsec:/d' examples/campaign.yaml > "$out/campaign-model.yaml"
@@ -414,6 +454,12 @@ for f in (lambda: d.process(l), lambda: d.process(d.simulate(hours=0.01), gate_a
     except Exception as e: print(type(e).__name__, e.file, e.line, e.field, e)
 " 
   runpy py-nav 'import meridian.nav as n, json; print(json.dumps(n.process("examples/nav-scenario-c/nav.yaml").to_dict(), sort_keys=True, default=str)[:200000])'
+  if [ -d "$shared/data/nmea" ]; then
+    runpy py-nav-tracks 'import meridian.nav as n; r=n.process("examples/nav-nbp1406.yaml")
+for m, t in sorted(r.tracks.items()):
+    print(m, list(t._columns), [repr(t[c][::97].tolist()) for c in ("time_s", "x_m", "lat_deg", "lon_deg", "sigma_bias_north_m_s", "flags")])'
+    runpy py-nav-inspect "import meridian.nav as n, json; print(json.dumps(n.inspect('$shared/data/nmea/nbp1406-gyro.nmea', '$shared/data/nmea/plaka-sailboat-4h.nmea').to_dict(), sort_keys=True))"
+  fi
   runpy py-gravity "import meridian.gravity as g, numpy as np; m=g.GravityModel.open('$syn'); print(repr(m.deflection(np.array([10.,20.]), np.array([30.,40.]))))"
   gfc="$out/gravity-synth/syn.gfc"
   runpy py-gravity-open "import meridian.gravity as g, numpy as np, json; m=g.GravityModel.open('$gfc', max_degree=12, threads=1); print(json.dumps(m.info, sort_keys=True)); print(m.warnings, m.max_degree); d=m.deflection([[10.,20.],[-30,45]], [30.,40.], 100.); print(repr(d)); print(repr(m.grid(np.array([-10.,0,10]), np.array([0.,90,180,270]), 0.)))"

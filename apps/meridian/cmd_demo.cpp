@@ -65,14 +65,13 @@ void run_navigation(const fs::path& dir, const fs::path& out, std::vector<fs::pa
                 << " is not there (the real logs of ../shared/data/nmea)\n";
       continue;
     }
-    const io::NavRun run = io::run_nav(c);
-    std::cout << "\nmeridian demo: " << j.title << " (" << file.string() << ")\n\n"
-              << report::nav_summary_text(run.result);
+    const nav::Result r = io::run_nav(c).result;
+    std::cout << "\nmeridian demo: " << j.title << " (" << file.string() << ")\n\n" << report::nav_summary_text(r);
     written.push_back(out / (std::string(j.name) + ".json"));
-    emit(written.back().string(), report::nav_to_json(run.result).dump(2) + "\n");
+    emit(written.back().string(), report::json_text(report::nav_to_json(r)));
     if (report::html_reports_available()) {
       written.push_back(out / (std::string(j.name) + ".html"));
-      emit(written.back().string(), report::render_html(report::nav_document(run.result, j.title)));
+      emit(written.back().string(), report::render_html(report::nav_document(r, j.title)));
     }
   }
 }

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
 #include "commands.hpp"
@@ -16,6 +15,7 @@
 #include "meridian/io/nmea.hpp"
 #include "meridian/nav/simulator.hpp"
 #include "meridian/report/html.hpp"
+#include "meridian/report/json_text.hpp"
 #include "meridian/report/nav_html.hpp"
 #include "meridian/report/nav_inspect.hpp"
 #include "meridian/report/nav_outputs.hpp"
@@ -30,21 +30,9 @@ struct InspectArgs {
 };
 
 int run_inspect(const InspectArgs& a) {
-  io::nmea::Options o;
-  o.accept_missing_checksum = a.accept_missing_checksum;
   // Every file is read before anything is printed: an unreadable one fails the whole run.
-  std::vector<io::nmea::Summary> summaries;
-  for (const std::string& f : a.files) summaries.push_back(io::nmea::read_file(f, o));
-  std::string text;
-  if (a.json) {
-    nlohmann::json files = nlohmann::json::array();
-    for (const auto& s : summaries) files.push_back(report::nav_inspect_to_json(s));
-    text = nlohmann::json{{"files", files}}.dump(2) + "\n";
-  } else {
-    for (std::size_t k = 0; k < summaries.size(); ++k)
-      text += (k ? "\n" : "") + report::nav_inspect_text(summaries[k]);
-  }
-  emit("", text);
+  const std::vector<nav::LogInspection> summaries = io::nmea::inspect_files(a.files, a.accept_missing_checksum);
+  emit("", a.json ? report::json_text(report::nav_inspect_files_to_json(summaries)) : report::nav_inspect_text(summaries));
   return kOk;
 }
 
@@ -74,11 +62,8 @@ struct ProcessArgs {
   bool json = false, quiet = false;
 };
 
-int run_process(const ProcessArgs& a) {
-  require_html_reports_for(a.report);
-  const nav::Method method = nav::method_from_string(a.method);
-  const io::NavConfig c = io::read_nav_config(a.config);
-  // No two outputs on one path, and none over an input.
+// No two outputs on one path, and none over an input.
+void check_output_paths(const ProcessArgs& a, const std::vector<std::string>& inputs) {
   struct Output {
     const std::string& path;
     const char* option;
@@ -88,8 +73,6 @@ int run_process(const ProcessArgs& a) {
                             {a.geojson, "--geojson", "GeoJSON track"},
                             {a.rejected, "--rejected", "list of rejected observations"},
                             {a.report, "--report", "report"}};
-  std::vector<std::string> inputs = {a.config, c.dr_path, c.stations_path, c.lops_path, c.fixes_path, c.truth_path};
-  if (c.nmea) inputs.insert(inputs.end(), {c.nmea->heading_path, c.nmea->speed_path, c.nmea->positions_path});
   for (std::size_t i = 0; i < std::size(outputs); ++i) {
     const Output& o = outputs[i];
     if (o.path.empty() || o.path == "-") continue;
@@ -98,47 +81,45 @@ int run_process(const ProcessArgs& a) {
         throw InputError(fmt::format("{} and {} name the same file {}", o.option, outputs[j].option, o.path));
     for (const std::string& in : inputs) {
       std::error_code ec;
-      if (!in.empty() && (same_path(o.path, in) || std::filesystem::equivalent(o.path, in, ec)))
+      if (same_path(o.path, in) || std::filesystem::equivalent(o.path, in, ec))
         throw InputError(fmt::format("the {} would overwrite the input {}", o.what, in), {"", std::nullopt, o.option});
     }
   }
-  TerminalProgress progress(a.quiet);
-  const io::NavRun run = io::run_nav(c, &progress);
-  const nav::Result& r = run.result;
+}
+
+// What the options ask of the result: the -o method computed, a projection for --geojson.
+void check_result_for(const ProcessArgs& a, nav::Method method, const nav::Result& r) {
   if (!a.track.empty() && !r.find(method))
     throw InputError(fmt::format("the method {} was not computed for this job{}", a.method,
                                  method == nav::Method::FixClosure ? " (it needs fixes)" : ""),
                      {"", std::nullopt, "--method"});
-  if (!a.geojson.empty() && !run.to_geographic)
+  if (!a.geojson.empty() && !r.projection)
     throw InputError("GeoJSON needs latitudes and longitudes: the job is in plane coordinates without a "
                      "projection (give projection: in the configuration)",
                      {"", std::nullopt, "--geojson"});
+}
+
+int run_process(const ProcessArgs& a) {
+  require_html_reports_for(a.report);
+  const nav::Method method = nav::method_from_string(a.method);
+  const io::NavConfig config = io::read_nav_config(a.config);
+  check_output_paths(a, io::nav_input_files(config));
+  TerminalProgress progress(a.quiet);
+  const nav::Result r = io::run_nav(config, &progress).result;
+  check_result_for(a, method, r);
   // Everything is computed before anything is written (atomic outputs).
-  const std::string text = a.json ? report::nav_to_json(r).dump(2) + "\n" : report::nav_summary_text(r);
-  const std::string track = a.track.empty() ? std::string() : report::nav_track_csv(r, method, run.to_geographic);
-  std::string geojson;
-  if (!a.geojson.empty()) {
-    std::vector<nav::Method> methods;
-    for (const nav::MethodResult& m : r.methods) methods.push_back(m.method);
-    geojson = report::nav_track_geojson(r, methods, run.to_geographic);
-  }
+  const std::string text = a.json ? report::json_text(report::nav_to_json(r)) : report::nav_summary_text(r);
+  const std::string track = a.track.empty() ? std::string() : report::nav_track_csv(r, method);
+  const std::string geojson = a.geojson.empty() ? std::string() : report::nav_track_geojson(r, {});
   const std::string rejected = a.rejected.empty() ? std::string() : report::nav_rejected_csv(r);
   const std::string html =
-      a.report.empty() ? std::string()
-                       : report::render_html(report::nav_document(r, "Marine navigation: " + a.config));
+      a.report.empty() ? std::string() : report::render_html(report::nav_document(r, "Marine navigation: " + a.config));
   emit_all({{a.track, track}, {a.geojson, geojson}, {a.rejected, rejected}, {a.report, html},
             {kStandardOutput, text}});
   return kOk;
 }
 
-}  // namespace
-}  // namespace nav_cmd
-
-void add_nav_commands(CLI::App& app, int& exit_code) {
-  using namespace nav_cmd;
-  CLI::App* nav = app.add_subcommand(
-      "nav", "Marine navigation: inspect NMEA 0183 logs, simulate and process survey lines");
-  nav->require_subcommand(1);
+void add_inspect(CLI::App* nav, int& exit_code) {
   auto ia = std::make_shared<InspectArgs>();
   CLI::App* ins = nav->add_subcommand(
       "inspect", "Count sentences and report bad, missing-checksum, duplicate and rolled-over ones per file");
@@ -147,7 +128,9 @@ void add_nav_commands(CLI::App& app, int& exit_code) {
   ins->add_flag("--accept-missing-checksum", ia->accept_missing_checksum,
                 "Accept sentences without *HH (counted, with a warning)");
   ins->callback([ia, &exit_code] { exit_code = guarded([&] { return run_inspect(*ia); }); });
+}
 
+void add_simulate(CLI::App* nav, int& exit_code) {
   auto sa = std::make_shared<SimulateArgs>();
   CLI::App* sim = nav->add_subcommand(
       "simulate", "Simulate the 1988 validation line (spec section 8): DR, stations, LOPs, truth, fixes, nav.yaml");
@@ -184,7 +167,9 @@ void add_nav_commands(CLI::App& app, int& exit_code) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sim->callback([sa, &exit_code] { exit_code = guarded([&] { return run_simulate(*sa); }); });
+}
 
+void add_process(CLI::App* nav, int& exit_code) {
   auto pa = std::make_shared<ProcessArgs>();
   CLI::App* pro = nav->add_subcommand(
       "process", "Dead reckoning + LOPs + fixes: the sequential adjustment, its variants, EKF and RTS smoother");
@@ -200,6 +185,19 @@ void add_nav_commands(CLI::App& app, int& exit_code) {
   pro->add_option("--report", pa->report, "Write an HTML report");
   pro->add_flag("-q,--quiet", pa->quiet, "No progress bar");
   pro->callback([pa, &exit_code] { exit_code = guarded([&] { return run_process(*pa); }); });
+}
+
+
+}  // namespace
+}  // namespace nav_cmd
+
+void add_nav_commands(CLI::App& app, int& exit_code) {
+  CLI::App* nav = app.add_subcommand(
+      "nav", "Marine navigation: inspect NMEA 0183 logs, simulate and process survey lines");
+  nav->require_subcommand(1);
+  nav_cmd::add_inspect(nav, exit_code);
+  nav_cmd::add_simulate(nav, exit_code);
+  nav_cmd::add_process(nav, exit_code);
 }
 
 }  // namespace meridian::cli

@@ -1,21 +1,18 @@
-// The navigation configuration, the NMEA 0183 adapter and the runner (io/nav_files.hpp).
+// The navigation configuration, the NMEA 0183 adapter, the job reader and the runner
+// (io/nav_files.hpp).
 #include <algorithm>
-#include <array>
-#include <iterator>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
-#include <set>
-#include <tuple>
 #include <string>
 #include <system_error>
 #include <utility>
 #include <variant>
 #include <vector>
 
-#include <Eigen/Core>
 #include <fmt/format.h>
 
 #include "meridian/core/atomic_file.hpp"
@@ -106,21 +103,45 @@ geodesy::GridDefinition node_projection(const Node& n) {
 }  // namespace navj
 }  // namespace
 
-NavConfig read_nav_config(const std::string& path) {
-  const Node root = Node::load_file(path);
-  root.allow_only({"dr", "stations", "lops", "fixes", "truth", "nmea", "initial", "projection",
-                   "sigma_speed_m_s", "sigma_heading_deg", "sigma_velocity_m_s", "chains", "rejection",
-                   "threshold_m", "alpha", "segment_s", "bias_start_s", "backward_window_s", "fix_tolerance_m",
-                   "max_reduction_s", "max_dr_gap_s", "sequential_sigma_velocity_m_s", "bias_model",
-                   "bias_sigma_m_s", "bias_random_walk_m_s_per_sqrt_s", "bias_correlation_time_s",
-                   "statistics_bin_s", "warn_gap_s"});
-  NavConfig c;
-  c.file = path;
+namespace {
+namespace navj {
+
+// The `nmea:` block (files relative to the configuration's directory `path`).
+NavNmeaConfig node_nmea(const Node& n, const std::string& path) {
+  n.allow_only({"heading", "speed", "positions", "speed_sentence", "fix_interval_s", "sigma_fix_m",
+                "accept_missing_checksum"});
+  NavNmeaConfig m;
+  m.heading_path = resolve(path, n.require("heading").string());
+  m.speed_path = n.get("speed") ? resolve(path, n.get("speed")->string()) : m.heading_path;
+  m.positions_path = m.speed_path;
+  if (auto p = n.get("positions")) {
+    const std::string v = p->string();
+    m.positions_path = v == "none" ? std::string() : resolve(path, v);
+  }
+  if (auto s = n.get("speed_sentence")) {
+    const std::string v = s->string();
+    if (v == "vtg" || v == "VTG")
+      m.speed_sentence = NavSpeedSentence::Vtg;
+    else if (v == "vbw" || v == "VBW")
+      m.speed_sentence = NavSpeedSentence::Vbw;
+    else
+      s->fail(fmt::format("\"{}\" is not a speed sentence (vtg, vbw)", v));
+  }
+  if (auto v = n.get("fix_interval_s")) m.fix_interval_s = v->non_negative_number();
+  if (auto v = n.get("sigma_fix_m")) m.sigma_fix_m = v->positive_number(), m.sigma_fix_given = true;
+  if (auto v = n.get("accept_missing_checksum")) m.accept_missing_checksum = v->boolean();
+  if (m.positions_path.empty() && m.fix_interval_s > 0.0)
+    n.get("fix_interval_s")->fail("fix_interval_s needs positions (GGA)");
+  return m;
+}
+
+// The input files: CSV paths or the `nmea:` block, and the combinations that make a job.
+void input_files(const Node& root, const std::string& path, NavConfig& c) {
   const auto file_key = [&](const char* key, std::string& out) {
     if (auto n = root.get(key)) {
       const std::string f = n->string();
       if (f.empty()) n->fail("empty file name");
-      out = navj::resolve(path, f);
+      out = resolve(path, f);
     }
   };
   file_key("dr", c.dr_path);
@@ -130,34 +151,9 @@ NavConfig read_nav_config(const std::string& path) {
   file_key("truth", c.truth_path);
   if (auto n = root.get("nmea")) {
     if (root.has("dr")) n->fail("give dr: or nmea:, not both (both give the dead reckoning)");
-    n->allow_only({"heading", "speed", "positions", "speed_sentence", "fix_interval_s", "sigma_fix_m",
-                   "accept_missing_checksum"});
-    NavNmeaConfig m;
-    m.heading_path = navj::resolve(path, n->require("heading").string());
-    m.speed_path = n->get("speed") ? navj::resolve(path, n->get("speed")->string()) : m.heading_path;
-    m.positions_path = m.speed_path;
-    if (auto p = n->get("positions")) {
-      const std::string v = p->string();
-      m.positions_path = v == "none" ? std::string() : navj::resolve(path, v);
-    }
-    if (auto s = n->get("speed_sentence")) {
-      const std::string v = s->string();
-      if (v == "vtg" || v == "VTG")
-        m.speed_sentence = NavSpeedSentence::Vtg;
-      else if (v == "vbw" || v == "VBW")
-        m.speed_sentence = NavSpeedSentence::Vbw;
-      else
-        s->fail(fmt::format("\"{}\" is not a speed sentence (vtg, vbw)", v));
-    }
-    if (auto v = n->get("fix_interval_s")) m.fix_interval_s = v->non_negative_number();
-    if (auto v = n->get("sigma_fix_m")) m.sigma_fix_m = v->positive_number(), m.sigma_fix_given = true;
-    if (auto v = n->get("accept_missing_checksum")) m.accept_missing_checksum = v->boolean();
-    if (m.positions_path.empty() && m.fix_interval_s > 0.0)
-      n->get("fix_interval_s")->fail("fix_interval_s needs positions (GGA)");
-    c.nmea = m;
+    c.nmea = node_nmea(*n, path);
   }
-  if (c.dr_path.empty() && !c.nmea)
-    root.fail("give the dead reckoning: dr: FILE.csv or an nmea: block");
+  if (c.dr_path.empty() && !c.nmea) root.fail("give the dead reckoning: dr: FILE.csv or an nmea: block");
   if (c.nmea && root.has("fixes") && !c.nmea->positions_path.empty())
     root.require("fixes").fail("the nmea: block gives the fixes (GGA): set its positions: none to use fixes:");
   if (c.nmea && root.has("truth") && c.nmea->fix_interval_s > 0.0)
@@ -165,31 +161,33 @@ NavConfig read_nav_config(const std::string& path) {
   if (c.lops_path.empty() != c.stations_path.empty())
     root.fail(c.lops_path.empty() ? "stations: without lops: (the stations serve the LOPs)"
                                   : "lops: needs stations: (the file of the stations the LOPs name)");
-  if (auto n = root.get("initial")) c.initial = navj::node_position(*n, c.initial_sigma_m);
-  if (auto n = root.get("projection")) c.projection = NavProjectionConfig{navj::node_projection(*n)};
-  if (auto n = root.get("sigma_speed_m_s")) c.sigma_speed_m_s = n->non_negative_number();
-  if (auto n = root.get("sigma_heading_deg")) c.sigma_heading_rad = n->non_negative_number() * navj::kDeg;
-  if (auto n = root.get("sigma_velocity_m_s")) c.sigma_velocity_m_s = n->non_negative_number();
-  if (auto n = root.get("chains")) {
-    std::map<std::string, int> names;
-    for (const Node& e : n->elements()) {
-      e.allow_only({"name", "estimate_scale", "estimate_offset", "sigma_scale_prior", "sigma_offset_prior_m",
-                    "propagation_speed_m_s"});
-      NavChainConfig ch;
-      const Node name = e.require("name");
-      ch.chain.name = name.string();
-      if (ch.chain.name.empty()) name.fail("a chain needs a name");
-      if (auto [it, fresh] = names.emplace(ch.chain.name, name.line()); !fresh)
-        name.fail(fmt::format("chain \"{}\" is already defined on line {}", ch.chain.name, it->second));
-      if (auto v = e.get("estimate_scale")) ch.chain.estimate_scale = v->boolean();
-      if (auto v = e.get("estimate_offset")) ch.chain.estimate_offset = v->boolean();
-      if (auto v = e.get("sigma_scale_prior")) ch.chain.sigma_scale_prior = v->positive_number();
-      if (auto v = e.get("sigma_offset_prior_m")) ch.chain.sigma_offset_prior_m = v->positive_number();
-      if (auto v = e.get("propagation_speed_m_s")) ch.propagation_speed_m_s = v->positive_number();
-      c.chains.push_back(ch);
-    }
+}
+
+// `chains:`, names unique.
+std::vector<NavChainConfig> node_chains(const Node& n) {
+  std::vector<NavChainConfig> chains;
+  std::map<std::string, int> names;
+  for (const Node& e : n.elements()) {
+    e.allow_only({"name", "estimate_scale", "estimate_offset", "sigma_scale_prior", "sigma_offset_prior_m",
+                  "propagation_speed_m_s"});
+    NavChainConfig ch;
+    const Node name = e.require("name");
+    ch.chain.name = name.string();
+    if (ch.chain.name.empty()) name.fail("a chain needs a name");
+    if (auto [it, fresh] = names.emplace(ch.chain.name, name.line()); !fresh)
+      name.fail(fmt::format("chain \"{}\" is already defined on line {}", ch.chain.name, it->second));
+    if (auto v = e.get("estimate_scale")) ch.chain.estimate_scale = v->boolean();
+    if (auto v = e.get("estimate_offset")) ch.chain.estimate_offset = v->boolean();
+    if (auto v = e.get("sigma_scale_prior")) ch.chain.sigma_scale_prior = v->positive_number();
+    if (auto v = e.get("sigma_offset_prior_m")) ch.chain.sigma_offset_prior_m = v->positive_number();
+    if (auto v = e.get("propagation_speed_m_s")) ch.propagation_speed_m_s = v->positive_number();
+    chains.push_back(ch);
   }
-  nav::Options& o = c.options;
+  return chains;
+}
+
+// The choices among names: rejection and bias model.
+void choice_options(const Node& root, nav::Options& o) {
   if (auto n = root.get("rejection")) {
     const std::string v = n->string();
     if (v == "threshold")
@@ -199,6 +197,19 @@ NavConfig read_nav_config(const std::string& path) {
     else
       n->fail(fmt::format("\"{}\" is not a rejection (threshold, w-test)", v));
   }
+  if (auto n = root.get("bias_model")) {
+    const std::string v = n->string();
+    if (v == "random-walk")
+      o.bias_model = nav::BiasModel::RandomWalk;
+    else if (v == "gauss-markov")
+      o.bias_model = nav::BiasModel::GaussMarkov;
+    else
+      n->fail(fmt::format("\"{}\" is not a bias model (random-walk, gauss-markov)", v));
+  }
+}
+
+// The numeric options, each at its key (the numerics' range checks follow in read_nav_config).
+void numeric_options(const Node& root, nav::Options& o) {
   if (auto n = root.get("threshold_m")) o.threshold_m = n->positive_number();
   if (auto n = root.get("alpha")) {
     o.alpha = n->positive_number();
@@ -210,33 +221,41 @@ NavConfig read_nav_config(const std::string& path) {
   if (auto n = root.get("fix_tolerance_m")) o.fix_tolerance_m = n->positive_number();
   if (auto n = root.get("max_reduction_s")) o.max_reduction_s = n->non_negative_number();
   if (auto n = root.get("max_dr_gap_s")) o.max_dr_gap_s = n->positive_number();
-  if (auto n = root.get("sequential_sigma_velocity_m_s"))
-    o.sequential_sigma_velocity_m_s = n->non_negative_number();
-  if (auto n = root.get("bias_model")) {
-    const std::string v = n->string();
-    if (v == "random-walk")
-      o.bias_model = nav::BiasModel::RandomWalk;
-    else if (v == "gauss-markov")
-      o.bias_model = nav::BiasModel::GaussMarkov;
-    else
-      n->fail(fmt::format("\"{}\" is not a bias model (random-walk, gauss-markov)", v));
-  }
+  if (auto n = root.get("sequential_sigma_velocity_m_s")) o.sequential_sigma_velocity_m_s = n->non_negative_number();
   if (auto n = root.get("bias_sigma_m_s")) o.bias_sigma_m_s = n->positive_number();
-  if (auto n = root.get("bias_random_walk_m_s_per_sqrt_s"))
-    o.bias_random_walk_m_s_per_sqrt_s = n->non_negative_number();
+  if (auto n = root.get("bias_random_walk_m_s_per_sqrt_s")) o.bias_random_walk_m_s_per_sqrt_s = n->non_negative_number();
   if (auto n = root.get("bias_correlation_time_s")) o.bias_correlation_time_s = n->positive_number();
   if (auto n = root.get("statistics_bin_s")) o.statistics_bin_s = n->positive_number();
   if (auto n = root.get("warn_gap_s")) o.warn_gap_s = n->positive_number();
+}
+
+}  // namespace navj
+}  // namespace
+
+NavConfig read_nav_config(const std::string& path) {
+  const Node root = Node::load_file(path);
+  root.allow_only({"dr", "stations", "lops", "fixes", "truth", "nmea", "initial", "projection",
+                   "sigma_speed_m_s", "sigma_heading_deg", "sigma_velocity_m_s", "chains", "rejection",
+                   "threshold_m", "alpha", "segment_s", "bias_start_s", "backward_window_s", "fix_tolerance_m",
+                   "max_reduction_s", "max_dr_gap_s", "sequential_sigma_velocity_m_s", "bias_model",
+                   "bias_sigma_m_s", "bias_random_walk_m_s_per_sqrt_s", "bias_correlation_time_s",
+                   "statistics_bin_s", "warn_gap_s"});
+  NavConfig c;
+  c.file = path;
+  navj::input_files(root, path, c);
+  if (auto n = root.get("initial")) c.initial = navj::node_position(*n, c.initial_sigma_m);
+  if (auto n = root.get("projection")) c.projection = NavProjectionConfig{navj::node_projection(*n)};
+  if (auto n = root.get("sigma_speed_m_s")) c.sigma_speed_m_s = n->non_negative_number();
+  if (auto n = root.get("sigma_heading_deg")) c.sigma_heading_rad = n->non_negative_number() * navj::kDeg;
+  if (auto n = root.get("sigma_velocity_m_s")) c.sigma_velocity_m_s = n->non_negative_number();
+  if (auto n = root.get("chains")) c.chains = navj::node_chains(*n);
+  navj::choice_options(root, c.options);
+  navj::numeric_options(root, c.options);
   c.lines = root.visited_lines();
   // The numerics' own range checks, at the key's line ("options.<name>" is the key <name>).
-  try {
-    nav::validate(o);
-  } catch (Error& e) {
-    const std::string& f = e.context().field;
-    const std::string key = f.rfind("options.", 0) == 0 ? f.substr(8) : f;
-    const auto it = c.lines.find(key);
-    throw InputError(e.message(), {path, it == c.lines.end() ? std::optional<int>() : it->second, key});
-  }
+  SourceMap keys;
+  keys.add_document("options", path, c.lines);
+  located(keys, [&] { nav::validate(c.options); });
   return c;
 }
 
@@ -534,124 +553,151 @@ std::string dropped_lines_warning(const nmea::Summary& s) {
 }  // namespace navj
 }  // namespace
 
-NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
-  using navj::NmeaEvent;
-  // Each distinct file read once, for what it gives.
-  std::vector<navj::NmeaFile> files;
+namespace {
+namespace navj {
+
+/// The distinct files of an `nmea:` block, each read once for what it gives.
+struct NmeaFiles {
+  std::vector<NmeaFile> files;
   std::map<std::string, std::size_t> index;
-  const auto want = [&](const std::string& p) {
-    return std::tuple{p == c.heading_path, p == c.speed_path, !c.positions_path.empty() && p == c.positions_path};
-  };
+  const NmeaFile& at(const std::string& path) const { return files[index.at(path)]; }
+};
+
+NmeaFiles read_nmea_files(const NavNmeaConfig& c) {
+  NmeaFiles out;
   for (const std::string& p : {c.heading_path, c.speed_path, c.positions_path}) {
-    if (p.empty() || index.count(p)) continue;
-    const auto [h, s, g] = want(p);
-    index[p] = files.size();
-    files.push_back(navj::read_events(p, c, h, s, g));
-    navj::resolve_times(files.back());
+    if (p.empty() || out.index.count(p)) continue;
+    out.index[p] = out.files.size();
+    out.files.push_back(read_events(p, c, p == c.heading_path, p == c.speed_path,
+                                    !c.positions_path.empty() && p == c.positions_path));
+    resolve_times(out.files.back());
   }
-  NavNmeaData out;
-  navj::Skips skips;
-  // Absolute and bare times cannot share a scale.
-  bool any_abs = false, any_bare = false;
-  for (const auto& f : files)
+  return out;
+}
+
+// Absolute and bare times cannot share a scale: InputError naming a file of each. Returns
+// whether the times are dated (absolute).
+bool check_time_scale(const NmeaFiles& nf) {
+  std::string bare, abs;
+  for (const auto& f : nf.files) {
+    bool b = false, a = false;
     for (const NmeaEvent& e : f.events)
-      if (e.timed && e.valid) (e.absolute ? any_abs : any_bare) = true;
-  if (any_abs && any_bare) {
-    std::string bare, abs;
-    for (const auto& f : files) {
-      bool b = false, a = false;
-      for (const NmeaEvent& e : f.events)
-        if (e.timed && e.valid) (e.absolute ? a : b) = true;
-      if (b && bare.empty()) bare = f.path;
-      if (a && abs.empty()) abs = f.path;
-    }
+      if (e.timed && e.valid) (e.absolute ? a : b) = true;
+    if (b && bare.empty()) bare = f.path;
+    if (a && abs.empty()) abs = f.path;
+  }
+  if (!bare.empty() && !abs.empty())
     throw InputError(fmt::format("{} has times of day without a date (no ZDA, RMC or logger stamps) and {} has "
                                  "dated times: they cannot be put on one time scale",
                                  bare, abs),
                      {bare, std::nullopt, {}});
-  }
-  out.dated = !any_bare;
-  for (auto& f : files) {
-    if (std::string w = navj::dropped_lines_warning(f.summary); !w.empty()) out.warnings.push_back(std::move(w));
+  return bare.empty();
+}
+
+// What each file's reader dropped (warnings), accepted without a checksum and corrected (notes).
+void file_notes(const NmeaFiles& nf, NavNmeaData& out) {
+  for (const auto& f : nf.files) {
+    if (std::string w = dropped_lines_warning(f.summary); !w.empty()) out.warnings.push_back(std::move(w));
     if (f.summary.accept_missing_checksum && f.summary.no_checksum > 0)
       out.notes.push_back(fmt::format("{}: {} without a checksum read (accept_missing_checksum: true)", f.path,
-                                      navj::count_text(f.summary.no_checksum, "sentence", "sentences")));
+                                      count_text(f.summary.no_checksum, "sentence", "sentences")));
     if (f.rollover_corrected > 0)
       out.notes.push_back(fmt::format("{}: {} corrected for a GPS week rollover (dates 1024 weeks before the "
                                       "logger stamps)",
-                                      f.path, navj::count_text(f.rollover_corrected, "time", "times")));
+                                      f.path, count_text(f.rollover_corrected, "time", "times")));
     else if (f.summary.gps_week_rollover_suspected)
       out.notes.push_back(fmt::format("{}: the dates look rolled over (GPS week rollover, line {}) and there are no "
                                       "logger stamps to correct them: check the times",
                                       f.path, f.summary.rollover_line.value_or(0)));
   }
-  // Headings, sorted by time.
-  std::vector<std::pair<double, double>> headings;
-  for (const NmeaEvent& e : files[index.at(c.heading_path)].events) {
+}
+
+// "; N skipped: <reason> (first line L)" for every reason of `path`, then the missing-checksum
+// hint for `type`: why a file gave no usable sample.
+std::string why_none(const Skips& skips, const std::string& path, const nmea::Summary& s, const std::string& type) {
+  std::string why;
+  for (const auto& [what, e] : skips.by_reason)
+    if (what.rfind(path + ": ", 0) == 0)
+      why += fmt::format("; {} skipped: {} (first line {})", e.first, what.substr(path.size() + 2), e.second);
+  return why + missing_checksum_hint(s, type);
+}
+
+/// HDT headings (time, heading), sorted by time.
+using Headings = std::vector<std::pair<double, double>>;
+
+Headings headings_of(const NavNmeaConfig& c, const NmeaFiles& nf, Skips& skips) {
+  Headings headings;
+  for (const NmeaEvent& e : nf.at(c.heading_path).events) {
     if (e.kind != NmeaEvent::Heading) continue;
     if (!e.valid) skips.add(c.heading_path, e.skip_reason, e.line);
     else if (!e.timed) skips.add(c.heading_path, "HDT before any time (no logger stamp, no timed sentence)", e.line);
     else headings.emplace_back(e.time_s, e.a);
   }
-  std::stable_sort(headings.begin(), headings.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::stable_sort(headings.begin(), headings.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   if (headings.empty()) {
-    std::string why;
-    for (const auto& [what, e] : skips.by_reason)
-      if (what.rfind(c.heading_path + ": ", 0) == 0)
-        why += fmt::format("; {} skipped: {} (first line {})", e.first, what.substr(c.heading_path.size() + 2), e.second);
-    why += navj::missing_checksum_hint(files[index.at(c.heading_path)].summary, "HDT");
+    const std::string why = why_none(skips, c.heading_path, nf.at(c.heading_path).summary, "HDT");
     throw InputError(fmt::format("no usable HDT heading (the nmea: block's heading file){}",
                                  why.empty() ? std::string("; the file has no HDT sentence") : why),
                      {c.heading_path, std::nullopt, {}});
   }
-  // Speed samples with the heading interpolated circularly between its neighbours in time.
-  struct SpeedSample {
-    double t;
-    double speed, heading;
-    int line;
-  };
+  return headings;
+}
+
+// The heading at time t interpolated circularly between its neighbours within kNavHeadingGap_s
+// (the nearest one when only one side has one); nullopt when neither side has one.
+std::optional<double> heading_at(const Headings& headings, double t) {
+  const auto it = std::lower_bound(headings.begin(), headings.end(), t, [](const auto& h, double tt) { return h.first < tt; });
+  const bool has_after = it != headings.end() && it->first - t <= kNavHeadingGap_s;
+  const bool has_before = it != headings.begin() && t - std::prev(it)->first <= kNavHeadingGap_s;
+  if (has_before && has_after) {
+    const auto& [t0, h0] = *std::prev(it);
+    const auto& [t1, h1] = *it;
+    const double w = t1 > t0 ? (t - t0) / (t1 - t0) : 0.0;
+    const double d = std::remainder(h1 - h0, 2.0 * units::kPi);
+    return h0 + w * d;
+  }
+  if (has_before) return std::prev(it)->second;
+  if (has_after) return it->second;
+  return std::nullopt;
+}
+
+/// A speed sample with its heading.
+struct SpeedSample {
+  double t;
+  double speed, heading;
+  int line;
+};
+
+const char* speed_sentence_name(const NavNmeaConfig& c) {
+  return c.speed_sentence == NavSpeedSentence::Vtg ? "VTG" : "VBW";
+}
+
+// Speed samples with the heading of their time, sorted by time.
+std::vector<SpeedSample> speeds_of(const NavNmeaConfig& c, const NmeaFiles& nf, const Headings& headings,
+                                   Skips& skips) {
   std::vector<SpeedSample> speeds;
-  const char* sname = c.speed_sentence == NavSpeedSentence::Vtg ? "VTG" : "VBW";
-  for (const NmeaEvent& e : files[index.at(c.speed_path)].events) {
+  const char* sname = speed_sentence_name(c);
+  for (const NmeaEvent& e : nf.at(c.speed_path).events) {
     if (e.kind != NmeaEvent::Speed) continue;
     if (!e.valid) { skips.add(c.speed_path, e.skip_reason, e.line); continue; }
     if (!e.timed) { skips.add(c.speed_path, fmt::format("{} before any time", sname), e.line); continue; }
-    const auto it = std::lower_bound(headings.begin(), headings.end(), e.time_s,
-                                     [](const auto& h, double t) { return h.first < t; });
-    const bool has_after = it != headings.end() && it->first - e.time_s <= kNavHeadingGap_s;
-    const bool has_before = it != headings.begin() && e.time_s - std::prev(it)->first <= kNavHeadingGap_s;
-    double h = 0.0;
-    if (has_before && has_after) {
-      const auto& [t0, h0] = *std::prev(it);
-      const auto& [t1, h1] = *it;
-      const double w = t1 > t0 ? (e.time_s - t0) / (t1 - t0) : 0.0;
-      const double d = std::remainder(h1 - h0, 2.0 * units::kPi);
-      h = h0 + w * d;
-    } else if (has_before) {
-      h = std::prev(it)->second;
-    } else if (has_after) {
-      h = it->second;
-    } else {
+    std::optional<double> h = heading_at(headings, e.time_s);
+    if (!h) {
       skips.add(c.speed_path, fmt::format("{} speed samples with no HDT within {} s", sname, kNavHeadingGap_s),
                 e.line);
       continue;
     }
     // VBW: the transverse (starboard) component turns the velocity off the heading.
     const double speed = std::hypot(e.a, e.b);
-    h += std::atan2(e.b, e.a);
-    h = std::fmod(h, 2.0 * units::kPi);
-    if (h < 0.0) h += 2.0 * units::kPi;
-    speeds.push_back({e.time_s, speed, h, e.line});
+    *h += std::atan2(e.b, e.a);
+    *h = std::fmod(*h, 2.0 * units::kPi);
+    if (*h < 0.0) *h += 2.0 * units::kPi;
+    speeds.push_back({e.time_s, speed, *h, e.line});
   }
   std::stable_sort(speeds.begin(), speeds.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
   if (speeds.empty()) {
     // Say why: the samples skipped (e.g. logs that do not overlap in time), or none at all.
-    std::string why;
-    for (const auto& [what, e] : skips.by_reason)
-      if (what.rfind(c.speed_path + ": ", 0) == 0)
-        why += fmt::format("; {} skipped: {} (first line {})", e.first, what.substr(c.speed_path.size() + 2), e.second);
-    why += navj::missing_checksum_hint(files[index.at(c.speed_path)].summary, sname);
+    std::string why = why_none(skips, c.speed_path, nf.at(c.speed_path).summary, sname);
     if (why.empty())
       why = fmt::format("; the file has no {} sentence{}", sname,
                         c.speed_sentence == NavSpeedSentence::Vtg ? " (speed_sentence: vbw reads VBW)"
@@ -659,25 +705,35 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
     throw InputError(fmt::format("no usable {} speed (the nmea: block's speed file){}", sname, why),
                      {c.speed_path, std::nullopt, {}});
   }
-  // GGA positions, sorted; repeated times dropped.
-  struct Pos {
-    double t, lat, lon;
-    int line;
-  };
-  std::vector<Pos> positions;
-  if (!c.positions_path.empty()) {
-    for (const NmeaEvent& e : files[index.at(c.positions_path)].events) {
-      if (e.kind != NmeaEvent::Position || (!e.valid && e.skip_reason.empty())) continue;
-      if (!e.valid) { skips.add(c.positions_path, e.skip_reason, e.line); continue; }
-      positions.push_back({e.time_s, e.a, e.b, e.line});
-    }
-    std::stable_sort(positions.begin(), positions.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
+  return speeds;
+}
+
+/// A GGA position.
+struct GgaPosition {
+  double t, lat, lon;
+  int line;
+};
+
+// GGA positions, sorted by time.
+std::vector<GgaPosition> positions_of(const NavNmeaConfig& c, const NmeaFiles& nf, Skips& skips) {
+  std::vector<GgaPosition> positions;
+  if (c.positions_path.empty()) return positions;
+  for (const NmeaEvent& e : nf.at(c.positions_path).events) {
+    if (e.kind != NmeaEvent::Position || (!e.valid && e.skip_reason.empty())) continue;
+    if (!e.valid) { skips.add(c.positions_path, e.skip_reason, e.line); continue; }
+    positions.push_back({e.time_s, e.a, e.b, e.line});
   }
-  // The time origin: 00:00 UTC of the day of the earliest sample, a speed (the first DR epoch)
-  // or a GGA position before it.
+  std::stable_sort(positions.begin(), positions.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
+  return positions;
+}
+
+// The time origin: 00:00 UTC of the day of the earliest sample, a speed (the first DR epoch)
+// or a GGA position before it; with its note.
+void time_origin(const NavNmeaConfig& c, const std::vector<SpeedSample>& speeds,
+                 const std::vector<GgaPosition>& positions, NavNmeaData& out) {
   const bool gga_first = !positions.empty() && positions.front().t < speeds.front().t;
   const double first = gga_first ? positions.front().t : speeds.front().t;
-  out.origin_unix_s = std::floor(first / navj::kDay_s) * navj::kDay_s;
+  out.origin_unix_s = std::floor(first / kDay_s) * kDay_s;
   out.notes.push_back(
       out.dated ? fmt::format("NMEA times: seconds since {} (00:00 UTC of the day of the earliest sample: {} of {} "
                               "line {}, {})",
@@ -686,21 +742,31 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
                               gga_first ? positions.front().line : speeds.front().line, nmea::iso8601_utc(first))
                 : "NMEA times: seconds of the day of the first sentence (the logs have no date and "
                   "no logger stamps), unwrapped over midnight");
+}
+
+// DR records from the origin, strictly increasing times.
+void dr_records(const NavNmeaConfig& c, const std::vector<SpeedSample>& speeds, Skips& skips, NavNmeaData& out) {
   out.dr.source = c.speed_path;
   out.dr.speed_heading = true;
   for (const SpeedSample& s : speeds) {
     const double t = s.t - out.origin_unix_s;
     if (!out.dr.records.empty() && !(t > out.dr.records.back().time_s)) {
-      skips.add(c.speed_path, fmt::format("{} speed samples not after the previous one", sname), s.line);
+      skips.add(c.speed_path, fmt::format("{} speed samples not after the previous one", speed_sentence_name(c)),
+                s.line);
       continue;
     }
     out.dr.records.push_back({t, s.speed, s.heading});
     out.dr.lines.push_back(s.line);
   }
+}
+
+// GGA fixes, one every fix_interval_s (every one with 0), the others withheld as truth.
+void fix_and_truth_records(const NavNmeaConfig& c, const std::vector<GgaPosition>& positions, Skips& skips,
+                           NavNmeaData& out) {
   out.fixes.source = out.truth.source = c.positions_path;
   double next_fix = -1e300;
   for (std::size_t k = 0; k < positions.size(); ++k) {
-    const Pos& p = positions[k];
+    const GgaPosition& p = positions[k];
     if (k > 0 && p.t == positions[k - 1].t) {
       skips.add(c.positions_path, "GGA repeating the time of the one before", p.line);
       continue;
@@ -717,6 +783,10 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
       out.truth.lines.push_back(p.line);
     }
   }
+}
+
+// The notes of the adapter's choices: fixes and truth, σ of the fixes, VTG, the samples skipped.
+void adapter_notes(const NavNmeaConfig& c, const Skips& skips, NavNmeaData& out) {
   if (!c.positions_path.empty()) {
     if (c.fix_interval_s > 0.0)
       out.notes.push_back(fmt::format("{}: one GGA position every {} s used as a fix ({}), the other {} withheld as "
@@ -732,6 +802,24 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
                         "angle goes into the estimated velocity bias)");
   for (const auto& [what, e] : skips.by_reason)
     out.notes.push_back(fmt::format("{}: {} skipped (first line {})", what, e.first, e.second));
+}
+
+}  // namespace navj
+}  // namespace
+
+NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
+  const navj::NmeaFiles files = navj::read_nmea_files(c);
+  NavNmeaData out;
+  navj::Skips skips;
+  out.dated = navj::check_time_scale(files);
+  navj::file_notes(files, out);
+  const navj::Headings headings = navj::headings_of(c, files, skips);
+  const std::vector<navj::SpeedSample> speeds = navj::speeds_of(c, files, headings, skips);
+  const std::vector<navj::GgaPosition> positions = navj::positions_of(c, files, skips);
+  navj::time_origin(c, speeds, positions, out);
+  navj::dr_records(c, speeds, skips, out);
+  navj::fix_and_truth_records(c, positions, skips, out);
+  navj::adapter_notes(c, skips, out);
   return out;
 }
 
@@ -741,271 +829,41 @@ NavNmeaData read_nav_nmea(const NavNmeaConfig& c) {
 namespace {
 namespace navj {
 
-/// The job's plane: an optional grid.
-struct Plane {
-  std::shared_ptr<const geodesy::TransverseMercatorGrid> grid;
-  geodesy::GridPoint forward(const NavPosition& p, const ErrorContext& where) const {
-    if (!p.geographic) {
-      geodesy::GridPoint g;
-      g.x_north_m = p.x_north_m, g.y_east_m = p.y_east_m;
-      if (grid) {
-        try {
-          const geodesy::GeographicPoint q = grid->reverse(p.x_north_m, p.y_east_m);
-          g.convergence_rad = q.convergence_rad, g.scale = q.scale;
-        } catch (Error& e) {
-          throw InputError(e.message(), where);
-        }
-      }
-      return g;
-    }
-    try {
-      return grid->forward(p.lat_rad, p.lon_rad);
-    } catch (Error& e) {
-      throw InputError(e.message(), where);
-    }
-  }
-};
-
-/// Rotation of a true (north, east) vector into the grid with the scale: k·R(−γ).
-Eigen::Matrix2d to_grid(double gamma, double k) {
-  const double c = std::cos(gamma), s = std::sin(gamma);
-  Eigen::Matrix2d m;
-  m << c, s, -s, c;
-  return k * m;
-}
-
-std::vector<NavSourceLine> source_lines(const std::string& file, const std::vector<int>& lines) {
-  std::vector<NavSourceLine> out;
-  out.reserve(lines.size());
-  for (int l : lines) out.push_back({file, l});
-  return out;
-}
-
-}  // namespace navj
-}  // namespace
-
-NavRun read_nav_job(const NavConfig& c) {
-  NavRun run;
-  std::vector<std::string>& notes = run.notes;
-  // 1. The files, as written.
+/// The files of a job, as written.
+struct JobFiles {
   NavDrFile dr;
   NavStationsFile stations;
   NavLopsFile lops;
   NavFixesFile fixes;
   NavTruthFile truth;
-  bool nmea_job = false;
+  std::vector<std::string> notes, warnings;  ///< of the NMEA adapter
+};
+
+JobFiles read_job_files(const NavConfig& c) {
+  JobFiles f;
   if (c.nmea) {
     NavNmeaData d = read_nav_nmea(*c.nmea);
-    dr = std::move(d.dr);
-    if (!c.nmea->positions_path.empty()) fixes = std::move(d.fixes);
-    if (c.nmea->fix_interval_s > 0.0) truth = std::move(d.truth);
-    notes.insert(notes.end(), d.notes.begin(), d.notes.end());
-    run.warnings.insert(run.warnings.end(), d.warnings.begin(), d.warnings.end());
-    nmea_job = true;
+    f.dr = std::move(d.dr);
+    if (!c.nmea->positions_path.empty()) f.fixes = std::move(d.fixes);
+    if (c.nmea->fix_interval_s > 0.0) f.truth = std::move(d.truth);
+    f.notes = std::move(d.notes);
+    f.warnings = std::move(d.warnings);
   } else {
-    dr = read_nav_dr_file(c.dr_path);
+    f.dr = read_nav_dr_file(c.dr_path);
   }
-  if (!c.stations_path.empty()) stations = read_nav_stations_file(c.stations_path);
-  if (!c.lops_path.empty()) lops = read_nav_lops_file(c.lops_path);
-  if (!c.fixes_path.empty()) fixes = read_nav_fixes_file(c.fixes_path);
-  if (!c.truth_path.empty()) truth = read_nav_truth_file(c.truth_path);
-  if (dr.records.size() < 2)
-    throw InputError(fmt::format("{} DR sample{}: a line needs at least 2", dr.records.size(),
-                                 dr.records.size() == 1 ? "" : "s"),
-                     {dr.source, std::nullopt, {}});
+  if (!c.stations_path.empty()) f.stations = read_nav_stations_file(c.stations_path);
+  if (!c.lops_path.empty()) f.lops = read_nav_lops_file(c.lops_path);
+  if (!c.fixes_path.empty()) f.fixes = read_nav_fixes_file(c.fixes_path);
+  if (!c.truth_path.empty()) f.truth = read_nav_truth_file(c.truth_path);
+  if (f.dr.records.size() < 2)
+    throw InputError(fmt::format("{} DR sample{}: a line needs at least 2", f.dr.records.size(),
+                                 f.dr.records.size() == 1 ? "" : "s"),
+                     {f.dr.source, std::nullopt, {}});
+  return f;
+}
 
-  // 2. The plane: the configuration's projection, else a local transverse Mercator when any
-  // position is geographic; plane and geographic positions together need a projection.
-  const std::string* first_geo_file = nullptr;
-  const std::string* first_plane_file = nullptr;
-  std::optional<double> first_geo_lon;
-  const auto kind = [&](const std::string& file, const NavPosition& p) {
-    if (p.geographic) {
-      if (!first_geo_file) first_geo_file = &file, first_geo_lon = p.lon_rad;
-    } else if (!first_plane_file) {
-      first_plane_file = &file;
-    }
-  };
-  const std::string initial_name = c.file + " (initial:)";
-  if (c.initial) kind(initial_name, *c.initial);
-  for (const auto& p : stations.positions) kind(stations.source, p);
-  for (const auto& f : fixes.records) kind(fixes.source, f.position);
-  for (const auto& t : truth.records) kind(truth.source, t.position);
-  navj::Plane plane;
-  if (c.projection) {
-    plane.grid = std::make_shared<geodesy::TransverseMercatorGrid>(c.projection->definition);
-    notes.push_back("plane: " + geodesy::describe(c.projection->definition));
-  } else if (first_geo_file && first_plane_file) {
-    InputError e(fmt::format("{} gives plane coordinates (x_m, y_m) and {} geographic ones (lat, lon): give a "
-                             "projection: to put both in one plane",
-                             *first_plane_file, *first_geo_file),
-                 {"", std::nullopt, "projection"});
-    locate_error(e, c.file, c.lines);
-    throw e;
-  } else if (first_geo_file) {
-    geodesy::GridDefinition g;
-    g.system = geodesy::ZoneSystem::Custom;
-    g.central_meridian_rad = std::round(*first_geo_lon / navj::kDeg * 10.0) / 10.0 * navj::kDeg;
-    g.scale_factor = 1.0;
-    g.false_easting_m = g.false_northing_m = 0.0;
-    plane.grid = std::make_shared<geodesy::TransverseMercatorGrid>(g);
-    notes.push_back(fmt::format("plane: transverse Mercator on WGS84, central meridian {:.1f}° (the first "
-                                "geographic position's longitude, {}, rounded to 0.1°), scale 1, false easting "
-                                "and northing 0 (default: no projection: in the configuration)",
-                                g.central_meridian_rad / navj::kDeg, *first_geo_file));
-  }
-  if (plane.grid) {
-    run.projection = plane.grid->definition();
-    run.to_geographic = [grid = plane.grid](double x, double y) {
-      const geodesy::GeographicPoint q = grid->reverse(x, y);
-      return std::array<double, 2>{q.lat_rad, q.lon_rad};
-    };
-  }
-  nav::Input& in = run.input;
-  in.options = c.options;
-
-  // 3. Stations, chains, LOPs.
-  std::map<std::string, std::size_t> station_index;
-  for (std::size_t k = 0; k < stations.names.size(); ++k) {
-    const geodesy::GridPoint g =
-        plane.forward(stations.positions[k], {stations.source, stations.lines[k], "lat_deg, lon_deg"});
-    in.stations.push_back({stations.names[k], g.x_north_m, g.y_east_m});
-    station_index[stations.names[k]] = k;
-  }
-  run.station_lines = navj::source_lines(stations.source, stations.lines);
-  std::map<std::string, std::size_t> chain_index;
-  for (std::size_t k = 0; k < c.chains.size(); ++k) {
-    in.chains.push_back(c.chains[k].chain);
-    chain_index[c.chains[k].chain.name] = k;
-  }
-  const auto known = [](const auto& m) {
-    std::string s;
-    for (const auto& [name, i] : m) s += (s.empty() ? "" : ", ") + name;
-    return s.empty() ? std::string("none") : s;
-  };
-  bool time_differences = false;
-  std::set<double> speeds_used;
-  for (std::size_t k = 0; k < lops.records.size(); ++k) {
-    const NavLopsFile::Record& r = lops.records[k];
-    const int line = lops.lines[k];
-    nav::Lop l;
-    l.time_s = r.time_s;
-    l.type = r.kind == NavLopKind::Range ? nav::LopType::Range : nav::LopType::RangeDifference;
-    const auto station = [&](const std::string& name, const char* column) {
-      const auto it = station_index.find(name);
-      if (it == station_index.end())
-        throw InputError(fmt::format("unknown station \"{}\" ({} has {})", name, c.stations_path, known(station_index)),
-                         {lops.source, line, column});
-      return it->second;
-    };
-    l.station = station(r.station, "station");
-    if (r.kind != NavLopKind::Range) l.station2 = station(r.station2, "station2");
-    double speed = kNavLoranPropagationSpeed_m_s;
-    if (!r.chain.empty()) {
-      const auto it = chain_index.find(r.chain);
-      if (it == chain_index.end())
-        throw InputError(fmt::format("chain \"{}\" is not in the configuration's chains: ({})", r.chain,
-                                     known(chain_index)),
-                         {lops.source, line, "chain"});
-      l.chain = it->second;
-      speed = c.chains[it->second].propagation_speed_m_s;
-    }
-    l.value_m = r.value;
-    if (r.kind == NavLopKind::TimeDifference) {
-      l.value_m = speed * r.value * 1e-6;
-      time_differences = true;
-      speeds_used.insert(speed);
-    }
-    l.sigma_m = r.sigma_m;
-    in.lops.push_back(l);
-  }
-  run.lop_lines = navj::source_lines(lops.source, lops.lines);
-  if (time_differences) {
-    std::string list;
-    for (double v : speeds_used) list += (list.empty() ? "" : ", ") + fmt::format("{} m/s", v);
-    notes.push_back(fmt::format("time differences (µs) converted to range differences with the propagation "
-                                "speed {} (LORAN-C default {} m/s; a chain's propagation_speed_m_s overrides it); "
-                                "no additional secondary factor is applied",
-                                list, kNavLoranPropagationSpeed_m_s));
-  }
-
-  // 4. Fixes and truth in the plane: a geographic σ north/east rotated by −γ and scaled by k.
-  for (std::size_t k = 0; k < fixes.records.size(); ++k) {
-    const NavFixesFile::Record& r = fixes.records[k];
-    const ErrorContext where{fixes.source, fixes.lines[k], nmea_job ? "" : "lat_deg, lon_deg"};
-    const geodesy::GridPoint g = plane.forward(r.position, where);
-    nav::Fix f;
-    f.time_s = r.time_s;
-    f.x_north_m = g.x_north_m, f.y_east_m = g.y_east_m;
-    const Eigen::Vector2d var(r.sigma_north_m * r.sigma_north_m, r.sigma_east_m * r.sigma_east_m);
-    if (r.position.geographic) {
-      const Eigen::Matrix2d m = navj::to_grid(g.convergence_rad, g.scale);
-      f.covariance = m * var.asDiagonal() * m.transpose();
-      f.covariance = 0.5 * (f.covariance + f.covariance.transpose()).eval();
-    } else {
-      f.covariance = var.asDiagonal();
-    }
-    in.fixes.push_back(f);
-  }
-  run.fix_lines = navj::source_lines(fixes.source, fixes.lines);
-  {
-    std::vector<std::size_t> order(truth.records.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return truth.records[a].time_s < truth.records[b].time_s;
-    });
-    for (std::size_t k : order) {
-      const NavTruthFile::Record& r = truth.records[k];
-      const geodesy::GridPoint g = plane.forward(r.position, {truth.source, truth.lines[k], ""});
-      in.truth.push_back({r.time_s, g.x_north_m, g.y_east_m});
-      run.truth_lines.push_back({truth.source, truth.lines[k]});
-    }
-  }
-
-  // 5. The initial position: the configuration's, else the first fix near the first DR epoch.
-  const double t0 = dr.records.front().time_s;
-  if (c.initial) {
-    const auto it = c.lines.find("initial");
-    const geodesy::GridPoint g =
-        plane.forward(*c.initial, {c.file, it == c.lines.end() ? std::optional<int>() : it->second, "initial"});
-    in.initial.x_north_m = g.x_north_m, in.initial.y_east_m = g.y_east_m;
-    if (c.initial_sigma_m) {
-      in.initial.sigma_m = *c.initial_sigma_m;
-    } else {
-      notes.push_back(fmt::format("initial position: sigma {} m per coordinate (default; set initial.sigma_m)",
-                                  in.initial.sigma_m));
-    }
-  } else {
-    std::optional<std::size_t> best;
-    for (std::size_t k = 0; k < in.fixes.size(); ++k)
-      if (std::abs(in.fixes[k].time_s - t0) <= kNavInitialFixWindow_s &&
-          (!best || std::abs(in.fixes[k].time_s - t0) < std::abs(in.fixes[*best].time_s - t0)))
-        best = k;
-    if (!best) {
-      InputError e(fmt::format("no fix within {} s of the first DR epoch (t = {} s, {} line {}): give initial: "
-                               "{{x_m, y_m, sigma_m}} or {{lat, lon, sigma_m}}",
-                               kNavInitialFixWindow_s, t0, dr.source, dr.lines.front()),
-                   {c.file, std::nullopt, "initial"});
-      throw e;
-    }
-    const nav::Fix& f = in.fixes[*best];
-    // nav::process moves it by the DR to the first epoch; here it only starts the walk of the
-    // grid convergence along the DR below.
-    in.initial_fix = *best;
-    in.initial.x_north_m = f.x_north_m, in.initial.y_east_m = f.y_east_m;
-    run.initial_line = NavSourceLine{fixes.source, fixes.lines[*best]};
-    notes.push_back(fmt::format("initial position: the fix of {} line {} (t = {:.3f} s, sigma {:.3g} m) moved by the "
-                                "dead reckoning to the first DR epoch (t = {:.3f} s), its covariance grown by the DR's "
-                                "over those {:.3f} s; that fix is not used again as an observation (default: no "
-                                "initial: in the configuration)",
-                                fixes.source, fixes.lines[*best], f.time_s,
-                                std::sqrt(std::max(f.covariance(0, 0), f.covariance(1, 1))), t0,
-                                std::abs(f.time_s - t0)));
-  }
-
-  // 6. Dead reckoning in the plane: with a projection, true headings and velocities turned by −γ
-  // and scaled by k at the dead-reckoned position.
-  // A σ key of the other DR kind would be silently ignored: an error, like an unknown key.
+// A σ key of the other DR kind would be silently ignored: an error, like an unknown key.
+void check_dr_sigmas(const NavConfig& c, const NavDrFile& dr) {
   const auto not_for_this_dr = [&](const char* key, const std::string& what) {
     const auto it = c.lines.find(key);
     throw InputError(fmt::format("{} does not apply here: {}", key, what),
@@ -1015,224 +873,165 @@ NavRun read_nav_job(const NavConfig& c) {
     not_for_this_dr("sigma_velocity_m_s",
                     fmt::format("{} gives speed and heading{} (set sigma_speed_m_s and sigma_heading_deg); "
                                 "sigma_velocity_m_s is for a DR file of v_north_m_s, v_east_m_s",
-                                dr.source, nmea_job ? " (NMEA VTG/VBW with HDT)" : ""));
+                                dr.source, c.nmea ? " (NMEA VTG/VBW with HDT)" : ""));
   if (!dr.speed_heading && (c.sigma_speed_m_s || c.sigma_heading_rad))
     not_for_this_dr(c.sigma_speed_m_s ? "sigma_speed_m_s" : "sigma_heading_deg",
                     fmt::format("{} gives velocity components v_north_m_s, v_east_m_s (set sigma_velocity_m_s); "
                                 "sigma_speed_m_s and sigma_heading_deg are for a DR file of speed_m_s, "
                                 "heading_deg",
                                 dr.source));
-  const double sigma_v = c.sigma_speed_m_s.value_or(kNavDefaultSigmaSpeed_m_s);
-  const double sigma_h = c.sigma_heading_rad.value_or(kNavDefaultSigmaHeading_deg * navj::kDeg);
-  const double sigma_c = c.sigma_velocity_m_s.value_or(kNavDefaultSigmaSpeed_m_s);
-  if (dr.speed_heading) {
-    if (!c.sigma_speed_m_s)
-      notes.push_back(fmt::format("DR speed sigma {} m/s (default; set sigma_speed_m_s)", sigma_v));
-    if (!c.sigma_heading_rad)
-      notes.push_back(fmt::format("DR heading sigma {}° (default; set sigma_heading_deg)", kNavDefaultSigmaHeading_deg));
-  } else if (!c.sigma_velocity_m_s) {
-    notes.push_back(fmt::format("DR velocity sigma {} m/s per component (default; set sigma_velocity_m_s)", sigma_c));
-  }
-  if (plane.grid)
-    notes.push_back("DR: true headings and velocities turned into the grid (T = alpha - gamma, speed times the point "
-                    "scale k) along the dead-reckoned track");
-  double x = in.initial.x_north_m, y = in.initial.y_east_m;
-  std::vector<std::array<double, 3>> dr_track;  // t, x, y dead-reckoned (for the LOPs below)
-  dr_track.reserve(dr.records.size());
-  for (std::size_t k = 0; k < dr.records.size(); ++k) {
-    const NavDrFile::Record& r = dr.records[k];
-    const ErrorContext where{dr.source, dr.lines[k], nmea_job ? "" : (dr.speed_heading ? "heading_deg" : "v_north_m_s")};
-    double gamma = 0.0, scale = 1.0;
-    if (plane.grid) {
-      try {
-        const geodesy::GeographicPoint q = plane.grid->reverse(x, y);
-        gamma = q.convergence_rad, scale = q.scale;
-      } catch (Error& e) {
-        throw InputError(fmt::format("the dead-reckoned position ({:.1f}, {:.1f}) m leaves the projection: {}", x, y,
-                                     e.message()),
-                         where);
-      }
-    }
-    nav::DrSample s;
-    try {
-      if (dr.speed_heading) {
-        s = nav::dr_from_speed_heading(r.time_s, r.a * scale, r.b - gamma, sigma_v * scale, sigma_h);
-      } else {
-        s.time_s = r.time_s;
-        const Eigen::Vector2d v = navj::to_grid(gamma, scale) * Eigen::Vector2d(r.a, r.b);
-        s.v_north_m_s = v.x(), s.v_east_m_s = v.y();
-        s.covariance = Eigen::Matrix2d::Identity() * (sigma_c * sigma_c * scale * scale);
-      }
-    } catch (Error& e) {
-      throw InputError(e.message(), where);
-    }
-    if (k > 0) {
-      const double dt = r.time_s - dr.records[k - 1].time_s;
-      x += dt * s.v_north_m_s, y += dt * s.v_east_m_s;
-    }
-    in.dr.push_back(s);
-    dr_track.push_back({r.time_s, x, y});
-  }
-  run.dr_lines = navj::source_lines(dr.source, dr.lines);
+}
 
-  // 7. With a projection, LOPs measured on the ground become grid lengths: each distance d of
-  // the ship to a station times the line scale factor k_line = (k_ship + 4·k_mid + k_station)/6
-  // (Simpson's rule along the chord), the ship at its dead-reckoned position at the LOP's time.
-  if (plane.grid && !in.lops.empty()) {
-    const auto ship_at = [&](double t) {
-      const auto it = std::lower_bound(dr_track.begin(), dr_track.end(), t,
-                                       [](const std::array<double, 3>& p, double tt) { return p[0] < tt; });
-      if (it == dr_track.begin()) return std::array<double, 2>{(*it)[1], (*it)[2]};
-      if (it == dr_track.end()) return std::array<double, 2>{dr_track.back()[1], dr_track.back()[2]};
-      const auto& a = *std::prev(it);
-      const auto& b = *it;
-      const double w = (t - a[0]) / (b[0] - a[0]);
-      return std::array<double, 2>{a[1] + w * (b[1] - a[1]), a[2] + w * (b[2] - a[2])};
+std::string known_names(const std::map<std::string, std::size_t>& m) {
+  std::string s;
+  for (const auto& [name, i] : m) s += (s.empty() ? "" : ", ") + name;
+  return s.empty() ? std::string("none") : s;
+}
+
+// LOPs with their station and chain names resolved to indices.
+std::vector<nav::LopRecord> resolve_lops(const NavConfig& c, const NavStationsFile& stations, const NavLopsFile& lops) {
+  std::map<std::string, std::size_t> station_index, chain_index;
+  for (std::size_t k = 0; k < stations.names.size(); ++k) station_index[stations.names[k]] = k;
+  for (std::size_t k = 0; k < c.chains.size(); ++k) chain_index[c.chains[k].chain.name] = k;
+  std::vector<nav::LopRecord> out;
+  for (std::size_t k = 0; k < lops.records.size(); ++k) {
+    const NavLopsFile::Record& r = lops.records[k];
+    const int line = lops.lines[k];
+    const auto station = [&](const std::string& name, const char* column) {
+      const auto it = station_index.find(name);
+      if (it == station_index.end())
+        throw InputError(
+            fmt::format("unknown station \"{}\" ({} has {})", name, c.stations_path, known_names(station_index)),
+            {lops.source, line, column});
+      return it->second;
     };
-    const auto scale_at = [&](double px, double py) { return plane.grid->reverse(px, py).scale; };
-    double max_ppm = 0.0;
-    for (std::size_t k = 0; k < in.lops.size(); ++k) {
-      nav::Lop& l = in.lops[k];
-      const auto p = ship_at(l.time_s);
-      // (k_line − 1)·d for one station: the grid length minus the ground length.
-      const auto excess = [&](std::size_t si) {
-        const nav::Station& st = in.stations[si];
-        const double kl = (scale_at(p[0], p[1]) + 4.0 * scale_at(0.5 * (p[0] + st.x_north_m), 0.5 * (p[1] + st.y_east_m)) +
-                           scale_at(st.x_north_m, st.y_east_m)) / 6.0;
-        max_ppm = std::max(max_ppm, std::abs(kl - 1.0) * 1e6);
-        return std::pair{kl, (kl - 1.0) * std::hypot(p[0] - st.x_north_m, p[1] - st.y_east_m) / kl};
-      };
-      try {
-        if (l.type == nav::LopType::Range) {
-          const auto [kl, e] = excess(l.station);
-          (void)e;
-          l.value_m *= kl;
-          l.sigma_m *= kl;
-        } else {
-          const auto [k1, e1] = excess(l.station);
-          const auto [k2, e2] = excess(l.station2);
-          l.value_m += e1 - e2;
-          l.sigma_m *= 0.5 * (k1 + k2);
-        }
-      } catch (Error& e) {
-        throw InputError("the dead-reckoned position at this LOP leaves the projection: " + e.message(),
-                         {lops.source, lops.lines[k], {}});
-      }
+    nav::LopRecord l;
+    l.time_s = r.time_s;
+    l.kind = r.kind;
+    l.station = station(r.station, "station");
+    if (r.kind != NavLopKind::Range) l.station2 = station(r.station2, "station2");
+    if (!r.chain.empty()) {
+      const auto it = chain_index.find(r.chain);
+      if (it == chain_index.end())
+        throw InputError(
+            fmt::format("chain \"{}\" is not in the configuration's chains: ({})", r.chain, known_names(chain_index)),
+            {lops.source, line, "chain"});
+      l.chain = it->second;
     }
-    notes.push_back(fmt::format("LOPs reduced from ground to grid lengths with the line scale factor (Simpson's rule "
-                                "over k at the ship's dead-reckoned position, the midpoint and the station; up to "
-                                "{:.1f} ppm here)",
-                                max_ppm));
+    (r.kind == NavLopKind::TimeDifference ? l.time_difference_us : l.value_m) = r.value;
+    l.sigma_m = r.sigma_m;
+    l.source = {lops.source, line};
+    out.push_back(l);
   }
-  return run;
+  return out;
 }
 
-namespace {
-namespace navj {
-
-/// "lops[12].value_m" → {"lops", 12, "value_m"}; "epoch 5" → {"dr", 5, ""}.
-struct FieldRef {
-  std::string array;
-  std::size_t index = 0;
-  std::string member;
-};
-
-std::optional<FieldRef> parse_field(const std::string& f) {
-  FieldRef r;
-  std::size_t i = 0;
-  if (f.rfind("epoch ", 0) == 0) {
-    r.array = "dr";
-    i = 6;
-  } else {
-    const auto b = f.find('[');
-    if (b == std::string::npos || b == 0) return std::nullopt;
-    r.array = f.substr(0, b);
-    i = b + 1;
+// The records of the files as the line's observations (truth in time order).
+void observations(const JobFiles& f, nav::SurveyLine& line) {
+  line.dr_kind = f.dr.speed_heading ? nav::DrKind::SpeedHeading : nav::DrKind::Velocity;
+  for (std::size_t k = 0; k < f.dr.records.size(); ++k) {
+    const NavDrFile::Record& r = f.dr.records[k];
+    nav::DrRecord d;
+    d.time_s = r.time_s;
+    (f.dr.speed_heading ? d.speed_m_s : d.v_north_m_s) = r.a;
+    (f.dr.speed_heading ? d.heading_rad : d.v_east_m_s) = r.b;
+    d.source = {f.dr.source, f.dr.lines[k]};
+    line.dr.push_back(d);
   }
-  std::string digits;
-  while (i < f.size() && f[i] >= '0' && f[i] <= '9') digits += f[i++];
-  if (digits.empty() || digits.size() > 18) return std::nullopt;
-  r.index = static_cast<std::size_t>(std::stoull(digits));
-  if (i < f.size() && f[i] == ']') ++i;
-  if (i < f.size() && f[i] == '.') r.member = f.substr(i + 1);
-  return r;
+  for (std::size_t k = 0; k < f.stations.names.size(); ++k)
+    line.stations.push_back({f.stations.names[k], f.stations.positions[k], {f.stations.source, f.stations.lines[k]}});
+  for (std::size_t k = 0; k < f.fixes.records.size(); ++k) {
+    const NavFixesFile::Record& r = f.fixes.records[k];
+    line.fixes.push_back({r.time_s, r.position, r.sigma_north_m, r.sigma_east_m, {f.fixes.source, f.fixes.lines[k]}});
+  }
+  std::vector<std::size_t> order(f.truth.records.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return f.truth.records[a].time_s < f.truth.records[b].time_s;
+  });
+  for (std::size_t k : order)
+    line.truth.push_back({f.truth.records[k].time_s, f.truth.records[k].position, {f.truth.source, f.truth.lines[k]}});
 }
 
-[[noreturn]] void rethrow_with(const Error& e, ErrorContext c) {
-  const std::string msg = e.message();
-  if (dynamic_cast<const ParseError*>(&e)) throw ParseError(msg, c);
-  if (dynamic_cast<const InputError*>(&e)) throw InputError(msg, c);
-  if (dynamic_cast<const NumericalError*>(&e)) throw NumericalError(msg, c);
-  if (dynamic_cast<const IoError*>(&e)) throw IoError(msg, c);
-  throw Error(msg, c);
+// The CSV column of a field's member as the user wrote it (none for NMEA logs, whose lines are
+// sentences).
+SourceMap::ColumnOf column_of(const std::string& array, const NavConfig& c, bool velocity_dr) {
+  const bool nmea = c.nmea.has_value() && (array == "dr" || array == "fixes" || array == "truth");
+  return [array, nmea, velocity_dr](const std::string& member) -> std::string {
+    if (nmea) return {};
+    if (member == "value_m") return "value";
+    if (member == "x_north_m") return "x_m";
+    if (member == "y_east_m") return "y_m";
+    if (member == "heading_rad") return "heading_deg";
+    if (member == "covariance") return array == "fixes" ? "sigma_m" : "";
+    if (member == "position") return array == "truth" ? "" : "lat_deg, lon_deg";
+    if (member == "v_north_m_s" || member == "v_east_m_s") return velocity_dr ? member : "";
+    return member;
+  };
 }
 
-/// The CSV column of an Input member as the user wrote it.
-std::string column_of(const std::string& array, const std::string& member, bool nmea) {
-  if (nmea && (array == "dr" || array == "fixes" || array == "truth")) return {};
-  if (member == "value_m") return "value";
-  if (member == "x_north_m") return "x_m";
-  if (member == "y_east_m") return "y_m";
-  if (member == "covariance") return array == "fixes" ? "sigma_m" : "";
-  if (member == "v_north_m_s" || member == "v_east_m_s") return "";
-  return member;
+template <class Record>
+std::vector<SourceRow> rows_of(const std::vector<Record>& records) {
+  std::vector<SourceRow> rows;
+  rows.reserve(records.size());
+  for (const Record& r : records) rows.push_back({r.source.file, r.source.line});
+  return rows;
+}
+
+// Where each field of the line was read: its rows, and the configuration's keys.
+SourceMap sources_of(const nav::SurveyLine& line, const NavConfig& c) {
+  const bool velocity = line.dr_kind == nav::DrKind::Velocity;
+  SourceMap m;
+  m.add_document(c.file, c.lines);
+  m.add_document("options", c.file, c.lines);
+  m.add_rows("dr", rows_of(line.dr), column_of("dr", c, velocity));
+  m.add_rows("epoch", rows_of(line.dr), [](const std::string&) { return std::string(); });
+  m.add_rows("stations", rows_of(line.stations), column_of("stations", c, velocity));
+  m.add_rows("lops", rows_of(line.lops), column_of("lops", c, velocity));
+  m.add_rows("fixes", rows_of(line.fixes), column_of("fixes", c, velocity));
+  m.add_rows("truth", rows_of(line.truth), column_of("truth", c, velocity));
+  return m;
 }
 
 }  // namespace navj
 }  // namespace
 
-void throw_located_nav_error(const Error& e, const NavRun& run, const NavConfig& config) {
-  const std::string& f = e.context().field;
-  // An error that names a file already, or no field (nothing to locate), goes on as it is.
-  if (!e.context().file.empty() || f.empty()) navj::rethrow_with(e, e.context());
-  if (const auto ref = navj::parse_field(f)) {
-    const std::vector<NavSourceLine>* table = nullptr;
-    if (ref->array == "dr") table = &run.dr_lines;
-    if (ref->array == "lops") table = &run.lop_lines;
-    if (ref->array == "fixes") table = &run.fix_lines;
-    if (ref->array == "stations") table = &run.station_lines;
-    if (ref->array == "truth") table = &run.truth_lines;
-    if (table && ref->index < table->size()) {
-      const NavSourceLine& s = (*table)[ref->index];
-      navj::rethrow_with(e, {s.file, s.line, navj::column_of(ref->array, ref->member, config.nmea.has_value())});
-    }
-  }
-  if (f.rfind("initial", 0) == 0 && run.initial_line)
-    navj::rethrow_with(e, {run.initial_line->file, run.initial_line->line, {}});
-  // options.<name> is the configuration's key <name>.
-  if (f.rfind("options.", 0) == 0) {
-    const std::string key = f.substr(8);
-    const auto it = config.lines.find(key);
-    navj::rethrow_with(e, {config.file, it == config.lines.end() ? std::optional<int>() : it->second, key});
-  }
-  std::optional<int> line;
-  std::size_t best = 0;
-  for (const auto& [path, l] : config.lines) {
-    const bool prefix = f.compare(0, path.size(), path) == 0 &&
-                        (f.size() == path.size() || f[path.size()] == '.' || f[path.size()] == '[');
-    if (prefix && path.size() >= best) best = path.size(), line = l;
-  }
-  navj::rethrow_with(e, {config.file, line, f});
+std::vector<std::string> nav_input_files(const NavConfig& c) {
+  std::vector<std::string> files = {c.file};
+  for (const std::string& f : {c.dr_path, c.stations_path, c.lops_path, c.fixes_path, c.truth_path})
+    if (!f.empty()) files.push_back(f);
+  if (c.nmea)
+    for (const std::string& f : {c.nmea->heading_path, c.nmea->speed_path, c.nmea->positions_path})
+      if (!f.empty()) files.push_back(f);
+  return files;
+}
+
+NavJob read_nav_job(const NavConfig& c) {
+  navj::JobFiles files = navj::read_job_files(c);
+  navj::check_dr_sigmas(c, files.dr);
+  NavJob job;
+  nav::SurveyLine& line = job.line;
+  navj::observations(files, line);
+  line.lops = navj::resolve_lops(c, files.stations, files.lops);
+  line.chains = c.chains;
+  if (c.projection) line.projection = c.projection->definition;
+  line.initial = c.initial;
+  line.initial_sigma_m = c.initial_sigma_m;
+  line.initial_source = {c.file, 0};
+  line.sigma_speed_m_s = c.sigma_speed_m_s;
+  line.sigma_heading_rad = c.sigma_heading_rad;
+  line.sigma_velocity_m_s = c.sigma_velocity_m_s;
+  line.options = c.options;
+  line.notes = std::move(files.notes);
+  line.warnings = std::move(files.warnings);
+  job.sources = navj::sources_of(line, c);
+  return job;
 }
 
 NavRun run_nav(const NavConfig& config, Progress* progress) {
-  NavRun run = read_nav_job(config);
-  try {
-    run.result = nav::process(run.input, progress);
-  } catch (Error& e) {
-    if (progress) progress->finish();
-    throw_located_nav_error(e, run, config);
-  }
-  // Name the rejected and skipped observations by their file and line ("lops.csv:14").
-  const auto source = [&](nav::RejectedObservation::Kind kind, std::size_t index) {
-    const std::vector<NavSourceLine>& t = kind == nav::RejectedObservation::Kind::Lop ? run.lop_lines : run.fix_lines;
-    if (index >= t.size()) return std::string();
-    return fmt::format("{}:{}", std::filesystem::path(t[index].file).filename().string(), t[index].line);
-  };
-  for (nav::RejectedObservation& o : run.result.rejected) o.source = source(o.kind, o.index);
-  for (nav::SkippedObservation& o : run.result.skipped) o.source = source(o.kind, o.index);
-  run.result.notes.insert(run.result.notes.end(), run.notes.begin(), run.notes.end());
-  run.result.warnings.insert(run.result.warnings.end(), run.warnings.begin(), run.warnings.end());
+  NavRun run;
+  run.job = read_nav_job(config);
+  run.result = located(run.job.sources, [&] { return nav::process(run.job.line, progress); });
   return run;
 }
 

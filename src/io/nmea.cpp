@@ -281,6 +281,12 @@ class Inspector {
     } else {
       st.has_checksum = false;  // counted once it is accepted: a malformed one is only malformed
     }
+    decode_sentence(n, text, st, content);
+  }
+
+  // A framed sentence whose checksum passed (or is absent and accepted): its address, fields,
+  // duplicates, date and time; delivered to the callback unless malformed or a duplicate.
+  void decode_sentence(int n, const std::string& text, Sentence& st, std::string_view content) {
     const Fields f = nmea_split(content);
     const std::string_view address = f[0];
     if (!address.empty() && address[0] == 'P') return void(++s_.proprietary);
@@ -396,34 +402,6 @@ class Inspector {
 
 }  // namespace
 
-std::int64_t days_from_civil(int year, int month, int day) {
-  const std::int64_t y = year - (month <= 2 ? 1 : 0);
-  const std::int64_t era = (y >= 0 ? y : y - 399) / 400;
-  const std::int64_t yoe = y - era * 400;
-  const std::int64_t doy = (153 * (month + (month > 2 ? -3 : 9)) + 2) / 5 + day - 1;
-  const std::int64_t doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-  return era * 146097 + doe - 719468;
-}
-
-std::string iso8601_utc(double unix_s) {
-  const auto ms_total = static_cast<std::int64_t>(std::llround(unix_s * 1000.0));
-  std::int64_t days = ms_total / 86400000;
-  std::int64_t ms = ms_total % 86400000;
-  if (ms < 0) ms += 86400000, --days;
-  // civil_from_days (H. Hinnant)
-  const std::int64_t z = days + 719468;
-  const std::int64_t era = (z >= 0 ? z : z - 146096) / 146097;
-  const std::int64_t doe = z - era * 146097;
-  const std::int64_t yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-  const std::int64_t doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-  const std::int64_t mp = (5 * doy + 2) / 153;
-  const std::int64_t d = doy - (153 * mp + 2) / 5 + 1;
-  const std::int64_t m = mp < 10 ? mp + 3 : mp - 9;
-  const std::int64_t y = yoe + era * 400 + (m <= 2 ? 1 : 0);
-  return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}.{:03}Z", y, m, d, ms / 3600000, ms / 60000 % 60,
-                     ms / 1000 % 60, ms % 1000);
-}
-
 Summary read(std::istream& in, const std::string& source, const Options& options,
              const std::function<void(const Sentence&)>& on_sentence) {
   Inspector inspector(source, options, on_sentence);
@@ -444,6 +422,14 @@ Summary read_file(const std::string& path, const Options& options,
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open the file", {path, std::nullopt, ""});
   return read(in, path, options, on_sentence);
+}
+
+std::vector<Summary> inspect_files(const std::vector<std::string>& paths, bool accept_missing_checksum) {
+  Options o;
+  o.accept_missing_checksum = accept_missing_checksum;
+  std::vector<Summary> summaries;
+  for (const std::string& p : paths) summaries.push_back(read_file(p, o));
+  return summaries;
 }
 
 }  // namespace meridian::io::nmea

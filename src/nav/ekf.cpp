@@ -31,37 +31,62 @@ filter::DiscreteModel<4> bias_model(const Options& o, double dt) {
   return filter::discretise(m, dt);
 }
 
+// The EKF's prior: x₀ = x_fix − D − (t_fix − t₀)·W for an initial fix (initial_dt_s = 0
+// otherwise): the bias's prior enters the position's and their cross-covariance; the chain
+// parameters at 0 with their prior σ.
+template <int N>
+filter::Estimate<N> ekf_prior(const Prepared& p, int size) {
+  const Options& o = p.input->options;
+  filter::Estimate<N> init;
+  init.x = filter::Vector<N>::Zero(size);
+  init.x.template head<2>() = p.initial_x;
+  init.P = filter::Matrix<N, N>::Zero(size, size);
+  const double wb = o.bias_sigma_m_s * o.bias_sigma_m_s;
+  const double dt0 = p.initial_dt_s;
+  init.P.template topLeftCorner<2, 2>() = p.initial_cov + dt0 * dt0 * wb * Eigen::Matrix2d::Identity();
+  init.P(0, 2) = init.P(2, 0) = init.P(1, 3) = init.P(3, 1) = -dt0 * wb;
+  init.P(2, 2) = init.P(3, 3) = wb;
+  if constexpr (N == Eigen::Dynamic)
+    for (int i = 0; i < p.n_params; ++i)
+      init.P(4 + i, 4 + i) =
+          p.param_prior_sigma[static_cast<std::size_t>(i)] * p.param_prior_sigma[static_cast<std::size_t>(i)];
+  return init;
+}
+
+// The RTS smoother over the EKF's records: its track (with the EKF's flags) and, at the first
+// epoch, the chain parameters (over the whole line).
+template <int N>
+MethodResult smooth(const Prepared& p, filter::SmootherStorage<N>& storage, const MethodResult& ekf,
+                    const Layout& layout, Progress* progress) {
+  const std::size_t n = p.epochs;
+  MethodResult rts;
+  rts.method = Method::Rts;
+  rts.track.resize(n);
+  std::size_t done = 0;
+  filter::rts_smooth(storage, [&](Eigen::Index k, const filter::Estimate<N>& s) {
+    const auto i = static_cast<std::size_t>(k);
+    rts.track[i] = track_point<N>(p.t[i], s, layout);
+    rts.track[i].flags = ekf.track[i].flags;
+    if (i == 0) rts.parameters = chain_parameters<N>(p, s, 4);
+    if (progress && (++done % 4096 == 0)) progress->update(n + done, 2 * n, "smoother");
+  });
+  return rts;
+}
+
 }  // namespace
 
 template <int N>
 std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
                                       std::vector<RejectedObservation>& rejected,
                                       Progress* progress) {
-  const Input& in = *p.input;
-  const Options& o = in.options;
+  const Options& o = p.input->options;
   const std::size_t n = p.epochs;
   Layout layout;
   layout.bias = 2;
   layout.params = 4;
   layout.size = 4 + p.n_params;
   const int size = layout.size;
-  filter::Estimate<N> init;
-  init.x = filter::Vector<N>::Zero(size);
-  init.x.template head<2>() = p.initial_x;
-  init.P = filter::Matrix<N, N>::Zero(size, size);
-  // x₀ = x_fix − D − (t_fix − t₀)·W for an initial fix (initial_dt_s = 0 otherwise): the
-  // bias's prior enters the position's and their cross-covariance.
-  const double wb = o.bias_sigma_m_s * o.bias_sigma_m_s;
-  const double dt0 = p.initial_dt_s;
-  init.P.template topLeftCorner<2, 2>() =
-      p.initial_cov + dt0 * dt0 * wb * Eigen::Matrix2d::Identity();
-  init.P(0, 2) = init.P(2, 0) = init.P(1, 3) = init.P(3, 1) = -dt0 * wb;
-  init.P(2, 2) = init.P(3, 3) = wb;
-  if constexpr (N == Eigen::Dynamic)
-  for (int i = 0; i < p.n_params; ++i)
-    init.P(4 + i, 4 + i) = p.param_prior_sigma[static_cast<std::size_t>(i)] *
-                           p.param_prior_sigma[static_cast<std::size_t>(i)];
-  filter::KalmanFilter<N> kf(init);
+  filter::KalmanFilter<N> kf(ekf_prior<N>(p, size));
   filter::SmootherStorage<N> storage(size, o.storage);
 
   MethodResult ekf;
@@ -95,28 +120,8 @@ std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
     ekf.track.push_back(tp);
     if (progress && (k % 4096 == 0)) progress->update(k, 2 * n, "filter");
   }
-  if constexpr (N == Eigen::Dynamic)
-  for (int i = 0; i < p.n_params; ++i) {
-    const auto c = static_cast<std::size_t>(i);
-    ekf.parameters.push_back({p.param_chain[c], p.input->chains[p.param_chain[c]].name, p.param_names[c], kf.estimate().x(4 + i),
-                              kf.estimate().sigma(4 + i)});
-  }
-  MethodResult rts;
-  rts.method = Method::Rts;
-  rts.track.resize(n);
-  std::size_t done = 0;
-  filter::rts_smooth(storage, [&](Eigen::Index k, const filter::Estimate<N>& s) {
-    const auto i = static_cast<std::size_t>(k);
-    rts.track[i] = track_point<N>(p.t[i], s, layout);
-    rts.track[i].flags = ekf.track[i].flags;
-    if constexpr (N == Eigen::Dynamic)
-    if (i == 0)
-      for (int j = 0; j < p.n_params; ++j) {
-        const auto c = static_cast<std::size_t>(j);
-        rts.parameters.push_back({p.param_chain[c], p.input->chains[p.param_chain[c]].name, p.param_names[c], s.x(4 + j), s.sigma(4 + j)});
-      }
-    if (progress && (++done % 4096 == 0)) progress->update(n + done, 2 * n, "smoother");
-  });
+  ekf.parameters = chain_parameters<N>(p, kf.estimate(), 4);
+  MethodResult rts = smooth<N>(p, storage, ekf, layout, progress);
   std::vector<MethodResult> out;
   out.push_back(std::move(ekf));
   out.push_back(std::move(rts));

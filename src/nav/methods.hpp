@@ -69,6 +69,20 @@ TrackPoint track_point(double time_s, const filter::Estimate<N>& e, const Layout
   return t;
 }
 
+/// The chain parameters of an estimate whose parameters start at state `first` (none for a
+/// fixed-size state, which holds none).
+template <int N>
+std::vector<ChainParameter> chain_parameters(const Prepared& p, const filter::Estimate<N>& e, int first) {
+  std::vector<ChainParameter> out;
+  if constexpr (N == Eigen::Dynamic)
+    for (int i = 0; i < p.n_params; ++i) {
+      const auto c = static_cast<std::size_t>(i);
+      out.push_back({p.param_chain[c], p.input->chains[p.param_chain[c]].name, p.param_names[c], e.x(first + i),
+                     e.sigma(first + i)});
+    }
+  return out;
+}
+
 /// The Jacobian row of a LOP evaluation in a state of `layout` (with the EKF's bias term:
 /// the reduction moves the ship by W·dt, so ∂L/∂W = ∂L/∂p·dt).
 template <int N>
@@ -85,90 +99,98 @@ filter::Matrix<1, N> lop_row(const LopEvaluation& ev, const Layout& layout, doub
   return h;
 }
 
-/// The observations of epoch k tested against the filter's current (predicted) state and the
-/// accepted ones applied; returns TrackFlag bits. `bias` is the velocity bias used to reduce
-/// the observations of the sequential methods (the EKF's comes from its state, layout.bias).
+/// The ship's position at an observation's time: the state's position moved by the reduction
+/// (the DR move and the bias: the EKF's from its state, layout.bias, else `bias`).
 template <int N>
-unsigned update_epoch(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& kf,
-                      const Layout& layout, const Eigen::Vector2d& bias, Method method,
-                      const Screening& sc, std::vector<RejectedObservation>& rejected,
-                      ForwardRun<N>* record) {
-  unsigned flags = 0;
-  const Input& in = *p.input;
-  const bool ekf = layout.bias >= 0;
-  const auto reduced_position = [&](const Reduced& r, const filter::Vector<N>& x) {
-    const Eigen::Vector2d w = ekf ? Eigen::Vector2d(x(layout.bias), x(layout.bias + 1)) : bias;
-    return Eigen::Vector2d(x.template head<2>() + r.delta + r.dt_s * w);
-  };
-  // LOPs: all tested against the predicted state, the accepted ones solved together (the
-  // normal equations of the epoch, spec §4).
+Eigen::Vector2d reduced_position(const Reduced& r, const filter::Vector<N>& x, const Layout& layout,
+                                 const Eigen::Vector2d& bias) {
+  const Eigen::Vector2d w = layout.bias >= 0 ? Eigen::Vector2d(x(layout.bias), x(layout.bias + 1)) : bias;
+  return Eigen::Vector2d(x.template head<2>() + r.delta + r.dt_s * w);
+}
+
+/// The LOPs of epoch k, all tested against the predicted state, the accepted ones solved
+/// together (the normal equations of the epoch, spec §4); returns TrackFlag bits.
+template <int N>
+unsigned update_lops(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& kf, const Layout& layout,
+                     const Eigen::Vector2d& bias, Method method, const Screening& sc,
+                     std::vector<RejectedObservation>& rejected, ForwardRun<N>* record) {
   const std::size_t b = p.lop_begin[k];
   const std::size_t e = p.lop_begin[k + 1];
-  if (e > b) {
-    const filter::Estimate<N>& pred = kf.estimate();
-    const auto count = static_cast<Eigen::Index>(e - b);
-    filter::Matrix<Eigen::Dynamic, N> H(count, layout.size);
-    Eigen::VectorXd nu(count);
-    Eigen::VectorXd r(count);
-    Eigen::Index m = 0;
-    for (std::size_t j = b; j < e; ++j) {
-      const Reduced& red = p.lops[j];
-      const Lop& lop = in.lops[red.index];
-      const LopEvaluation ev = evaluate_lop(p, lop, reduced_position(red, pred.x), pred.x, layout);
-      RejectedObservation rej;
-      rej.kind = RejectedObservation::Kind::Lop;
-      rej.index = red.index;
-      rej.method = method;
-      rej.time_s = lop.time_s;
-      if (!ev.ok) {
-        rej.misclosure_m = lop.value_m - ev.computed_m;
-        rej.reason = fmt::format("the ship is within {:g} m of a station", kMinStationDistance_m);
+  if (e == b) return 0;
+  unsigned flags = 0;
+  const bool ekf = layout.bias >= 0;
+  const filter::Estimate<N>& pred = kf.estimate();
+  const auto count = static_cast<Eigen::Index>(e - b);
+  filter::Matrix<Eigen::Dynamic, N> H(count, layout.size);
+  Eigen::VectorXd nu(count);
+  Eigen::VectorXd r(count);
+  Eigen::Index m = 0;
+  for (std::size_t j = b; j < e; ++j) {
+    const Reduced& red = p.lops[j];
+    const Lop& lop = p.input->lops[red.index];
+    const LopEvaluation ev = evaluate_lop(p, lop, reduced_position<N>(red, pred.x, layout, bias), pred.x, layout);
+    RejectedObservation rej;
+    rej.kind = RejectedObservation::Kind::Lop;
+    rej.index = red.index;
+    rej.method = method;
+    rej.time_s = lop.time_s;
+    if (!ev.ok) {
+      rej.misclosure_m = lop.value_m - ev.computed_m;
+      rej.reason = fmt::format("the ship is within {:g} m of a station", kMinStationDistance_m);
+      rejected.push_back(std::move(rej));
+      flags |= kRejectedLop;
+      continue;
+    }
+    const filter::Matrix<1, N> h = lop_row<N>(ev, layout, red.dt_s);
+    const Eigen::Matrix2d& qd = ekf ? red.q_delta : red.q_delta_seq;
+    const double var = lop.sigma_m * lop.sigma_m + ev.h_position.dot(qd * ev.h_position.transpose());
+    const double v = lop.value_m - ev.computed_m;
+    const double s = (h * pred.P * h.transpose())(0, 0) + var;
+    const double w = v / std::sqrt(s);
+    rej.misclosure_m = v;
+    // The fixed threshold needs a predicted position: the first epoch (spec §4: T_1 is
+    // solved by least squares alone) is screened by the w-test, which weighs the prior σ.
+    if (sc.rejection == Rejection::Threshold && !ekf && k > 0) {
+      if (std::abs(v) > sc.threshold_m) {
+        rej.reason = fmt::format("|misclosure| {:.1f} m > {:g} m", std::abs(v), sc.threshold_m);
         rejected.push_back(std::move(rej));
         flags |= kRejectedLop;
         continue;
       }
-      const filter::Matrix<1, N> h = lop_row<N>(ev, layout, red.dt_s);
-      const Eigen::Matrix2d& qd = ekf ? red.q_delta : red.q_delta_seq;
-      const double var = lop.sigma_m * lop.sigma_m + ev.h_position.dot(qd * ev.h_position.transpose());
-      const double v = lop.value_m - ev.computed_m;
-      const double s = (h * pred.P * h.transpose())(0, 0) + var;
-      const double w = v / std::sqrt(s);
-      rej.misclosure_m = v;
-      // The fixed threshold needs a predicted position: the first epoch (spec §4: T_1 is
-      // solved by least squares alone) is screened by the w-test, which weighs the prior σ.
-      if (sc.rejection == Rejection::Threshold && !ekf && k > 0) {
-        if (std::abs(v) > sc.threshold_m) {
-          rej.reason = fmt::format("|misclosure| {:.1f} m > {:g} m", std::abs(v), sc.threshold_m);
-          rejected.push_back(std::move(rej));
-          flags |= kRejectedLop;
-          continue;
-        }
-      } else if (std::abs(w) > sc.w_critical) {
-        rej.statistic = std::abs(w);
-        rej.reason = fmt::format("|w| = {:.2f} > {:.2f}", std::abs(w), sc.w_critical);
-        rejected.push_back(std::move(rej));
-        flags |= kRejectedLop;
-        continue;
-      }
-      H.row(m) = h;
-      nu(m) = v;
-      r(m) = var;
-      ++m;
-      if (record) record->lop_used[j] = 1;
+    } else if (std::abs(w) > sc.w_critical) {
+      rej.statistic = std::abs(w);
+      rej.reason = fmt::format("|w| = {:.2f} > {:.2f}", std::abs(w), sc.w_critical);
+      rejected.push_back(std::move(rej));
+      flags |= kRejectedLop;
+      continue;
     }
-    if (m > 0) {
-      kf.update_extended(nu.head(m), H.topRows(m), r.head(m).asDiagonal().toDenseMatrix());
-      flags |= kUsedLop;
-    }
+    H.row(m) = h;
+    nu(m) = v;
+    r(m) = var;
+    ++m;
+    if (record) record->lop_used[j] = 1;
   }
-  // Fixes (spec §5): tested against the solution so far, then combined by minimum variance
-  // (the update with H = [I 0]).
+  if (m > 0) {
+    kf.update_extended(nu.head(m), H.topRows(m), r.head(m).asDiagonal().toDenseMatrix());
+    flags |= kUsedLop;
+  }
+  return flags;
+}
+
+/// The fixes of epoch k (spec §5): tested against the solution so far, then combined by minimum
+/// variance (the update with H = [I 0]); returns TrackFlag bits.
+template <int N>
+unsigned update_fixes(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& kf, const Layout& layout,
+                      const Eigen::Vector2d& bias, Method method, const Screening& sc,
+                      std::vector<RejectedObservation>& rejected, ForwardRun<N>* record) {
+  unsigned flags = 0;
+  const bool ekf = layout.bias >= 0;
   for (std::size_t j = p.fix_begin[k]; j < p.fix_begin[k + 1]; ++j) {
     const Reduced& red = p.fixes[j];
-    const Fix& fix = in.fixes[red.index];
+    const Fix& fix = p.input->fixes[red.index];
     const filter::Estimate<N>& cur = kf.estimate();
     if (record) record->before_fix[k] = cur.x.template head<2>();
-    const Eigen::Vector2d v = Eigen::Vector2d(fix.x_north_m, fix.y_east_m) - reduced_position(red, cur.x);
+    const Eigen::Vector2d v = Eigen::Vector2d(fix.x_north_m, fix.y_east_m) - reduced_position<N>(red, cur.x, layout, bias);
     filter::Matrix<2, N> H = filter::Matrix<2, N>::Zero(2, layout.size);
     H(0, 0) = 1.0;
     H(1, 1) = 1.0;
@@ -188,8 +210,7 @@ unsigned update_epoch(const Prepared& p, std::size_t k, filter::KalmanFilter<N>&
       rej.misclosure_m = v.norm();
       rej.statistic = std::sqrt(chi2);
       rej.reason = v.norm() > sc.fix_tolerance_m
-                       ? fmt::format("{:.1f} m from the track > fix_tolerance_m {:g}", v.norm(),
-                                     sc.fix_tolerance_m)
+                       ? fmt::format("{:.1f} m from the track > fix_tolerance_m {:g}", v.norm(), sc.fix_tolerance_m)
                        : fmt::format("χ²(2) = {:.1f} > {:.1f}", chi2, sc.fix_chi2_limit);
       rejected.push_back(std::move(rej));
       flags |= kFlaggedFix;
@@ -200,6 +221,19 @@ unsigned update_epoch(const Prepared& p, std::size_t k, filter::KalmanFilter<N>&
     if (record) record->fix_used[j] = 1;
   }
   return flags;
+}
+
+/// The observations of epoch k tested against the filter's current (predicted) state and the
+/// accepted ones applied, LOPs first, then fixes; returns TrackFlag bits. `bias` is the velocity
+/// bias used to reduce the observations of the sequential methods (the EKF's comes from its
+/// state, layout.bias).
+template <int N>
+unsigned update_epoch(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& kf,
+                      const Layout& layout, const Eigen::Vector2d& bias, Method method,
+                      const Screening& sc, std::vector<RejectedObservation>& rejected,
+                      ForwardRun<N>* record) {
+  const unsigned lops = update_lops<N>(p, k, kf, layout, bias, method, sc, rejected, record);
+  return lops | update_fixes<N>(p, k, kf, layout, bias, method, sc, rejected, record);
 }
 
 }  // namespace meridian::nav::detail

@@ -59,11 +59,10 @@ std::optional<Reduced> reduce(const Prepared& p, double time, double max_reducti
     // The velocity of the interval that contains the observation time (spec §1: a sample's
     // velocity holds over the interval that ends at it).
     const std::size_t s = dt > 0.0 ? std::min(k + 1, t.size() - 1) : k;
-    const DrSample& d = p.input->dr[s];
-    r.delta = dt * Eigen::Vector2d(d.v_north_m_s, d.v_east_m_s);
-    r.q_delta = dt * dt * d.covariance;
-    const double sv = p.input->options.sequential_sigma_velocity_m_s;
-    r.q_delta_seq = r.q_delta + dt * dt * sv * sv * Eigen::Matrix2d::Identity();
+    const DrIncrement d = dr_increment(p.input->dr[s], dt, p.input->options.sequential_sigma_velocity_m_s);
+    r.delta = d.delta;
+    r.q_delta = d.q;
+    r.q_delta_seq = d.q_seq;
   }
   return r;
 }
@@ -80,11 +79,11 @@ struct Displacement {
 Displacement dr_displacement(const Prepared& p, double time) {
   Displacement out;
   const auto& dr = p.input->dr;
-  const double sv = p.input->options.sequential_sigma_velocity_m_s;
   const auto part = [&](double dt, const DrSample& s) {
-    out.d += dt * Eigen::Vector2d(s.v_north_m_s, s.v_east_m_s);
-    out.q += dt * dt * s.covariance;
-    out.q_seq += dt * dt * (s.covariance + sv * sv * Eigen::Matrix2d::Identity());
+    const DrIncrement i = dr_increment(s, dt, p.input->options.sequential_sigma_velocity_m_s);
+    out.d += i.delta;
+    out.q += i.q;
+    out.q_seq += i.q_seq;
   };
   if (time < p.t[0]) {
     part(time - p.t[0], dr[0]);
@@ -101,15 +100,8 @@ Displacement dr_displacement(const Prepared& p, double time) {
   return out;
 }
 
-}  // namespace
-
-Prepared prepare(const Input& in) {
-  validate(in.options);
-  const Options& o = in.options;
-  Prepared p;
-  p.input = &in;
-  const std::size_t n = in.dr.size();
-  if (n < 2) fail("dr", fmt::format("needs at least 2 dead-reckoning samples, got {}", n));
+// The initial position's values, or the index of the fix that gives it.
+void check_initial(const Input& in) {
   if (!in.initial_fix) {
     require_finite(in.initial.x_north_m, "initial.x_north_m");
     require_finite(in.initial.y_east_m, "initial.y_east_m");
@@ -118,15 +110,19 @@ Prepared prepare(const Input& in) {
   } else if (*in.initial_fix >= in.fixes.size()) {
     fail("initial_fix", fmt::format("no fix {} (there are {})", *in.initial_fix, in.fixes.size()));
   }
+}
 
+// Epochs: one per DR sample, with the DR increment into each and the pure DR track from 0.
+void build_epochs(Prepared& p, const Input& in) {
+  const Options& o = in.options;
+  const std::size_t n = in.dr.size();
   p.epochs = n;
   p.t.resize(n);
   p.dt.assign(n, 0.0);
   p.incr.assign(n, Eigen::Vector2d::Zero());
   p.q_incr.assign(n, Eigen::Matrix2d::Zero());
   p.q_incr_seq.assign(n, Eigen::Matrix2d::Zero());
-  const double sv2 = o.sequential_sigma_velocity_m_s * o.sequential_sigma_velocity_m_s;
-  p.dr.assign(n, Eigen::Vector2d::Zero());  // from 0 here; the initial position is added below
+  p.dr.assign(n, Eigen::Vector2d::Zero());  // from 0 here; the initial position is added later
   for (std::size_t k = 0; k < n; ++k) {
     const DrSample& d = in.dr[k];
     require_finite(d.time_s, at("dr", k, "time_s"));
@@ -145,14 +141,17 @@ Prepared prepare(const Input& in) {
       fail(at("dr", k, "time_s"),
            fmt::format("a gap of {:.1f} s in the dead reckoning exceeds max_dr_gap_s = {:g} s", dt,
                        o.max_dr_gap_s));
+    const DrIncrement i = dr_increment(d, dt, o.sequential_sigma_velocity_m_s);
     p.dt[k] = dt;
-    p.incr[k] = dt * Eigen::Vector2d(d.v_north_m_s, d.v_east_m_s);
-    p.q_incr[k] = dt * dt * d.covariance;
-    p.q_incr_seq[k] = p.q_incr[k] + dt * dt * sv2 * Eigen::Matrix2d::Identity();
+    p.incr[k] = i.delta;
+    p.q_incr[k] = i.q;
+    p.q_incr_seq[k] = i.q_seq;
     p.dr[k] = p.dr[k - 1] + p.incr[k];
   }
+}
 
-  // The statistics bins are allocated per line: bounded, whatever statistics_bin_s says.
+// The statistics bins are allocated per line: bounded, whatever statistics_bin_s says.
+void check_statistics_bins(const Prepared& p, const Options& o) {
   const double span = p.t.back() - p.t.front();
   if (span / o.statistics_bin_s + 1.0 > kMaxStatisticsBins)
     fail("options.statistics_bin_s",
@@ -160,12 +159,10 @@ Prepared prepare(const Input& in) {
                      "{:g} (statistics_bin_s >= {:.3g} s)",
                      o.statistics_bin_s, std::floor(span / o.statistics_bin_s) + 1.0, span,
                      kMaxStatisticsBins, span / (kMaxStatisticsBins - 1.0)));
+}
 
-  for (std::size_t i = 0; i < in.stations.size(); ++i) {
-    require_finite(in.stations[i].x_north_m, at("stations", i, "x_north_m"));
-    require_finite(in.stations[i].y_east_m, at("stations", i, "y_east_m"));
-  }
-  // Chain parameters: their place among the parameters.
+// Chain parameters: their place among the parameters, names and prior σ.
+void place_chain_parameters(Prepared& p, const Input& in) {
   p.scale_col.assign(in.chains.size(), -1);
   p.offset_col.assign(in.chains.size(), -1);
   for (std::size_t c = 0; c < in.chains.size(); ++c) {
@@ -187,30 +184,42 @@ Prepared prepare(const Input& in) {
       p.param_prior_sigma.push_back(ch.sigma_offset_prior_m);
     }
   }
+}
 
+// A LOP's values and the stations and chain it names.
+void check_lop(const Input& in, std::size_t i) {
+  const Lop& l = in.lops[i];
+  require_finite(l.time_s, at("lops", i, "time_s"));
+  require_finite(l.value_m, at("lops", i, "value_m"));
+  if (!(std::isfinite(l.sigma_m) && l.sigma_m > 0.0)) fail(at("lops", i, "sigma_m"), "must be finite and > 0");
+  if (l.station >= in.stations.size())
+    fail(at("lops", i, "station"), fmt::format("no station {} (there are {})", l.station, in.stations.size()));
+  if (l.type == LopType::RangeDifference) {
+    if (l.station2 >= in.stations.size())
+      fail(at("lops", i, "station2"), fmt::format("no station {} (there are {})", l.station2, in.stations.size()));
+    if (l.station2 == l.station) fail(at("lops", i, "station2"), "a range difference needs two different stations");
+  }
+  if (l.chain != Lop::kNoChain && l.chain >= in.chains.size())
+    fail(at("lops", i, "chain"), fmt::format("no chain {} (there are {})", l.chain, in.chains.size()));
+}
+
+void check_stations(const Input& in) {
+  for (std::size_t i = 0; i < in.stations.size(); ++i) {
+    require_finite(in.stations[i].x_north_m, at("stations", i, "x_north_m"));
+    require_finite(in.stations[i].y_east_m, at("stations", i, "y_east_m"));
+  }
+}
+
+// LOPs and fixes checked and reduced to their epochs (spec §3); the ones too far from every
+// epoch skipped, the initial fix kept out of the observations.
+void reduce_observations(Prepared& p, const Input& in) {
+  const Options& o = in.options;
   for (std::size_t i = 0; i < in.lops.size(); ++i) {
-    const Lop& l = in.lops[i];
-    require_finite(l.time_s, at("lops", i, "time_s"));
-    require_finite(l.value_m, at("lops", i, "value_m"));
-    if (!(std::isfinite(l.sigma_m) && l.sigma_m > 0.0))
-      fail(at("lops", i, "sigma_m"), "must be finite and > 0");
-    if (l.station >= in.stations.size())
-      fail(at("lops", i, "station"), fmt::format("no station {} (there are {})", l.station,
-                                                 in.stations.size()));
-    if (l.type == LopType::RangeDifference) {
-      if (l.station2 >= in.stations.size())
-        fail(at("lops", i, "station2"), fmt::format("no station {} (there are {})", l.station2,
-                                                    in.stations.size()));
-      if (l.station2 == l.station)
-        fail(at("lops", i, "station2"), "a range difference needs two different stations");
-    }
-    if (l.chain != Lop::kNoChain && l.chain >= in.chains.size())
-      fail(at("lops", i, "chain"), fmt::format("no chain {} (there are {})", l.chain,
-                                               in.chains.size()));
+    check_lop(in, i);
     std::string reason;
-    auto r = reduce(p, l.time_s, o.max_reduction_s, reason);
+    auto r = reduce(p, in.lops[i].time_s, o.max_reduction_s, reason);
     if (!r) {
-      p.skipped.push_back({RejectedObservation::Kind::Lop, i, l.time_s, reason, {}});
+      p.skipped.push_back({RejectedObservation::Kind::Lop, i, in.lops[i].time_s, reason, {}});
       continue;
     }
     r->index = i;
@@ -229,7 +238,7 @@ Prepared prepare(const Input& in) {
       if (!r)
         fail(at("fixes", i, "time_s"), "the fix that gives the initial position cannot be moved to "
                                        "the first epoch: " + reason);
-      continue;  // its information is the prior (below)
+      continue;  // its information is the prior (initial_state)
     }
     if (!r) {
       p.skipped.push_back({RejectedObservation::Kind::Fix, i, f.time_s, reason, {}});
@@ -238,7 +247,11 @@ Prepared prepare(const Input& in) {
     r->index = i;
     p.fixes.push_back(*r);
   }
-  // The initial position: given, or the initial fix moved back by the DR to epoch 0.
+}
+
+// The initial position: given, or the initial fix moved back by the DR to epoch 0; the pure
+// DR track starts there.
+void initial_state(Prepared& p, const Input& in) {
   if (in.initial_fix) {
     const Fix& f = in.fixes[*in.initial_fix];
     const Displacement d = dr_displacement(p, f.time_s);
@@ -254,15 +267,19 @@ Prepared prepare(const Input& in) {
                          {}});
   } else {
     p.initial_x = Eigen::Vector2d(in.initial.x_north_m, in.initial.y_east_m);
-    p.initial_cov = p.initial_cov_seq =
-        in.initial.sigma_m * in.initial.sigma_m * Eigen::Matrix2d::Identity();
+    p.initial_cov = p.initial_cov_seq = in.initial.sigma_m * in.initial.sigma_m * Eigen::Matrix2d::Identity();
   }
   for (Eigen::Vector2d& x : p.dr) x += p.initial_x;
+}
+
+// The reduced observations sorted by epoch, with the offsets of each epoch's.
+void index_by_epoch(Prepared& p) {
   const auto by_epoch = [](const Reduced& a, const Reduced& b) {
     return a.epoch != b.epoch ? a.epoch < b.epoch : a.index < b.index;
   };
   std::sort(p.lops.begin(), p.lops.end(), by_epoch);
   std::sort(p.fixes.begin(), p.fixes.end(), by_epoch);
+  const std::size_t n = p.epochs;
   const auto offsets = [n](const std::vector<Reduced>& v) {
     std::vector<std::size_t> b(n + 1, 0);
     for (const Reduced& r : v) ++b[r.epoch + 1];
@@ -271,32 +288,59 @@ Prepared prepare(const Input& in) {
   };
   p.lop_begin = offsets(p.lops);
   p.fix_begin = offsets(p.fixes);
+}
 
-  // Truth: linear interpolation between truth points at most kTruthMaxGap_s apart.
+// Truth per epoch: linear interpolation between truth points at most kTruthMaxGap_s apart.
+void truth_per_epoch(Prepared& p, const Input& in) {
+  const std::size_t n = p.epochs;
   p.truth.assign(n, std::nullopt);
   const auto& tr = in.truth;
   for (std::size_t i = 0; i < tr.size(); ++i) {
     require_finite(tr[i].time_s, at("truth", i, "time_s"));
     require_finite(tr[i].x_north_m, at("truth", i, "x_north_m"));
     require_finite(tr[i].y_east_m, at("truth", i, "y_east_m"));
-    if (i > 0 && !(tr[i].time_s > tr[i - 1].time_s))
-      fail(at("truth", i, "time_s"), "truth times must increase strictly");
+    if (i > 0 && !(tr[i].time_s > tr[i - 1].time_s)) fail(at("truth", i, "time_s"), "truth times must increase strictly");
   }
-  if (!tr.empty()) {
-    std::size_t j = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double tk = p.t[k];
-      while (j + 1 < tr.size() && tr[j + 1].time_s <= tk) ++j;
-      if (std::abs(tr[j].time_s - tk) <= 1e-6) {
-        p.truth[k] = Eigen::Vector2d(tr[j].x_north_m, tr[j].y_east_m);
-      } else if (tr[j].time_s < tk && j + 1 < tr.size() &&
-                 tr[j + 1].time_s - tr[j].time_s <= kTruthMaxGap_s) {
-        const double u = (tk - tr[j].time_s) / (tr[j + 1].time_s - tr[j].time_s);
-        p.truth[k] = Eigen::Vector2d((1 - u) * tr[j].x_north_m + u * tr[j + 1].x_north_m,
-                                     (1 - u) * tr[j].y_east_m + u * tr[j + 1].y_east_m);
-      }
+  if (tr.empty()) return;
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double tk = p.t[k];
+    while (j + 1 < tr.size() && tr[j + 1].time_s <= tk) ++j;
+    if (std::abs(tr[j].time_s - tk) <= 1e-6) {
+      p.truth[k] = Eigen::Vector2d(tr[j].x_north_m, tr[j].y_east_m);
+    } else if (tr[j].time_s < tk && j + 1 < tr.size() && tr[j + 1].time_s - tr[j].time_s <= kTruthMaxGap_s) {
+      const double u = (tk - tr[j].time_s) / (tr[j + 1].time_s - tr[j].time_s);
+      p.truth[k] = Eigen::Vector2d((1 - u) * tr[j].x_north_m + u * tr[j + 1].x_north_m,
+                                   (1 - u) * tr[j].y_east_m + u * tr[j + 1].y_east_m);
     }
   }
+}
+
+}  // namespace
+
+DrIncrement dr_increment(const DrSample& s, double dt, double sequential_sigma_velocity_m_s) {
+  DrIncrement i;
+  i.delta = dt * Eigen::Vector2d(s.v_north_m_s, s.v_east_m_s);
+  i.q = dt * dt * s.covariance;
+  const double sv2 = sequential_sigma_velocity_m_s * sequential_sigma_velocity_m_s;
+  i.q_seq = i.q + dt * dt * sv2 * Eigen::Matrix2d::Identity();
+  return i;
+}
+
+Prepared prepare(const Input& in) {
+  validate(in.options);
+  Prepared p;
+  p.input = &in;
+  if (in.dr.size() < 2) fail("dr", fmt::format("needs at least 2 dead-reckoning samples, got {}", in.dr.size()));
+  check_initial(in);
+  build_epochs(p, in);
+  check_statistics_bins(p, in.options);
+  check_stations(in);
+  place_chain_parameters(p, in);
+  reduce_observations(p, in);
+  initial_state(p, in);
+  index_by_epoch(p);
+  truth_per_epoch(p, in);
   return p;
 }
 

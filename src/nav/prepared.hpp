@@ -23,6 +23,18 @@ struct Reduced {
   Eigen::Matrix2d q_delta_seq = Eigen::Matrix2d::Zero();  ///< with the sequential methods' σ
 };
 
+/// The dead-reckoning move of one sample's velocity over dt_s (spec §1; negative dt_s: back in
+/// time): delta = dt·v, its covariance q = dt²·Σ_v under the sample's white noise, and q_seq =
+/// q + dt²·σ_s²·I with σ_s = Options::sequential_sigma_velocity_m_s (the sequential methods).
+/// The one home of the DR increment: epochs, reductions, the initial fix's displacement and
+/// the dead-reckoned track of nav::to_plane.
+struct DrIncrement {
+  Eigen::Vector2d delta = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d q = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d q_seq = Eigen::Matrix2d::Zero();
+};
+DrIncrement dr_increment(const DrSample& sample, double dt_s, double sequential_sigma_velocity_m_s);
+
 /// Where the states sit in a state vector: position at 0, 1; bias (EKF) at `bias`, 2 states;
 /// chain parameters from `params`.
 struct Layout {

@@ -49,9 +49,8 @@ double speed_error(Scenario s, long I, double t_s) {
   return 0.5 + sine;
 }
 
-}  // namespace
-
-SimulatedLine simulate(const SimulationOptions& o) {
+// Every option in range (InputError "simulation.<name>").
+void check_options(const SimulationOptions& o) {
   check(o.stations == 2 || o.stations == 3, "stations", "must be 2 or 3");
   check(std::isfinite(o.duration_s) && o.duration_s > 0.0, "duration_s", "must be > 0");
   check(std::isfinite(o.step_s) && o.step_s > 0.0, "step_s", "must be > 0");
@@ -75,6 +74,12 @@ SimulatedLine simulate(const SimulationOptions& o) {
   check(std::isfinite(o.lop_interval_s) && o.lop_interval_s >= 0.0, "lop_interval_s", "must be >= 0");
   check(std::isfinite(o.fix_interval_s) && o.fix_interval_s >= 0.0, "fix_interval_s", "must be >= 0");
   check(std::isfinite(o.sigma_fix_m) && o.sigma_fix_m > 0.0, "sigma_fix_m", "must be > 0");
+}
+
+}  // namespace
+
+SimulatedLine simulate(const SimulationOptions& o) {
+  check_options(o);
 
   std::mt19937_64 rng(o.seed);
   std::normal_distribution<double> normal(0.0, 1.0);

@@ -250,21 +250,8 @@ std::string nav_bias_cell(const nav::MethodResult& m, bool north) {
   return std::isfinite(s) ? fmt::format("{:+.4f} ± {:.4f}", b, s) : fmt::format("{:+.4f}", b);
 }
 
-Section nav_summary_section(const nav::Result& r, bool truth) {
-  Section sec{"summary", "Summary", {}, 2};
-  if (truth) {
-    const nav::MethodResult* best = nullptr;
-    for (const auto& m : r.methods)
-      if (m.errors && std::isfinite(m.errors->rms_m) && (!best || m.errors->rms_m < best->errors->rms_m))
-        best = &m;
-    if (best)
-      sec.blocks.push_back(Highlight{"lowest RMS position error",
-                                     fmt::format("{}: {:.2f} m", nav::to_string(best->method),
-                                                 best->errors->rms_m),
-                                     fmt::format("max {:.2f} m over {} epochs with truth",
-                                                 best->errors->max_error_m, best->errors->epochs),
-                                     false});
-  }
+// The methods side by side: errors against truth (or σ without it), final bias, rejections.
+Table nav_methods_table(const nav::Result& r, bool truth) {
   Table t;
   t.title = "Methods side by side";
   if (truth) {
@@ -302,14 +289,11 @@ Section nav_summary_section(const nav::Result& r, bool truth) {
            "Bias: the correction to the DR velocity at the last epoch, ± σ where the method states "
            "one. Rejected: by the method's own screening; backward and fix-closure use the "
            "observations sequential-bias-I accepted, rts those the ekf accepted.";
-  sec.blocks.push_back(t);
-  KeyValueList kv{"Observations", {}};
-  kv.items.push_back({"epochs", std::to_string(r.epochs)});
-  kv.items.push_back({"LOPs reduced to an epoch", std::to_string(r.lops_used)});
-  kv.items.push_back({"satellite fixes used", std::to_string(r.fixes_used)});
-  kv.items.push_back({"rejections (all methods)", std::to_string(r.rejected.size())});
-  kv.items.push_back({"skipped (no method could use them)", std::to_string(r.skipped.size())});
-  sec.blocks.push_back(kv);
+  return t;
+}
+
+// The chain parameters of every method (no rows: none estimated).
+Table nav_parameters_table(const nav::Result& r) {
   Table p;
   p.title = "Chain parameters";
   p.columns = {"method", "chain", "parameter", "value", "σ"};
@@ -326,11 +310,35 @@ Section nav_summary_section(const nav::Result& r, bool truth) {
                         : scale                 ? fmt::format("{:.3e}", q.sigma)
                                                 : fmt::format("{:.3f}", q.sigma)});
     }
-  if (!p.rows.empty()) {
-    p.note = "scale: dimensionless (L = (1 + scale)·d + offset); offset_m in metres. At the last "
-             "epoch (the smoother: over the whole line).";
-    sec.blocks.push_back(p);
+  p.note = "scale: dimensionless (L = (1 + scale)·d + offset); offset_m in metres. At the last "
+           "epoch (the smoother: over the whole line).";
+  return p;
+}
+
+Section nav_summary_section(const nav::Result& r, bool truth) {
+  Section sec{"summary", "Summary", {}, 2};
+  if (truth) {
+    const nav::MethodResult* best = nullptr;
+    for (const auto& m : r.methods)
+      if (m.errors && std::isfinite(m.errors->rms_m) && (!best || m.errors->rms_m < best->errors->rms_m))
+        best = &m;
+    if (best)
+      sec.blocks.push_back(Highlight{"lowest RMS position error",
+                                     fmt::format("{}: {:.2f} m", nav::to_string(best->method),
+                                                 best->errors->rms_m),
+                                     fmt::format("max {:.2f} m over {} epochs with truth",
+                                                 best->errors->max_error_m, best->errors->epochs),
+                                     false});
   }
+  sec.blocks.push_back(nav_methods_table(r, truth));
+  KeyValueList kv{"Observations", {}};
+  kv.items.push_back({"epochs", std::to_string(r.epochs)});
+  kv.items.push_back({"LOPs reduced to an epoch", std::to_string(r.lops_used)});
+  kv.items.push_back({"satellite fixes used", std::to_string(r.fixes_used)});
+  kv.items.push_back({"rejections (all methods)", std::to_string(r.rejected.size())});
+  kv.items.push_back({"skipped (no method could use them)", std::to_string(r.skipped.size())});
+  sec.blocks.push_back(kv);
+  if (Table p = nav_parameters_table(r); !p.rows.empty()) sec.blocks.push_back(p);
   return sec;
 }
 

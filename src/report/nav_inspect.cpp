@@ -2,14 +2,16 @@
 
 #include <fmt/format.h>
 
+#include "meridian/nav/utc_time.hpp"
+
 namespace meridian::report {
 namespace {
 
 nlohmann::json nav_time_or_null(const std::optional<double>& t) {
-  return t ? nlohmann::json(io::nmea::iso8601_utc(*t)) : nlohmann::json();
+  return t ? nlohmann::json(nav::iso8601_utc(*t)) : nlohmann::json();
 }
 
-std::vector<std::string> nav_warnings(const io::nmea::Summary& s) {
+std::vector<std::string> nav_warnings(const nav::LogInspection& s) {
   std::vector<std::string> w;
   long accepted = 0;
   for (const auto& [key, n] : s.sentences) accepted += n;
@@ -37,7 +39,7 @@ std::string nav_line_list(const std::vector<int>& lines, long total) {
 
 }  // namespace
 
-nlohmann::json nav_inspect_to_json(const io::nmea::Summary& s) {
+nlohmann::json nav_inspect_to_json(const nav::LogInspection& s) {
   nlohmann::json j;
   j["file"] = s.file;
   j["lines"] = s.lines;
@@ -56,7 +58,7 @@ nlohmann::json nav_inspect_to_json(const io::nmea::Summary& s) {
   j["last_time"] = nav_time_or_null(s.last_time_s);
   j["time_source"] = s.time_source.empty() ? nlohmann::json() : nlohmann::json(s.time_source);
   j["first_date"] = s.first_date_days
-                        ? nlohmann::json(io::nmea::iso8601_utc(static_cast<double>(*s.first_date_days) * 86400.0)
+                        ? nlohmann::json(nav::iso8601_utc(static_cast<double>(*s.first_date_days) * 86400.0)
                                              .substr(0, 10))
                         : nlohmann::json();
   j["gps_week_rollover_suspected"] = s.gps_week_rollover_suspected;
@@ -70,7 +72,19 @@ nlohmann::json nav_inspect_to_json(const io::nmea::Summary& s) {
   return j;
 }
 
-std::string nav_inspect_text(const io::nmea::Summary& s) {
+nlohmann::json nav_inspect_files_to_json(const std::vector<nav::LogInspection>& summaries) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const nav::LogInspection& s : summaries) files.push_back(nav_inspect_to_json(s));
+  return nlohmann::json{{"files", files}};
+}
+
+std::string nav_inspect_text(const std::vector<nav::LogInspection>& summaries) {
+  std::string text;
+  for (std::size_t k = 0; k < summaries.size(); ++k) text += (k ? "\n" : "") + nav_inspect_text(summaries[k]);
+  return text;
+}
+
+std::string nav_inspect_text(const nav::LogInspection& s) {
   std::string out = fmt::format("{}: {} lines\n", s.file, s.lines);
   long accepted = 0;
   for (const auto& [k, n] : s.sentences) accepted += n;
@@ -91,8 +105,8 @@ std::string nav_inspect_text(const io::nmea::Summary& s) {
   for (const auto& [line, reason] : s.malformed_lines) out += fmt::format("    line {}: {}\n", line, reason);
   out += fmt::format("  duplicates: {}\n", s.duplicates);
   if (s.first_time_s)
-    out += fmt::format("  time: {} to {} ({})\n", io::nmea::iso8601_utc(*s.first_time_s),
-                       io::nmea::iso8601_utc(*s.last_time_s), s.time_source == "logger" ? "logger stamps" : "sentences");
+    out += fmt::format("  time: {} to {} ({})\n", nav::iso8601_utc(*s.first_time_s),
+                       nav::iso8601_utc(*s.last_time_s), s.time_source == "logger" ? "logger stamps" : "sentences");
   else
     out += "  time: none (no dated sentence was accepted and no line has a logger stamp)\n";
   for (const auto& w : nav_warnings(s)) out += fmt::format("  warning: {}\n", w);

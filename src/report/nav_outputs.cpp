@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "json_number.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/geodesy/grid.hpp"
 #include "meridian/report/format.hpp"
 #include "nav_support.hpp"
 
@@ -32,10 +34,10 @@ ojson nav_geo_number(double v) { return std::isfinite(v) ? ojson(v) : ojson(); }
 double nav_round_deg(double deg) { return std::round(deg * 1e9) / 1e9; }
 
 // {lat_deg, lon_deg} of a plane point, lon in [-180, 180]; InputError when not geographic.
-std::array<double, 2> nav_geographic(const ToGeographic& to_geographic, const nav::TrackPoint& p,
+std::array<double, 2> nav_geographic(const geodesy::TransverseMercatorGrid& grid, const nav::TrackPoint& p,
                                      nav::Method m, std::size_t epoch) {
-  const std::array<double, 2> ll = to_geographic(p.x_north_m, p.y_east_m);
-  double lat = units::rad_to_deg(ll[0]), lon = units::rad_to_deg(ll[1]);
+  const geodesy::GeographicPoint q = grid.reverse(p.x_north_m, p.y_east_m);
+  double lat = units::rad_to_deg(q.lat_rad), lon = units::rad_to_deg(q.lon_rad);
   if (!std::isfinite(lat) || !std::isfinite(lon) || std::fabs(lat) > 90.0)
     throw InputError(fmt::format(
         "the projection gives no geographic position for epoch {} of method {} (x {} m, y {} m): "
@@ -123,17 +125,15 @@ std::string nav_short_name(nav::Method m) {
 constexpr std::size_t kMaxTextBins = 120;   // per-minute rows in the text (a 2-hour line)
 constexpr std::size_t kMaxTextListed = 10;  // skipped observations listed by name
 
-}  // namespace
-
-std::string nav_summary_text(const nav::Result& r) {
-  std::string t;
+// The line: epochs, time span, observations used, rejected and skipped.
+std::string nav_line_text(const nav::Result& r) {
   const nav::MethodResult* any = nullptr;
   for (const auto& m : r.methods)
     if (!m.track.empty()) {
       any = &m;
       break;
     }
-  t += fmt::format("Navigation: {} epoch{}", r.epochs, r.epochs == 1 ? "" : "s");
+  std::string t = fmt::format("Navigation: {} epoch{}", r.epochs, r.epochs == 1 ? "" : "s");
   if (any)
     t += fmt::format(", {:.1f} … {:.1f} s ({:.1f} min)", any->track.front().time_s,
                      any->track.back().time_s,
@@ -141,9 +141,39 @@ std::string nav_summary_text(const nav::Result& r) {
   t += fmt::format("\nused: {} LOP{}, {} fix{}; rejected: {} (by all methods); skipped: {}\n",
                    r.lops_used, r.lops_used == 1 ? "" : "s", r.fixes_used,
                    r.fixes_used == 1 ? "" : "es", r.rejected.size(), r.skipped.size());
+  return t;
+}
 
-  const bool truth = std::any_of(r.methods.begin(), r.methods.end(),
-                                 [](const nav::MethodResult& m) { return m.errors.has_value(); });
+// One row of the methods table: errors against truth (or the σ without truth), final bias,
+// rejections.
+std::vector<std::string> nav_method_row(const nav::Result& r, const nav::MethodResult& m, bool truth) {
+  std::vector<std::string> row{nav::to_string(m.method)};
+  if (truth) {
+    if (m.errors) {
+      row.push_back(fmtx::num(m.errors->rms_m, 2));
+      row.push_back(fmtx::num(m.errors->max_error_m, 2));
+      row.push_back(fmtx::num(m.errors->mean_nees, 2));
+    } else {
+      row.insert(row.end(), {"n/a", "n/a", "n/a"});
+    }
+  } else {
+    const SigmaSummary sg = sigma_summary(m);
+    for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(fmtx::num(v, 2));
+  }
+  if (!estimates_bias(m.method) || m.track.empty()) {
+    row.insert(row.end(), {"not estimated", "not estimated"});
+  } else {
+    const nav::TrackPoint& last = m.track.back();
+    row.push_back(nav_value_sigma(last.bias_north_m_s, last.sigma_bias_north_m_s, 4));
+    row.push_back(nav_value_sigma(last.bias_east_m_s, last.sigma_bias_east_m_s, 4));
+  }
+  const auto from = observations_of(m.method);
+  row.push_back(from ? "as " + nav_short_name(*from) : nav_rejected_text(rejection_counts(r, m.method)));
+  return row;
+}
+
+// The methods side by side, with what the columns mean.
+std::string nav_methods_text(const nav::Result& r, bool truth) {
   std::vector<std::vector<std::string>> rows;
   if (truth)
     rows.push_back({"method", "RMS (m)", "max (m)", "mean NEES", "final bias N (m/s)",
@@ -151,32 +181,8 @@ std::string nav_summary_text(const nav::Result& r) {
   else
     rows.push_back({"method", "final σx (m)", "final σy (m)", "mean σ (m)", "max σ (m)",
                     "final bias N (m/s)", "final bias E (m/s)", "rejected"});
-  for (const auto& m : r.methods) {
-    std::vector<std::string> row{nav::to_string(m.method)};
-    if (truth) {
-      if (m.errors) {
-        row.push_back(fmtx::num(m.errors->rms_m, 2));
-        row.push_back(fmtx::num(m.errors->max_error_m, 2));
-        row.push_back(fmtx::num(m.errors->mean_nees, 2));
-      } else {
-        row.insert(row.end(), {"n/a", "n/a", "n/a"});
-      }
-    } else {
-      const SigmaSummary sg = sigma_summary(m);
-      for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(fmtx::num(v, 2));
-    }
-    if (!estimates_bias(m.method) || m.track.empty()) {
-      row.insert(row.end(), {"not estimated", "not estimated"});
-    } else {
-      const nav::TrackPoint& last = m.track.back();
-      row.push_back(nav_value_sigma(last.bias_north_m_s, last.sigma_bias_north_m_s, 4));
-      row.push_back(nav_value_sigma(last.bias_east_m_s, last.sigma_bias_east_m_s, 4));
-    }
-    const auto from = observations_of(m.method);
-    row.push_back(from ? "as " + nav_short_name(*from) : nav_rejected_text(rejection_counts(r, m.method)));
-    rows.push_back(row);
-  }
-  t += "\n" + nav_columns(rows, "");
+  for (const auto& m : r.methods) rows.push_back(nav_method_row(r, m, truth));
+  std::string t = "\n" + nav_columns(rows, "");
   if (truth)
     t += "RMS and max: horizontal position error against truth; mean NEES of (x, y): 2 for a "
          "consistent σ.\n";
@@ -187,56 +193,58 @@ std::string nav_summary_text(const nav::Result& r) {
        "one).\n";
   t += "Rejected: by the method's own screening; backward and fix-closure use the observations "
        "sequential-bias-I accepted, rts those the ekf accepted.\n";
-
   std::vector<std::vector<std::string>> params;
   for (const auto& m : r.methods)
     for (const auto& p : m.parameters)
       params.push_back({nav::to_string(m.method), chain_label(p), p.name, nav_parameter_text(p)});
   if (!params.empty()) t += "\nchain parameters (value ± σ)\n" + nav_columns(params, "  ", 3);
+  return t;
+}
 
-  if (truth) {
-    std::size_t bins = 0;
-    for (const auto& m : r.methods)
-      if (m.errors) bins = std::max(bins, m.errors->per_minute_rms_m.size());
-    if (bins > 0) {
-      std::vector<std::vector<std::string>> table;
-      std::vector<std::string> head{"minute"};
-      std::string legend;
-      for (const auto& m : r.methods)
-        if (m.errors) {
-          head.push_back(nav_short_name(m.method));
-          if (nav_short_name(m.method) != nav::to_string(m.method))
-            legend += fmt::format("{}{} = {}", legend.empty() ? "" : ", ",
-                                  nav_short_name(m.method), nav::to_string(m.method));
-        }
-      table.push_back(head);
-      for (std::size_t j = 0; j < std::min(bins, kMaxTextBins); ++j) {
-        std::vector<std::string> row{fmt::format("{}", j)};
-        for (const auto& m : r.methods)
-          if (m.errors)
-            row.push_back(j < m.errors->per_minute_rms_m.size()
-                              ? fmtx::num(m.errors->per_minute_rms_m[j], 1)
-                              : std::string("n/a"));
-        table.push_back(row);
-      }
-      double bin_s = 60.0;
-      for (const auto& m : r.methods)
-        if (m.errors) bin_s = m.errors->bin_s;
-      if (bin_s == 60.0)
-        t += "\nRMS position error per minute (m; minute j: j ≤ t − t₀ < j + 1 min; n/a: no truth)\n";
-      else
-        t += fmt::format(
-            "\nRMS position error per bin of {:g} s (m; bin j: j·{:g} ≤ t − t₀ < (j + 1)·{:g} s; the "
-            "column says \"minute\"; n/a: no truth)\n",
-            bin_s, bin_s, bin_s);
-      t += nav_columns(table, "  ");
-      if (bins > kMaxTextBins)
-        t += fmt::format("  (the first {} of {} minutes; every minute is in the JSON)\n",
-                         kMaxTextBins, bins);
-      if (!legend.empty()) t += "  " + legend + "\n";
+// The per-minute RMS table of the methods with truth (empty without bins).
+std::string nav_per_minute_text(const nav::Result& r) {
+  std::size_t bins = 0;
+  for (const auto& m : r.methods)
+    if (m.errors) bins = std::max(bins, m.errors->per_minute_rms_m.size());
+  if (bins == 0) return {};
+  std::vector<std::vector<std::string>> table;
+  std::vector<std::string> head{"minute"};
+  std::string legend;
+  for (const auto& m : r.methods)
+    if (m.errors) {
+      head.push_back(nav_short_name(m.method));
+      if (nav_short_name(m.method) != nav::to_string(m.method))
+        legend += fmt::format("{}{} = {}", legend.empty() ? "" : ", ", nav_short_name(m.method),
+                              nav::to_string(m.method));
     }
+  table.push_back(head);
+  for (std::size_t j = 0; j < std::min(bins, kMaxTextBins); ++j) {
+    std::vector<std::string> row{fmt::format("{}", j)};
+    for (const auto& m : r.methods)
+      if (m.errors)
+        row.push_back(j < m.errors->per_minute_rms_m.size() ? fmtx::num(m.errors->per_minute_rms_m[j], 1)
+                                                            : std::string("n/a"));
+    table.push_back(row);
   }
+  double bin_s = 60.0;
+  for (const auto& m : r.methods)
+    if (m.errors) bin_s = m.errors->bin_s;
+  std::string t =
+      bin_s == 60.0
+          ? std::string("\nRMS position error per minute (m; minute j: j ≤ t − t₀ < j + 1 min; n/a: no truth)\n")
+          : fmt::format("\nRMS position error per bin of {:g} s (m; bin j: j·{:g} ≤ t − t₀ < (j + 1)·{:g} s; the "
+                        "column says \"minute\"; n/a: no truth)\n",
+                        bin_s, bin_s, bin_s);
+  t += nav_columns(table, "  ");
+  if (bins > kMaxTextBins)
+    t += fmt::format("  (the first {} of {} minutes; every minute is in the JSON)\n", kMaxTextBins, bins);
+  if (!legend.empty()) t += "  " + legend + "\n";
+  return t;
+}
 
+// Rejections counted, skipped observations listed, notes and warnings.
+std::string nav_observations_and_notes_text(const nav::Result& r) {
+  std::string t;
   if (!r.rejected.empty()) {
     std::size_t lops = 0;
     for (const auto& o : r.rejected) lops += o.kind == nav::RejectedObservation::Kind::Lop;
@@ -258,6 +266,16 @@ std::string nav_summary_text(const nav::Result& r) {
   for (const std::string& n : r.notes) t += "note: " + n + "\n";
   for (const std::string& w : r.warnings) t += "warning: " + w + "\n";
   return t;
+}
+
+}  // namespace
+
+std::string nav_summary_text(const nav::Result& r) {
+  const bool truth = std::any_of(r.methods.begin(), r.methods.end(),
+                                 [](const nav::MethodResult& m) { return m.errors.has_value(); });
+  std::string t = nav_line_text(r) + nav_methods_text(r, truth);
+  if (truth) t += nav_per_minute_text(r);
+  return t + nav_observations_and_notes_text(r);
 }
 
 json nav_to_json(const nav::Result& r) {
@@ -337,39 +355,52 @@ json nav_to_json(const nav::Result& r) {
           {"skipped", skipped},       {"notes", r.notes},         {"warnings", r.warnings}};
 }
 
-std::string nav_track_csv(const nav::Result& r, nav::Method method, const ToGeographic& to_geographic) {
+NavTrackColumns nav_track_columns(const nav::Result& r, nav::Method method, bool unstated_sigma_as_nan) {
   const nav::MethodResult& m = require_method(r, method);
-  const bool geo = static_cast<bool>(to_geographic);
-  std::string out = fmt::format("# meridian navigation track, method {}: {} epochs; x north, y east (m)\n",
-                                nav::to_string(method), m.track.size());
-  out += "# flags: sum of 1 LOP used, 2 LOP rejected, 4 fix combined, 8 fix flagged and not combined\n";
-  out += geo ? "time_s,x_m,y_m,lat_deg,lon_deg,sigma_x_m,sigma_y_m,cov_xy_m2,bias_north_m_s,"
-               "bias_east_m_s,sigma_bias_north_m_s,sigma_bias_east_m_s,flags\n"
-             : "time_s,x_m,y_m,sigma_x_m,sigma_y_m,cov_xy_m2,bias_north_m_s,bias_east_m_s,"
-               "sigma_bias_north_m_s,sigma_bias_east_m_s,flags\n";
+  const std::optional<geodesy::TransverseMercatorGrid> grid =
+      r.projection ? std::optional<geodesy::TransverseMercatorGrid>(*r.projection) : std::nullopt;
+  NavTrackColumns c;
+  c.names = {"time_s", "x_m", "y_m"};
+  if (grid) c.names.insert(c.names.end(), {"lat_deg", "lon_deg"});
+  c.names.insert(c.names.end(), {"sigma_x_m", "sigma_y_m", "cov_xy_m2", "bias_north_m_s", "bias_east_m_s",
+                                 "sigma_bias_north_m_s", "sigma_bias_east_m_s"});
+  c.values.assign(c.names.size(), std::vector<double>(m.track.size()));
+  const auto bias_sigma = [&](double s) { return unstated_sigma_as_nan ? stated_sigma(s) : s; };
   for (std::size_t k = 0; k < m.track.size(); ++k) {
     const nav::TrackPoint& p = m.track[k];
-    out += nav_csv_number(p.time_s) + ',' + nav_csv_number(p.x_north_m) + ',' +
-           nav_csv_number(p.y_east_m) + ',';
-    if (geo) {
-      const std::array<double, 2> ll = nav_geographic(to_geographic, p, method, k);
-      out += nav_csv_number(ll[0]) + ',' + nav_csv_number(ll[1]) + ',';
-    }
-    out += nav_csv_number(p.sigma_x_m()) + ',' + nav_csv_number(p.sigma_y_m()) + ',' +
-           nav_csv_number(p.covariance(0, 1)) + ',' + nav_csv_number(p.bias_north_m_s) + ',' +
-           nav_csv_number(p.bias_east_m_s) + ',' + nav_csv_number(p.sigma_bias_north_m_s) + ',' +
-           nav_csv_number(p.sigma_bias_east_m_s) + ',' + std::to_string(p.flags) + '\n';
+    std::size_t i = 0;
+    for (double v : {p.time_s, p.x_north_m, p.y_east_m}) c.values[i++][k] = v;
+    if (grid)
+      for (double v : nav_geographic(*grid, p, method, k)) c.values[i++][k] = v;
+    for (double v : {p.sigma_x_m(), p.sigma_y_m(), p.covariance(0, 1), p.bias_north_m_s, p.bias_east_m_s,
+                     bias_sigma(p.sigma_bias_north_m_s), bias_sigma(p.sigma_bias_east_m_s)})
+      c.values[i++][k] = v;
+    c.flags.push_back(p.flags);
+  }
+  return c;
+}
+
+std::string nav_track_csv(const nav::Result& r, nav::Method method) {
+  const NavTrackColumns c = nav_track_columns(r, method, false);
+  const std::size_t n = c.flags.size();
+  std::string out = fmt::format("# meridian navigation track, method {}: {} epochs; x north, y east (m)\n",
+                                nav::to_string(method), n);
+  out += "# flags: sum of 1 LOP used, 2 LOP rejected, 4 fix combined, 8 fix flagged and not combined\n";
+  out += fmt::format("{},flags\n", fmt::join(c.names, ","));
+  for (std::size_t k = 0; k < n; ++k) {
+    for (const std::vector<double>& column : c.values) out += nav_csv_number(column[k]) + ',';
+    out += std::to_string(c.flags[k]) + '\n';
   }
   return out;
 }
 
-std::string nav_track_geojson(const nav::Result& r, const std::vector<nav::Method>& methods,
-                              const ToGeographic& to_geographic) {
-  if (!to_geographic)
+std::string nav_track_geojson(const nav::Result& r, const std::vector<nav::Method>& methods) {
+  if (!r.projection)
     throw InputError(
         "GeoJSON needs geographic coordinates (longitude, latitude), and this job has no map "
         "projection: give the job's projection (or geographic input) to write GeoJSON, or write "
         "the track CSV in plane coordinates instead");
+  const geodesy::TransverseMercatorGrid grid(*r.projection);
   std::vector<const nav::MethodResult*> chosen;
   if (methods.empty())
     for (const auto& m : r.methods) chosen.push_back(&m);
@@ -393,7 +424,7 @@ std::string nav_track_geojson(const nav::Result& r, const std::vector<nav::Metho
     std::vector<std::string> parts(1);
     std::array<double, 2> prev{};
     for (std::size_t k = 0; k < m->track.size(); ++k) {
-      const std::array<double, 2> ll = nav_geographic(to_geographic, m->track[k], m->method, k);
+      const std::array<double, 2> ll = nav_geographic(grid, m->track[k], m->method, k);
       if (k > 0 && std::fabs(ll[1] - prev[1]) > 180.0) {
         const double edge = prev[1] > 0 ? 180.0 : -180.0;
         const double lon_b = ll[1] + (prev[1] > 0 ? 360.0 : -360.0);  // unwrapped
@@ -428,7 +459,7 @@ std::string nav_track_geojson(const nav::Result& r, const std::vector<nav::Metho
                                  [&](const nav::MethodResult* m) { return m->method == o.method; });
     if (it == chosen.end() || (*it)->track.empty()) continue;
     const std::size_t k = nearest_epoch((*it)->track, o.time_s);
-    const std::array<double, 2> ll = nav_geographic(to_geographic, (*it)->track[k], o.method, k);
+    const std::array<double, 2> ll = nav_geographic(grid, (*it)->track[k], o.method, k);
     feature(R"({"type":"Point","coordinates":)" + position(ll[1], ll[0]) + "}",
             ojson{{"feature", "rejected"},
                   {"kind", kind_name(o.kind)},

@@ -22,6 +22,8 @@
 #include "meridian/core/error.hpp"
 #include "meridian/geodesy/grid.hpp"
 #include "meridian/io/nav_files.hpp"
+#include "meridian/io/source_map.hpp"
+#include "meridian/nav/survey_line.hpp"
 
 namespace {
 
@@ -30,6 +32,25 @@ namespace nav = meridian::nav;
 namespace fs = std::filesystem;
 using meridian::InputError;
 using meridian::ParseError;
+
+// A job read (io::read_nav_job) and put in its plane (nav::to_plane) as nav::process sees it,
+// errors located as the runner locates them.
+struct PlaneJob {
+  io::NavJob job;
+  nav::Input input;
+  std::optional<meridian::geodesy::GridDefinition> projection;
+  std::vector<std::string> notes;  ///< the reader's, then the plane's
+};
+PlaneJob plane_job(const io::NavConfig& c) {
+  PlaneJob r;
+  r.job = io::read_nav_job(c);
+  nav::PlaneLine p = io::located(r.job.sources, [&] { return nav::to_plane(r.job.line); });
+  r.input = std::move(p.input);
+  r.projection = p.projection;
+  r.notes = r.job.line.notes;
+  r.notes.insert(r.notes.end(), p.notes.begin(), p.notes.end());
+  return r;
+}
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The message of what `fn` throws as E ("" when it throws nothing).
@@ -327,7 +348,7 @@ TEST_F(NavFilesDir, SimulationFilesReadBackAsTheSameInput) {
   nav::SimulatedLine bare = line;
   bare.settings = "scenario D, seed 7";
   EXPECT_HAS(io::nav_simulation_config(bare, so), "# Simulated: scenario D, seed 7\n");
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(write("nav.yaml", yaml)));
+  const PlaneJob r = plane_job(io::read_nav_config(write("nav.yaml", yaml)));
   EXPECT_FALSE(r.projection);
   ASSERT_EQ(r.input.dr.size(), in.dr.size());
   for (std::size_t k = 0; k < in.dr.size(); ++k) {
@@ -451,7 +472,7 @@ TEST_F(NavFilesDir, SigmaKeysOfTheOtherDrKindAreErrors) {
   write("v.csv", "time_s,v_north_m_s,v_east_m_s\n0,0,5\n5,0,5\n");
   const auto msg = [&](const std::string& text) {
     const std::string p = write("k.yaml", text);
-    return error_of<InputError>([&] { io::read_nav_job(io::read_nav_config(p)); });
+    return error_of<InputError>([&] { plane_job(io::read_nav_config(p)); });
   };
   const std::string a = msg("dr: sh.csv\ninitial: {x_m: 0, y_m: 0}\nsigma_velocity_m_s: 0.1\n");
   EXPECT_HAS(a, "k.yaml:3: sigma_velocity_m_s: sigma_velocity_m_s does not apply here");
@@ -477,8 +498,7 @@ TEST_F(NavFilesDir, PlaneJobResolvesNamesAndTimeDifferences) {
                               "dr: dr.csv\nstations: s.csv\nlops: l.csv\ninitial: {x_m: 10, y_m: 20}\n"
                               "sigma_speed_m_s: 0.1\nsigma_heading_deg: 1\n"
                               "chains: [{name: X, propagation_speed_m_s: 3e8}]\n");
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(p));
-  EXPECT_FALSE(r.to_geographic);
+  const PlaneJob r = plane_job(io::read_nav_config(p));
   EXPECT_FALSE(r.projection);
   ASSERT_EQ(r.input.dr.size(), 3u);
   EXPECT_NEAR(r.input.dr[1].v_north_m_s, 0.0, 1e-15);
@@ -497,8 +517,8 @@ TEST_F(NavFilesDir, PlaneJobResolvesNamesAndTimeDifferences) {
   EXPECT_DOUBLE_EQ(r.input.lops[1].value_m, 300.0);              // 1 µs at 3e8 m/s
   EXPECT_DOUBLE_EQ(r.input.lops[2].value_m, 2e-6 * 299691162.0);  // the LORAN-C default
   EXPECT_EQ(r.input.lops[2].station, 1u);
-  ASSERT_EQ(r.lop_lines.size(), 3u);
-  EXPECT_EQ(r.lop_lines[2].line, 4);
+  ASSERT_EQ(r.job.line.lops.size(), 3u);
+  EXPECT_EQ(r.job.line.lops[2].source.line, 4);
   bool noted = false;
   for (const auto& n : r.notes) noted |= n.find("299691162") != std::string::npos;
   EXPECT_TRUE(noted);
@@ -510,7 +530,7 @@ TEST_F(NavFilesDir, JobErrorsNameTheLine) {
   const auto msg = [&](const std::string& lops, const std::string& extra = "") {
     write("l.csv", "time_s,type,station,station2,value,sigma_m,chain\n" + lops);
     const std::string p = write("nav.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\n" + extra);
-    return error_of<InputError>([&] { io::read_nav_job(io::read_nav_config(p)); });
+    return error_of<InputError>([&] { plane_job(io::read_nav_config(p)); });
   };
   const std::string init = "initial: {x_m: 0, y_m: 0}\n";
   EXPECT_HAS(msg("5,range,A,,1,1,\n5,range,Z,,1,1,\n", init), "l.csv:3: station: unknown station \"Z\"");
@@ -522,25 +542,25 @@ TEST_F(NavFilesDir, JobErrorsNameTheLine) {
   // a single DR sample
   write("dr1.csv", "time_s,speed_m_s,heading_deg\n0,5,90\n");
   const std::string p = write("one.yaml", "dr: dr1.csv\n" + init);
-  EXPECT_HAS(error_of<InputError>([&] { io::read_nav_job(io::read_nav_config(p)); }), "at least 2");
+  EXPECT_HAS(error_of<InputError>([&] { plane_job(io::read_nav_config(p)); }), "at least 2");
 }
 
 TEST_F(NavFilesDir, InitialFromTheFirstFixAndMixedCoordinates) {
   write("dr.csv", "time_s,speed_m_s,heading_deg\n100,5,90\n105,5,90\n");
   write("f.csv", "time_s,x_m,y_m,sigma_x_m,sigma_y_m\n500,9,9,1,1\n103,50,60,3,4\n");
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(write("nav.yaml", "dr: dr.csv\nfixes: f.csv\n")));
+  const PlaneJob r = plane_job(io::read_nav_config(write("nav.yaml", "dr: dr.csv\nfixes: f.csv\n")));
   // the fix of line 3 (nav::process moves it by the DR to t = 100 s and does not use it again)
   ASSERT_TRUE(r.input.initial_fix.has_value());
   EXPECT_EQ(*r.input.initial_fix, 1u);
-  EXPECT_EQ(r.fix_lines[1].line, 3);
+  EXPECT_EQ(r.job.line.fixes[1].source.line, 3);
   // a fix 6 s after the first epoch is too late
   write("f2.csv", "time_s,x_m,y_m,sigma_m\n106,1,1,1\n");
   const std::string late = error_of<InputError>(
-      [&] { io::read_nav_job(io::read_nav_config(write("late.yaml", "dr: dr.csv\nfixes: f2.csv\n"))); });
+      [&] { plane_job(io::read_nav_config(write("late.yaml", "dr: dr.csv\nfixes: f2.csv\n"))); });
   EXPECT_HAS(late, "give initial:");
   // plane fixes with a geographic initial position and no projection
   const std::string mixed = error_of<InputError>([&] {
-    io::read_nav_job(io::read_nav_config(write("mix.yaml", "dr: dr.csv\nfixes: f.csv\ninitial: {lat: 30, lon: 114}\n")));
+    plane_job(io::read_nav_config(write("mix.yaml", "dr: dr.csv\nfixes: f.csv\ninitial: {lat: 30, lon: 114}\n")));
   });
   EXPECT_HAS(mixed, "give a projection");
   EXPECT_HAS(mixed, "f.csv");
@@ -550,7 +570,7 @@ TEST_F(NavFilesDir, DefaultProjectionAtTheFirstGeographicLongitude) {
   write("dr.csv", "time_s,speed_m_s,heading_deg\n0,5,0\n5,5,0\n");
   write("s.csv", "name,lat_deg,lon_deg\nA,45.1,7.6649\nB,45.2,7.7\n");
   write("l.csv", "time_s,type,station,station2,value,sigma_m\n5,range,A,,100,5\n");
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(
+  const PlaneJob r = plane_job(io::read_nav_config(
       write("nav.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\ninitial: {lat: 45, lon: 7.7, sigma_m: 10}\n")));
   ASSERT_TRUE(r.projection);
   // the initial position is the first geographic point: 7.7° (already on 0.1°)
@@ -558,21 +578,21 @@ TEST_F(NavFilesDir, DefaultProjectionAtTheFirstGeographicLongitude) {
   EXPECT_EQ(r.projection->scale_factor, 1.0);
   EXPECT_EQ(r.projection->false_easting_m, 0.0);
   EXPECT_EQ(r.projection->false_northing_m, 0.0);
-  ASSERT_TRUE(r.to_geographic);
-  const auto ll = r.to_geographic(r.input.stations[0].x_north_m, r.input.stations[0].y_east_m);
-  EXPECT_NEAR(ll[0], 45.1 * kDeg, 1e-12);
-  EXPECT_NEAR(ll[1], 7.6649 * kDeg, 1e-12);
+  const auto ll = meridian::geodesy::TransverseMercatorGrid(*r.projection)
+                      .reverse(r.input.stations[0].x_north_m, r.input.stations[0].y_east_m);
+  EXPECT_NEAR(ll.lat_rad, 45.1 * kDeg, 1e-12);
+  EXPECT_NEAR(ll.lon_rad, 7.6649 * kDeg, 1e-12);
   EXPECT_NEAR(r.input.initial.y_east_m, 0.0, 1e-6);  // on the central meridian
   bool noted = false;
   for (const auto& n : r.notes) noted |= n.find("central meridian 7.7") != std::string::npos;
   EXPECT_TRUE(noted);
   // without initial: the first station sets it: 7.6649 → 7.7
   write("f.csv", "time_s,lat_deg,lon_deg,sigma_m\n0,45,7.63,5\n");
-  const io::NavRun s = io::read_nav_job(
+  const PlaneJob s = plane_job(
       io::read_nav_config(write("n2.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\nfixes: f.csv\n")));
   EXPECT_NEAR(s.projection->central_meridian_rad, 7.7 * kDeg, 1e-15);
   write("s3.csv", "name,lat_deg,lon_deg\nA,45.1,7.64\n");
-  const io::NavRun t = io::read_nav_job(
+  const PlaneJob t = plane_job(
       io::read_nav_config(write("n3.yaml", "dr: dr.csv\nstations: s3.csv\nlops: l.csv\nfixes: f.csv\n")));
   EXPECT_NEAR(t.projection->central_meridian_rad, 7.6 * kDeg, 1e-15);
 }
@@ -589,9 +609,9 @@ TEST_F(NavFilesDir, TrueHeadingBecomesGridAzimuthWithConvergenceAndScale) {
   write("vel.csv", "time_s,v_north_m_s,v_east_m_s\n0,4.330127018922193,2.5\n1,4.330127018922193,2.5\n");
   const std::string proj = "projection: {type: transverse-mercator, central_meridian: 7, scale_factor: 0.9996, "
                            "false_easting_m: 500000}\n";
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(
+  const PlaneJob r = plane_job(io::read_nav_config(
       write("nav.yaml", "dr: dr.csv\n" + proj + "initial: {lat: 45, lon: 9.5}\nsigma_heading_deg: 0\n")));
-  const io::NavRun c = io::read_nav_job(
+  const PlaneJob c = plane_job(
       io::read_nav_config(write("vel.yaml", "dr: vel.csv\n" + proj + "initial: {lat: 45, lon: 9.5}\n")));
 
   meridian::geodesy::GridDefinition g;
@@ -608,7 +628,7 @@ TEST_F(NavFilesDir, TrueHeadingBecomesGridAzimuthWithConvergenceAndScale) {
   const double dx = p2.x_north_m - p1.x_north_m, dy = p2.y_east_m - p1.y_east_m;
   // the convergence here is well away from 0: the test discriminates the sign
   EXPECT_GT(p0.convergence_rad, 1.5 * kDeg);
-  for (const io::NavRun* run : {&r, &c}) {
+  for (const PlaneJob* run : {&r, &c}) {
     const nav::DrSample& s = run->input.dr[0];
     EXPECT_NEAR(std::atan2(s.v_east_m_s, s.v_north_m_s), std::atan2(dy, dx), 1e-8);
     EXPECT_NEAR(std::hypot(s.v_north_m_s, s.v_east_m_s), std::hypot(dx, dy), 1e-8);
@@ -640,7 +660,7 @@ TEST_F(NavFilesDir, GroundRangesBecomeGridLengths) {
   write("s.csv", st);
   write("l.csv", lp);
   write("dr.csv", "time_s,speed_m_s,heading_deg\n0,5,0\n5,5,0\n");
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(write(
+  const PlaneJob r = plane_job(io::read_nav_config(write(
       "nav.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\ninitial: {lat: 45, lon: 11.5, sigma_m: 10}\n"
                   "projection: {type: utm, zone: 32}\n")));
   const auto grid_length = [&](std::size_t i) {
@@ -653,7 +673,7 @@ TEST_F(NavFilesDir, GroundRangesBecomeGridLengths) {
   EXPECT_NEAR(r.input.lops[0].sigma_m, 50.0, 0.05);
   // a plane job without a projection keeps its values
   write("sp.csv", "name,x_m,y_m\nA,60000,0\nB,0,90000\n");
-  const io::NavRun p = io::read_nav_job(io::read_nav_config(
+  const PlaneJob p = plane_job(io::read_nav_config(
       write("p.yaml", "dr: dr.csv\nstations: sp.csv\nlops: l.csv\ninitial: {x_m: 0, y_m: 0}\n")));
   EXPECT_EQ(p.input.lops[0].value_m, std::stod(std::string(lp).substr(std::string(lp).find("0,range,A,,") + 11)));
 }
@@ -661,7 +681,7 @@ TEST_F(NavFilesDir, GroundRangesBecomeGridLengths) {
 TEST_F(NavFilesDir, GeographicFixCovarianceTurnsIntoTheGrid) {
   write("dr.csv", "time_s,speed_m_s,heading_deg\n0,5,0\n5,5,0\n");
   write("f.csv", "time_s,lat_deg,lon_deg,sigma_x_m,sigma_y_m\n0,45,9.5,1,10\n");
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(write(
+  const PlaneJob r = plane_job(io::read_nav_config(write(
       "nav.yaml", "dr: dr.csv\nfixes: f.csv\nprojection: {type: transverse-mercator, central_meridian: 7}\n")));
   const auto& cov = r.input.fixes[0].covariance;
   const meridian::geodesy::GridDefinition& g = *r.projection;
@@ -733,7 +753,7 @@ TEST_F(NavFilesDir, NmeaMidnightThinningTruthAndSkippedSpeed) {
   EXPECT_TRUE(sigma);
   // the whole job: default projection at 9.5°, initial position from the first fix
   const std::string p = write("nav.yaml", "nmea: {heading: ship.nmea, fix_interval_s: 5}\n");
-  const io::NavRun r = io::read_nav_job(io::read_nav_config(p));
+  const PlaneJob r = plane_job(io::read_nav_config(p));
   ASSERT_TRUE(r.projection);
   EXPECT_NEAR(r.projection->central_meridian_rad, 9.5 * kDeg, 1e-15);
   EXPECT_EQ(r.input.dr.size(), 20u);
@@ -741,7 +761,7 @@ TEST_F(NavFilesDir, NmeaMidnightThinningTruthAndSkippedSpeed) {
   EXPECT_EQ(r.input.truth.size(), 16u);
   EXPECT_NEAR(r.input.initial.y_east_m, 0.0, 1e-6);
   EXPECT_EQ(r.input.initial_fix, std::optional<std::size_t>(0));
-  EXPECT_EQ(r.dr_lines[0].file, log);
+  EXPECT_EQ(r.job.line.dr[0].source.file, log);
 }
 
 // Heading and speed in two files with logger stamps: the heading interpolated circularly
@@ -821,27 +841,28 @@ TEST_F(NavFilesDir, ProcessErrorsAreLocated) {
   write("l.csv", "time_s,type,station,station2,value,sigma_m\n5,range,A,,1000,50\n\n10,range,A,,1000,50\n");
   const io::NavConfig c = io::read_nav_config(
       write("nav.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\ninitial: {x_m: 0, y_m: 0}\nthreshold_m: 50\n"));
-  const io::NavRun run = io::read_nav_job(c);
-  const auto located = [&](const std::string& field) {
-    return error_of([&] { io::throw_located_nav_error(InputError("bad", {"", std::nullopt, field}), run, c); });
+  const io::NavJob job = io::read_nav_job(c);
+  const auto located_as = [&](const std::string& field) {
+    return error_of([&] { io::located(job.sources, [&] { throw InputError("bad", {"", std::nullopt, field}); }); });
   };
-  EXPECT_EQ(located("lops[1].value_m"), (dir_ / "l.csv").string() + ":4: value: bad");
-  EXPECT_EQ(located("dr[2].time_s"), (dir_ / "dr.csv").string() + ":4: time_s: bad");
-  EXPECT_EQ(located("epoch 1"), (dir_ / "dr.csv").string() + ":3: bad");
-  EXPECT_EQ(located("options.threshold_m"), (dir_ / "nav.yaml").string() + ":5: threshold_m: bad");
-  EXPECT_EQ(located("initial.sigma_m"), (dir_ / "nav.yaml").string() + ":4: initial.sigma_m: bad");
-  EXPECT_EQ(located("stations[0].x_north_m"), (dir_ / "s.csv").string() + ":2: x_m: bad");
-  // an initial position taken from a fix: that fix's line
+  EXPECT_EQ(located_as("lops[1].value_m"), (dir_ / "l.csv").string() + ":4: value: bad");
+  EXPECT_EQ(located_as("dr[2].time_s"), (dir_ / "dr.csv").string() + ":4: time_s: bad");
+  EXPECT_EQ(located_as("epoch 1"), (dir_ / "dr.csv").string() + ":3: bad");
+  EXPECT_EQ(located_as("options.threshold_m"), (dir_ / "nav.yaml").string() + ":5: threshold_m: bad");
+  EXPECT_EQ(located_as("initial.sigma_m"), (dir_ / "nav.yaml").string() + ":4: initial.sigma_m: bad");
+  EXPECT_EQ(located_as("stations[0].x_north_m"), (dir_ / "s.csv").string() + ":2: x_m: bad");
+  // the fix that gives the initial position: its line
   write("f.csv", "time_s,x_m,y_m,sigma_m\n1,0,0,5\n");
-  const io::NavConfig cf = io::read_nav_config(write("nf.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\nfixes: f.csv\n"));
-  const io::NavRun rf = io::read_nav_job(cf);
+  const io::NavJob jf = io::read_nav_job(
+      io::read_nav_config(write("nf.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\nfixes: f.csv\n")));
   EXPECT_EQ(error_of([&] {
-              io::throw_located_nav_error(InputError("bad", {"", std::nullopt, "initial.sigma_m"}), rf, cf);
+              io::located(jf.sources, [&] { throw InputError("bad", {"", std::nullopt, "fixes[0].time_s"}); });
             }),
-            (dir_ / "f.csv").string() + ":2: bad");
+            (dir_ / "f.csv").string() + ":2: time_s: bad");
   // the class is kept
-  EXPECT_THROW(io::throw_located_nav_error(meridian::NumericalError("n", {"", std::nullopt, "epoch 1"}), run, c),
-               meridian::NumericalError);
+  EXPECT_THROW(
+      io::located(job.sources, [&] { throw meridian::NumericalError("n", {"", std::nullopt, "epoch 1"}); }),
+      meridian::NumericalError);
   // statistics bins beyond nav::kMaxStatisticsBins over the line (std::bad_alloc before)
   const std::string bins = error_of<InputError>([&] {
     io::run_nav(io::read_nav_config(write("b.yaml", "dr: dr.csv\ninitial: {x_m: 0, y_m: 0}\nstatistics_bin_s: 1e-9\n")));
@@ -867,6 +888,38 @@ TEST_F(NavFilesDir, RunNavProcessesAPlaneLine) {
   const io::NavRun r = io::run_nav(c);
   EXPECT_EQ(r.result.epochs, 61u);
   EXPECT_NE(r.result.find(nav::Method::Rts), nullptr);
+}
+
+// The Result describes itself: the projection of its plane, the file and line of each
+// rejected observation (the blunder of l.csv line 62: row 61, k = 30, station A).
+TEST_F(NavFilesDir, RunNavResultCarriesItsProjectionAndSources) {
+  const double x0 = 4983000.0, y0 = 500000.0;
+  std::string dr = "time_s,speed_m_s,heading_deg\n", lops = "time_s,type,station,station2,value,sigma_m\n";
+  for (int k = 0; k <= 60; ++k) {
+    dr += std::to_string(5 * k) + ",5,90\n";
+    const double y = 25.0 * k;
+    lops += std::to_string(5 * k) + ",range,A,," + std::to_string(std::hypot(1000.0, y) + (k == 30 ? 500.0 : 0.0)) +
+            ",5\n";
+    lops += std::to_string(5 * k) + ",range,B,," + std::to_string(std::hypot(1000.0, 2000.0 - y)) + ",5\n";
+  }
+  write("dr.csv", dr);
+  write("l.csv", lops);
+  write("s.csv", "name,x_m,y_m\nA," + std::to_string(x0 + 1000.0) + "," + std::to_string(y0) + "\nB," +
+                     std::to_string(x0 - 1000.0) + "," + std::to_string(y0 + 2000.0) + "\n");
+  const io::NavRun r = io::run_nav(io::read_nav_config(write(
+      "nav.yaml", "dr: dr.csv\nstations: s.csv\nlops: l.csv\nprojection: {type: utm, zone: 32}\ninitial: {x_m: " +
+                      std::to_string(x0) + ", y_m: " + std::to_string(y0) + "}\n")));
+  ASSERT_TRUE(r.result.projection);
+  EXPECT_EQ(r.result.projection->zone, 32);
+  bool blunder = false;
+  for (const nav::RejectedObservation& o : r.result.rejected) {
+    EXPECT_EQ(o.source, "l.csv:" + std::to_string(2 + o.index)) << o.reason;
+    blunder |= o.index == 60;
+  }
+  EXPECT_TRUE(blunder);
+  bool plane = false;
+  for (const std::string& n : r.result.notes) plane |= n.rfind("plane: ", 0) == 0;
+  EXPECT_TRUE(plane);
 }
 
 TEST_F(NavFilesDir, AnInitialFixBeforeTheFirstEpochIsMovedThereAndUsedOnce) {
@@ -925,11 +978,11 @@ TEST(NavNmeaRealLogs, GyroHeadingSeapathSpeedThinnedGga) {
   // latitude 22°00.110899' S
   EXPECT_NEAR(d.fixes.records[0].position.lat_rad, -(22.0 + 0.110899 / 60.0) * kDeg, 1e-12);
   // the whole job reads: initial position from the GGA of 0.16 s (0.24 s before the first DR)
-  const io::NavRun r = [&] {
+  const PlaneJob r = [&] {
     io::NavConfig cfg;
     cfg.file = "nav.yaml";
     cfg.nmea = c;
-    return io::read_nav_job(cfg);
+    return plane_job(cfg);
   }();
   EXPECT_EQ(r.input.dr.size(), 625u);
   EXPECT_EQ(r.input.fixes.size(), 6u);
@@ -1027,7 +1080,7 @@ TEST_F(NavFilesDir, MutatedNmeaAndConfigGiveErrorsOnly) {
     write("ship.nmea", round % 2 ? mutate(log, g) : log);
     const std::string p = write("nav.yaml", round % 2 ? config : mutate(config, g));
     try {
-      io::read_nav_job(io::read_nav_config(p));
+      plane_job(io::read_nav_config(p));
     } catch (const meridian::Error&) {
     } catch (const std::exception& e) {
       ADD_FAILURE() << "not a meridian::Error: " << e.what();

@@ -3,6 +3,7 @@
 // [longitude, latitude] order, the errors, the text and the report document.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -19,6 +20,7 @@
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "meridian/geodesy/grid.hpp"
 #include "meridian/report/html.hpp"
 #include "meridian/report/nav_html.hpp"
 #include "meridian/report/nav_outputs.hpp"
@@ -117,18 +119,32 @@ nav::Result make_result(std::size_t epochs = 12, bool truth = true) {
   return r;
 }
 
-// A local projection: latitude and longitude (rad) from metres off a reference point.
-struct LocalProjection {
-  double lat0_deg, lon0_deg, x0_m, y0_m;
-  std::array<double, 2> operator()(double x, double y) const {
-    const double R = 6371000.0;
-    const double lat = lat0_deg * units::kDegree + (x - x0_m) / R;
-    const double lon = lon0_deg * units::kDegree + (y - y0_m) / (R * std::cos(lat0_deg * units::kDegree));
-    return {lat, lon};
-  }
-};
+// A transverse Mercator on WGS 84 (the result's projection as data) whose central meridian is
+// lon0 and whose point (x0, y0) lies at latitude lat0 on it.
+geodesy::GridDefinition local_projection(double lat0_deg, double lon0_deg, double x0_m, double y0_m) {
+  geodesy::GridDefinition g;
+  g.system = geodesy::ZoneSystem::Custom;
+  g.central_meridian_rad = lon0_deg * units::kDegree;
+  g.scale_factor = 1.0;
+  g.false_easting_m = y0_m;
+  g.false_northing_m = 0.0;
+  g.false_northing_m = x0_m - geodesy::TransverseMercatorGrid(g).forward(lat0_deg * units::kDegree, g.central_meridian_rad).x_north_m;
+  return g;
+}
 
-const LocalProjection kWestCoast{37.5, -122.25, 4100000.0, 500000.0};
+const geodesy::GridDefinition kWestCoast = local_projection(37.5, -122.25, 4100000.0, 500000.0);
+
+// {latitude, longitude} (rad) of a plane point in kWestCoast.
+std::array<double, 2> west_coast(double x_north_m, double y_east_m) {
+  const geodesy::GeographicPoint q = geodesy::TransverseMercatorGrid(kWestCoast).reverse(x_north_m, y_east_m);
+  return {q.lat_rad, q.lon_rad};
+}
+
+// The result with the projection.
+nav::Result projected(nav::Result r, const geodesy::GridDefinition& g) {
+  r.projection = g;
+  return r;
+}
 
 std::vector<std::string> lines_of(const std::string& s) {
   std::vector<std::string> out;
@@ -327,7 +343,7 @@ TEST(NavJson, WithoutTruthTheErrorStatisticsAreNull) {
 
 TEST(NavTrackCsv, HeaderRowsAndExactRoundTripWithoutProjection) {
   const nav::Result r = make_result();
-  const std::string csv = nav_track_csv(r, nav::Method::Ekf, {});
+  const std::string csv = nav_track_csv(r, nav::Method::Ekf);
   const auto lines = lines_of(csv);
   ASSERT_GE(lines.size(), 3u);
   EXPECT_EQ(lines[0].rfind("# ", 0), 0u);
@@ -359,8 +375,8 @@ TEST(NavTrackCsv, HeaderRowsAndExactRoundTripWithoutProjection) {
 }
 
 TEST(NavTrackCsv, WithAProjectionHasLatitudeAndLongitude) {
-  const nav::Result r = make_result();
-  const std::string csv = nav_track_csv(r, nav::Method::Rts, kWestCoast);
+  const nav::Result r = projected(make_result(), kWestCoast);
+  const std::string csv = nav_track_csv(r, nav::Method::Rts);
   const auto lines = lines_of(csv);
   std::size_t h = 0;
   while (lines[h].rfind("#", 0) == 0) ++h;
@@ -372,9 +388,9 @@ TEST(NavTrackCsv, WithAProjectionHasLatitudeAndLongitude) {
   for (std::size_t k = 0; k < track.size(); ++k) {
     const auto f = split(lines[h + 1 + k]);
     ASSERT_EQ(f.size(), 13u);
-    const auto ll = kWestCoast(track[k].x_north_m, track[k].y_east_m);
-    EXPECT_EQ(number(f[3]), units::rad_to_deg(ll[0]));
-    EXPECT_EQ(number(f[4]), units::rad_to_deg(ll[1]));
+    const auto ll = geodesy::TransverseMercatorGrid(kWestCoast).reverse(track[k].x_north_m, track[k].y_east_m);
+    EXPECT_EQ(number(f[3]), units::rad_to_deg(ll.lat_rad));
+    EXPECT_EQ(number(f[4]), units::rad_to_deg(ll.lon_rad));
     EXPECT_NEAR(number(f[3]), 37.5, 0.01);
     EXPECT_NEAR(number(f[4]), -122.25, 0.01);
     EXPECT_EQ(number(f[1]), track[k].x_north_m);
@@ -384,7 +400,7 @@ TEST(NavTrackCsv, WithAProjectionHasLatitudeAndLongitude) {
 TEST(NavTrackCsv, AMethodNotInTheResultIsAnInputErrorNamingIt) {
   const nav::Result r = make_result();
   try {
-    (void)nav_track_csv(r, nav::Method::FixClosure, {});
+    (void)nav_track_csv(r, nav::Method::FixClosure);
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("fix-closure"), std::string::npos) << e.what();
@@ -393,18 +409,20 @@ TEST(NavTrackCsv, AMethodNotInTheResultIsAnInputErrorNamingIt) {
 }
 
 TEST(NavTrackCsv, ANonGeographicProjectionIsAnInputError) {
-  const nav::Result r = make_result();
-  const ToGeographic bad = [](double, double) { return std::array<double, 2>{kNaN, 0.0}; };
-  EXPECT_THROW((void)nav_track_csv(r, nav::Method::Rts, bad), InputError);
-  EXPECT_THROW((void)nav_track_geojson(r, {nav::Method::Rts}, bad), InputError);
+  // the track 10 000 km east of the central meridian: no geographic position
+  geodesy::GridDefinition far = kWestCoast;
+  far.false_easting_m = -1e7;
+  const nav::Result r = projected(make_result(), far);
+  EXPECT_THROW((void)nav_track_csv(r, nav::Method::Rts), InputError);
+  EXPECT_THROW((void)nav_track_geojson(r, {nav::Method::Rts}), InputError);
 }
 
 // ---- GeoJSON -------------------------------------------------------------------------------
 
 TEST(NavGeoJson, IsAFeatureCollectionInLongitudeLatitudeOrder) {
-  const nav::Result r = make_result();
+  const nav::Result r = projected(make_result(), kWestCoast);
   const std::vector<nav::Method> methods{nav::Method::SequentialBiasI, nav::Method::Rts};
-  const std::string text = nav_track_geojson(r, methods, kWestCoast);
+  const std::string text = nav_track_geojson(r, methods);
   const json g = json::parse(text);
   EXPECT_EQ(g["type"], "FeatureCollection");
   EXPECT_FALSE(g.contains("crs")) << "RFC 7946 has no crs member";
@@ -423,7 +441,7 @@ TEST(NavGeoJson, IsAFeatureCollectionInLongitudeLatitudeOrder) {
       ASSERT_EQ(c.size(), m.track.size());
       for (std::size_t k = 0; k < m.track.size(); ++k) {
         ASSERT_EQ(c[k].size(), 2u);
-        const auto ll = kWestCoast(m.track[k].x_north_m, m.track[k].y_east_m);
+        const auto ll = west_coast(m.track[k].x_north_m, m.track[k].y_east_m);
         EXPECT_NEAR(c[k][0].get<double>(), units::rad_to_deg(ll[1]), 6e-10) << "longitude first";
         EXPECT_NEAR(c[k][1].get<double>(), units::rad_to_deg(ll[0]), 6e-10) << "latitude second";
       }
@@ -441,7 +459,7 @@ TEST(NavGeoJson, IsAFeatureCollectionInLongitudeLatitudeOrder) {
       // At the method's position at the epoch nearest the observation (LOP 36015.1 s: epoch
       // 3; fix 36040.1 s: epoch 8).
       const std::size_t k = lop ? 3 : 8;
-      const auto ll = kWestCoast(m.track[k].x_north_m, m.track[k].y_east_m);
+      const auto ll = west_coast(m.track[k].x_north_m, m.track[k].y_east_m);
       EXPECT_NEAR(f["geometry"]["coordinates"][0].get<double>(), units::rad_to_deg(ll[1]), 6e-10);
       EXPECT_NEAR(f["geometry"]["coordinates"][1].get<double>(), units::rad_to_deg(ll[0]), 6e-10);
     }
@@ -462,8 +480,8 @@ TEST(NavGeoJson, IsAFeatureCollectionInLongitudeLatitudeOrder) {
 }
 
 TEST(NavGeoJson, EveryMethodWhenNoneIsNamedAndWithoutTruthNoRms) {
-  const nav::Result r = make_result(3, false);
-  const json g = json::parse(nav_track_geojson(r, {}, kWestCoast));
+  const nav::Result r = projected(make_result(3, false), kWestCoast);
+  const json g = json::parse(nav_track_geojson(r, {}));
   std::size_t tracks = 0;
   for (const json& f : g["features"])
     if (f["properties"]["feature"] == "track") {
@@ -476,14 +494,14 @@ TEST(NavGeoJson, EveryMethodWhenNoneIsNamedAndWithoutTruthNoRms) {
 TEST(NavGeoJson, NeedsAProjection) {
   const nav::Result r = make_result();
   try {
-    (void)nav_track_geojson(r, {nav::Method::Rts}, {});
+    (void)nav_track_geojson(r, {nav::Method::Rts});
     FAIL() << "no error";
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("projection"), std::string::npos) << what;
     EXPECT_NE(what.find("geographic"), std::string::npos) << what;
   }
-  EXPECT_THROW((void)nav_track_geojson(r, {nav::Method::FixClosure}, kWestCoast), InputError);
+  EXPECT_THROW((void)nav_track_geojson(projected(r, kWestCoast), {nav::Method::FixClosure}), InputError);
 }
 
 TEST(NavGeoJson, ATrackAcrossTheAntimeridianIsCutThere) {
@@ -499,8 +517,8 @@ TEST(NavGeoJson, ATrackAcrossTheAntimeridianIsCutThere) {
   }
   r.methods.push_back(m);
   r.epochs = 5;
-  const LocalProjection pacific{-16.5, 179.95, 0.0, 0.0};
-  const json g = json::parse(nav_track_geojson(r, {}, pacific));
+  r.projection = local_projection(-16.5, 179.95, 0.0, 0.0);
+  const json g = json::parse(nav_track_geojson(r, {}));
   const json& geom = g["features"][0]["geometry"];
   ASSERT_EQ(geom["type"], "MultiLineString");
   ASSERT_EQ(geom["coordinates"].size(), 2u);
@@ -525,10 +543,11 @@ TEST(NavGeoJson, AOneEpochTrackIsAPoint) {
   m.method = nav::Method::Ekf;
   m.track.push_back(nav::TrackPoint{});
   r.methods.push_back(m);
-  const json g = json::parse(nav_track_geojson(r, {}, kWestCoast));
+  r.projection = kWestCoast;
+  const json g = json::parse(nav_track_geojson(r, {}));
   EXPECT_EQ(g["features"][0]["geometry"]["type"], "Point");
   EXPECT_NEAR(g["features"][0]["geometry"]["coordinates"][0].get<double>(),
-              units::rad_to_deg(kWestCoast(0, 0)[1]), 1e-9);
+              units::rad_to_deg(geodesy::TransverseMercatorGrid(kWestCoast).reverse(0, 0).lon_rad), 1e-9);
 }
 
 // ---- rejected CSV --------------------------------------------------------------------------

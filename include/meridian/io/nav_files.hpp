@@ -26,19 +26,14 @@
 /// naming the header line for a missing column, IoError when a file cannot be opened. An
 /// exact duplicate LOP or fix (every value equal) is an InputError naming both lines.
 ///
-/// Geographic input and the plane (x = north, y = east): positions go through
-/// geodesy::TransverseMercatorGrid::forward; a true DR velocity (heading α clockwise from true
-/// north, or v_north, v_east) becomes a grid velocity by the rotation T = α − γ and the point
-/// scale k, both evaluated along the dead-reckoned track from the initial position (a DR
-/// position error of a kilometre east changes γ by about tan φ/R: 0.009° at 45°); LOP
-/// values (ground lengths) become grid lengths with the line scale factor of each ship–station
-/// distance (Simpson's rule, the ship at its dead-reckoned position). Without a projection (a
-/// job in plane coordinates only) headings are taken as grid azimuths and LOP values as plane
-/// lengths, as given.
+/// Geographic input and the plane: the reader keeps positions, headings and LOP values as
+/// written (nav::SurveyLine); nav::to_plane (nav/survey_line.hpp) puts them in the job's plane.
+///
+/// The runner (read_nav_job, run_nav): the configuration's files → nav::SurveyLine with an
+/// io::SourceMap of where each of its fields was read → nav::process, whose errors leave with
+/// the file, line and column of the element they name.
 
-#include <array>
 #include <cstddef>
-#include <functional>
 #include <istream>
 #include <optional>
 #include <string>
@@ -47,37 +42,20 @@
 #include "meridian/core/progress.hpp"
 #include "meridian/geodesy/grid.hpp"
 #include "meridian/io/document.hpp"
+#include "meridian/io/source_map.hpp"
 #include "meridian/nav/navigation.hpp"
 #include "meridian/nav/simulator.hpp"
+#include "meridian/nav/survey_line.hpp"
 
 namespace meridian::io {
 
-/// LORAN-C propagation speed over sea water (m/s), the default of NavChainConfig: the
-/// conversion L = c·τ of a time difference τ.
-inline constexpr double kNavLoranPropagationSpeed_m_s = 299691162.0;
-/// Default σ of a DR speed (m/s) and heading (degrees) and of each velocity component (m/s)
-/// when the configuration gives none (a note says so).
-inline constexpr double kNavDefaultSigmaSpeed_m_s = 0.05;
-inline constexpr double kNavDefaultSigmaHeading_deg = 0.2;
 /// Default σ of each coordinate of an NMEA GGA fix (m) (a note says so).
 inline constexpr double kNavDefaultSigmaFix_m = 5.0;
-/// A fix this close in time to the first DR epoch (s) gives the default initial position.
-inline constexpr double kNavInitialFixWindow_s = 5.0;
 /// A speed sample of an NMEA log with no HDT this close in time (s) is skipped.
 inline constexpr double kNavHeadingGap_s = 2.0;
 
-/// Where an observation came from: file and 1-based line.
-struct NavSourceLine {
-  std::string file;
-  int line = 0;
-};
-
 /// A position as written: plane (x north, y east, m) or geographic (radians).
-struct NavPosition {
-  bool geographic = false;
-  double x_north_m = 0.0, y_east_m = 0.0;
-  double lat_rad = 0.0, lon_rad = 0.0;
-};
+using NavPosition = nav::Position;
 
 // ---- raw file contents (before the plane and the names are resolved) -------------------------
 
@@ -101,7 +79,7 @@ struct NavStationsFile {
 };
 
 /// Kind of a LOP record as written (`type` column).
-enum class NavLopKind { Range, RangeDifference, TimeDifference };
+using NavLopKind = nav::LopKind;
 
 struct NavLopsFile {
   std::string source;
@@ -175,10 +153,7 @@ struct NavProjectionConfig {
 };
 
 /// One entry of `chains:`.
-struct NavChainConfig {
-  nav::Chain chain;
-  double propagation_speed_m_s = kNavLoranPropagationSpeed_m_s;
-};
+using NavChainConfig = nav::LineChain;
 
 /// Which NMEA sentence gives the speed.
 enum class NavSpeedSentence { Vtg, Vbw };
@@ -203,7 +178,7 @@ struct NavConfig {
   std::string dr_path, stations_path, lops_path, fixes_path, truth_path;
   std::optional<NavNmeaConfig> nmea;
   std::optional<NavProjectionConfig> projection;
-  /// `initial:`; absent: the first fix within kNavInitialFixWindow_s of the first DR epoch.
+  /// `initial:`; absent: the first fix within nav::kInitialFixWindow_s of the first DR epoch.
   std::optional<NavPosition> initial;
   std::optional<double> initial_sigma_m;
   std::vector<NavChainConfig> chains;
@@ -274,42 +249,38 @@ struct NavNmeaData {
 };
 NavNmeaData read_nav_nmea(const NavNmeaConfig& config);
 
-/// Plane (x north, y east, m) → {lat_rad, lon_rad}; empty when the job has no projection.
-using NavToGeographic = std::function<std::array<double, 2>(double x_north_m, double y_east_m)>;
+/// Every file a configuration names (the configuration first, then dr, stations, lops, fixes,
+/// truth and the NMEA logs; absent ones left out): what an output must not overwrite.
+std::vector<std::string> nav_input_files(const NavConfig& config);
 
-struct NavRun {
-  nav::Input input;
-  nav::Result result;
-  /// What the reader did: defaults used, samples skipped with their counts and first lines.
-  std::vector<std::string> notes;
-  /// What the reader dropped from the input (NMEA lines with a bad or missing checksum,
-  /// malformed ones): appended to result.warnings by run_nav.
-  std::vector<std::string> warnings;
-  NavToGeographic to_geographic;
-  std::optional<geodesy::GridDefinition> projection;
-  /// File and line of every input element (same indices as input.dr, .lops, .fixes, …).
-  std::vector<NavSourceLine> dr_lines, station_lines, lop_lines, fix_lines, truth_lines;
-  /// The fix that gave the initial position when the configuration has no `initial:`.
-  std::optional<NavSourceLine> initial_line;
+/// A job as read: the line as observed (nav/survey_line.hpp) and where each of its fields was
+/// read, the one field → line table of this reader: rows "dr", "epoch", "stations", "lops",
+/// "fixes", "truth" with their CSV column names (none for NMEA logs), and the configuration's
+/// keys ("options.<key>" is the key <key>; any other field its innermost key, the document
+/// itself as the fallback).
+struct NavJob {
+  nav::SurveyLine line;
+  SourceMap sources;
 };
 
-/// Read everything the configuration names into a nav::Input (with the notes, the projection
-/// and the line tables) without processing it.
-NavRun read_nav_job(const NavConfig& config);
+/// Read everything the configuration names into a nav::SurveyLine: the CSV files or the NMEA
+/// logs, station and chain names resolved, truth in time order, the configuration's initial
+/// position, projection, σ and options. Errors: those of the readers; InputError naming the
+/// LOP file's line for an unknown station or chain, the configuration's key for a σ of the
+/// other kind of DR, the DR file for fewer than 2 samples.
+NavJob read_nav_job(const NavConfig& config);
 
-/// Throw `e` (an error of nav::process about `run`'s input, without a file) again with the file,
-/// line and column of the element its field names ("lops[12].value_m" → "lops.csv:14: value",
-/// "epoch 5" → the line of dr[5]), "options.<name>" with the configuration's key <name>, other
-/// fields ("initial.sigma_m", "chains[0].…") at the configuration's line of that key (an
-/// initial position taken from a fix: that fix's line). The
-/// class of `e` is kept.
-[[noreturn]] void throw_located_nav_error(const Error& e, const NavRun& run, const NavConfig& config);
+/// The runner's result: the job as read and its processed line (nav::process(SurveyLine): the
+/// Result carries the projection, the notes and the sources of its observations).
+struct NavRun {
+  NavJob job;
+  nav::Result result;
+};
 
-/// read_nav_job, then nav::process. The reader's notes and warnings are also appended to
-/// result.notes and result.warnings.
-/// Errors of nav::process about an element ("lops[12].value_m", "dr[5].time_s", "epoch 5")
-/// get the file, line and column of that element; about options and the initial position the
-/// configuration's file, line and key.
+/// read_nav_job, then nav::process with the errors located (io::located): an error about an
+/// element ("lops[12].value_m", "dr[5].time_s", "epoch 5") gets the file, line and column of
+/// that element; about options, chains and the initial position the configuration's file,
+/// line and key. The class of the error is kept.
 NavRun run_nav(const NavConfig& config, Progress* progress = nullptr);
 
 }  // namespace meridian::io

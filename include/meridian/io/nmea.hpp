@@ -1,7 +1,7 @@
 #pragma once
 /// \file nmea.hpp
-/// A streaming NMEA 0183 reader (docs/file-formats.md, "NMEA 0183") and the whole-file
-/// inspection summary behind `meridian nav inspect`.
+/// A streaming NMEA 0183 reader (docs/file-formats.md, "NMEA 0183") that also fills the
+/// whole-file inspection summary behind `meridian nav inspect` (nav::LogInspection).
 ///
 /// Lines: `$TTSSS,f1,f2,…*HH` with an optional logger prefix before the `$` (e.g.
 /// `2014-08-01T00:00:00.285000Z $INGGA,…`; an ISO 8601 UTC prefix is exposed as
@@ -36,16 +36,17 @@
 #include <variant>
 #include <vector>
 
+#include "meridian/nav/log_inspection.hpp"
+#include "meridian/nav/utc_time.hpp"
+
 namespace meridian::io::nmea {
 
 /// Longest line read (bytes, without the line end); NMEA 0183 allows 82, loggers add a prefix.
 inline constexpr std::size_t kMaxLineBytes = 4096;
 
-/// Lines whose numbers a Summary keeps per problem (the counts are complete).
-inline constexpr std::size_t kMaxLinesListed = 10;
-
-/// 1024 GPS weeks in days: a date this much before the logger's stamp is a week rollover.
-inline constexpr int kGpsRolloverDays = 7168;
+/// The limits of the summary (nav/log_inspection.hpp).
+using nav::kGpsRolloverDays;
+using nav::kMaxLinesListed;
 
 /// GGA: fix data.
 struct Gga {
@@ -117,43 +118,13 @@ struct Options {
   bool accept_missing_checksum = false;
 };
 
-/// What a file holds and what is wrong with it. Counts are complete; line lists keep the first
-/// kMaxLinesListed.
-struct Summary {
-  std::string file;
-  long lines = 0;                       ///< physical lines
-  std::map<std::string, long> sentences;  ///< accepted sentences by talker+type ("INGGA")
-  long proprietary = 0;   ///< `$P…`, checksum valid, skipped
-  long unknown = 0;       ///< accepted sentences of types not decoded
-  long bad_checksum = 0;  ///< rejected
-  long no_checksum = 0;   ///< rejected unless accept_missing_checksum
-  /// no_checksum by talker+type ("GPVTG"; a line whose address is not 5 letters or digits
-  /// counts only in no_checksum; at most 1024 keys).
-  std::map<std::string, long> no_checksum_by_type;
-  long malformed = 0;     ///< truncated, corrupt, non-ASCII, too few fields, overlong; rejected
-  /// A sentence with a time of day (GGA, GLL, RMC, ZDA) byte-identical, logger prefix
-  /// included, to the previous one of its talker+type: counted in `sentences` and here, not
-  /// delivered (the epoch exists already). Untimed repeats (a steady heading) are ordinary.
-  long duplicates = 0;
-  std::map<std::string, long> duplicates_by_type;
-  long comments = 0, blank = 0;
-  long logger_prefixed = 0;  ///< lines with text before the `$`
-  bool accept_missing_checksum = false;
-  std::vector<int> bad_checksum_lines, no_checksum_lines;
-  std::vector<std::pair<int, std::string>> malformed_lines;  ///< line, reason
-  /// Earliest and latest time: of the dated sentences when there are any, else of the logger
-  /// stamps (time_source "sentences", "logger" or "" when neither exists).
-  std::optional<double> first_time_s, last_time_s;
-  std::string time_source;
-  bool gps_week_rollover_suspected = false;
-  std::optional<int> rollover_line;  ///< first date that looks rolled over
-  std::optional<std::int64_t> first_date_days;  ///< first RMC/ZDA date
-};
+/// What a file holds and what is wrong with it: a plain result of the nav module, so that its
+/// writers (report/nav_inspect.hpp) need no io.
+using Summary = nav::LogInspection;
 
-/// Days since 1970-01-01 of a proleptic Gregorian date (H. Hinnant's days_from_civil).
-std::int64_t days_from_civil(int year, int month, int day);
-/// "YYYY-MM-DDThh:mm:ss.sssZ" of seconds since 1970-01-01T00:00:00Z (milliseconds rounded).
-std::string iso8601_utc(double unix_s);
+/// The calendar arithmetic of the reader (nav/utc_time.hpp).
+using nav::days_from_civil;
+using nav::iso8601_utc;
 
 /// Read `in` line by line, calling `on_sentence` for each accepted sentence; `source` names
 /// the file in the summary. Never throws for content; IoError when the stream goes bad.
@@ -162,5 +133,9 @@ Summary read(std::istream& in, const std::string& source, const Options& options
 /// read() of the file at `path`; IoError naming it when it cannot be opened.
 Summary read_file(const std::string& path, const Options& options,
                   const std::function<void(const Sentence&)>& on_sentence = {});
+
+/// The runner of `nav inspect`: the summary of every file in order, all read before any is
+/// returned (an unreadable one fails the whole run: IoError naming it).
+std::vector<Summary> inspect_files(const std::vector<std::string>& paths, bool accept_missing_checksum);
 
 }  // namespace meridian::io::nmea

@@ -32,6 +32,7 @@
 
 #include "meridian/core/progress.hpp"
 #include "meridian/filter/detail/record_store.hpp"
+#include "meridian/geodesy/grid.hpp"
 #include "meridian/nav/method.hpp"
 #include "meridian/nav/observations.hpp"
 
@@ -184,8 +185,8 @@ struct RejectedObservation {
   double misclosure_m = 0.0;
   double statistic = 0.0;     ///< |w| for a LOP (w-test), √(χ²) for a fix (0 for the threshold)
   std::string reason;         ///< "|misclosure| 153.2 m > 100 m", "|w| = 4.10 > 3.29", …
-  /// Where the observation came from ("lops.csv:14"): filled by a reader (io::run_nav), empty
-  /// from nav::process.
+  /// Where the observation came from ("lops.csv:14"): filled by process(SurveyLine) from the
+  /// records' sources, empty from process(Input).
   std::string source;
 };
 
@@ -208,6 +209,10 @@ struct Result {
   std::size_t fixes_used = 0;
   std::vector<std::string> notes;     ///< assumptions and defaults
   std::vector<std::string> warnings;  ///< gaps without observations, flagged fixes, …
+  /// The projection of the plane (x north, y east) when the line has one (set by
+  /// process(SurveyLine), survey_line.hpp): writers give latitudes and longitudes with it
+  /// (geodesy::TransverseMercatorGrid::reverse). Absent: plane coordinates only.
+  std::optional<geodesy::GridDefinition> projection;
   /// The result of `m`; nullptr when not computed.
   const MethodResult* find(Method m) const;
 };
