@@ -77,6 +77,27 @@ run gyro-orientations-same gyro orientations examples/campaign.yaml examples/cam
 run gyro-orientations gyro orientations examples/campaign.yaml "$out/gyro-simulate-campaign/c.yaml"
 run gyro-orientations-json gyro orientations examples/campaign.yaml "$out/gyro-simulate-campaign/c.yaml" --json
 run demo demo --output-dir @W@/demo
+# gyro stochastic on every kind of book, its located errors, and the option checks of simulate
+run gyro-stochastic-campaign-json gyro stochastic examples/campaign.yaml --json
+for f in spec-scenario-2 nontracking-noisy transit-factor; do run gyro-stochastic-$f gyro stochastic examples/$f.yaml; done
+sed 's/^\(\s*reversals: \).*/\1[10, 20, 10, 20, 10, 20, 10]/' examples/tracking.yaml > "$out/flat-tracking.yaml"
+run err-gyro-stochastic-flat gyro stochastic "$out/flat-tracking.yaml"
+run err-gyro-stochastic-parse gyro stochastic "$out/bad-tracking.yaml" --json
+run err-gyro-stochastic-missing gyro stochastic "$out/no-such-book.yaml"
+awk '/reversals_div/{print "    reversals_div: [8.86, -9.11, 8.70, -8.98, 8.61, -8.85, 8.50]"; next}1' examples/nontracking-noisy.yaml > "$out/zero-runs.yaml"
+run gyro-stochastic-zero-runs gyro stochastic "$out/zero-runs.yaml" --json
+run gyro-template-bad gyro template --kind other
+run gyro-simulate-tr-markov gyro simulate --mode tracking --seed 5 --tracking-reversals 9 --noise markov1 --rho1 0.6 --sigma-initial-arcsec 4 --sigma-tracking-arcsec 6
+run gyro-simulate-clamps gyro simulate --mode non-tracking --seed 2 --determinations 3 --clamp "0,0 30,359 30" --quiet
+run gyro-simulate-physics gyro simulate --seed 4 --spin-momentum-Nms 0.2 --inertia-kgm2 2e-4 --torsion-Nm-per-rad 1e-4 --latitude-deg 48.1
+for bad in "--mode campaign --noise markov1" "--mode campaign --sigma-initial-arcsec 3" "--mode campaign --levels 1,2" \
+           "--mode tracking --levels 1,2" "--mode non-tracking --kappa 0.1" "--mode tracking --clamp 0,1" \
+           "--clamp 0,1,2" "--clamp x" "--clamp" "--mode other" "--noise pink" "--sigma-initial-arcsec 2" \
+           "--mode tracking --noise markov1 --sigma-initial-arcsec -1" "--mode tracking --noise markov2 --rho1 0.5 --rho2 0.6" \
+           "--determinations 0" "--centre abc --mode tracking"; do
+  n=$(echo "$bad" | tr -c 'a-z0-9\n' - | tr -s - | sed 's/^-//; s/-$//')
+  run err-gyro-simulate-$n gyro simulate $bad
+done
 if [ -d "$shared/cases" ]; then
   for f in "$shared"/cases/gyro-field/*.yaml "$shared"/cases/gyro-field/crew-mistakes-2/*.yaml; do
     n=$(basename "$(dirname "$f")")-$(basename "$f" .yaml)
@@ -198,6 +219,10 @@ done
 # --- the Python package, when built
 if [ -d "$build/python/meridian" ]; then
   runpy py-gyro 'import meridian.gyro as g, json; print(json.dumps(g.reduce("examples/tracking.yaml").to_dict(), sort_keys=True, default=str))'
+  runpy py-stochastic 'import meridian.gyro as g, json; print(json.dumps(g.stochastic("examples/tracking.yaml").to_dict(), sort_keys=True, default=str))'
+  runpy py-stochastic-campaign-err 'import meridian.gyro as g; g.stochastic("examples/campaign.yaml")'
+  runpy py-stochastic-dict-err 'import meridian.gyro as g; g.stochastic({"instrument": {"scale_value_arcsec": 600, "torsion_ratio": 0.3}, "station": {"latitude_deg": 34}, "determinations": [{"mode": "tracking", "reversals": ["358 52 32", "1 32 16", "358 52 48", "1 32 03", "358 53 05", "1 31 43"], "sigma_reading_arcsec": -8}]})'
+  runpy py-reduce-dict-err 'import meridian.gyro as g; g.reduce({"instrument": {"scale_value_arcsec": 600}, "determinations": []})'
   runpy py-campaign 'import meridian.gyro as g, json; print(json.dumps(g.campaign("examples/campaign.yaml").to_dict(), sort_keys=True, default=str))'
   runpy py-maglev 'import meridian.maglev as m, json; print(json.dumps(m.reduce_files("examples/maglev-disturbed.csv", scale_A_s_per_rad=8000, latitude_deg=35).to_dict(), sort_keys=True, default=str))'
   runpy py-dov "import meridian.dov as d, json, os; r=d.process(os.environ['W']+'/../dov-simulate/dov.yaml'); print(json.dumps(r.to_dict(), sort_keys=True, default=str)[:200000])"
