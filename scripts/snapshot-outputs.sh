@@ -94,7 +94,7 @@ for bad in "--mode campaign --noise markov1" "--mode campaign --sigma-initial-ar
            "--mode tracking --levels 1,2" "--mode non-tracking --kappa 0.1" "--mode tracking --clamp 0,1" \
            "--clamp 0,1,2" "--clamp x" "--clamp" "--mode other" "--noise pink" "--sigma-initial-arcsec 2" \
            "--mode tracking --noise markov1 --sigma-initial-arcsec -1" "--mode tracking --noise markov2 --rho1 0.5 --rho2 0.6" \
-           "--determinations 0" "--centre abc --mode tracking"; do
+           "--determinations 0" "--centre abc --mode tracking" "--beta-div nan" "--mode tracking --rho1 nan --noise markov1"; do
   n=$(echo "$bad" | tr -c 'a-z0-9\n' - | tr -s - | sed 's/^-//; s/-$//')
   run err-gyro-simulate-$n gyro simulate $bad
 done
