@@ -82,10 +82,14 @@ run gyro-stochastic-campaign-json gyro stochastic examples/campaign.yaml --json
 for f in spec-scenario-2 nontracking-noisy transit-factor; do run gyro-stochastic-$f gyro stochastic examples/$f.yaml; done
 sed 's/^\(\s*reversals: \).*/\1[10, 20, 10, 20, 10, 20, 10]/' examples/tracking.yaml > "$out/flat-tracking.yaml"
 run err-gyro-stochastic-flat gyro stochastic "$out/flat-tracking.yaml"
-run err-gyro-stochastic-parse gyro stochastic "$out/bad-tracking.yaml" --json
+sed 's/^\(\s*sigma_reading_arcsec:\).*/\1 -8/' examples/tracking.yaml > "$out/bad-sigma-tracking.yaml"
+run err-gyro-stochastic-parse gyro stochastic "$out/bad-sigma-tracking.yaml" --json
 run err-gyro-stochastic-missing gyro stochastic "$out/no-such-book.yaml"
-awk '/reversals_div/{print "    reversals_div: [8.86, -9.11, 8.70, -8.98, 8.61, -8.85, 8.50]"; next}1' examples/nontracking-noisy.yaml > "$out/zero-runs.yaml"
-run gyro-stochastic-zero-runs gyro stochastic "$out/zero-runs.yaml" --json
+{ cat examples/tracking.yaml
+  printf '    zero_position:\n      before: {reversals_div: [4.2, -3.7, 3.9, -3.5, 3.7, -3.3, 3.5]}\n'
+  printf '      after: {reversals_div: [4.1, -3.6, 3.8, -3.4, 3.6, -3.2]}\n'; } > "$out/zero-runs.yaml"
+run gyro-stochastic-zero-runs gyro stochastic "$out/zero-runs.yaml" --json --report @W@/z.html
+run gyro-stochastic-zero-runs-text gyro stochastic "$out/zero-runs.yaml"
 run gyro-template-bad gyro template --kind other
 run gyro-simulate-tr-markov gyro simulate --mode tracking --seed 5 --tracking-reversals 9 --noise markov1 --rho1 0.6 --sigma-initial-arcsec 4 --sigma-tracking-arcsec 6
 run gyro-simulate-clamps gyro simulate --mode non-tracking --seed 2 --determinations 3 --clamp "0,0 30,359 30" --quiet
