@@ -19,7 +19,6 @@
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/gyro/station_simulator.hpp"
 #include "meridian/io/gyro_jobs.hpp"
-#include "meridian/io/gyro_stochastic.hpp"
 #include "meridian/io/gyro_writers.hpp"
 #include "meridian/report/gyro_html.hpp"
 #include "meridian/report/gyro_json.hpp"
@@ -59,12 +58,10 @@ struct StochasticArgs {
 int run_stochastic(const StochasticArgs& a) {
   require_html_reports_for(a.report);
   TerminalProgress progress(a.quiet);
-  const io::StochasticJob job = io::run_stochastic_file(a.file, &progress);
+  const gyro::StochasticBookResult r = io::run_stochastic_file(a.file, &progress);
   progress.finish();
-  const std::string out =
-      a.json ? report::json_text(report::stochastic_to_json(job.file, job.result)) : report::stochastic_text(job.file, job.result);
-  emit_with_report(a.output, out, a.report,
-                   [&] { return report::render_html(report::stochastic_document(job.file, job.result)); });
+  const std::string out = a.json ? report::json_text(report::stochastic_to_json(r)) : report::stochastic_text(r);
+  emit_with_report(a.output, out, a.report, [&] { return report::render_html(report::stochastic_document(r)); });
   return kOk;
 }
 

@@ -18,6 +18,7 @@
 #include "meridian/gravity/synthetic.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/io/gyro_files.hpp"
+#include "meridian/io/source_map.hpp"
 #include "meridian/io/gyro_jobs.hpp"
 #include "meridian/io/gyro_writers.hpp"
 #include "meridian/gravity/egm_format.hpp"
@@ -197,13 +198,14 @@ TEST(GyroFiles, CampaignWriteReadRoundTrip) {
   EXPECT_NEAR(a.line.from.eta_rad->value, b.line.from.eta_rad->value, 1e-15);
 }
 
-TEST(GyroFiles, LocateErrorUsesInnermostRecordedField) {
-  io::FieldLines lines{{"line.determinations", 40}, {"line.determinations[1]", 52}};
+TEST(GyroFiles, SourceMapUsesInnermostRecordedField) {
+  io::SourceMap book;
+  book.add_document("c.yaml", io::FieldLines{{"line.determinations", 40}, {"line.determinations[1]", 52}});
   InputError e("bad", {"", std::nullopt, "line.determinations[1].crossings[0].times_s"});
-  io::locate_error(e, "c.yaml", lines);
+  book.locate(e);
   EXPECT_STREQ(e.what(), "c.yaml:52: line.determinations[1].crossings[0].times_s: bad");
   InputError e2("bad", {"", std::nullopt, "line.determinations[10]"});
-  io::locate_error(e2, "c.yaml", lines);
+  book.locate(e2);
   EXPECT_STREQ(e2.what(), "c.yaml:40: line.determinations[10]: bad");
 }
 
@@ -459,13 +461,15 @@ determinations:
                                3.9, -3.5]}
 )";
   const auto f = io::read_gyro_reduce_file(d.write("t.yaml", tracking));
+  io::SourceMap book;
+  book.add_document(f.file, f.lines);
   for (const auto& [field, expect] : std::vector<std::pair<std::string, int>>{
            {"determinations[0].reversals[3]", 9},
            {"determinations[0].reversals[0]", 6},
            {"determinations[0].zero_position.before.reversals_div[3]", 12},
            {"determinations[0].zero_position.before.reversals_div[1]", 11}}) {
     InputError e("bad", {"", std::nullopt, field});
-    io::locate_error(e, f.file, f.lines);
+    book.locate(e);
     EXPECT_EQ(e.context().line, expect) << field;
   }
   // And end to end: a non-tracking reversal that does not alternate, 4th of a block list.
@@ -600,3 +604,32 @@ TEST(GyroFiles, TolerancesAndRecordSheetRoundTrip) {
   EXPECT_EQ(back.instrument.serial, "0713");
   EXPECT_EQ(io::campaign_file_yaml(back), yaml);
 }
+
+TEST(GyroFiles, StochasticRunnerLocatesTheSeries) {
+  // A book whose third determination's reversals fit (R2) exactly: the error is at the line of
+  // its `reversals:` key (22), with the series' field.
+  std::string book = kIssueExample;
+  book += R"(  - mode: tracking
+    label: flat
+    reversals: ["0 00 10", "0 00 20", "0 00 10", "0 00 20", "0 00 10", "0 00 20", "0 00 10"]
+)";
+  TempDir d;
+  const fs::path p = d.write("flat.yaml", book);
+  try {
+    io::run_stochastic_file(p);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().file, p.string());
+    EXPECT_EQ(e.context().line, 22) << e.what();
+    EXPECT_EQ(e.context().field, "determinations[2].reversals");
+  }
+  // No series of 6 readings: at the determinations (the line of their first element, 7).
+  try {
+    io::run_stochastic_file(d.write("short.yaml", kIssueExample));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().line, 7) << e.what();
+    EXPECT_EQ(e.context().field, "determinations");
+  }
+}
+
