@@ -39,14 +39,12 @@ struct ReduceArgs {
 int run_reduce(const ReduceArgs& a) {
   require_html_reports_for(a.report);
   TerminalProgress progress(a.quiet);
-  const io::ReduceJob job = io::run_reduce_file(a.file, &progress);
+  const gyro::ReduceResult r = io::run_reduce_file(a.file, &progress).result;
   progress.finish();
   // Everything is computed before anything is written.
-  const std::string out = a.json ? report::json_text(report::reduce_to_json(job.file.file, job.result))
-                                 : report::reduce_text(job.file.file, job.result, report::AngleFormat(job.file.input.angle_unit));
-  emit_with_report(a.output, out, a.report, [&] {
-    return report::render_html(report::gyro_reduce_document(job.file.file, job.file.input, job.result));
-  });
+  const std::string out = a.json ? report::json_text(report::reduce_to_json(r))
+                                 : report::reduce_text(r, report::AngleFormat(r.input.angle_unit));
+  emit_with_report(a.output, out, a.report, [&] { return report::render_html(report::gyro_reduce_document(r)); });
   return kOk;
 }
 
@@ -85,20 +83,17 @@ void print_failed_checks(const std::vector<gyro::Check>& checks) {
 int run_campaign(const CampaignArgs& a) {
   require_html_reports_for(a.report);
   TerminalProgress progress(a.quiet);
-  const io::CampaignJob job = io::run_campaign_file(a.file, nullptr, &progress);
+  const gyro::CampaignResult r = io::run_campaign_file(a.file, nullptr, &progress).result;
   progress.finish();
-  const gyro::CampaignResult& r = job.result;
   const std::string out = a.json ? report::json_text(report::campaign_to_json(r))
-                                 : report::campaign_text(r, report::AngleFormat(job.file.campaign.angle_unit));
+                                 : report::campaign_text(r, report::AngleFormat(r.input.angle_unit));
   if (a.strict && !r.all_checks_pass()) {
     // A job that fails its checks is not filed: stdout still shows it, no file is written.
     if (a.output.empty() || a.output == "-") emit("", out);
     print_failed_checks(r.checks);
     return kInputError;
   }
-  emit_with_report(a.output, out, a.report, [&] {
-    return report::render_html(report::gyro_campaign_document(job.file.file, job.file.campaign, r));
-  });
+  emit_with_report(a.output, out, a.report, [&] { return report::render_html(report::gyro_campaign_document(r)); });
   return kOk;
 }
 
@@ -125,9 +120,9 @@ int run_orientations(const OrientationsArgs& a) {
   std::vector<std::filesystem::path> paths(a.files.begin(), a.files.end());
   const io::OrientationsJob job = io::run_orientation_files(paths, &progress);
   progress.finish();
-  const report::AngleFormat f(job.orientations.front().file.campaign.angle_unit);
+  const report::AngleFormat f(job.orientations.front().result.input.angle_unit);
   const std::string out = a.json ? report::json_text(report::orientations_to_json(job.result))
-                                 : report::orientations_text(a.files, job.result, f);
+                                 : report::orientations_text(job.result, f);
   if (a.strict && !job.result.all_checks_pass()) {
     if (a.output.empty() || a.output == "-") emit("", out);
     print_failed_checks(job.result.checks);

@@ -22,16 +22,14 @@ void bind_gyro(py::module_& m) {
       "reduce_file",
       [](const std::string& path) {
         py::gil_scoped_release released;
-        const io::ReduceJob job = io::run_reduce_file(path);
-        return report::json_compact(report::reduce_to_json(job.file.file, job.result));
+        return report::json_compact(report::reduce_to_json(io::run_reduce_file(path).result));
       },
       py::arg("path"), "`meridian gyro reduce FILE --json` as JSON text");
   m.def(
       "campaign_file",
       [](const std::string& path) {
         py::gil_scoped_release released;
-        const io::CampaignJob job = io::run_campaign_file(path);
-        return report::json_compact(report::campaign_to_json(job.result));
+        return report::json_compact(report::campaign_to_json(io::run_campaign_file(path).result));
       },
       py::arg("path"), "`meridian gyro campaign FILE --json` as JSON text");
   m.def(

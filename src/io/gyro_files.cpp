@@ -398,6 +398,7 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
   GyroReduceFile f;
   f.file = path.string();
   gyro::ReduceInput& in = f.input;
+  in.file = f.file;
   in.angle_unit = read_angle_unit(root);
   const Node inst = root.require("instrument");
   in.instrument = read_instrument(inst);
@@ -431,6 +432,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   CampaignFile f;
   f.file = path.string();
   gyro::CampaignInput& c = f.campaign;
+  c.file = f.file;
   c.angle_unit = read_angle_unit(root);
   if (auto v = root.get("campaign")) c.name = v->string();
   if (auto r = root.get("record")) c.record = read_record(*r);

@@ -62,10 +62,10 @@ std::string check_text(const gyro::Check& k) {
   return std::string(k.pass ? "[PASS] " : "[FAIL] ") + check_statement(k);
 }
 
-std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, const AngleFormat& f) {
+std::string reduce_text(const gyro::ReduceResult& r, const AngleFormat& f) {
   const gyro::Instrument& inst = r.instrument.instrument;
   std::string out = fmt::format("{}: {} determination(s), lambda = {:.5f}, tau = {:.1f}\"/div\n",
-                                file, r.determinations.size(), inst.torsion_ratio.value,
+                                r.input.file, r.determinations.size(), inst.torsion_ratio.value,
                                 inst.scale_value_rad / units::kArcsecond);
   for (const auto& n : r.instrument.notes) out += "  note: " + n + "\n";
   for (std::size_t i = 0; i < r.determinations.size(); ++i)
@@ -73,8 +73,8 @@ std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, co
   return out;
 }
 
-std::string orientations_text(const std::vector<std::string>& files, const gyro::OrientationsResult& r,
-                              const AngleFormat& f) {
+std::string orientations_text(const gyro::OrientationsResult& r, const AngleFormat& f) {
+  const std::vector<std::string>& files = r.files;
   std::string out = fmt::format("Independent orientations of the line {}-{}\n", r.station, r.target);
   for (std::size_t i = 0; i < r.grid_azimuths_rad.size(); ++i)
     out += fmt::format("  {}  T = {:>15}  sigma {:>6}  {}\n", i + 1, f.dir(r.grid_azimuths_rad[i].value),
