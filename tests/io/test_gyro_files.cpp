@@ -20,6 +20,7 @@
 #include "meridian/io/gyro_files.hpp"
 #include "meridian/io/source_map.hpp"
 #include "meridian/io/gyro_jobs.hpp"
+#include "meridian/io/gyro_simulate.hpp"
 #include "meridian/io/gyro_writers.hpp"
 #include "meridian/gravity/egm_format.hpp"
 #include "meridian/gravity/gravity_field.hpp"
@@ -633,3 +634,58 @@ TEST(GyroFiles, StochasticRunnerLocatesTheSeries) {
   }
 }
 
+TEST(GyroFiles, SimulateSettingsAreReadIntoWhatToSimulate) {
+  io::SimulateSettings s;
+  s.mode = "tracking";
+  s.tau_arcsec = 300.0;
+  s.latitude_deg = 45.0;
+  s.centre = "1 00 00";
+  s.sigma_tracking_arcsec = 6.0;
+  s.noise = "markov1";
+  s.sigma_initial_arcsec = 4.0;
+  s.command_line = "meridian gyro simulate --mode tracking";
+  const io::SimulationInput in = io::read_simulate_settings(s);
+  const auto& st = std::get<gyro::StationSimulation>(in.what);
+  EXPECT_EQ(st.mode, gyro::Mode::Tracking);
+  EXPECT_NEAR(st.scale_value_rad, 300.0 * kArcsec, 1e-18);
+  EXPECT_NEAR(st.latitude_rad, M_PI / 4.0, 1e-15);
+  EXPECT_NEAR(st.centre_rad, 3600.0 * kArcsec, 1e-15);
+  EXPECT_NEAR(st.sigma_tracking_rad, 6.0 * kArcsec, 1e-18);
+  EXPECT_NEAR(st.sigma_initial_tracking_rad, 4.0 * kArcsec, 1e-18);
+  EXPECT_EQ(st.noise, gyro::NoiseModel::Markov1);
+  const std::string yaml = io::simulated_book_yaml(io::run_simulation(in));
+  EXPECT_EQ(yaml.rfind("# Simulated by: meridian gyro simulate --mode tracking\n", 0), 0u) << yaml.substr(0, 80);
+  // Campaign mode: the example's truth with the given white σ.
+  io::SimulateSettings c;
+  c.mode = "campaign";
+  c.sim.sigma_time_s = 0.2;
+  const auto truth = std::get<gyro::CampaignTruth>(io::read_simulate_settings(c).what);
+  EXPECT_EQ(truth.sigma_time_s, 0.2);
+  EXPECT_EQ(truth.name, gyro::example_campaign_truth().name);
+  // Errors name the option.
+  const auto field_of = [](const io::SimulateSettings& bad) {
+    try {
+      io::read_simulate_settings(bad);
+    } catch (const InputError& e) {
+      return e.context().field;
+    }
+    return std::string("no error");
+  };
+  io::SimulateSettings b;
+  b.clamps = {"0", "1"};
+  EXPECT_EQ(field_of(b), "--clamp");  // more clamps than determinations
+  b = {};
+  b.mode = "tracking";
+  b.given = {"levels"};
+  EXPECT_EQ(field_of(b), "--levels");
+  b = {};
+  b.mode = "campaign";
+  b.noise = "markov2";
+  EXPECT_EQ(field_of(b), "--noise");
+  b = {};
+  b.sigma_initial_arcsec = 1.0;  // non-tracking
+  EXPECT_EQ(field_of(b), "--sigma-initial-arcsec");
+  b = {};
+  b.mode = "other";
+  EXPECT_EQ(field_of(b), "--mode");
+}
