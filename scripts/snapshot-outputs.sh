@@ -91,6 +91,10 @@ run err-gyro-stochastic-missing gyro stochastic "$out/no-such-book.yaml"
 run gyro-stochastic-zero-runs gyro stochastic "$out/zero-runs.yaml" --json --report @W@/z.html
 run gyro-stochastic-zero-runs-text gyro stochastic "$out/zero-runs.yaml"
 run gyro-template-bad gyro template --kind other
+sed 's/^\(\s*torsion_ratio: 0.3\)$/\1\n  periods: {tracking_s: 400, nontracking_s: 440}/' examples/tracking.yaml > "$out/both-constants.yaml"
+run err-gyro-reduce-instrument gyro reduce "$out/both-constants.yaml"
+sed 's/latitude_deg: 34.2/latitude_deg: 89.5/' examples/tracking.yaml > "$out/polar-station.yaml"
+run err-gyro-stochastic-latitude gyro stochastic "$out/polar-station.yaml"
 run gyro-simulate-tr-markov gyro simulate --mode tracking --seed 5 --tracking-reversals 9 --noise markov1 --rho1 0.6 --sigma-initial-arcsec 4 --sigma-tracking-arcsec 6
 run gyro-simulate-clamps gyro simulate --mode non-tracking --seed 2 --determinations 3 --clamp "0,0 30,359 30" --quiet
 run gyro-simulate-physics gyro simulate --seed 4 --spin-momentum-Nms 0.2 --inertia-kgm2 2e-4 --torsion-Nm-per-rad 1e-4 --latitude-deg 48.1
