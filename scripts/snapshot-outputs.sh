@@ -77,6 +77,35 @@ run gyro-orientations-same gyro orientations examples/campaign.yaml examples/cam
 run gyro-orientations gyro orientations examples/campaign.yaml "$out/gyro-simulate-campaign/c.yaml"
 run gyro-orientations-json gyro orientations examples/campaign.yaml "$out/gyro-simulate-campaign/c.yaml" --json
 run demo demo --output-dir @W@/demo
+# gyro stochastic on every kind of book, its located errors, and the option checks of simulate
+run gyro-stochastic-campaign-json gyro stochastic examples/campaign.yaml --json
+for f in spec-scenario-2 nontracking-noisy transit-factor; do run gyro-stochastic-$f gyro stochastic examples/$f.yaml; done
+sed 's/^\(\s*reversals: \).*/\1[10, 20, 10, 20, 10, 20, 10]/' examples/tracking.yaml > "$out/flat-tracking.yaml"
+run err-gyro-stochastic-flat gyro stochastic "$out/flat-tracking.yaml"
+sed 's/^\(\s*sigma_reading_arcsec:\).*/\1 -8/' examples/tracking.yaml > "$out/bad-sigma-tracking.yaml"
+run err-gyro-stochastic-parse gyro stochastic "$out/bad-sigma-tracking.yaml" --json
+run err-gyro-stochastic-missing gyro stochastic "$out/no-such-book.yaml"
+{ cat examples/tracking.yaml
+  printf '    zero_position:\n      before: {reversals_div: [4.2, -3.7, 3.9, -3.5, 3.7, -3.3, 3.5]}\n'
+  printf '      after: {reversals_div: [4.1, -3.6, 3.8, -3.4, 3.6, -3.2]}\n'; } > "$out/zero-runs.yaml"
+run gyro-stochastic-zero-runs gyro stochastic "$out/zero-runs.yaml" --json --report @W@/z.html
+run gyro-stochastic-zero-runs-text gyro stochastic "$out/zero-runs.yaml"
+run gyro-template-bad gyro template --kind other
+sed 's/^\(\s*torsion_ratio: 0.3\)$/\1\n  periods: {tracking_s: 400, nontracking_s: 440}/' examples/tracking.yaml > "$out/both-constants.yaml"
+run err-gyro-reduce-instrument gyro reduce "$out/both-constants.yaml"
+sed 's/latitude_deg: 34.2/latitude_deg: 89.5/' examples/tracking.yaml > "$out/polar-station.yaml"
+run err-gyro-stochastic-latitude gyro stochastic "$out/polar-station.yaml"
+run gyro-simulate-tr-markov gyro simulate --mode tracking --seed 5 --tracking-reversals 9 --noise markov1 --rho1 0.6 --sigma-initial-arcsec 4 --sigma-tracking-arcsec 6
+run gyro-simulate-clamps gyro simulate --mode non-tracking --seed 2 --determinations 3 --clamp "0,0 30,359 30" --quiet
+run gyro-simulate-physics gyro simulate --seed 4 --spin-momentum-Nms 0.2 --inertia-kgm2 2e-4 --torsion-Nm-per-rad 1e-4 --latitude-deg 48.1
+for bad in "--mode campaign --noise markov1" "--mode campaign --sigma-initial-arcsec 3" "--mode campaign --levels 1,2" \
+           "--mode tracking --levels 1,2" "--mode non-tracking --kappa 0.1" "--mode tracking --clamp 0,1" \
+           "--clamp 0,1,2" "--clamp x" "--clamp" "--mode other" "--noise pink" "--sigma-initial-arcsec 2" \
+           "--mode tracking --noise markov1 --sigma-initial-arcsec -1" "--mode tracking --noise markov2 --rho1 0.5 --rho2 0.6" \
+           "--determinations 0" "--centre abc --mode tracking" "--beta-div nan" "--mode tracking --rho1 nan --noise markov1"; do
+  n=$(echo "$bad" | tr -c 'a-z0-9\n' - | tr -s - | sed 's/^-//; s/-$//')
+  run err-gyro-simulate-$n gyro simulate $bad
+done
 if [ -d "$shared/cases" ]; then
   for f in "$shared"/cases/gyro-field/*.yaml "$shared"/cases/gyro-field/crew-mistakes-2/*.yaml; do
     n=$(basename "$(dirname "$f")")-$(basename "$f" .yaml)
@@ -405,6 +434,10 @@ run err-dov-process-model dov process "$out/dov-nomodel.yaml"
 # --- the Python package, when built
 if [ -d "$build/python/meridian" ]; then
   runpy py-gyro 'import meridian.gyro as g, json; print(json.dumps(g.reduce("examples/tracking.yaml").to_dict(), sort_keys=True, default=str))'
+  runpy py-stochastic 'import meridian.gyro as g, json; print(json.dumps(g.stochastic("examples/tracking.yaml").to_dict(), sort_keys=True, default=str))'
+  runpy py-stochastic-campaign-err 'import meridian.gyro as g; g.stochastic("examples/campaign.yaml")'
+  runpy py-stochastic-dict-err 'import meridian.gyro as g; g.stochastic({"instrument": {"scale_value_arcsec": 600, "torsion_ratio": 0.3}, "station": {"latitude_deg": 34}, "determinations": [{"mode": "tracking", "reversals": ["358 52 32", "1 32 16", "358 52 48", "1 32 03", "358 53 05", "1 31 43"], "sigma_reading_arcsec": -8}]})'
+  runpy py-reduce-dict-err 'import meridian.gyro as g; g.reduce({"instrument": {"scale_value_arcsec": 600}, "determinations": []})'
   runpy py-campaign 'import meridian.gyro as g, json; print(json.dumps(g.campaign("examples/campaign.yaml").to_dict(), sort_keys=True, default=str))'
   runpy py-maglev 'import meridian.maglev as m, json; print(json.dumps(m.reduce_files("examples/maglev-disturbed.csv", scale_A_s_per_rad=8000, latitude_deg=35).to_dict(), sort_keys=True, default=str))'
   runpy py-maglev-api "

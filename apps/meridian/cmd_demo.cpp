@@ -19,6 +19,7 @@
 #include "meridian/report/gyro_html.hpp"
 #include "meridian/report/gyro_json.hpp"
 #include "meridian/report/gyro_text.hpp"
+#include "meridian/report/json_text.hpp"
 #include "meridian/report/html.hpp"
 #include "meridian/report/json_text.hpp"
 #include "meridian/report/nav_html.hpp"
@@ -105,7 +106,7 @@ int run_demo(const DemoArgs& a) {
   const fs::path file = dir / "campaign.yaml";
   const io::CampaignJob job = io::run_campaign_file(file);
   const gyro::CampaignResult& r = job.result;
-  const std::string text = report::campaign_text(r, report::AngleFormat(job.file.campaign.angle_unit));
+  const std::string text = report::campaign_text(r, report::AngleFormat(r.input.angle_unit));
   std::cout << "meridian demo: gyro orientation campaign " << file.string() << "\n\n" << text;
   std::error_code ec;
   fs::create_directories(a.output_dir, ec);
@@ -113,19 +114,19 @@ int run_demo(const DemoArgs& a) {
   const fs::path out = a.output_dir;
   std::vector<fs::path> written{out / "campaign.txt", out / "campaign.json"};
   emit(written[0].string(), text);
-  emit(written[1].string(), report::campaign_to_json(r).dump(2) + "\n");
+  emit(written[1].string(), report::json_text(report::campaign_to_json(r)));
   if (!report::html_reports_available()) {
     std::cout << "\nNo HTML reports: " << report::html_reports_unavailable_message() << ".\n";
   } else {
     written.push_back(out / "campaign.html");
     emit(written.back().string(),
-         report::render_html(report::gyro_campaign_document(job.file.file, job.file.campaign, r)));
+         report::render_html(report::gyro_campaign_document(r)));
     // Every reduction method side by side on the spec's example, and a tracking run.
     for (const char* name : {"spec-scenario-2", "tracking"}) {
       const io::ReduceJob g = io::run_reduce_file(dir / (std::string(name) + ".yaml"));
       written.push_back(out / (std::string(name) + ".html"));
       emit(written.back().string(),
-           report::render_html(report::gyro_reduce_document(g.file.file, g.file.input, g.result)));
+           report::render_html(report::gyro_reduce_document(g.result)));
     }
   }
   run_navigation(dir, out, written);

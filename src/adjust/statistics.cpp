@@ -9,6 +9,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
+#include "meridian/core/checks.hpp"
 #include "meridian/core/error.hpp"
 
 namespace meridian::adjust {
@@ -29,10 +30,6 @@ void check_dof(double dof, const char* name = "degrees of freedom") {
 void check_statistic(double x, const char* name) {
   if (!(std::isfinite(x) && x >= 0.0))
     throw InputError(fmt::format("{} must be finite and ≥ 0, is {}", name, x));
-}
-
-void check_finite(double x, const char* name) {
-  if (!std::isfinite(x)) throw InputError(fmt::format("{} must be finite, is {}", name, x));
 }
 
 // Boost.Math reports its failures (overflow, no convergence) by exceptions; they become
@@ -98,7 +95,7 @@ double normal_two_sided_critical(double alpha) {
 }
 
 double normal_two_sided_probability(double z) {
-  check_finite(z, "normal statistic");
+  require_finite(z, "normal statistic");
   return 2.0 * upper_probability(bm::normal_distribution<double>(), std::abs(z),
                                  "normal tail probability");
 }
@@ -109,7 +106,7 @@ double student_t_two_sided_critical(double alpha, double dof) {
 }
 
 double student_t_two_sided_probability(double t, double dof) {
-  check_finite(t, "t statistic");
+  require_finite(t, "t statistic");
   return 2.0 * upper_probability(students_t(dof), std::abs(t), "Student t tail probability");
 }
 

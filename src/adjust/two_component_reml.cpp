@@ -94,11 +94,8 @@ void check_component(const VarianceComponent& c, Index n) {
   detail::check_finite(c.factor, "factor of a variance component");
 }
 
-}  // namespace
-
-TwoComponentReml maximise_two_component_reml(const MatrixXd& A, const VectorXd& l,
-                                             const VarianceComponent& first,
-                                             const VarianceComponent& second) {
+void check_reml_arguments(const MatrixXd& A, const VectorXd& l, const VarianceComponent& first,
+                          const VarianceComponent& second) {
   const Index n = A.rows();
   const Index u = A.cols();
   if (u < 1) throw InputError("design matrix A has no columns (no parameters)");
@@ -114,8 +111,14 @@ TwoComponentReml maximise_two_component_reml(const MatrixXd& A, const VectorXd& 
   detail::check_finite(l, "observation vector l");
   check_component(first, n);
   check_component(second, n);
+}
 
-  // Residual space: the last r columns of Q in A·Π = Q·R.
+// The problem on the residual space (the last r columns of Q in A·Π = Q·R), whitened by the
+// Cholesky factor L of S_1 = G_1·G_1ᵀ there and diagonalised by the SVD of L⁻¹·G_2: the profile.
+Profile residual_profile(const MatrixXd& A, const VectorXd& l, const VarianceComponent& first,
+                         const VarianceComponent& second) {
+  const Index n = A.rows();
+  const Index u = A.cols();
   const detail::ScaledQr s = detail::full_rank_qr(A, detail::default_rank_tolerance(n, u));
   const Index r = n - u;
   const auto qt = s.qr.householderQ().adjoint();
@@ -163,48 +166,43 @@ TwoComponentReml maximise_two_component_reml(const MatrixXd& A, const VectorXd& 
         "variance components: {} is not determined by the observations (its cofactor lies in "
         "the column space of A)",
         second.name));
-  double lambda_min = lambda_max;
-  for (Index j = 0; j < k; ++j)
-    if (p.lambda(j) > 1e-14 * lambda_max) lambda_min = std::min(lambda_min, p.lambda(j));
   p.second_definite = k == r && p.lambda.minCoeff() > 1e-12 * lambda_max;
+  return p;
+}
 
-  // Grid in v = ln τ, then refinement around its best point; the limits τ = 0 and τ = ∞ are
-  // candidates of their own.
+// The profile on a grid in v = ln τ reaching kGridReach beyond 1/λ_max and 1/λ_min.
+struct ProfileGrid {
+  double lo = 0.0, hi = 0.0;  // the ends the grid must cover (its last point may lie beyond hi)
+  std::vector<double> v, f;
+  int best = 0;  // index of the largest f
+};
+
+ProfileGrid profile_grid(const Profile& p) {
+  const double lambda_max = p.lambda.maxCoeff();
+  double lambda_min = lambda_max;
+  for (Index j = 0; j < p.lambda.size(); ++j)
+    if (p.lambda(j) > 1e-14 * lambda_max) lambda_min = std::min(lambda_min, p.lambda(j));
   const double v_lo = -std::log(lambda_max) - kGridReach;
   const double v_hi = -std::log(lambda_min) + kGridReach;
   const int m = static_cast<int>(std::ceil((v_hi - v_lo) / kGridStep)) + 1;
-  std::vector<double> vs(static_cast<std::size_t>(m)), fs(static_cast<std::size_t>(m));
-  int best = 0;
+  ProfileGrid g{v_lo, v_hi, std::vector<double>(static_cast<std::size_t>(m)),
+                std::vector<double>(static_cast<std::size_t>(m)), 0};
   for (int i = 0; i < m; ++i) {
     const auto iu = static_cast<std::size_t>(i);
-    vs[iu] = v_lo + i * kGridStep;
-    fs[iu] = p.at_log_ratio(vs[iu]);
-    if (fs[iu] > fs[static_cast<std::size_t>(best)]) best = i;
+    g.v[iu] = v_lo + i * kGridStep;
+    g.f[iu] = p.at_log_ratio(g.v[iu]);
+    if (g.f[iu] > g.f[static_cast<std::size_t>(g.best)]) g.best = i;
   }
-  const double f_zero = p.at_zero_ratio();
-  const double f_inf = p.at_infinite_ratio();
+  return g;
+}
 
-  TwoComponentReml out;
-  out.residual_dimension = p.r;
-  const double f_grid = fs[static_cast<std::size_t>(best)];
-  if (f_zero >= f_grid && f_zero >= f_inf) {
-    out.components = {p.z0sq / p.r + p.z2.sum() / p.r, 0.0};
-    out.at_zero[1] = true;
-    out.reml = f_zero;
-    return out;
-  }
-  if (f_inf > f_grid) {
-    double q = 0.0;
-    for (Index j = 0; j < k; ++j) q += p.z2(j) / p.lambda(j);
-    out.components = {0.0, q / p.r};
-    out.at_zero[0] = true;
-    out.reml = f_inf;
-    return out;
-  }
-  // Golden section on the bracket of the best grid point (beyond the grid's ends: as far
-  // again as it reaches), then Newton's method to rounding.
-  double a = best > 0 ? vs[static_cast<std::size_t>(best - 1)] : v_lo - 2.0 * kGridReach;
-  double b = best < m - 1 ? vs[static_cast<std::size_t>(best + 1)] : v_hi + 2.0 * kGridReach;
+// The maximum of the profile inside the bracket of the grid's best point (beyond the grid's
+// ends: as far again as it reaches): golden section, then Newton's method to rounding. (v, f).
+std::pair<double, double> refine_maximum(const Profile& p, const ProfileGrid& grid) {
+  const auto m = static_cast<int>(grid.v.size());
+  const int best = grid.best;
+  double a = best > 0 ? grid.v[static_cast<std::size_t>(best - 1)] : grid.lo - 2.0 * kGridReach;
+  double b = best < m - 1 ? grid.v[static_cast<std::size_t>(best + 1)] : grid.hi + 2.0 * kGridReach;
   const double gr = 0.5 * (std::sqrt(5.0) - 1.0);
   double c = b - gr * (b - a), d = a + gr * (b - a);
   double fc = p.at_log_ratio(c), fd = p.at_log_ratio(d);
@@ -236,6 +234,39 @@ TwoComponentReml maximise_two_component_reml(const MatrixXd& A, const VectorXd& 
     fv = fn;
     if (done) break;
   }
+  return {v, fv};
+}
+
+}  // namespace
+
+TwoComponentReml maximise_two_component_reml(const MatrixXd& A, const VectorXd& l,
+                                             const VarianceComponent& first,
+                                             const VarianceComponent& second) {
+  check_reml_arguments(A, l, first, second);
+  const Profile p = residual_profile(A, l, first, second);
+  // The grid, and the limits τ = 0 and τ = ∞ as candidates of their own.
+  const ProfileGrid grid = profile_grid(p);
+  const double f_zero = p.at_zero_ratio();
+  const double f_inf = p.at_infinite_ratio();
+
+  TwoComponentReml out;
+  out.residual_dimension = p.r;
+  const double f_grid = grid.f[static_cast<std::size_t>(grid.best)];
+  if (f_zero >= f_grid && f_zero >= f_inf) {
+    out.components = {p.z0sq / p.r + p.z2.sum() / p.r, 0.0};
+    out.at_zero[1] = true;
+    out.reml = f_zero;
+    return out;
+  }
+  if (f_inf > f_grid) {
+    double q = 0.0;
+    for (Index j = 0; j < p.lambda.size(); ++j) q += p.z2(j) / p.lambda(j);
+    out.components = {0.0, q / p.r};
+    out.at_zero[0] = true;
+    out.reml = f_inf;
+    return out;
+  }
+  const auto [v, fv] = refine_maximum(p, grid);
   const double scale = p.scale_at(v);
   out.components = {scale, scale * std::exp(v)};
   out.reml = fv;

@@ -263,6 +263,105 @@ std::string component_list(const std::vector<VarianceComponent>& comps, const Ve
   return s;
 }
 
+// The iteration's state: the components, which are still estimated (the others are clipped to 0),
+// and the restricted likelihood at θ when known.
+struct VceState {
+  VectorXd theta;
+  std::vector<bool> active;
+  double here_cache = kNaN;
+};
+
+// The scoring solution mapped back to all components, and the damping α of a step that would
+// make a component negative.
+struct VceUpdate {
+  VectorXd full;
+  double alpha = 1.0;
+};
+
+VceUpdate scoring_update(const MatrixXd& A, const VectorXd& l, const std::vector<VarianceComponent>& comps,
+                         VceMethod method, const VceState& s) {
+  const auto K = static_cast<Index>(comps.size());
+  const Equations e = equations(method, A, l, comps, s.theta, s.active);
+  VectorXd theta_active(e.r.size());
+  for (Index k = 0, j = 0; k < K; ++k)
+    if (s.active[static_cast<std::size_t>(k)]) theta_active(j++) = s.theta(k);
+  const VectorXd step = solve_equations(e, theta_active, active_names(comps, s.active));
+  VceUpdate u{s.theta, 1.0};
+  Index j = 0;
+  for (Index k = 0; k < K; ++k) {
+    if (!s.active[static_cast<std::size_t>(k)]) continue;
+    u.full(k) = step(j++);
+    if (u.full(k) < kKeepFraction * s.theta(k))
+      u.alpha = std::min(u.alpha, (1.0 - kKeepFraction) * s.theta(k) / (s.theta(k) - u.full(k)));
+  }
+  return u;
+}
+
+// A component that is already at rounding level of the largest and still heads below zero has
+// reached the boundary: clip it (with a note). True when one was clipped.
+bool clip_negative(VceState& s, const VectorXd& full, const std::vector<VarianceComponent>& comps, int it,
+                   VceResult& res) {
+  const double largest = full.maxCoeff();
+  bool clipped_now = false;
+  for (Index k = 0; k < static_cast<Index>(comps.size()); ++k) {
+    const auto ks = static_cast<std::size_t>(k);
+    if (s.active[ks] && full(k) < 0.0 && s.theta(k) <= kClipFraction * std::max(largest, s.theta.maxCoeff())) {
+      s.active[ks] = false;
+      s.theta(k) = 0.0;
+      clipped_now = true;
+      res.notes.push_back(fmt::format("{} estimated negative ({:.3g}) at iteration {}: set to 0 and held there",
+                                      comps[ks].name, full(k), it));
+    }
+  }
+  if (std::none_of(s.active.begin(), s.active.end(), [](bool a) { return a; }))
+    throw NumericalError("variance components: every component was estimated negative");
+  return clipped_now;
+}
+
+// Scoring can overshoot when the components are strongly correlated (it then cycles): halve the
+// step until the restricted likelihood does not decrease (a safeguarded scoring step).
+void safeguarded_step(VceState& s, const VceUpdate& u, const MatrixXd& A, const VectorXd& l,
+                      const std::vector<VarianceComponent>& comps) {
+  const double here = std::isnan(s.here_cache) ? reml_at(A, l, comps, s.theta, s.active) : s.here_cache;
+  double alpha = u.alpha;
+  VectorXd next = s.theta + alpha * (u.full - s.theta);
+  double there = reml_at(A, l, comps, next, s.active);
+  for (int h = 0; h < kMaxHalvings && !(there >= here - 1e-12 * std::fabs(here)); ++h) {
+    alpha *= 0.5;
+    next = s.theta + alpha * (u.full - s.theta);
+    there = reml_at(A, l, comps, next, s.active);
+  }
+  s.theta = next;
+  s.here_cache = there;
+}
+
+// The converged components, which were clipped, and (with details) their covariance N⁻¹ at θ̂
+// over the active components and the adjustment at θ̂; the likelihood always.
+void finish_vce(VceResult& res, const MatrixXd& A, const VectorXd& l, const std::vector<VarianceComponent>& comps,
+                const VceOptions& options, const VceState& s) {
+  const auto K = static_cast<Index>(comps.size());
+  res.components = s.theta;
+  res.clipped.resize(comps.size());
+  for (std::size_t k = 0; k < comps.size(); ++k) res.clipped[k] = !s.active[k];
+  if (!options.details) {
+    res.covariance = MatrixXd::Constant(K, K, kNaN);
+    res.likelihood = gls_log_likelihood(A, l, factor_covariance(comps, s.theta, s.active));
+    return;
+  }
+  const Equations e = equations(VceMethod::LsVce, A, l, comps, s.theta, s.active);
+  const MatrixXd cov_active = e.n.ldlt().solve(MatrixXd::Identity(e.n.rows(), e.n.cols()));
+  res.covariance = MatrixXd::Zero(K, K);
+  std::vector<Index> idx;
+  for (Index k = 0; k < K; ++k)
+    if (s.active[static_cast<std::size_t>(k)]) idx.push_back(k);
+  for (std::size_t a = 0; a < idx.size(); ++a)
+    for (std::size_t b = 0; b < idx.size(); ++b)
+      res.covariance(idx[a], idx[b]) = cov_active(static_cast<Index>(a), static_cast<Index>(b));
+  const CovarianceFactor cov = factor_covariance(comps, s.theta, s.active);
+  res.adjustment = solve_linear(A, l, cov);
+  res.likelihood = gls_log_likelihood(A, l, cov);
+}
+
 }  // namespace
 
 std::string to_string(VceMethod m) { return m == VceMethod::Helmert ? "helmert" : "ls-vce"; }
@@ -324,101 +423,34 @@ VceResult estimate_variance_components(const MatrixXd& A, const VectorXd& l,
                                        const VceOptions& options) {
   validate(A, l, comps, options);
   const auto K = static_cast<Index>(comps.size());
-  VectorXd theta = options.initial.size() ? options.initial : VectorXd::Ones(K);
-  std::vector<bool> active(comps.size(), true);
+  VceState s{options.initial.size() ? options.initial : VectorXd::Ones(K), std::vector<bool>(comps.size(), true),
+             kNaN};
   VceResult res;
   res.method = options.method;
   bool converged = false;
   double last_change = kNaN;
-  double here_cache = kNaN;  // the restricted likelihood at θ, when known
   for (int it = 1; it <= options.max_iterations && !converged; ++it) {
     res.iterations = it;
-    const Equations e = equations(options.method, A, l, comps, theta, active);
-    VectorXd theta_active(e.r.size());
-    for (Index k = 0, j = 0; k < K; ++k)
-      if (active[static_cast<std::size_t>(k)]) theta_active(j++) = theta(k);
-    const VectorXd step = solve_equations(e, theta_active, active_names(comps, active));
-    // Map the active solution back and damp a step that would make a component negative.
-    VectorXd full = theta;
-    double alpha = 1.0;
-    Index j = 0;
-    for (Index k = 0; k < K; ++k) {
-      if (!active[static_cast<std::size_t>(k)]) continue;
-      full(k) = step(j++);
-      if (full(k) < kKeepFraction * theta(k))
-        alpha = std::min(alpha, (1.0 - kKeepFraction) * theta(k) / (theta(k) - full(k)));
-    }
-    // A component that is already at rounding level of the largest and still heads below
-    // zero has reached the boundary: clip it.
-    const double largest = full.maxCoeff();
-    bool clipped_now = false;
-    for (Index k = 0; k < K; ++k) {
-      const auto ks = static_cast<std::size_t>(k);
-      if (active[ks] && full(k) < 0.0 &&
-          theta(k) <= kClipFraction * std::max(largest, theta.maxCoeff())) {
-        active[ks] = false;
-        theta(k) = 0.0;
-        clipped_now = true;
-        res.notes.push_back(
-            fmt::format("{} estimated negative ({:.3g}) at iteration {}: set to 0 and held there",
-                        comps[ks].name, full(k), it));
-      }
-    }
-    if (std::none_of(active.begin(), active.end(), [](bool a) { return a; }))
-      throw NumericalError("variance components: every component was estimated negative");
-    if (clipped_now) {
-      here_cache = kNaN;
+    const VceUpdate u = scoring_update(A, l, comps, options.method, s);
+    if (clip_negative(s, u.full, comps, it, res)) {
+      s.here_cache = kNaN;
       continue;
     }
     // The a-priori and the a-posteriori components agree: converged (take the update).
-    last_change =
-        (full - theta).cwiseAbs().maxCoeff() / std::max(full.maxCoeff(), theta.maxCoeff());
-    if (alpha == 1.0 && last_change <= options.tolerance) {
-      theta = full;
+    last_change = (u.full - s.theta).cwiseAbs().maxCoeff() / std::max(u.full.maxCoeff(), s.theta.maxCoeff());
+    if (u.alpha == 1.0 && last_change <= options.tolerance) {
+      s.theta = u.full;
       converged = true;
       break;
     }
-    // Scoring can overshoot when the components are strongly correlated (it then cycles):
-    // halve the step until the restricted likelihood does not decrease (a safeguarded scoring
-    // step).
-    const double here = std::isnan(here_cache) ? reml_at(A, l, comps, theta, active) : here_cache;
-    VectorXd next = theta + alpha * (full - theta);
-    double there = reml_at(A, l, comps, next, active);
-    for (int h = 0; h < kMaxHalvings && !(there >= here - 1e-12 * std::fabs(here)); ++h) {
-      alpha *= 0.5;
-      next = theta + alpha * (full - theta);
-      there = reml_at(A, l, comps, next, active);
-    }
-    theta = next;
-    here_cache = there;
+    safeguarded_step(s, u, A, l, comps);
   }
   if (!converged)
     throw NumericalError(
         fmt::format("variance components did not converge in {} iterations "
                     "(last relative change {:.3g}; {})",
-                    options.max_iterations, last_change, component_list(comps, theta)));
-
-  res.components = theta;
-  res.clipped.resize(comps.size());
-  for (std::size_t k = 0; k < comps.size(); ++k) res.clipped[k] = !active[k];
-  if (!options.details) {
-    res.covariance = MatrixXd::Constant(K, K, kNaN);
-    res.likelihood = gls_log_likelihood(A, l, factor_covariance(comps, theta, active));
-    return res;
-  }
-  // Covariance of θ̂: N⁻¹ at θ̂ over the active components.
-  const Equations e = equations(VceMethod::LsVce, A, l, comps, theta, active);
-  const MatrixXd cov_active = e.n.ldlt().solve(MatrixXd::Identity(e.n.rows(), e.n.cols()));
-  res.covariance = MatrixXd::Zero(K, K);
-  std::vector<Index> idx;
-  for (Index k = 0; k < K; ++k)
-    if (active[static_cast<std::size_t>(k)]) idx.push_back(k);
-  for (std::size_t a = 0; a < idx.size(); ++a)
-    for (std::size_t b = 0; b < idx.size(); ++b)
-      res.covariance(idx[a], idx[b]) = cov_active(static_cast<Index>(a), static_cast<Index>(b));
-  const CovarianceFactor cov = factor_covariance(comps, theta, active);
-  res.adjustment = solve_linear(A, l, cov);
-  res.likelihood = gls_log_likelihood(A, l, cov);
+                    options.max_iterations, last_change, component_list(comps, s.theta)));
+  finish_vce(res, A, l, comps, options, s);
   return res;
 }
 

@@ -98,6 +98,7 @@ class CampaignRun {
   }
 
   CampaignResult run() {
+    res_.input = in_;
     res_.name = in_.name;
     res_.limits = limits_;
     res_.record = in_.record;

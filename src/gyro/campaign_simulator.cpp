@@ -122,6 +122,90 @@ DeterminationInput simulate_determination(const CampaignTruth& t, const Station&
   return d;
 }
 
+// A station of the truth: its point, the instrument there and T_B rescaled to it by
+// T_B² ∝ 1/(cos φ·(1+λ(φ))).
+Station station_at(const CampaignTruth& t, const geodesy::TransverseMercatorGrid& grid, const PointInput& p,
+                   const char* what) {
+  Station s;
+  s.point = locate(p, grid, what);
+  s.inst = resolve_instrument(t.instrument, s.point.lat_rad).instrument;
+  const double lat0 = t.instrument.constants_latitude_rad.value_or(s.point.lat_rad);
+  const double lam0 = t.instrument.torsion_ratio ? t.instrument.torsion_ratio->value : s.inst.torsion_ratio.value;
+  s.period_s = t.nontracking_period_s *
+               std::sqrt(std::cos(lat0) * (1.0 + lam0) /
+                         (std::cos(s.point.lat_rad) * (1.0 + s.inst.torsion_ratio.value)));
+  return s;
+}
+
+// One line of the truth: its ends as given and located, η and ξ at its station.
+struct TruthLine {
+  const PointInput& from_in;
+  const PointInput& to_in;
+  const PointResult& from;
+  const PointResult& to;
+  double eta_rad;
+  const std::optional<double>& xi_rad;
+};
+
+// Truth: grid azimuth of the chord → geodetic → astronomic → gyro azimuth; with ξ the full
+// Laplace equation, z from the heights of the points. Returns the gyro azimuth and sets the
+// grid azimuth.
+double true_gyro_azimuth(const CampaignTruth& t, const geodesy::TransverseMercatorGrid& grid, const TruthLine& l,
+                         double& grid_az) {
+  const PointResult& from = l.from;
+  const PointResult& to = l.to;
+  const double T = std::atan2(to.grid.y_east_m - from.grid.y_east_m, to.grid.x_north_m - from.grid.x_north_m);
+  const double delta =
+      geodesy::arc_to_chord(grid, from.grid.x_north_m, from.grid.y_east_m, to.grid.x_north_m, to.grid.y_east_m);
+  geodesy::AzimuthReduction r{from.lat_rad, Uncertain{l.eta_rad, 0.0}, from.grid.convergence_rad, delta};
+  if (l.xi_rad) {
+    r.xi_rad = Uncertain{*l.xi_rad, 0.0};
+    if (l.from_in.height_m && l.to_in.height_m)
+      r.zenith_distance_rad = geodesy::sight_zenith_distance_rad(
+          {from.lat_rad, from.lon_rad, *l.from_in.height_m}, {to.lat_rad, to.lon_rad, *l.to_in.height_m},
+          t.grid.ellipsoid);
+  }
+  const geodesy::AzimuthSteps s = geodesy::azimuth_steps(geodesy::AzimuthKind::Grid, {T, 0.0}, r);
+  grid_az = s.grid_rad.value;
+  return wrap_positive_rad(s.astronomic_rad.value - t.instrument_constant_rad);
+}
+
+// The known line as booked: its points (η, ξ when given), its grid azimuth (rounded), and the
+// determinations before and after.
+KnownLineInput simulated_known_line(const CampaignTruth& t, const Station& a, double gyro_az, double grid_az,
+                                    std::mt19937_64& rng) {
+  KnownLineInput kl;
+  kl.from = t.known_station;
+  kl.to = t.known_target;
+  if (t.give_eta) kl.from.eta_rad = Uncertain{t.eta_known_rad, 0.5 * units::kArcsecond};
+  if (t.give_eta && t.xi_known_rad) kl.from.xi_rad = Uncertain{*t.xi_known_rad, 0.5 * units::kArcsecond};
+  kl.azimuth.kind = KnownAzimuth::Kind::Grid;
+  kl.azimuth.value_rad = {Rounder{t.round_to_field_precision}(grid_az, 0.01 * units::kArcsecond),
+                          t.known_azimuth_sigma_arcsec * units::kArcsecond};
+  for (int i = 0; i < t.known_before; ++i)
+    kl.before.push_back(simulate_determination(t, a, gyro_az, false, fmt::format("known line, before, #{}", i + 1), rng));
+  for (int i = 0; i < t.known_after; ++i)
+    kl.after.push_back(simulate_determination(t, a, gyro_az, false, fmt::format("known line, after, #{}", i + 1), rng));
+  return kl;
+}
+
+// The unknown line as booked: its points and the non-tracking, then the tracking determinations.
+LineInput simulated_line(const CampaignTruth& t, const Station& c, double gyro_az, std::mt19937_64& rng) {
+  LineInput line;
+  line.from = t.station;
+  line.to = t.target;
+  if (t.give_eta) line.from.eta_rad = Uncertain{t.eta_station_rad, 0.5 * units::kArcsecond};
+  if (t.give_eta && t.xi_station_rad) line.from.xi_rad = Uncertain{*t.xi_station_rad, 0.5 * units::kArcsecond};
+  int k = 0;
+  for (int i = 0; i < t.line_nontracking; ++i)
+    line.determinations.push_back(
+        simulate_determination(t, c, gyro_az, false, fmt::format("line, non-tracking #{}", ++k), rng));
+  for (int i = 0; i < t.line_tracking; ++i)
+    line.determinations.push_back(
+        simulate_determination(t, c, gyro_az, true, fmt::format("line, tracking #{}", ++k), rng));
+  return line;
+}
+
 }  // namespace
 
 SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) {
@@ -132,74 +216,17 @@ SimulatedCampaign simulate_campaign(const CampaignTruth& t, std::uint64_t seed) 
   in.name = t.name;
   in.instrument = t.instrument;
   in.grid = t.grid;
-
-  auto station = [&](const PointInput& p, const char* what) {
-    Station s;
-    s.point = locate(p, grid, what);
-    s.inst = resolve_instrument(t.instrument, s.point.lat_rad).instrument;
-    const double lat0 = t.instrument.constants_latitude_rad.value_or(s.point.lat_rad);
-    const double lam0 = t.instrument.torsion_ratio ? t.instrument.torsion_ratio->value : s.inst.torsion_ratio.value;
-    s.period_s = t.nontracking_period_s *
-                 std::sqrt(std::cos(lat0) * (1.0 + lam0) /
-                           (std::cos(s.point.lat_rad) * (1.0 + s.inst.torsion_ratio.value)));
-    return s;
-  };
-  const Station c = station(t.station, "station");
-  const Station a = station(t.known_station, "known station");
+  const Station c = station_at(t, grid, t.station, "station");
+  const Station a = station_at(t, grid, t.known_station, "known station");
   const PointResult d = locate(t.target, grid, "target");
   const PointResult b = locate(t.known_target, grid, "known target");
-
-  // Truth: grid azimuth of the chord → geodetic → astronomic → gyro azimuth;
-  // with ξ the full Laplace equation, z from the heights of the points.
-  auto gyro_azimuth_for = [&](const PointResult& from, const PointResult& to, const PointInput& from_in,
-                              const PointInput& to_in, double eta, const std::optional<double>& xi,
-                              double* grid_az) {
-    const double T = std::atan2(to.grid.y_east_m - from.grid.y_east_m, to.grid.x_north_m - from.grid.x_north_m);
-    const double delta = geodesy::arc_to_chord(grid, from.grid.x_north_m, from.grid.y_east_m,
-                                               to.grid.x_north_m, to.grid.y_east_m);
-    geodesy::AzimuthReduction r{from.lat_rad, Uncertain{eta, 0.0}, from.grid.convergence_rad, delta};
-    if (xi) {
-      r.xi_rad = Uncertain{*xi, 0.0};
-      if (from_in.height_m && to_in.height_m)
-        r.zenith_distance_rad = geodesy::sight_zenith_distance_rad(
-            {from.lat_rad, from.lon_rad, *from_in.height_m}, {to.lat_rad, to.lon_rad, *to_in.height_m},
-            t.grid.ellipsoid);
-    }
-    const geodesy::AzimuthSteps s = geodesy::azimuth_steps(geodesy::AzimuthKind::Grid, {T, 0.0}, r);
-    *grid_az = s.grid_rad.value;
-    return wrap_positive_rad(s.astronomic_rad.value - t.instrument_constant_rad);
-  };
-  const double ag_line = gyro_azimuth_for(c.point, d, t.station, t.target, t.eta_station_rad, t.xi_station_rad,
-                                          &out.true_grid_azimuth_rad);
-  const double ag_known = gyro_azimuth_for(a.point, b, t.known_station, t.known_target, t.eta_known_rad,
-                                           t.xi_known_rad, &out.true_known_grid_azimuth_rad);
-
-  KnownLineInput kl;
-  kl.from = t.known_station;
-  kl.to = t.known_target;
-  if (t.give_eta) kl.from.eta_rad = Uncertain{t.eta_known_rad, 0.5 * units::kArcsecond};
-  if (t.give_eta && t.xi_known_rad)
-    kl.from.xi_rad = Uncertain{*t.xi_known_rad, 0.5 * units::kArcsecond};
-  kl.azimuth.kind = KnownAzimuth::Kind::Grid;
-  kl.azimuth.value_rad = {Rounder{t.round_to_field_precision}(out.true_known_grid_azimuth_rad,
-                                                              0.01 * units::kArcsecond),
-                          t.known_azimuth_sigma_arcsec * units::kArcsecond};
-  for (int i = 0; i < t.known_before; ++i)
-    kl.before.push_back(simulate_determination(t, a, ag_known, false, fmt::format("known line, before, #{}", i + 1), rng));
-  for (int i = 0; i < t.known_after; ++i)
-    kl.after.push_back(simulate_determination(t, a, ag_known, false, fmt::format("known line, after, #{}", i + 1), rng));
-  in.known_line = kl;
-
-  in.line.from = t.station;
-  in.line.to = t.target;
-  if (t.give_eta) in.line.from.eta_rad = Uncertain{t.eta_station_rad, 0.5 * units::kArcsecond};
-  if (t.give_eta && t.xi_station_rad)
-    in.line.from.xi_rad = Uncertain{*t.xi_station_rad, 0.5 * units::kArcsecond};
-  int k = 0;
-  for (int i = 0; i < t.line_nontracking; ++i)
-    in.line.determinations.push_back(simulate_determination(t, c, ag_line, false, fmt::format("line, non-tracking #{}", ++k), rng));
-  for (int i = 0; i < t.line_tracking; ++i)
-    in.line.determinations.push_back(simulate_determination(t, c, ag_line, true, fmt::format("line, tracking #{}", ++k), rng));
+  const double ag_line = true_gyro_azimuth(
+      t, grid, {t.station, t.target, c.point, d, t.eta_station_rad, t.xi_station_rad}, out.true_grid_azimuth_rad);
+  const double ag_known =
+      true_gyro_azimuth(t, grid, {t.known_station, t.known_target, a.point, b, t.eta_known_rad, t.xi_known_rad},
+                        out.true_known_grid_azimuth_rad);
+  in.known_line = simulated_known_line(t, a, ag_known, out.true_known_grid_azimuth_rad, rng);
+  in.line = simulated_line(t, c, ag_line, rng);
   out.truth.push_back(fmt::format(
       "Truth: grid azimuth C-D {} ; known line A-B grid azimuth {} ; E = {:+.1f}\"",
       format_direction_dms(Angle::radians(out.true_grid_azimuth_rad), {3, true, false}),

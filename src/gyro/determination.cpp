@@ -120,95 +120,106 @@ std::string method_request_name(const std::optional<Method>& requested) {
   return requested ? to_string(*requested) : std::string("all");
 }
 
+namespace {
+
+// The zero position α_p to apply: from the motor-off runs when given (their summary and warnings
+// go into `out`), else the one given directly.
+ZeroPosition zero_position_of(const DeterminationInput& in, const Instrument& inst, const ReduceOptions& options,
+                              DeterminationResult& out) {
+  if (!in.zero_before && !in.zero_after) return in.zero_position;
+  try {
+    out.zero_position = summarise_zero_position(in.zero_before, in.zero_after, options.zero_position_method,
+                                                inst.sigma_reading_div, options.zero_position_tolerance_div);
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, "zero_position");
+    throw;
+  }
+  for (const auto& w : out.zero_position->warnings) out.warnings.push_back(w);
+  return out.zero_position->mean_div;
+}
+
+// Every applicable non-tracking method (a method that fails numerically is a warning); the
+// primary result is the first of lsq, direct, timed-amplitude-1/-2, transit, time-difference.
+void all_nontracking(const DeterminationInput& in, const Instrument& inst, const ZeroPosition& zero,
+                     const ReduceOptions& options, DeterminationResult& out) {
+  std::vector<NonTrackingMethod> methods = applicable_methods(in.nontracking);
+  if (methods.empty())
+    throw InputError("no non-tracking method is applicable to the observations given "
+                     "(need crossings with times and, for most methods, reversals or period_s)");
+  for (NonTrackingMethod m : methods) {
+    try {
+      out.all.push_back(run_nontracking(m, in, inst, zero, options));
+    } catch (const NumericalError& e) {
+      out.warnings.push_back(fmt::format("{}: {}", to_string(m), e.what()));
+    }
+  }
+  if (out.all.empty()) throw NumericalError("every applicable method failed: " + out.warnings.back());
+  static constexpr NonTrackingMethod order[] = {
+      NonTrackingMethod::LeastSquares,    NonTrackingMethod::Direct,  NonTrackingMethod::TimedAmplitude1,
+      NonTrackingMethod::TimedAmplitude2, NonTrackingMethod::Transit, NonTrackingMethod::TimeDifference};
+  for (NonTrackingMethod preferred : order)
+    for (const auto& r : out.all)
+      if (r.method == Method{preferred}) {
+        out.primary = r;
+        return;
+      }
+  out.primary = out.all.front();
+}
+
+void reduce_nontracking_run(const DeterminationInput& in, const Instrument& inst, const ZeroPosition& zero,
+                            const ReduceOptions& options, DeterminationResult& out) {
+  check_plausible(in.nontracking);
+  check_levels_reached(in.nontracking);
+  if (!in.method)
+    all_nontracking(in, inst, zero, options, out);
+  else
+    out.primary = run_nontracking(requested_method<NonTrackingMethod>(in), in, inst, zero, options);
+  if (out.primary.beta)
+    for (const auto& w : out.primary.beta->warnings) out.warnings.push_back(w);
+}
+
+void reduce_tracking_run(const DeterminationInput& in, const Instrument& inst, const ZeroPosition& zero,
+                         DeterminationResult& out) {
+  if (!in.method) {
+    const int n = static_cast<int>(in.tracking.reversals_rad.size());
+    for (ReversalMethod m : {ReversalMethod::TwoPoint, ReversalMethod::Schuler, ReversalMethod::LinearLsq,
+                             ReversalMethod::NonlinearLsq}) {
+      if (m != ReversalMethod::TwoPoint && n < 3) continue;
+      try {
+        out.all.push_back(run_tracking(m, in, inst, zero));
+      } catch (const NumericalError& e) {
+        out.warnings.push_back(fmt::format("{}: {}", to_string(m), e.what()));
+      }
+    }
+    // None: surface the real input problem (too few or bad readings).
+    if (out.all.empty()) out.all.push_back(run_tracking(ReversalMethod::TwoPoint, in, inst, zero));
+    out.primary = out.all.back();
+  } else {
+    out.primary = run_tracking(requested_method<ReversalMethod>(in), in, inst, zero);
+  }
+  if (const std::string w = reading_sigma_warning(*out.primary.reversal, units::kArcsecond, "\"", 1); !w.empty())
+    out.warnings.push_back(in.label.empty() ? "tracking run: " + w
+                                            : fmt::format("tracking run \"{}\": {}", in.label, w));
+}
+
+}  // namespace
+
 DeterminationResult reduce_determination(const DeterminationInput& in, const Instrument& inst,
                                          const ReduceOptions& options) {
   DeterminationResult out;
   out.label = in.label;
   out.mode = in.mode;
   out.method = in.method;
-
-  ZeroPosition zero = in.zero_position;
-  if (in.zero_before || in.zero_after) {
-    try {
-      out.zero_position = summarise_zero_position(in.zero_before, in.zero_after,
-                                                  options.zero_position_method,
-                                                  inst.sigma_reading_div,
-                                                  options.zero_position_tolerance_div);
-    } catch (Error& e) {
-      e.add_context("", std::nullopt, "zero_position");
-      throw;
-    }
-    zero = out.zero_position->mean_div;
-    for (const auto& w : out.zero_position->warnings) out.warnings.push_back(w);
-  }
+  const ZeroPosition zero = zero_position_of(in, inst, options, out);
   out.zero_position_used = zero;
   if (!in.target_rounds.empty()) {
     out.target = reduce_target(in);
     if (auto w = target_rounds_warning(*out.target, in.target_round_sigma_rad)) out.warnings.push_back(*w);
   }
-
-  if (in.mode == Mode::NonTracking) {
-    check_plausible(in.nontracking);
-    check_levels_reached(in.nontracking);
-    if (!in.method) {
-      std::vector<NonTrackingMethod> methods = applicable_methods(in.nontracking);
-      if (methods.empty())
-        throw InputError("no non-tracking method is applicable to the observations given "
-                         "(need crossings with times and, for most methods, reversals or period_s)");
-      for (NonTrackingMethod m : methods) {
-        try {
-          out.all.push_back(run_nontracking(m, in, inst, zero, options));
-        } catch (const NumericalError& e) {
-          out.warnings.push_back(fmt::format("{}: {}", to_string(m), e.what()));
-        }
-      }
-      if (out.all.empty()) throw NumericalError("every applicable method failed: " + out.warnings.back());
-      static constexpr NonTrackingMethod order[] = {
-          NonTrackingMethod::LeastSquares,    NonTrackingMethod::Direct,  NonTrackingMethod::TimedAmplitude1,
-          NonTrackingMethod::TimedAmplitude2, NonTrackingMethod::Transit, NonTrackingMethod::TimeDifference};
-      bool found = false;
-      for (NonTrackingMethod preferred : order) {
-        for (const auto& r : out.all)
-          if (r.method == Method{preferred}) {
-            out.primary = r;
-            found = true;
-            break;
-          }
-        if (found) break;
-      }
-      if (!found) out.primary = out.all.front();
-    } else {
-      out.primary = run_nontracking(requested_method<NonTrackingMethod>(in), in, inst, zero, options);
-    }
-    if (out.primary.beta)
-      for (const auto& w : out.primary.beta->warnings) out.warnings.push_back(w);
-  } else {
-    if (!in.method) {
-      const int n = static_cast<int>(in.tracking.reversals_rad.size());
-      for (ReversalMethod m : {ReversalMethod::TwoPoint, ReversalMethod::Schuler,
-                               ReversalMethod::LinearLsq, ReversalMethod::NonlinearLsq}) {
-        if (m != ReversalMethod::TwoPoint && n < 3) continue;
-        try {
-          out.all.push_back(run_tracking(m, in, inst, zero));
-        } catch (const NumericalError& e) {
-          out.warnings.push_back(fmt::format("{}: {}", to_string(m), e.what()));
-        }
-      }
-      if (out.all.empty()) {
-        // Surface the real input problem (too few or bad readings).
-        out.all.push_back(run_tracking(ReversalMethod::TwoPoint, in, inst, zero));
-      }
-      out.primary = out.all.back();
-    } else {
-      out.primary = run_tracking(requested_method<ReversalMethod>(in), in, inst, zero);
-    }
-    if (const std::string w =
-            reading_sigma_warning(*out.primary.reversal, units::kArcsecond, "\"", 1);
-        !w.empty())
-      out.warnings.push_back(in.label.empty()
-                                 ? "tracking run: " + w
-                                 : fmt::format("tracking run \"{}\": {}", in.label, w));
-  }
+  if (in.mode == Mode::NonTracking)
+    reduce_nontracking_run(in, inst, zero, options, out);
+  else
+    reduce_tracking_run(in, inst, zero, out);
   return out;
 }
 

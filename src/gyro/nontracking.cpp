@@ -176,7 +176,9 @@ double effective_dt(double t1, double t2, double t3, int d, double period, std::
 // ---------------------------------------------------------------------------
 // Transit (§4.1)
 
-BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
+// The crossing of the scale zero the transit method times, after checking that the
+// observations and the instrument allow the method.
+std::size_t transit_crossing(const NonTrackingObservations& obs, const Instrument& inst) {
   const auto zc = find_zero_level(obs, 3);
   if (!zc)
     throw_input("crossings", "the transit method needs three crossings of the scale zero "
@@ -189,97 +191,83 @@ BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
   if (!calibrated && !(inst.scale_value_rad > 0.0))
     throw_input("scale_value_rad", "the transit method needs the scale value τ > 0 "
                                    "(or a calibrated transit factor c)");
-  const Crossing& cr = obs.crossings[*zc];
-  const std::size_t n = cr.times_s.size();
-  const std::size_t nr = obs.reversals_div.size();
-  const bool known = obs.period_s.has_value();
-  const int d = cr.first_direction;
+  return *zc;
+}
 
-  // Inputs: n times, nr readings, [T_B], then λ, τ or c.
+// The transit method's inputs with their σ: n times, nr readings, [T_B], then λ, τ or c.
+std::vector<Uncertain> transit_inputs(const NonTrackingObservations& obs, const Instrument& inst,
+                                      const Crossing& cr) {
   std::vector<Uncertain> in;
   for (double t : cr.times_s) in.push_back({t, obs.sigma_time_s});
   for (double a : obs.reversals_div) in.push_back({a, obs.sigma_reading_div});
-  if (known) in.push_back(period_input(obs));
-  if (calibrated) {
+  if (obs.period_s) in.push_back(period_input(obs));
+  if (inst.transit_factor_rad_per_div_s) {
     in.push_back(*inst.transit_factor_rad_per_div_s);
   } else {
     in.push_back(inst.torsion_ratio);
     in.push_back({inst.scale_value_rad, inst.sigma_scale_value_rad});
   }
+  return in;
+}
 
-  // Least squares t_i = t0 + (i−1)·T_B/2 + (−1)^i·u (i = 1…n), equal weights.
-  const auto fit_u = [n](const double* t, std::optional<double> period) {
-    const Eigen::Index rows = static_cast<Eigen::Index>(n);
-    const Eigen::Index cols = period ? 2 : 3;
-    Eigen::MatrixXd A(rows, cols);
-    Eigen::VectorXd l(rows);
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      const double sgn = (r % 2 == 0) ? -1.0 : 1.0;  // (−1)^i with i = r + 1
-      A(r, 0) = 1.0;
-      A(r, 1) = sgn;
-      l(r) = t[r];
-      if (period)
-        l(r) -= static_cast<double>(r) * *period / 2.0;
-      else
-        A(r, 2) = static_cast<double>(r);
-    }
-    const auto ls = adjust::solve_linear_diagonal(A, l, Eigen::VectorXd::Ones(rows));
-    return std::pair<double, double>{ls.x(1), period ? *period : 2.0 * ls.x(2)};
-  };
+// Least squares t_i = t0 + (i−1)·T_B/2 + (−1)^i·u (i = 1…n), equal weights, with T_B given or
+// estimated: (u, T_B).
+std::pair<double, double> transit_times_fit(const double* t, std::size_t n, std::optional<double> period) {
+  const Eigen::Index rows = static_cast<Eigen::Index>(n);
+  const Eigen::Index cols = period ? 2 : 3;
+  Eigen::MatrixXd A(rows, cols);
+  Eigen::VectorXd l(rows);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const double sgn = (r % 2 == 0) ? -1.0 : 1.0;  // (−1)^i with i = r + 1
+    A(r, 0) = 1.0;
+    A(r, 1) = sgn;
+    l(r) = t[r];
+    if (period)
+      l(r) -= static_cast<double>(r) * *period / 2.0;
+    else
+      A(r, 2) = static_cast<double>(r);
+  }
+  const auto ls = adjust::solve_linear_diagonal(A, l, Eigen::VectorXd::Ones(rows));
+  return std::pair<double, double>{ls.x(1), period ? *period : 2.0 * ls.x(2)};
+}
 
-  // Outputs: β_small, ΔN, B, T_B used, d·Δt, β_exact, T_B from the transits alone.
-  const auto f = [&](const Vec& x) -> Vec {
-    const double* t = x.data();
-    const double B = amplitude_from_reversals(x.data() + n, nr);
-    std::size_t k = n + nr;
-    const std::optional<double> period = known ? std::optional<double>(x[k++]) : std::nullopt;
-    double u = 0.0;
-    double free_period = 0.0;
-    if (n == 3) {
-      u = time_difference_s(t[0], t[1], t[2]) / 4.0;  // the LS solution for n = 3, either way
-      free_period = t[2] - t[0];
-    } else {
-      free_period = fit_u(t, std::nullopt).second;
-      u = fit_u(t, period).first;
-    }
-    const double T = period ? *period : free_period;
-    const double dt = d * 4.0 * u;
-    const double beta_small = kPi * B * dt / (2.0 * T);
-    const double beta_exact = B * std::sin(kPi * dt / (2.0 * T));
-    const double dn = calibrated ? x[k] * B * dt : (1.0 + x[k]) * x[k + 1] * beta_small;
-    return {beta_small, dn, B, T, dt, beta_exact, free_period};
-  };
-
-  const Propagated p = propagate(f, in);
+// The period and the time difference of the propagated transit (outputs 3 and 4) must describe
+// consecutive transits, and the amplitude (output 2) must not be zero.
+void check_transit(const Propagated& p, std::size_t zc) {
   const double T = p.value[3];
   if (!(T > 0.0))
-    throw_numerical(times_field(*zc), fmt::format("the period from the transits is {} s", num(T)));
+    throw_numerical(times_field(zc), fmt::format("the period from the transits is {} s", num(T)));
   if (!(std::abs(p.value[4]) < T))
-    throw_numerical(times_field(*zc),
+    throw_numerical(times_field(zc),
                     fmt::format("|Δt| = {} s is not less than T_B = {} s: the passages are not "
                                 "consecutive transits of the scale zero",
                                 num(std::abs(p.value[4])), num(T)));
   if (!(p.value[2] > 0.0))
     throw_numerical("reversals_div", "the reversal readings give a zero amplitude B");
+}
 
+// The transit's result from its propagated outputs, with what it assumed and, for a given T_B,
+// the check of the transits' own period against it.
+BetaResult transit_result(const Propagated& p, const NonTrackingObservations& obs, std::size_t zc,
+                          std::size_t n, bool calibrated) {
+  const bool known = obs.period_s.has_value();
   BetaResult r;
   r.method = NonTrackingMethod::Transit;
   r.beta_div = {p.value[0], p.sigma[0]};
   r.transit_delta_n_rad = Uncertain{p.value[1], p.sigma[1]};
   r.amplitude_div = Uncertain{p.value[2], p.sigma[2]};
-  r.period_s = Uncertain{T, p.sigma[3]};
+  r.period_s = Uncertain{p.value[3], p.sigma[3]};
   r.time_difference_s = Uncertain{p.value[4], p.sigma[4]};
   r.approximation_error_div = p.value[0] - p.value[5];
   r.assumptions.push_back("k = 0 (damping neglected)");
   r.assumptions.push_back("small-angle form β = π·B·Δt/(2T_B)");
-  r.assumptions.push_back(fmt::format("transits: crossings[{}], {} passages{}", *zc, n,
-                                      n > 3 ? " (least squares)" : ""));
+  r.assumptions.push_back(fmt::format("transits: crossings[{}], {} passages{}", zc, n, n > 3 ? " (least squares)" : ""));
   if (known)
     r.assumptions.push_back("T_B = period_s");
   else
     r.assumptions.push_back(n == 3 ? "T_B = t3 − t1 from the transits"
                                    : "T_B estimated from the transits (least squares)");
-  if (nr > 2)
+  if (obs.reversals_div.size() > 2)
     r.assumptions.push_back("B = mean of |a_i − a_(i+1)|/2 over consecutive reversal pairs");
   if (calibrated)
     r.assumptions.push_back("ΔN = c·B·Δt with the calibrated transit factor c");
@@ -297,6 +285,43 @@ BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
           p.value[6], obs.period_s->value, diff, 3.0 * sd));
   }
   return r;
+}
+
+BetaResult transit(const NonTrackingObservations& obs, const Instrument& inst) {
+  const std::size_t zc = transit_crossing(obs, inst);
+  const bool calibrated = inst.transit_factor_rad_per_div_s.has_value();
+  const Crossing& cr = obs.crossings[zc];
+  const std::size_t n = cr.times_s.size();
+  const std::size_t nr = obs.reversals_div.size();
+  const bool known = obs.period_s.has_value();
+  const int d = cr.first_direction;
+
+  // Outputs: β_small, ΔN, B, T_B used, d·Δt, β_exact, T_B from the transits alone.
+  const auto f = [&](const Vec& x) -> Vec {
+    const double* t = x.data();
+    const double B = amplitude_from_reversals(x.data() + n, nr);
+    std::size_t k = n + nr;
+    const std::optional<double> period = known ? std::optional<double>(x[k++]) : std::nullopt;
+    double u = 0.0;
+    double free_period = 0.0;
+    if (n == 3) {
+      u = time_difference_s(t[0], t[1], t[2]) / 4.0;  // the LS solution for n = 3, either way
+      free_period = t[2] - t[0];
+    } else {
+      free_period = transit_times_fit(t, n, std::nullopt).second;
+      u = transit_times_fit(t, n, period).first;
+    }
+    const double T = period ? *period : free_period;
+    const double dt = d * 4.0 * u;
+    const double beta_small = kPi * B * dt / (2.0 * T);
+    const double beta_exact = B * std::sin(kPi * dt / (2.0 * T));
+    const double dn = calibrated ? x[k] * B * dt : (1.0 + x[k]) * x[k + 1] * beta_small;
+    return {beta_small, dn, B, T, dt, beta_exact, free_period};
+  };
+
+  const Propagated p = propagate(f, transit_inputs(obs, inst, cr));
+  check_transit(p, zc);
+  return transit_result(p, obs, zc, n, calibrated);
 }
 
 // ---------------------------------------------------------------------------

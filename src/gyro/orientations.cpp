@@ -29,6 +29,7 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
     limits.orientation_mean_sigma_rad = std::min(limits.orientation_mean_sigma_rad, c.limits.orientation_mean_sigma_rad);
   }
   r.limits = limits;
+  for (const CampaignResult& c : in) r.files.push_back(c.input.file);
   r.station = in.front().station.name;
   r.target = in.front().target ? in.front().target->name : std::string();
   for (std::size_t i = 0; i < in.size(); ++i) {

@@ -8,6 +8,7 @@ namespace meridian::gyro {
 
 ReduceResult process(const ReduceInput& in, Progress* progress) {
   ReduceResult r;
+  r.input = in;
   try {
     r.instrument = resolve_instrument(in.instrument, in.latitude_rad);
   } catch (Error& e) {

@@ -143,108 +143,123 @@ std::vector<double> unwrap_circle_readings(std::span<const double> r) {
   return out;
 }
 
+namespace {
+
+void two_point_centre(ReversalResult& res, std::span<const double> r, double sigma_reading) {
+  const int n = static_cast<int>(r.size());
+  res.centre.value = 0.5 * (r[0] + r[1]);
+  res.amplitude = Uncertain{0.5 * (r[1] - r[0]), kNaN};
+  res.residuals = {0.0, 0.0};
+  res.sigma0 = kNaN;
+  fill_sigma(res, sigma_reading, 0.5);
+  res.notes.push_back("damping neglected");
+  if (n > 2) res.notes.push_back(fmt::format("only the first two of {} readings used", n));
+}
+
+void schuler_centre(ReversalResult& res, std::span<const double> r, double sigma_reading) {
+  const int n = static_cast<int>(r.size());
+  // M = (r1 + 3r2 + 4r3 + … + 4r_{n−2} + 3r_{n−1} + rn)/(4(n−2)): the mean of the
+  // n−2 successive means (r_i + 2r_{i+1} + r_{i+2})/4.
+  std::vector<double> w(static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i + 2 < n; ++i) {
+    w[i] += 0.25;
+    w[i + 1] += 0.5;
+    w[i + 2] += 0.25;
+  }
+  double m = 0, q = 0;
+  for (int i = 0; i < n; ++i) {
+    w[i] /= (n - 2);
+    m += w[i] * r[i];
+    q += w[i] * w[i];
+  }
+  res.centre.value = m;
+  if (n > 3) {
+    const auto lin = fit_linear(r);  // σ̂0 of one reading from the redundant linear model
+    res.dof = lin.dof;
+    res.sigma0 = lin.sigma0;
+    res.residuals.assign(lin.residuals.data(), lin.residuals.data() + n);
+    res.notes.push_back("sigma0 of a reading from the linearised least-squares fit (R2)");
+  } else {
+    res.sigma0 = kNaN;
+    res.residuals.assign(static_cast<std::size_t>(n), 0.0);
+  }
+  fill_sigma(res, sigma_reading, q);
+  res.notes.push_back("linear damping assumed (exact for e^{-i kappa} to first order)");
+}
+
+// Centre, amplitude and damping of a least-squares fit ((R2), or (R1) by Gauss–Newton) with
+// their σ by the policy of fill_sigma.
+template <class Fit>
+void take_fit(ReversalResult& res, const Fit& fit, double sigma_reading) {
+  res.centre.value = fit.x(0);
+  res.dof = fit.dof;
+  res.sigma0 = fit.sigma0;
+  res.residuals.assign(fit.residuals.data(), fit.residuals.data() + fit.residuals.size());
+  fill_sigma(res, sigma_reading, fit.cofactor(0, 0));
+  res.amplitude = Uncertain{fit.x(1), reading_sigma_used(res) * std::sqrt(fit.cofactor(1, 1))};
+  res.damping = Uncertain{fit.x(2), reading_sigma_used(res) * std::sqrt(fit.cofactor(2, 2))};
+}
+
+void linear_centre(ReversalResult& res, std::span<const double> r, double sigma_reading) {
+  const int n = static_cast<int>(r.size());
+  take_fit(res, fit_linear(r), sigma_reading);
+  if (n > 10) res.notes.push_back("more than 10 reversals add little precision (q_MM ~ 1/n)");
+}
+
+// (R1), r_i = M + (−1)^i·A·e^{−iκ}, i = 1 … n, with its Jacobian.
+adjust::NonlinearModel damped_reversal_model(int n) {
+  adjust::NonlinearModel model;
+  model.predict = [n](const Eigen::VectorXd& x) {
+    Eigen::VectorXd f(n);
+    for (int k = 0; k < n; ++k) {
+      const int i = k + 1;
+      f(k) = x(0) + alt_sign(i) * x(1) * std::exp(-i * x(2));
+    }
+    return f;
+  };
+  model.jacobian = [n](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd J(n, 3);
+    for (int k = 0; k < n; ++k) {
+      const int i = k + 1;
+      const double e = std::exp(-i * x(2));
+      J(k, 0) = 1.0;
+      J(k, 1) = alt_sign(i) * e;
+      J(k, 2) = -alt_sign(i) * x(1) * i * e;
+    }
+    return J;
+  };
+  return model;
+}
+
+void nonlinear_centre(ReversalResult& res, std::span<const double> r, double sigma_reading) {
+  const int n = static_cast<int>(r.size());
+  const auto lin = fit_linear(r);
+  // Start: A = A′ + c, κ = 2c/(A′ + c) from matching (R2) to the expansion of (R1).
+  const double a0 = lin.x(1) + lin.x(2);
+  const double k0 = a0 != 0.0 ? 2.0 * lin.x(2) / a0 : 0.0;
+  Eigen::VectorXd l(n);
+  for (int k = 0; k < n; ++k) l(k) = r[static_cast<std::size_t>(k)];
+  adjust::NonlinearOptions opt;
+  opt.step_scale = Eigen::Vector3d(std::fabs(lin.x(0)) + std::fabs(a0), std::fabs(a0), 1.0);
+  const auto nl = adjust::solve_nonlinear(damped_reversal_model(n), l, Eigen::MatrixXd::Identity(n, n),
+                                          Eigen::Vector3d(lin.x(0), a0, k0), opt);
+  take_fit(res, nl, sigma_reading);
+  res.notes.push_back(fmt::format("non-linear fit converged in {} iterations", nl.iterations));
+}
+
+}  // namespace
+
 ReversalResult estimate_centre(ReversalMethod method, std::span<const double> r,
                                double sigma_reading) {
   ReversalResult res;
   res.method = method;
-  const int n = static_cast<int>(r.size());
   check_reversal_sequence(r, method == ReversalMethod::TwoPoint ? 2 : 3);
   if (method != ReversalMethod::TwoPoint) fill_partial_means(res, r);
-
   switch (method) {
-    case ReversalMethod::TwoPoint: {
-      res.centre.value = 0.5 * (r[0] + r[1]);
-      res.amplitude = Uncertain{0.5 * (r[1] - r[0]), kNaN};
-      res.residuals = {0.0, 0.0};
-      res.sigma0 = kNaN;
-      fill_sigma(res, sigma_reading, 0.5);
-      res.notes.push_back("damping neglected");
-      if (n > 2) res.notes.push_back(fmt::format("only the first two of {} readings used", n));
-      break;
-    }
-    case ReversalMethod::Schuler: {
-      // M = (r1 + 3r2 + 4r3 + … + 4r_{n−2} + 3r_{n−1} + rn)/(4(n−2)): the mean of the
-      // n−2 successive means (r_i + 2r_{i+1} + r_{i+2})/4.
-      std::vector<double> w(static_cast<std::size_t>(n), 0.0);
-      for (int i = 0; i + 2 < n; ++i) {
-        w[i] += 0.25;
-        w[i + 1] += 0.5;
-        w[i + 2] += 0.25;
-      }
-      double m = 0, q = 0;
-      for (int i = 0; i < n; ++i) {
-        w[i] /= (n - 2);
-        m += w[i] * r[i];
-        q += w[i] * w[i];
-      }
-      res.centre.value = m;
-      if (n > 3) {
-        const auto lin = fit_linear(r);  // σ̂0 of one reading from the redundant linear model
-        res.dof = lin.dof;
-        res.sigma0 = lin.sigma0;
-        res.residuals.assign(lin.residuals.data(), lin.residuals.data() + n);
-        res.notes.push_back("sigma0 of a reading from the linearised least-squares fit (R2)");
-      } else {
-        res.sigma0 = kNaN;
-        res.residuals.assign(static_cast<std::size_t>(n), 0.0);
-      }
-      fill_sigma(res, sigma_reading, q);
-      res.notes.push_back("linear damping assumed (exact for e^{-i kappa} to first order)");
-      break;
-    }
-    case ReversalMethod::LinearLsq: {
-      const auto lin = fit_linear(r);
-      res.centre.value = lin.x(0);
-      res.dof = lin.dof;
-      res.sigma0 = lin.sigma0;
-      res.residuals.assign(lin.residuals.data(), lin.residuals.data() + n);
-      fill_sigma(res, sigma_reading, lin.cofactor(0, 0));
-      res.amplitude = Uncertain{lin.x(1), reading_sigma_used(res) * std::sqrt(lin.cofactor(1, 1))};
-      res.damping = Uncertain{lin.x(2), reading_sigma_used(res) * std::sqrt(lin.cofactor(2, 2))};
-      if (n > 10) res.notes.push_back("more than 10 reversals add little precision (q_MM ~ 1/n)");
-      break;
-    }
-    case ReversalMethod::NonlinearLsq: {
-      const auto lin = fit_linear(r);
-      // Start: A = A′ + c, κ = 2c/(A′ + c) from matching (R2) to the expansion of (R1).
-      const double a0 = lin.x(1) + lin.x(2);
-      const double k0 = a0 != 0.0 ? 2.0 * lin.x(2) / a0 : 0.0;
-      Eigen::VectorXd l(n);
-      for (int k = 0; k < n; ++k) l(k) = r[static_cast<std::size_t>(k)];
-      adjust::NonlinearModel model;
-      model.predict = [n](const Eigen::VectorXd& x) {
-        Eigen::VectorXd f(n);
-        for (int k = 0; k < n; ++k) {
-          const int i = k + 1;
-          f(k) = x(0) + alt_sign(i) * x(1) * std::exp(-i * x(2));
-        }
-        return f;
-      };
-      model.jacobian = [n](const Eigen::VectorXd& x) {
-        Eigen::MatrixXd J(n, 3);
-        for (int k = 0; k < n; ++k) {
-          const int i = k + 1;
-          const double e = std::exp(-i * x(2));
-          J(k, 0) = 1.0;
-          J(k, 1) = alt_sign(i) * e;
-          J(k, 2) = -alt_sign(i) * x(1) * i * e;
-        }
-        return J;
-      };
-      adjust::NonlinearOptions opt;
-      opt.step_scale = Eigen::Vector3d(std::fabs(lin.x(0)) + std::fabs(a0), std::fabs(a0), 1.0);
-      const auto nl = adjust::solve_nonlinear(model, l, Eigen::MatrixXd::Identity(n, n),
-                                              Eigen::Vector3d(lin.x(0), a0, k0), opt);
-      res.centre.value = nl.x(0);
-      res.dof = nl.dof;
-      res.sigma0 = nl.sigma0;
-      res.residuals.assign(nl.residuals.data(), nl.residuals.data() + n);
-      fill_sigma(res, sigma_reading, nl.cofactor(0, 0));
-      res.amplitude = Uncertain{nl.x(1), reading_sigma_used(res) * std::sqrt(nl.cofactor(1, 1))};
-      res.damping = Uncertain{nl.x(2), reading_sigma_used(res) * std::sqrt(nl.cofactor(2, 2))};
-      res.notes.push_back(fmt::format("non-linear fit converged in {} iterations", nl.iterations));
-      break;
-    }
+    case ReversalMethod::TwoPoint: two_point_centre(res, r, sigma_reading); break;
+    case ReversalMethod::Schuler: schuler_centre(res, r, sigma_reading); break;
+    case ReversalMethod::LinearLsq: linear_centre(res, r, sigma_reading); break;
+    case ReversalMethod::NonlinearLsq: nonlinear_centre(res, r, sigma_reading); break;
   }
   return res;
 }

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/angle.hpp"
+#include "meridian/core/checks.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
@@ -15,10 +16,6 @@ namespace meridian::gyro {
 namespace {
 
 using units::kTwoPi;
-
-void require_finite(double v, std::string_view what) {
-  if (!std::isfinite(v)) throw InputError(fmt::format("{} is not a finite number", what));
-}
 
 void require_nonnegative(double v, std::string_view what) {
   if (!std::isfinite(v) || v < 0.0)

@@ -16,6 +16,7 @@
 #include "meridian/adjust/statistics.hpp"
 #include "meridian/adjust/two_component_reml.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/core/units.hpp"
 #include "meridian/gyro/markov_covariance.hpp"
 #include "meridian/gyro/reversal.hpp"
 
@@ -135,52 +136,102 @@ Uncertain sigma_from_variance(double var, double sd_var) {
   return {s, s > 0.0 && std::isfinite(sd_var) ? sd_var / (2.0 * s) : kNaN};
 }
 
+// A Markov model at its chosen ρ with the components fitted by VCE.
+struct MarkovVce {
+  std::vector<double> rho;
+  MarkovFactors factors;
+  adjust::VceResult vce;
+};
+
+// The search kept only the maximum of the likelihood: VCE at that ρ, started at the maximum (so
+// it confirms it in an iteration or two), gives the components with their covariance.
+MarkovVce markov_vce(const MarkovEval& scan, const MatrixXd& G, const VectorXd& l,
+                     adjust::VceMethod method) {
+  MarkovVce x{scan.rho, factors_for(scan.rho, static_cast<int>(l.size())), {}};
+  adjust::VceOptions o;
+  o.method = method;
+  o.initial = scan.theta.cwiseMax(1e-6 * scan.theta.maxCoeff());
+  // Started at the maximum it confirms in a few iterations (a boundary component takes ~5 to
+  // be clipped); more than 100 means the likelihood is too flat for scoring (see below).
+  o.max_iterations = 100;
+  try {
+    x.vce = adjust::estimate_variance_components(G, l, markov_components(x.factors), o);
+  } catch (const NumericalError& err) {
+    // Near the edge of the stationary region the likelihood can be so flat along σ_2² that
+    // scoring does not settle: keep the maximum of the closed-form profile, with the inverse
+    // Fisher information as the covariance of the components.
+    x.vce = adjust::VceResult{};
+    x.vce.method = method;
+    x.vce.components = scan.theta;
+    x.vce.clipped = {false, scan.sigma2_zero};
+    x.vce.iterations = 0;
+    x.vce.covariance = Eigen::Matrix2d::Constant(kNaN);
+    const MatrixXd D = x.factors.covariance(scan.theta(0), scan.theta(1));
+    std::vector<MatrixXd> deriv{x.factors.q1()};
+    if (!scan.sigma2_zero) deriv.push_back(x.factors.q2());
+    if (const auto inv = inverse_information(
+            adjust::reml_fisher_information(G, adjust::CovarianceFactor(D), deriv))) {
+      x.vce.covariance.setZero();
+      x.vce.covariance.topLeftCorner(inv->rows(), inv->cols()) = *inv;
+    }
+    x.vce.notes.push_back(fmt::format(
+        "variance-component estimation did not settle at rho = {:.6g} ({}): the components "
+        "are the maximum of the restricted likelihood found in closed form, their sigma from "
+        "its Fisher information",
+        fmt::join(scan.rho, ", "), err.message()));
+  }
+  return x;
+}
+
+// σ of ρ and of the unclipped components of an ML model from the inverse REML Fisher information
+// over (ρ…, σ_1², σ_2²) (∂D/∂ρ by central differences): into f.rho_sigma and sd_theta, or a note.
+void ml_sigmas(ModelFit& f, const MarkovVce& e, const MatrixXd& G, const MatrixXd& D,
+               VectorXd& sd_theta) {
+  const Eigen::VectorXd& th = e.vce.components;
+  const adjust::CovarianceFactor cov(D);
+  std::vector<MatrixXd> deriv;
+  const int n = static_cast<int>(D.rows());
+  for (std::size_t a = 0; a < e.rho.size(); ++a) {
+    const double h = 1e-5;
+    std::vector<double> up = e.rho, dn = e.rho;
+    up[a] += h;
+    dn[a] -= h;
+    try {
+      deriv.push_back(
+          (factors_for(up, n).covariance(th(0), th(1)) - factors_for(dn, n).covariance(th(0), th(1))) /
+          (2.0 * h));
+    } catch (const InputError&) {
+      deriv.clear();
+      break;
+    }
+  }
+  if (deriv.empty()) {
+    f.notes.push_back("rho is at the edge of the stationary region: sigma of rho not stated");
+    return;
+  }
+  std::vector<int> comp_index;
+  for (int k = 0; k < 2; ++k)
+    if (!e.vce.clipped[static_cast<std::size_t>(k)]) {
+      deriv.push_back(k == 0 ? e.factors.q1() : e.factors.q2());
+      comp_index.push_back(k);
+    }
+  const auto inv = inverse_information(adjust::reml_fisher_information(G, cov, deriv));
+  if (!inv) {
+    f.notes.push_back("the Fisher information of rho is singular: sigma of rho not stated");
+    return;
+  }
+  for (std::size_t a = 0; a < e.rho.size(); ++a)
+    f.rho_sigma[a] = std::sqrt((*inv)(static_cast<Index>(a), static_cast<Index>(a)));
+  for (std::size_t j = 0; j < comp_index.size(); ++j) {
+    const auto idx = static_cast<Index>(e.rho.size() + j);
+    sd_theta(comp_index[j]) = std::sqrt((*inv)(idx, idx));
+  }
+}
+
 ModelFit markov_fit(StochasticModel model, const MarkovEval& scan,
                     const std::vector<double>& readings, const MatrixXd& G, const VectorXd& l,
                     GlsRoute route, adjust::VceMethod method, bool ml) {
-  // The search kept only the maximum of the likelihood: VCE at that ρ, started at the maximum
-  // (so it confirms it in an iteration or two), gives the components with their covariance.
-  struct Fitted {
-    std::vector<double> rho;
-    MarkovFactors factors;
-    adjust::VceResult vce;
-  };
-  const Fitted e = [&] {
-    Fitted x{scan.rho, factors_for(scan.rho, static_cast<int>(l.size())), {}};
-    adjust::VceOptions o;
-    o.method = method;
-    o.initial = scan.theta.cwiseMax(1e-6 * scan.theta.maxCoeff());
-    // Started at the maximum it confirms in a few iterations (a boundary component takes ~5 to
-    // be clipped); more than 100 means the likelihood is too flat for scoring (see below).
-    o.max_iterations = 100;
-    try {
-      x.vce = adjust::estimate_variance_components(G, l, markov_components(x.factors), o);
-    } catch (const NumericalError& err) {
-      // Near the edge of the stationary region the likelihood can be so flat along σ_2² that
-      // scoring does not settle: keep the maximum of the closed-form profile, with the inverse
-      // Fisher information as the covariance of the components.
-      x.vce = adjust::VceResult{};
-      x.vce.method = method;
-      x.vce.components = scan.theta;
-      x.vce.clipped = {false, scan.sigma2_zero};
-      x.vce.iterations = 0;
-      x.vce.covariance = Eigen::Matrix2d::Constant(kNaN);
-      const MatrixXd D = x.factors.covariance(scan.theta(0), scan.theta(1));
-      std::vector<MatrixXd> deriv{x.factors.q1()};
-      if (!scan.sigma2_zero) deriv.push_back(x.factors.q2());
-      if (const auto inv = inverse_information(
-              adjust::reml_fisher_information(G, adjust::CovarianceFactor(D), deriv))) {
-        x.vce.covariance.setZero();
-        x.vce.covariance.topLeftCorner(inv->rows(), inv->cols()) = *inv;
-      }
-      x.vce.notes.push_back(fmt::format(
-          "variance-component estimation did not settle at rho = {:.6g} ({}): the components "
-          "are the maximum of the restricted likelihood found in closed form, their sigma from "
-          "its Fisher information",
-          fmt::join(scan.rho, ", "), err.message()));
-    }
-    return x;
-  }();
+  const MarkovVce e = markov_vce(scan, G, l, method);
   ModelFit f;
   f.model = model;
   f.rho = e.rho;
@@ -193,45 +244,7 @@ ModelFit markov_fit(StochasticModel model, const MarkovEval& scan,
   VectorXd sd_theta(2);
   for (int k = 0; k < 2; ++k) sd_theta(k) = e.vce.sigma(k);
   f.rho_sigma.assign(e.rho.size(), kNaN);
-  if (ml) {
-    const adjust::CovarianceFactor cov(D);
-    std::vector<MatrixXd> deriv;
-    const int n = static_cast<int>(readings.size());
-    for (std::size_t a = 0; a < e.rho.size(); ++a) {
-      const double h = 1e-5;
-      std::vector<double> up = e.rho, dn = e.rho;
-      up[a] += h;
-      dn[a] -= h;
-      try {
-        deriv.push_back((factors_for(up, n).covariance(th(0), th(1)) -
-                         factors_for(dn, n).covariance(th(0), th(1))) /
-                        (2.0 * h));
-      } catch (const InputError&) {
-        deriv.clear();
-        break;
-      }
-    }
-    std::vector<int> comp_index;
-    if (!deriv.empty()) {
-      for (int k = 0; k < 2; ++k)
-        if (!e.vce.clipped[static_cast<std::size_t>(k)]) {
-          deriv.push_back(k == 0 ? e.factors.q1() : e.factors.q2());
-          comp_index.push_back(k);
-        }
-      if (const auto inv = inverse_information(adjust::reml_fisher_information(G, cov, deriv))) {
-        for (std::size_t a = 0; a < e.rho.size(); ++a)
-          f.rho_sigma[a] = std::sqrt((*inv)(static_cast<Index>(a), static_cast<Index>(a)));
-        for (std::size_t j = 0; j < comp_index.size(); ++j) {
-          const auto idx = static_cast<Index>(e.rho.size() + j);
-          sd_theta(comp_index[j]) = std::sqrt((*inv)(idx, idx));
-        }
-      } else {
-        f.notes.push_back("the Fisher information of rho is singular: sigma of rho not stated");
-      }
-    } else {
-      f.notes.push_back("rho is at the edge of the stationary region: sigma of rho not stated");
-    }
-  }
+  if (ml) ml_sigmas(f, e, G, D, sd_theta);
   f.sigma1 = sigma_from_variance(th(0), sd_theta(0));
   f.sigma2 = sigma_from_variance(th(1), sd_theta(1));
   // Signal prediction X̂ = σ_2²·Bᵀ·D⁻¹·(L − G·Ŷ) and its influence.
@@ -432,22 +445,22 @@ std::string degeneracy_reason(const ModelFit& f, const ModelFit& white, double b
 }
 
 // The checks of the series itself: σ_1 against the booked σ, and (R2) against the length.
-void series_checks(StochasticResult& res, const StochasticInput& in, const ModelFit& white,
-                   const MatrixXd& G) {
+void series_checks(StochasticResult& res, const ModelFit& white, const MatrixXd& G) {
   const int n = res.readings;
   const int dof = n - 3;
-  const std::string u = in.unit.empty() ? "" : " " + in.unit;
+  const std::string u = " " + fitted_unit(res.kind);
+  const double booked = res.booked_sigma;
   const double s1 = white.sigma1.value;
   bool gross = false;  // a booking error: the decay fitted to such readings means nothing
-  if (std::isfinite(in.booked_sigma) && in.booked_sigma > 0.0) {
-    const double ratio = s1 / in.booked_sigma;
+  if (std::isfinite(booked) && booked > 0.0) {
+    const double ratio = s1 / booked;
     const auto t = adjust::global_test(dof * ratio * ratio, dof, kReadingSigmaTestAlpha);
     gross = t.rejected && ratio > kBookingErrorRatio;
     if (t.rejected)
       res.warnings.push_back(fmt::format(
           "sigma1 {:.3g}{} of white noise is {:.1f} times the booked sigma of one reading "
           "{:.3g}{} (global test T = {:.1f} > {:.1f}, {} dof, alpha = {}): {}",
-          s1, u, ratio, in.booked_sigma, u, t.vtpv, t.critical_value, dof, kReadingSigmaTestAlpha,
+          s1, u, ratio, booked, u, t.vtpv, t.critical_value, dof, kReadingSigmaTestAlpha,
           ratio > kBookingErrorRatio
               ? "booking error? Check the readings (order, sign, degrees and minutes) before "
                 "using any model"
@@ -457,7 +470,7 @@ void series_checks(StochasticResult& res, const StochasticInput& in, const Model
   // (R2) is (R1) with e^{−iκ} ≈ 1 − iκ; the rest, at the fitted decay, less what G absorbs.
   // κ from (R1) itself, r_i = M + (−1)^i·A·e^{−iκ}, by least squares (M, A linear, κ by golden
   // section from (R2)'s start κ = 2c/A′): (R2)'s own κ is biased by the misfit it has to report.
-  const VectorXd l = Eigen::Map<const VectorXd>(in.readings.data(), n);
+  const VectorXd l = Eigen::Map<const VectorXd>(res.fitted_readings.data(), n);
   const auto r1_fit = [&](double k, Eigen::Vector2d* ma) {
     MatrixXd H(n, 2);
     for (int i = 1; i <= n; ++i) {
@@ -499,7 +512,364 @@ void series_checks(StochasticResult& res, const StochasticInput& in, const Model
   }
 }
 
+// The series in its fitted unit (see the file comment): circle readings unwrapped and taken in
+// arc-seconds from the first reading rounded down to a whole degree, scale readings as they are.
+StochasticResult series_in_fitted_unit(const StochasticInput& in) {
+  const auto& r = in.readings;
+  const int n = static_cast<int>(r.size());
+  if (n < kMinReadings)
+    throw InputError(
+        fmt::format("stochastic models: need at least {} readings (3 unknowns M, "
+                    "A', c and 2 variance components, + 1), got {}",
+                    kMinReadings, n));
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(r[static_cast<std::size_t>(i)]))
+      throw InputError(fmt::format("stochastic models: reading {} is not finite", i + 1),
+                       ErrorContext{"", std::nullopt, fmt::format("readings[{}]", i)});
+  StochasticResult res;
+  res.kind = in.kind;
+  res.readings = n;
+  if (in.kind == SeriesKind::Circle) {
+    const std::vector<double> un = unwrap_circle_readings(r);
+    res.reference_rad = std::floor(un.front() / units::kDegree) * units::kDegree;
+    for (double x : un) res.fitted_readings.push_back(units::rad_to_arcsec(x - res.reference_rad));
+    res.booked_sigma = units::rad_to_arcsec(in.booked_sigma);
+  } else {
+    res.fitted_readings = r;
+    res.booked_sigma = in.booked_sigma;
+  }
+  return res;
+}
+
+// What every model of one series is fitted to.
+struct Fitting {
+  const std::vector<double>& r;  // r_1 … r_n in the fitted unit
+  MatrixXd G;                    // the design of (R2)
+  VectorXd l;                    // r as a vector
+  const StochasticOptions& options;
+};
+
+bool has_model(const StochasticResult& res, StochasticModel m) {
+  return std::any_of(res.models.begin(), res.models.end(),
+                     [&](const ModelFit& f) { return f.model == m; });
+}
+
+// White noise (OLS) with the one-component VCE σ̂_0² = vᵀv/(n − 3), the OLS residuals and their
+// autocorrelation. Returns the empirical autocovariance ĉ_k, k = 0 … n−1.
+std::vector<double> add_white_noise(StochasticResult& res, const Fitting& fit) {
+  const int n = res.readings;
+  const auto ols =
+      adjust::solve_linear(fit.G, fit.l, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)));
+  const double s0sq = ols.vtpv / (n - 3);
+  // Residuals at rounding level of the readings: an exact fit.
+  const double scale = fit.l.cwiseAbs().maxCoeff();
+  if (!(std::sqrt(s0sq) > 1e-12 * scale))
+    throw InputError(
+        "stochastic models: the readings fit the reversal model exactly (no "
+        "scatter): there is nothing to model");
+  res.ols_residuals = ols.residuals;
+  std::vector<double> chat(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    double s = 0.0;
+    for (int i = 0; i + k < n; ++i) s += ols.residuals(i) * ols.residuals(i + k);
+    chat[static_cast<std::size_t>(k)] = s / n;
+  }
+  for (int k = 0; k < n; ++k)
+    res.residual_autocorrelation.push_back(chat[static_cast<std::size_t>(k)] / chat[0]);
+  ModelFit w;
+  w.model = StochasticModel::WhiteNoise;
+  const MatrixXd D = s0sq * MatrixXd::Identity(n, n);
+  finish_fit(w, fit.r, D, fit.options.route, 1);
+  w.sigma1 = {std::sqrt(s0sq), std::sqrt(s0sq) / std::sqrt(2.0 * (n - 3))};
+  w.sigma2 = {kNaN, kNaN};
+  w.vce_iterations = 1;
+  res.models.push_back(w);
+  return chat;
+}
+
+// The notes of a covariance function whose shape is at an end of its search grid.
+void note_shape_at_grid_end(ModelFit& f, const CovFunction& cf) {
+  if (cf.ib == 0)
+    f.notes.push_back(fmt::format(
+        "shape b = {:.3g} lags is at the lower end of its search grid (0.1 … 100 lags): "
+        "the fitted function is effectively white noise",
+        cf.params[0]));
+  else if (cf.ib == kShapeGridB - 1)
+    f.notes.push_back(fmt::format(
+        "shape b = {:.3g} lags is at the upper end of its search grid (0.1 … 100 lags): "
+        "a correlation that does not decay over the series (a drift) is not identified",
+        cf.params[0]));
+  if (f.model == StochasticModel::DampedCosine && cf.iw == 0)
+    f.notes.push_back(fmt::format(
+        "shape omega = {:.3g} rad per lag is at the lower end of its search grid "
+        "(pi/60 … pi)",
+        cf.params[1]));
+}
+
+// One C-type model: the shape from the autocovariance ĉ_k (lags `head`), the amplitude by REML at
+// that shape (dof-corrected). Left out with a note when it has no fit or its D is not positive
+// definite.
+void add_covariance_function(StochasticResult& res, const Fitting& fit, StochasticModel m,
+                             const std::vector<double>& head) {
+  const int n = res.readings;
+  const auto cf = fit_cov_function(m, head);
+  if (!cf) {
+    res.notes.push_back(fmt::format("{}: no positive fit to the autocovariance", to_string(m)));
+    return;
+  }
+  MatrixXd R(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) R(i, j) = cov_shape(m, cf->params, std::abs(i - j));
+  try {
+    const GlsFit gr = reversal_gls(fit.r, R, fit.options.route);
+    VectorXd vw = gr.residuals;
+    adjust::CovarianceFactor(R).whiten(vw);
+    const double a = vw.squaredNorm() / (n - 3);
+    ModelFit f;
+    f.model = m;
+    f.shape = cf->params;
+    finish_fit(f, fit.r, a * R, fit.options.route, static_cast<int>(cf->params.size()) + 1);
+    f.sigma1 = {std::sqrt(a), std::sqrt(a) / std::sqrt(2.0 * (n - 3))};
+    f.sigma2 = {kNaN, kNaN};
+    note_shape_at_grid_end(f, *cf);
+    res.models.push_back(f);
+  } catch (const NumericalError& e) {
+    res.notes.push_back(
+        fmt::format("{}: left out, its covariance matrix is not positive "
+                    "definite ({})",
+                    to_string(m), e.what()));
+  }
+}
+
+// The C-type models, fitted to the autocovariance up to lag n/2 (longer lags rest on too few
+// products).
+void add_covariance_functions(StochasticResult& res, const Fitting& fit,
+                              const std::vector<double>& chat) {
+  const int n = res.readings;
+  const std::vector<double> head(chat.begin(), chat.begin() + std::max(2, n / 2));
+  for (StochasticModel m : {StochasticModel::Exponential, StochasticModel::Gaussian,
+                            StochasticModel::DampedCosine}) {
+    // The damped cosine has 3 parameters (a, b, ω): with fewer than 5 lags it fits the
+    // noise of ĉ_k (n = 7, 3 lags: its m was 0.57 of the scatter of M in a Monte Carlo run).
+    if (m == StochasticModel::DampedCosine && head.size() < kMinLagsDampedCosine) {
+      res.notes.push_back(fmt::format(
+          "{}: left out, its 3 parameters need at least {} lags of the autocovariance "
+          "(n >= {}), the series gives {}",
+          to_string(m), kMinLagsDampedCosine, 2 * kMinLagsDampedCosine, head.size()));
+      continue;
+    }
+    add_covariance_function(res, fit, m, head);
+  }
+}
+
+// A fitted Markov model; one whose VCE fails at its chosen ρ is left out with a note, and so is
+// one the search found no maximum for (`none` says why).
+void add_markov(StochasticResult& res, const Fitting& fit, StochasticModel m,
+                const std::optional<MarkovEval>& e, bool ml, const char* none) {
+  if (!e) {
+    res.notes.push_back(fmt::format("{}: {}", to_string(m), none));
+    return;
+  }
+  try {
+    res.models.push_back(
+        markov_fit(m, *e, fit.r, fit.G, fit.l, fit.options.route, fit.options.vce_method, ml));
+  } catch (const NumericalError& err) {
+    res.notes.push_back(fmt::format("{}: left out ({})", to_string(m), err.message()));
+  }
+}
+
+// Markov-1 on the grid ρ = 0.1 … 0.9 and by maximum restricted likelihood: a scan of (−1, 1) in
+// steps of 0.05 for the bracket, then golden section.
+void add_markov1(StochasticResult& res, const Fitting& fit) {
+  const MatrixXd& G = fit.G;
+  const VectorXd& l = fit.l;
+  std::optional<MarkovEval> m1_grid;
+  for (int k = 1; k <= 9; ++k) {
+    auto e = eval_markov(G, l, {0.1 * k});
+    if (e && (!m1_grid || e->reml > m1_grid->reml)) m1_grid = std::move(e);
+  }
+  std::optional<MarkovEval> m1_ml;
+  double best_rho = 0.0, best = kMinusInf;
+  for (int k = -19; k <= 19; ++k) {
+    const auto e = eval_markov(G, l, {0.05 * k});
+    if (e && e->reml > best) {
+      best = e->reml;
+      best_rho = 0.05 * k;
+    }
+  }
+  if (std::isfinite(best)) {
+    const auto fn = [&](double rho) {
+      const auto e = eval_markov(G, l, {rho});
+      return e ? e->reml : kMinusInf;
+    };
+    const auto [rho, v] = golden_max(fn, std::max(-1.0 + kEdge, best_rho - 0.05),
+                                     std::min(1.0 - kEdge, best_rho + 0.05), 1e-6);
+    m1_ml = eval_markov(G, l, {v >= best ? rho : best_rho});
+  }
+  add_markov(res, fit, StochasticModel::Markov1Grid, m1_grid, false,
+             "the restricted likelihood has no maximum at any rho of the grid");
+  add_markov(res, fit, StochasticModel::Markov1Ml, m1_ml, true,
+             "the restricted likelihood could not be maximised");
+}
+
+// Markov-2 on the grid (ρ_1, ρ_2) ∈ {−0.9, …, 0.9}² inside the AR(2) triangle, which is also the
+// likelihood surface of the result; the best grid point.
+std::optional<MarkovEval> markov2_grid(StochasticResult& res, const Fitting& fit) {
+  for (int k = -9; k <= 9; ++k) {
+    res.rho1_grid.push_back(0.1 * k);
+    res.rho2_grid.push_back(0.1 * k);
+  }
+  res.markov2_surface = MatrixXd::Constant(19, 19, kNaN);
+  std::optional<MarkovEval> best;
+  for (int a = 0; a < 19; ++a) {
+    for (int b = 0; b < 19; ++b) {
+      const double r1 = res.rho1_grid[static_cast<std::size_t>(a)];
+      const double r2 = res.rho2_grid[static_cast<std::size_t>(b)];
+      if (!ar2_stationary(r1, r2)) continue;
+      auto e = eval_markov(fit.G, fit.l, {r1, r2});
+      if (!e) continue;
+      res.markov2_surface(a, b) = e->reml;
+      if (!best || e->reml > best->reml) best = std::move(e);
+    }
+  }
+  return best;
+}
+
+// Markov-2 on the grid and by maximum restricted likelihood (Nelder–Mead from the best grid
+// point, strictly inside the triangle).
+void add_markov2(StochasticResult& res, const Fitting& fit, Progress* progress) {
+  const std::optional<MarkovEval> m2_grid = markov2_grid(res, fit);
+  add_markov(res, fit, StochasticModel::Markov2Grid, m2_grid, false,
+             "the restricted likelihood has no maximum at any (rho1, rho2) of the grid");
+  if (!m2_grid) return;
+  report_progress(progress, 3, 5, "Markov-2 ML");
+  const auto fn = [&](const Eigen::Vector2d& p) {
+    // Strictly inside the triangle, kEdge from its sides.
+    if (!(p(0) + p(1) < 1.0 - kEdge && p(1) - p(0) < 1.0 - kEdge && std::fabs(p(1)) < 1.0 - kEdge))
+      return kMinusInf;
+    const auto e = eval_markov(fit.G, fit.l, {p(0), p(1)});
+    return e ? e->reml : kMinusInf;
+  };
+  const Eigen::Vector2d x0(m2_grid->rho[0], m2_grid->rho[1]);
+  // Start inside the triangle (the grid point may sit on its edge region).
+  const auto [p, v] = nelder_mead_max(fn, x0, -0.05, 1e-6, 400);
+  const Eigen::Vector2d best = v >= m2_grid->reml ? p : x0;
+  add_markov(res, fit, StochasticModel::Markov2Ml, eval_markov(fit.G, fit.l, {best(0), best(1)}),
+             true, "the restricted likelihood could not be maximised");
+}
+
+// Mark the degenerate fits (degeneracy_reason; white noise is the yardstick) with a note each.
+void mark_degenerate(StochasticResult& res) {
+  const ModelFit& white = res.fit(StochasticModel::WhiteNoise);
+  for (auto& f : res.models) {
+    f.degenerate_reason = degeneracy_reason(f, white, res.booked_sigma);
+    f.degenerate = !f.degenerate_reason.empty();
+    if (f.degenerate)
+      res.notes.push_back(fmt::format(
+          "{} is degenerate ({}): it is shown but not recommended, not used in the "
+          "likelihood-ratio tests and not used as the signal for the other models' influence",
+          to_string(f.model), f.degenerate_reason));
+  }
+}
+
+bool usable(const StochasticResult& res, StochasticModel m) {
+  return has_model(res, m) && !res.fit(m).degenerate;
+}
+
+// The signal B·X̂ predicted by the non-degenerate ML Markov model of smaller BIC (else the grid
+// model of smaller BIC); none when every Markov model is degenerate.
+std::optional<VectorXd> predicted_signal(const StochasticResult& res, const Fitting& fit) {
+  const ModelFit* ref = nullptr;
+  for (const auto& group : {std::array{StochasticModel::Markov1Ml, StochasticModel::Markov2Ml},
+                            std::array{StochasticModel::Markov1Grid, StochasticModel::Markov2Grid}}) {
+    for (StochasticModel m : group)
+      if (usable(res, m) && (!ref || res.fit(m).bic < ref->bic)) ref = &res.fit(m);
+    if (ref) break;
+  }
+  if (!ref) return std::nullopt;
+  const MarkovFactors fac = factors_for(ref->rho, res.readings);
+  const double s1 = ref->sigma1.value, s2 = ref->sigma2.value;
+  const MatrixXd Dref = fac.covariance(s1 * s1, s2 * s2);
+  const adjust::CovarianceFactor cref(Dref);
+  VectorXd rw =
+      fit.l - fit.G * Eigen::Vector3d(ref->north.value, ref->amplitude.value, ref->damping.value);
+  cref.whiten(rw);
+  MatrixXd bw = fac.B;
+  cref.whiten(bw);
+  return VectorXd(fac.B * (s2 * s2 * (bw.transpose() * rw)));
+}
+
+// Signal influence of the models without a signal term of their own: their estimator applied to
+// the predicted signal (NaN when there is none).
+void add_signal_influence(StochasticResult& res, const Fitting& fit) {
+  const int n = res.readings;
+  const std::optional<VectorXd> signal = predicted_signal(res, fit);
+  if (!signal)
+    res.notes.push_back(
+        "every Markov model is degenerate: the signal influence of white noise and the "
+        "covariance-function models is not stated");
+  for (auto& f : res.models) {
+    const bool own_signal = !f.rho.empty();
+    if (own_signal) continue;
+    if (!signal) {
+      f.signal_influence = Eigen::Vector3d::Constant(kNaN);
+    } else if (f.model == StochasticModel::WhiteNoise) {
+      f.signal_influence =
+          estimator_applied(fit.G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), *signal);
+    } else {
+      MatrixXd Dc(n, n);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          Dc(i, j) = f.sigma1.value * f.sigma1.value * cov_shape(f.model, f.shape, std::abs(i - j));
+      f.signal_influence = estimator_applied(fit.G, adjust::CovarianceFactor(Dc), *signal);
+    }
+  }
+}
+
+// Recommendation: smallest BIC among the non-degenerate models (white noise never is), fewer
+// parameters on a tie.
+void recommend(StochasticResult& res) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < res.models.size(); ++i) {
+    const auto& a = res.models[i];
+    const auto& b = res.models[best];
+    if (a.degenerate) continue;
+    if (a.bic < b.bic - 1e-9 ||
+        (std::fabs(a.bic - b.bic) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
+      best = i;
+  }
+  res.models[best].recommended = true;
+  res.recommended = static_cast<int>(best);
+}
+
+// The likelihood-ratio test of null_m against alt, when both are fitted and non-degenerate.
+void add_likelihood_ratio_test(StochasticResult& res, StochasticModel null_m, StochasticModel alt,
+                               int dof) {
+  if (!has_model(res, null_m) || !has_model(res, alt)) return;
+  if (!usable(res, null_m) || !usable(res, alt)) {
+    res.notes.push_back(fmt::format("likelihood-ratio test {} against {} not made: {} is degenerate",
+                                    to_string(null_m), to_string(alt),
+                                    to_string(usable(res, null_m) ? alt : null_m)));
+    return;
+  }
+  LikelihoodRatioTest t;
+  t.null_model = null_m;
+  t.alternative = alt;
+  t.statistic = std::max(0.0, 2.0 * (res.fit(alt).log_likelihood - res.fit(null_m).log_likelihood));
+  t.dof = dof;
+  t.p_value = adjust::chi_squared_upper_probability(t.statistic, dof);
+  t.rejected = t.p_value < kLrtAlpha;
+  res.tests.push_back(t);
+}
+
+void add_likelihood_ratio_tests(StochasticResult& res) {
+  add_likelihood_ratio_test(res, StochasticModel::WhiteNoise, StochasticModel::Markov1Ml, 2);
+  add_likelihood_ratio_test(res, StochasticModel::Markov1Ml, StochasticModel::Markov2Ml, 1);
+}
+
 }  // namespace
+
+std::string fitted_unit(SeriesKind kind) { return kind == SeriesKind::Circle ? "arcsec" : "div"; }
 
 std::string to_string(StochasticModel m) {
   switch (m) {
@@ -576,8 +946,11 @@ GlsFit reversal_gls(const std::vector<double>& readings, const MatrixXd& D, GlsR
   return f;
 }
 
-R1GlsFit reversal_gls_nonlinear(const std::vector<double>& readings, const MatrixXd& D,
-                                const R1GlsOptions& options) {
+namespace {
+
+// The arguments of reversal_gls_nonlinear, checked as its header says.
+void check_r1_arguments(const std::vector<double>& readings, const MatrixXd& D,
+                        const R1GlsOptions& options) {
   const auto n = static_cast<Index>(readings.size());
   if (n < 4)
     throw InputError(
@@ -597,19 +970,10 @@ R1GlsFit reversal_gls_nonlinear(const std::vector<double>& readings, const Matri
     throw InputError(fmt::format("(R1) GLS: invalid options (max_iterations {} must be >= 1, "
                                  "step_tolerance {} > 0)",
                                  options.max_iterations, options.step_tolerance));
-  const VectorXd l = to_vector(readings);
-  // Start: OLS of (R2) mapped onto (R1) to first order: A = A′ + c, κ = 2c/A.
-  const MatrixXd G = reversal_design(static_cast<int>(n));
-  const Eigen::Vector3d lin = G.colPivHouseholderQr().solve(l);
-  const double a0 = lin(1) + lin(2);
-  // An amplitude at rounding level of the readings: no oscillation, κ is not determined.
-  if (!(std::fabs(a0) > 1e-12 * l.cwiseAbs().maxCoeff()) || !std::isfinite(a0))
-    throw NumericalError(fmt::format(
-        "(R1) GLS: the amplitude of the starting (R2) fit is zero ({:.3g}): the readings do not "
-        "oscillate and the decay kappa is not determined",
-        a0));
-  R1GlsFit out;
-  out.start = Eigen::Vector3d(lin(0), a0, 2.0 * lin(2) / a0);
+}
+
+// (R1), r_i = M + (−1)^i·A·e^{−iκ}, i = 1 … n, with its analytic Jacobian.
+adjust::NonlinearModel r1_model(Index n) {
   adjust::NonlinearModel model;
   model.predict = [n](const VectorXd& x) {
     VectorXd f(n);
@@ -632,13 +996,35 @@ R1GlsFit reversal_gls_nonlinear(const std::vector<double>& readings, const Matri
     }
     return J;
   };
+  return model;
+}
+
+}  // namespace
+
+R1GlsFit reversal_gls_nonlinear(const std::vector<double>& readings, const MatrixXd& D,
+                                const R1GlsOptions& options) {
+  check_r1_arguments(readings, D, options);
+  const auto n = static_cast<Index>(readings.size());
+  const VectorXd l = to_vector(readings);
+  // Start: OLS of (R2) mapped onto (R1) to first order: A = A′ + c, κ = 2c/A.
+  const MatrixXd G = reversal_design(static_cast<int>(n));
+  const Eigen::Vector3d lin = G.colPivHouseholderQr().solve(l);
+  const double a0 = lin(1) + lin(2);
+  // An amplitude at rounding level of the readings: no oscillation, κ is not determined.
+  if (!(std::fabs(a0) > 1e-12 * l.cwiseAbs().maxCoeff()) || !std::isfinite(a0))
+    throw NumericalError(fmt::format(
+        "(R1) GLS: the amplitude of the starting (R2) fit is zero ({:.3g}): the readings do not "
+        "oscillate and the decay kappa is not determined",
+        a0));
+  R1GlsFit out;
+  out.start = Eigen::Vector3d(lin(0), a0, 2.0 * lin(2) / a0);
   adjust::NonlinearOptions o;
   o.max_iterations = options.max_iterations;
   o.step_tolerance = options.step_tolerance;
   o.step_scale = Eigen::Vector3d(std::fabs(lin(0)) + std::fabs(a0), std::fabs(a0), 1.0);
   adjust::NonlinearResult nl;
   try {
-    nl = adjust::solve_nonlinear(model, l, D, out.start, o);
+    nl = adjust::solve_nonlinear(r1_model(n), l, D, out.start, o);
   } catch (const Error& e) {
     const std::string msg = "(R1) GLS: " + e.message();
     if (dynamic_cast<const InputError*>(&e)) throw InputError(msg, e.context());
@@ -661,311 +1047,37 @@ R1GlsFit reversal_gls_nonlinear(const std::vector<double>& readings, const Matri
 }
 
 StochasticResult analyse_stochastic(const StochasticInput& input, Progress* progress) {
-  const auto& r = input.readings;
-  const int n = static_cast<int>(r.size());
-  if (n < kMinReadings)
-    throw InputError(
-        fmt::format("stochastic models: need at least {} readings (3 unknowns M, "
-                    "A', c and 2 variance components, + 1), got {}",
-                    kMinReadings, n));
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(r[static_cast<std::size_t>(i)]))
-      throw InputError(fmt::format("stochastic models: reading {} is not finite", i + 1),
-                       ErrorContext{"", std::nullopt, fmt::format("readings[{}]", i)});
-  const auto& opt = input.options;
-  const MatrixXd G = reversal_design(n);
-  const VectorXd l = to_vector(r);
-  StochasticResult res;
-  res.readings = n;
+  StochasticResult res = series_in_fitted_unit(input);
+  const int n = res.readings;
+  const Fitting fit{res.fitted_readings, reversal_design(n), to_vector(res.fitted_readings), input.options};
 
-  // White noise (OLS) with the one-component VCE σ̂_0² = vᵀv/(n − 3).
   report_progress(progress, 0, 5, "white noise");
-  const auto ols =
-      adjust::solve_linear(G, l, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)));
-  const double s0sq = ols.vtpv / (n - 3);
-  // Residuals at rounding level of the readings: an exact fit.
-  const double scale = l.cwiseAbs().maxCoeff();
-  if (!(std::sqrt(s0sq) > 1e-12 * scale))
-    throw InputError(
-        "stochastic models: the readings fit the reversal model exactly (no "
-        "scatter): there is nothing to model");
-  res.ols_residuals = ols.residuals;
-  {
-    std::vector<double> chat(static_cast<std::size_t>(n));
-    for (int k = 0; k < n; ++k) {
-      double s = 0.0;
-      for (int i = 0; i + k < n; ++i) s += ols.residuals(i) * ols.residuals(i + k);
-      chat[static_cast<std::size_t>(k)] = s / n;
-    }
-    for (int k = 0; k < n; ++k)
-      res.residual_autocorrelation.push_back(chat[static_cast<std::size_t>(k)] / chat[0]);
-    ModelFit w;
-    w.model = StochasticModel::WhiteNoise;
-    const MatrixXd D = s0sq * MatrixXd::Identity(n, n);
-    finish_fit(w, r, D, opt.route, 1);
-    w.sigma1 = {std::sqrt(s0sq), std::sqrt(s0sq) / std::sqrt(2.0 * (n - 3))};
-    w.sigma2 = {kNaN, kNaN};
-    w.vce_iterations = 1;
-    res.models.push_back(w);
-
-    if (opt.covariance_functions) {
-      // Lags used for the fit: up to n/2 (longer lags rest on too few products).
-      const std::vector<double> head(chat.begin(), chat.begin() + std::max(2, n / 2));
-      for (StochasticModel m : {StochasticModel::Exponential, StochasticModel::Gaussian,
-                                StochasticModel::DampedCosine}) {
-        // The damped cosine has 3 parameters (a, b, ω): with fewer than 5 lags it fits the
-        // noise of ĉ_k (n = 7, 3 lags: its m was 0.57 of the scatter of M in a Monte Carlo run).
-        if (m == StochasticModel::DampedCosine && head.size() < kMinLagsDampedCosine) {
-          res.notes.push_back(fmt::format(
-              "{}: left out, its 3 parameters need at least {} lags of the autocovariance "
-              "(n >= {}), the series gives {}",
-              to_string(m), kMinLagsDampedCosine, 2 * kMinLagsDampedCosine, head.size()));
-          continue;
-        }
-        const auto cf = fit_cov_function(m, head);
-        if (!cf) {
-          res.notes.push_back(
-              fmt::format("{}: no positive fit to the autocovariance", to_string(m)));
-          continue;
-        }
-        // Shape from the autocovariance, amplitude by REML at that shape (dof-corrected).
-        MatrixXd R(n, n);
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j) R(i, j) = cov_shape(m, cf->params, std::abs(i - j));
-        try {
-          const GlsFit gr = reversal_gls(r, R, opt.route);
-          VectorXd vw = gr.residuals;
-          adjust::CovarianceFactor(R).whiten(vw);
-          const double a = vw.squaredNorm() / (n - 3);
-          ModelFit f;
-          f.model = m;
-          f.shape = cf->params;
-          finish_fit(f, r, a * R, opt.route, static_cast<int>(cf->params.size()) + 1);
-          f.sigma1 = {std::sqrt(a), std::sqrt(a) / std::sqrt(2.0 * (n - 3))};
-          f.sigma2 = {kNaN, kNaN};
-          if (cf->ib == 0)
-            f.notes.push_back(fmt::format(
-                "shape b = {:.3g} lags is at the lower end of its search grid (0.1 … 100 lags): "
-                "the fitted function is effectively white noise",
-                cf->params[0]));
-          else if (cf->ib == kShapeGridB - 1)
-            f.notes.push_back(fmt::format(
-                "shape b = {:.3g} lags is at the upper end of its search grid (0.1 … 100 lags): "
-                "a correlation that does not decay over the series (a drift) is not identified",
-                cf->params[0]));
-          if (m == StochasticModel::DampedCosine && cf->iw == 0)
-            f.notes.push_back(fmt::format(
-                "shape omega = {:.3g} rad per lag is at the lower end of its search grid "
-                "(pi/60 … pi)",
-                cf->params[1]));
-          res.models.push_back(f);
-        } catch (const NumericalError& e) {
-          res.notes.push_back(
-              fmt::format("{}: left out, its covariance matrix is not positive "
-                          "definite ({})",
-                          to_string(m), e.what()));
-        }
-      }
-    }
-  }
-
-  // The fitted Markov models; one whose VCE fails at its chosen ρ is left out with a note.
-  const auto add_markov = [&](StochasticModel m, const std::optional<MarkovEval>& e, bool ml,
-                              const char* none) {
-    if (!e) {
-      res.notes.push_back(fmt::format("{}: {}", to_string(m), none));
-      return;
-    }
-    try {
-      res.models.push_back(markov_fit(m, *e, r, G, l, opt.route, opt.vce_method, ml));
-    } catch (const NumericalError& err) {
-      res.notes.push_back(fmt::format("{}: left out ({})", to_string(m), err.message()));
-    }
-  };
-  // Markov-1: grid and ML.
+  const std::vector<double> chat = add_white_noise(res, fit);
+  if (fit.options.covariance_functions) add_covariance_functions(res, fit, chat);
   report_progress(progress, 1, 5, "Markov-1");
-  std::optional<MarkovEval> m1_grid;
-  for (int k = 1; k <= 9; ++k) {
-    auto e = eval_markov(G, l, {0.1 * k});
-    if (e && (!m1_grid || e->reml > m1_grid->reml)) m1_grid = std::move(e);
-  }
-  std::optional<MarkovEval> m1_ml;
-  {
-    // Scan (−1, 1) in steps of 0.05 for the bracket, then golden section.
-    double best_rho = 0.0, best = kMinusInf;
-    for (int k = -19; k <= 19; ++k) {
-      const auto e = eval_markov(G, l, {0.05 * k});
-      if (e && e->reml > best) {
-        best = e->reml;
-        best_rho = 0.05 * k;
-      }
-    }
-    if (std::isfinite(best)) {
-      const auto fn = [&](double rho) {
-        const auto e = eval_markov(G, l, {rho});
-        return e ? e->reml : kMinusInf;
-      };
-      const auto [rho, v] = golden_max(fn, std::max(-1.0 + kEdge, best_rho - 0.05),
-                                       std::min(1.0 - kEdge, best_rho + 0.05), 1e-6);
-      m1_ml = eval_markov(G, l, {v >= best ? rho : best_rho});
-    }
-  }
-  add_markov(StochasticModel::Markov1Grid, m1_grid, false,
-             "the restricted likelihood has no maximum at any rho of the grid");
-  add_markov(StochasticModel::Markov1Ml, m1_ml, true,
-             "the restricted likelihood could not be maximised");
-
-  // Markov-2: grid (also the likelihood surface) and ML.
+  add_markov1(res, fit);
   report_progress(progress, 2, 5, "Markov-2");
-  if (!opt.markov2) {
+  if (!fit.options.markov2) {
     // left out on request
   } else if (n >= kMinReadingsMarkov2) {
-    for (int k = -9; k <= 9; ++k) {
-      res.rho1_grid.push_back(0.1 * k);
-      res.rho2_grid.push_back(0.1 * k);
-    }
-    res.markov2_surface = MatrixXd::Constant(19, 19, kNaN);
-    std::optional<MarkovEval> m2_grid;
-    for (int a = 0; a < 19; ++a) {
-      for (int b = 0; b < 19; ++b) {
-        const double r1 = res.rho1_grid[static_cast<std::size_t>(a)];
-        const double r2 = res.rho2_grid[static_cast<std::size_t>(b)];
-        if (!ar2_stationary(r1, r2)) continue;
-        auto e = eval_markov(G, l, {r1, r2});
-        if (!e) continue;
-        res.markov2_surface(a, b) = e->reml;
-        if (!m2_grid || e->reml > m2_grid->reml) m2_grid = std::move(e);
-      }
-    }
-    add_markov(StochasticModel::Markov2Grid, m2_grid, false,
-               "the restricted likelihood has no maximum at any (rho1, rho2) of the grid");
-    if (m2_grid) {
-      report_progress(progress, 3, 5, "Markov-2 ML");
-      const auto fn = [&](const Eigen::Vector2d& p) {
-        // Strictly inside the triangle, kEdge from its sides.
-        if (!(p(0) + p(1) < 1.0 - kEdge && p(1) - p(0) < 1.0 - kEdge &&
-              std::fabs(p(1)) < 1.0 - kEdge))
-          return kMinusInf;
-        const auto e = eval_markov(G, l, {p(0), p(1)});
-        return e ? e->reml : kMinusInf;
-      };
-      const Eigen::Vector2d x0(m2_grid->rho[0], m2_grid->rho[1]);
-      // Start inside the triangle (the grid point may sit on its edge region).
-      const auto [p, v] = nelder_mead_max(fn, x0, -0.05, 1e-6, 400);
-      const Eigen::Vector2d best = v >= m2_grid->reml ? p : x0;
-      add_markov(StochasticModel::Markov2Ml, eval_markov(G, l, {best(0), best(1)}), true,
-                 "the restricted likelihood could not be maximised");
-    }
+    add_markov2(res, fit, progress);
   } else {
     res.notes.push_back(
         fmt::format("Markov-2 models need at least {} readings (3 unknowns, 4 "
                     "covariance parameters, + 1): left out",
                     kMinReadingsMarkov2));
   }
-  const auto has = [&](StochasticModel m) {
-    return std::any_of(res.models.begin(), res.models.end(),
-                       [&](const ModelFit& f) { return f.model == m; });
-  };
-  if (!has(StochasticModel::Markov1Grid) && !has(StochasticModel::Markov1Ml))
+  if (!has_model(res, StochasticModel::Markov1Grid) && !has_model(res, StochasticModel::Markov1Ml))
     throw NumericalError(
         "stochastic models: no Markov model could be fitted (variance-component "
         "estimation failed at every rho)");
 
   report_progress(progress, 4, 5, "comparison");
-  const ModelFit& white = res.fit(StochasticModel::WhiteNoise);
-  for (auto& f : res.models) {
-    f.degenerate_reason = degeneracy_reason(f, white, input.booked_sigma);
-    f.degenerate = !f.degenerate_reason.empty();
-    if (f.degenerate)
-      res.notes.push_back(fmt::format(
-          "{} is degenerate ({}): it is shown but not recommended, not used in the "
-          "likelihood-ratio tests and not used as the signal for the other models' influence",
-          to_string(f.model), f.degenerate_reason));
-  }
-  const auto usable = [&](StochasticModel m) { return has(m) && !res.fit(m).degenerate; };
-
-  // Signal influence for the models without a signal term: the signal predicted by the
-  // non-degenerate ML Markov model of smaller BIC (else the grid model of smaller BIC).
-  {
-    const ModelFit* ref = nullptr;
-    for (const auto& group : {std::array{StochasticModel::Markov1Ml, StochasticModel::Markov2Ml},
-                              std::array{StochasticModel::Markov1Grid, StochasticModel::Markov2Grid}}) {
-      for (StochasticModel m : group)
-        if (usable(m) && (!ref || res.fit(m).bic < ref->bic)) ref = &res.fit(m);
-      if (ref) break;
-    }
-    std::optional<VectorXd> signal;
-    if (ref) {
-      const MarkovFactors fac = factors_for(ref->rho, n);
-      const double s1 = ref->sigma1.value, s2 = ref->sigma2.value;
-      const MatrixXd Dref = fac.covariance(s1 * s1, s2 * s2);
-      const adjust::CovarianceFactor cref(Dref);
-      VectorXd rw =
-          l - G * Eigen::Vector3d(ref->north.value, ref->amplitude.value, ref->damping.value);
-      cref.whiten(rw);
-      MatrixXd bw = fac.B;
-      cref.whiten(bw);
-      signal = VectorXd(fac.B * (s2 * s2 * (bw.transpose() * rw)));
-    } else {
-      res.notes.push_back(
-          "every Markov model is degenerate: the signal influence of white noise and the "
-          "covariance-function models is not stated");
-    }
-    for (auto& f : res.models) {
-      const bool own_signal = !f.rho.empty();
-      if (own_signal) continue;
-      if (!signal) {
-        f.signal_influence = Eigen::Vector3d::Constant(kNaN);
-      } else if (f.model == StochasticModel::WhiteNoise) {
-        f.signal_influence =
-            estimator_applied(G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), *signal);
-      } else {
-        MatrixXd Dc(n, n);
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j)
-            Dc(i, j) =
-                f.sigma1.value * f.sigma1.value * cov_shape(f.model, f.shape, std::abs(i - j));
-        f.signal_influence = estimator_applied(G, adjust::CovarianceFactor(Dc), *signal);
-      }
-    }
-  }
-
-  // Recommendation: smallest BIC among the non-degenerate models (white noise never is),
-  // fewer parameters on a tie.
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < res.models.size(); ++i) {
-    const auto& a = res.models[i];
-    const auto& b = res.models[best];
-    if (a.degenerate) continue;
-    if (a.bic < b.bic - 1e-9 ||
-        (std::fabs(a.bic - b.bic) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
-      best = i;
-  }
-  res.models[best].recommended = true;
-  res.recommended = static_cast<int>(best);
-
-  // Likelihood-ratio tests between non-degenerate models.
-  const auto lrt = [&](StochasticModel null_m, StochasticModel alt, int dof) {
-    if (!has(null_m) || !has(alt)) return;
-    if (!usable(null_m) || !usable(alt)) {
-      res.notes.push_back(fmt::format("likelihood-ratio test {} against {} not made: {} is degenerate",
-                                      to_string(null_m), to_string(alt),
-                                      to_string(usable(null_m) ? alt : null_m)));
-      return;
-    }
-    LikelihoodRatioTest t;
-    t.null_model = null_m;
-    t.alternative = alt;
-    t.statistic =
-        std::max(0.0, 2.0 * (res.fit(alt).log_likelihood - res.fit(null_m).log_likelihood));
-    t.dof = dof;
-    t.p_value = adjust::chi_squared_upper_probability(t.statistic, dof);
-    t.rejected = t.p_value < kLrtAlpha;
-    res.tests.push_back(t);
-  };
-  lrt(StochasticModel::WhiteNoise, StochasticModel::Markov1Ml, 2);
-  lrt(StochasticModel::Markov1Ml, StochasticModel::Markov2Ml, 1);
-  series_checks(res, input, white, G);
+  mark_degenerate(res);
+  add_signal_influence(res, fit);
+  recommend(res);
+  add_likelihood_ratio_tests(res);
+  series_checks(res, res.fit(StochasticModel::WhiteNoise), fit.G);
   report_progress(progress, 5, 5, "done");
   return res;
 }

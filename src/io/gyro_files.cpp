@@ -10,6 +10,7 @@
 #include "meridian/geodesy/frames.hpp"
 #include "meridian/geodesy/laplace.hpp"
 #include "meridian/io/document.hpp"
+#include "meridian/io/source_map.hpp"
 #include "gravity_model_ref.hpp"
 #include "gyro_record.hpp"
 
@@ -120,6 +121,98 @@ gyro::StochasticChoice read_stochastic_choice(const Node& v) {
   }
 }
 
+gyro::Mode read_mode(const Node& mode) {
+  const std::string m = mode.string();
+  if (m == "non-tracking" || m == "nontracking") return gyro::Mode::NonTracking;
+  if (m == "tracking") return gyro::Mode::Tracking;
+  mode.fail(fmt::format("unknown mode \"{}\" (expected tracking or non-tracking)", m));
+}
+
+// The tracking run: its circle readings at the reversal points (in the file's `unit`).
+void read_tracking_run(const Node& n, AngleUnit unit, gyro::DeterminationInput& d) {
+  for (const char* k : {"clamp_reading", "period_s", "crossings", "reversals_div", "reversal_times_s"})
+    if (auto v = n.get(k)) v->fail("field of a non-tracking determination given for mode tracking");
+  const Node rev = n.require("reversals");
+  for (const auto& e : rev.elements()) d.tracking.reversals_rad.push_back(e.angle(unit).rad());
+  if (auto v = n.get("sigma_reading_arcsec")) d.tracking.sigma_reading_rad = v->positive_number() * units::kArcsecond;
+}
+
+gyro::Crossing read_crossing(const Node& e) {
+  e.allow_only({"level_div", "times_s", "first_direction"});
+  gyro::Crossing x;
+  x.level_div = e.require("level_div").number();
+  const Node times = e.require("times_s");
+  x.times_s = increasing_times_s(times);
+  if (x.times_s.empty()) times.fail("no crossing times");
+  x.first_direction = read_direction(e.require("first_direction"));
+  return x;
+}
+
+// The non-tracking run: the clamp reading (in the file's `unit`), timed crossings, reversal
+// readings, with the instrument's σ unless the run books its own.
+void read_nontracking_run(const Node& n, const gyro::InstrumentSpec& inst, AngleUnit unit,
+                          gyro::DeterminationInput& d) {
+  for (const char* k : {"reversals", "sigma_reading_arcsec"})
+    if (auto v = n.get(k)) v->fail("field of a tracking determination given for mode non-tracking");
+  d.clamp_reading_rad = n.require("clamp_reading").angle(unit).rad();
+  auto& o = d.nontracking;
+  o.sigma_time_s = inst.sigma_time_s;
+  o.sigma_reading_div = inst.sigma_reading_div;
+  if (auto v = n.get("sigma_time_s")) o.sigma_time_s = v->positive_number();
+  if (auto v = n.get("sigma_reading_div")) o.sigma_reading_div = v->positive_number();
+  if (auto v = n.get("period_s")) o.period_s = Uncertain{positive_time_s(*v), sigma_or(n, "period_sigma_s", 0.0)};
+  if (auto c = n.get("crossings"))
+    for (const auto& e : c->elements()) o.crossings.push_back(read_crossing(e));
+  if (auto v = n.get("reversals_div")) o.reversals_div = v->numbers();
+  if (auto v = n.get("reversal_times_s")) {
+    o.reversal_times_s = increasing_times_s(*v);
+    if (o.reversal_times_s.size() != o.reversals_div.size())
+      v->fail(fmt::format("{} reversal times for {} reversal readings", o.reversal_times_s.size(),
+                          o.reversals_div.size()));
+  }
+  if (o.crossings.empty() && o.reversals_div.empty())
+    n.fail("a non-tracking determination needs crossings and/or reversals_div");
+}
+
+// The zero position: given directly, or from motor-off runs before and/or after.
+void read_zero_position(const Node& n, gyro::DeterminationInput& d) {
+  if (auto v = n.get("zero_position_div")) {
+    if (n.has("zero_position")) v->fail("give zero_position_div or zero_position runs, not both");
+    d.zero_position = Uncertain{v->number(), sigma_or(n, "zero_position_sigma_div", 0.0)};
+  }
+  if (auto z = n.get("zero_position")) {
+    z->allow_only({"before", "after"});
+    if (auto b = z->get("before")) d.zero_before = read_zero_run(*b);
+    if (auto a = z->get("after")) d.zero_after = read_zero_run(*a);
+    if (!d.zero_before && !d.zero_after) z->fail("give a before and/or an after run");
+  }
+}
+
+gyro::TargetRound read_target_round(const Node& r, AngleUnit unit) {
+  r.allow_only({"when", "left", "right"});
+  gyro::TargetRound t;
+  const Node when = r.require("when");
+  const std::string w = when.string();
+  if (w == "before") t.when = gyro::TargetRound::When::Before;
+  else if (w == "after") t.when = gyro::TargetRound::When::After;
+  else when.fail(fmt::format("expected before or after, got \"{}\"", w));
+  t.face_left_rad = r.require("left").angle(unit).normalized_positive().rad();
+  t.face_right_rad = r.require("right").angle(unit).normalized_positive().rad();
+  return t;
+}
+
+// The circle reading to the target, and/or the rounds it is reduced from.
+void read_target(const Node& n, AngleUnit unit, gyro::DeterminationInput& d) {
+  if (auto v = n.get("target_reading"))
+    d.target_reading_rad = Uncertain{v->angle(unit).normalized_positive().rad(),
+                                     sigma_or(n, "target_sigma_arcsec", 0.0) * units::kArcsecond};
+  if (auto rounds = n.get("target_rounds")) {
+    for (const Node& r : rounds->elements()) d.target_rounds.push_back(read_target_round(r, unit));
+    if (d.target_rounds.empty()) rounds->fail("give at least one round");
+    d.target_round_sigma_rad = sigma_or(n, "target_sigma_arcsec", 0.0) * units::kArcsecond;
+  }
+}
+
 // Circle angles (clamp, reversals, target) are in the file's `unit`.
 gyro::DeterminationInput read_determination(const Node& n, const gyro::InstrumentSpec& inst,
                                             AngleUnit unit) {
@@ -133,14 +226,7 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
   if (auto v = n.get("time")) d.time = v->string();
   if (auto v = n.get("observer")) d.observer = v->string();
   if (auto v = n.get("stochastic_model")) d.stochastic_model = read_stochastic_choice(*v);
-  const Node mode = n.require("mode");
-  const std::string m = mode.string();
-  if (m == "non-tracking" || m == "nontracking")
-    d.mode = gyro::Mode::NonTracking;
-  else if (m == "tracking")
-    d.mode = gyro::Mode::Tracking;
-  else
-    mode.fail(fmt::format("unknown mode \"{}\" (expected tracking or non-tracking)", m));
+  d.mode = read_mode(n.require("mode"));
   if (auto v = n.get("method")) {
     const std::string name = v->string();
     try {
@@ -149,92 +235,13 @@ gyro::DeterminationInput read_determination(const Node& n, const gyro::Instrumen
       v->fail(e.message());
     }
   }
-
-  const char* nontracking_only[] = {"clamp_reading", "period_s", "crossings", "reversals_div",
-                                    "reversal_times_s"};
-  const char* tracking_only[] = {"reversals", "sigma_reading_arcsec"};
-  if (d.mode == gyro::Mode::Tracking) {
-    for (const char* k : nontracking_only)
-      if (auto v = n.get(k)) v->fail("field of a non-tracking determination given for mode tracking");
-    const Node rev = n.require("reversals");
-    for (const auto& e : rev.elements()) d.tracking.reversals_rad.push_back(e.angle(unit).rad());
-    if (auto v = n.get("sigma_reading_arcsec"))
-      d.tracking.sigma_reading_rad = v->positive_number() * units::kArcsecond;
-  } else {
-    for (const char* k : tracking_only)
-      if (auto v = n.get(k)) v->fail("field of a tracking determination given for mode non-tracking");
-    d.clamp_reading_rad = n.require("clamp_reading").angle(unit).rad();
-    auto& o = d.nontracking;
-    o.sigma_time_s = inst.sigma_time_s;
-    o.sigma_reading_div = inst.sigma_reading_div;
-    if (auto v = n.get("sigma_time_s")) o.sigma_time_s = v->positive_number();
-    if (auto v = n.get("sigma_reading_div")) o.sigma_reading_div = v->positive_number();
-    if (auto v = n.get("period_s"))
-      o.period_s = Uncertain{positive_time_s(*v), sigma_or(n, "period_sigma_s", 0.0)};
-    if (auto c = n.get("crossings")) {
-      for (const auto& e : c->elements()) {
-        e.allow_only({"level_div", "times_s", "first_direction"});
-        gyro::Crossing x;
-        x.level_div = e.require("level_div").number();
-        const Node times = e.require("times_s");
-        x.times_s = increasing_times_s(times);
-        if (x.times_s.empty()) times.fail("no crossing times");
-        x.first_direction = read_direction(e.require("first_direction"));
-        o.crossings.push_back(std::move(x));
-      }
-    }
-    if (auto v = n.get("reversals_div")) o.reversals_div = v->numbers();
-    if (auto v = n.get("reversal_times_s")) {
-      o.reversal_times_s = increasing_times_s(*v);
-      if (o.reversal_times_s.size() != o.reversals_div.size())
-        v->fail(fmt::format("{} reversal times for {} reversal readings", o.reversal_times_s.size(),
-                            o.reversals_div.size()));
-    }
-    if (o.crossings.empty() && o.reversals_div.empty())
-      n.fail("a non-tracking determination needs crossings and/or reversals_div");
-  }
-  if (auto v = n.get("zero_position_div")) {
-    if (n.has("zero_position")) v->fail("give zero_position_div or zero_position runs, not both");
-    d.zero_position = Uncertain{v->number(), sigma_or(n, "zero_position_sigma_div", 0.0)};
-  }
-  if (auto z = n.get("zero_position")) {
-    z->allow_only({"before", "after"});
-    if (auto b = z->get("before")) d.zero_before = read_zero_run(*b);
-    if (auto a = z->get("after")) d.zero_after = read_zero_run(*a);
-    if (!d.zero_before && !d.zero_after) z->fail("give a before and/or an after run");
-  }
-  if (auto v = n.get("target_reading"))
-    d.target_reading_rad = Uncertain{v->angle(unit).normalized_positive().rad(),
-                                     sigma_or(n, "target_sigma_arcsec", 0.0) * units::kArcsecond};
-  if (auto rounds = n.get("target_rounds")) {
-    for (const Node& r : rounds->elements()) {
-      r.allow_only({"when", "left", "right"});
-      gyro::TargetRound t;
-      const Node when = r.require("when");
-      const std::string w = when.string();
-      if (w == "before") t.when = gyro::TargetRound::When::Before;
-      else if (w == "after") t.when = gyro::TargetRound::When::After;
-      else when.fail(fmt::format("expected before or after, got \"{}\"", w));
-      t.face_left_rad = r.require("left").angle(unit).normalized_positive().rad();
-      t.face_right_rad = r.require("right").angle(unit).normalized_positive().rad();
-      d.target_rounds.push_back(t);
-    }
-    if (d.target_rounds.empty()) rounds->fail("give at least one round");
-    d.target_round_sigma_rad = sigma_or(n, "target_sigma_arcsec", 0.0) * units::kArcsecond;
-  }
+  if (d.mode == gyro::Mode::Tracking)
+    read_tracking_run(n, unit, d);
+  else
+    read_nontracking_run(n, inst, unit, d);
+  read_zero_position(n, d);
+  read_target(n, unit, d);
   return d;
-}
-
-// Run `f`, adding the file and line to errors thrown by the library for
-// this node (the library knows the field path inside it, not the file).
-template <class F>
-auto with_location(const Node& n, F&& f) {
-  try {
-    return f();
-  } catch (Error& e) {
-    if (e.context().file.empty()) e.add_context(n.file(), n.line(), n.path());
-    throw;
-  }
 }
 
 std::vector<gyro::DeterminationInput> read_determinations(const Node& list,
@@ -390,6 +397,23 @@ gyro::Tolerances read_tolerances(const Node& t) {
   return r;
 }
 
+// The station's latitude within the instrument's limit, and the instrument's constants resolved
+// there (errors at fields "station.latitude_deg" and "instrument.…").
+void check_constants(const gyro::ReduceInput& in) {
+  try {
+    gyro::check_latitude(in.latitude_rad, in.instrument.latitude_limit_rad);
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, "station.latitude_deg");
+    throw;
+  }
+  try {
+    gyro::resolve_instrument(in.instrument, in.latitude_rad);
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, "instrument");
+    throw;
+  }
+}
+
 }  // namespace
 
 GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
@@ -398,6 +422,7 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
   GyroReduceFile f;
   f.file = path.string();
   gyro::ReduceInput& in = f.input;
+  in.file = f.file;
   in.angle_unit = read_angle_unit(root);
   const Node inst = root.require("instrument");
   in.instrument = read_instrument(inst);
@@ -414,13 +439,13 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
     if (auto v = d.get("stochastic_model"))
       v->fail("stochastic_model is a campaign option (gyro campaign); gyro reduce assumes "
               "independent readings, and gyro stochastic compares the models");
-  // Check that the constants resolve at this latitude, so the error points at the file.
-  with_location(lat, [&] {
-    gyro::check_latitude(in.latitude_rad, in.instrument.latitude_limit_rad);
-    return 0;
-  });
-  with_location(inst, [&] { return gyro::resolve_instrument(in.instrument, in.latitude_rad); });
   f.lines = root.visited_lines();
+  // The constants must resolve at this latitude: checked when the book is read, so that a book
+  // that cannot be reduced fails at the line of its field (gyro stochastic reads it and does not
+  // reduce it).
+  SourceMap sources;
+  sources.add_document(f.file, f.lines);
+  located(sources, [&] { check_constants(in); });
   return f;
 }
 
@@ -431,6 +456,7 @@ CampaignFile read_campaign_file(const std::filesystem::path& path) {
   CampaignFile f;
   f.file = path.string();
   gyro::CampaignInput& c = f.campaign;
+  c.file = f.file;
   c.angle_unit = read_angle_unit(root);
   if (auto v = root.get("campaign")) c.name = v->string();
   if (auto r = root.get("record")) c.record = read_record(*r);

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/error.hpp"
+#include "meridian/io/document.hpp"
 #include "meridian/io/source_map.hpp"
 #include "meridian/gravity/gravity_field.hpp"
 #include "gravity_model_ref.hpp"
@@ -78,6 +79,21 @@ OrientationsJob run_orientation_files(const std::vector<std::filesystem::path>& 
 gyro::TransitFactorCalibration run_transit_factor_file(const std::filesystem::path& path) {
   const GyroReduceFile f = read_gyro_reduce_file(path);
   return located(book(f.file, f.lines), [&] { return gyro::calibrate_transit_factor(f.input); });
+}
+
+gyro::StochasticBookResult run_stochastic_file(const std::filesystem::path& path, Progress* progress) {
+  // A campaign file (top-level `campaign:`) holds its determinations in known_line.before,
+  // known_line.after and line.determinations; a reduce file in determinations.
+  if (Node::load_file(path).has("campaign")) {
+    const CampaignFile f = read_campaign_file(path);
+    gyro::StochasticBookInput in = gyro::stochastic_book(f.campaign);
+    in.file = f.file;
+    return located(book(f.file, f.lines), [&] { return gyro::process(in, progress); });
+  }
+  const GyroReduceFile f = read_gyro_reduce_file(path);
+  gyro::StochasticBookInput in = gyro::stochastic_book(f.input);
+  in.file = f.file;
+  return located(book(f.file, f.lines), [&] { return gyro::process(in, progress); });
 }
 
 }  // namespace meridian::io

@@ -264,6 +264,24 @@ std::string campaign_file_yaml(const gyro::CampaignInput& c, const std::string& 
   return o;
 }
 
+namespace {
+
+// "Simulated by: <command line>" and the truth, one line each (comment_block makes them comments).
+std::string simulation_header(const std::string& command_line, const std::vector<std::string>& truth) {
+  std::string h = "Simulated by: " + command_line + "\n";
+  for (const auto& t : truth) h += t + "\n";
+  return h;
+}
+
+}  // namespace
+
+std::string simulated_book_yaml(const SimulatedBook& s) {
+  if (const auto* c = std::get_if<gyro::SimulatedCampaign>(&s.book))
+    return campaign_file_yaml(c->input, simulation_header(s.command_line, c->truth));
+  const auto& station = std::get<gyro::SimulatedStation>(s.book);
+  return reduce_file_yaml(station.input, simulation_header(s.command_line, station.truth));
+}
+
 // The templates are hand-written field books (not generated), so that every
 // line can carry its comment; the parts both kinds share are written once.
 // Their numbers come from simulated runs (tau 600"/div, lambda 0.21, T_B

@@ -503,7 +503,9 @@ Section notes_section(const gyro::CampaignResult& r) {
 
 }  // namespace
 
-Document gyro_reduce_document(const std::string& file, const gyro::ReduceInput& in, const gyro::ReduceResult& r) {
+Document gyro_reduce_document(const gyro::ReduceResult& r) {
+  const gyro::ReduceInput& in = r.input;
+  const std::string& file = in.file;
   const AngleFormat f(in.angle_unit);
   Document doc;
   doc.title = "Gyro-theodolite determinations";
@@ -528,8 +530,9 @@ Document gyro_reduce_document(const std::string& file, const gyro::ReduceInput& 
   return doc;
 }
 
-Document gyro_campaign_document(const std::string& file, const gyro::CampaignInput& in,
-                                const gyro::CampaignResult& r) {
+Document gyro_campaign_document(const gyro::CampaignResult& r) {
+  const gyro::CampaignInput& in = r.input;
+  const std::string& file = in.file;
   const AngleFormat f(in.angle_unit);
   Document doc;
   doc.title = "Gyro orientation: " + (r.name.empty() ? std::string("campaign") : r.name);

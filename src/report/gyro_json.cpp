@@ -149,9 +149,9 @@ json determination_to_json(const gyro::DeterminationResult& r) {
   return j;
 }
 
-json reduce_to_json(const std::string& file, const gyro::ReduceResult& r) {
+json reduce_to_json(const gyro::ReduceResult& r) {
   json j;
-  j["file"] = file;
+  j["file"] = r.input.file;
   j["torsion_ratio"] = {{"value", r.instrument.instrument.torsion_ratio.value},
                         {"sigma", r.instrument.instrument.torsion_ratio.sigma}};
   j["notes"] = r.instrument.notes;

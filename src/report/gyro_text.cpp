@@ -62,10 +62,10 @@ std::string check_text(const gyro::Check& k) {
   return std::string(k.pass ? "[PASS] " : "[FAIL] ") + check_statement(k);
 }
 
-std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, const AngleFormat& f) {
+std::string reduce_text(const gyro::ReduceResult& r, const AngleFormat& f) {
   const gyro::Instrument& inst = r.instrument.instrument;
   std::string out = fmt::format("{}: {} determination(s), lambda = {:.5f}, tau = {:.1f}\"/div\n",
-                                file, r.determinations.size(), inst.torsion_ratio.value,
+                                r.input.file, r.determinations.size(), inst.torsion_ratio.value,
                                 inst.scale_value_rad / units::kArcsecond);
   for (const auto& n : r.instrument.notes) out += "  note: " + n + "\n";
   for (std::size_t i = 0; i < r.determinations.size(); ++i)
@@ -73,8 +73,8 @@ std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, co
   return out;
 }
 
-std::string orientations_text(const std::vector<std::string>& files, const gyro::OrientationsResult& r,
-                              const AngleFormat& f) {
+std::string orientations_text(const gyro::OrientationsResult& r, const AngleFormat& f) {
+  const std::vector<std::string>& files = r.files;
   std::string out = fmt::format("Independent orientations of the line {}-{}\n", r.station, r.target);
   for (std::size_t i = 0; i < r.grid_azimuths_rad.size(); ++i)
     out += fmt::format("  {}  T = {:>15}  sigma {:>6}  {}\n", i + 1, f.dir(r.grid_azimuths_rad[i].value),
@@ -109,7 +109,10 @@ std::string stochastic_tag(const gyro::StochasticUse& u) {
 
 }  // namespace
 
-std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
+namespace {
+
+// Name, instrument, record sheet, the points and λ at the station.
+std::string campaign_header_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   std::string out;
   out += fmt::format("Gyro orientation campaign: {}\n", r.name.empty() ? "(unnamed)" : r.name);
   out += std::string(72, '=') + "\n";
@@ -134,7 +137,12 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   if (r.known_station) point("Known station", *r.known_station);
   const auto& lam = r.instrument_station.instrument.torsion_ratio;
   out += fmt::format("Torsion ratio at the station: {:.5f} (sigma {:.5f})\n\n", lam.value, lam.sigma);
+  return out;
+}
 
+// The known line's azimuth and determinations (when calibrated there), and E.
+std::string calibration_text(const gyro::CampaignResult& r, const AngleFormat& f) {
+  std::string out;
   if (r.instrument_constant) {
     out += "Calibration on the known line\n";
     const std::string line =
@@ -158,8 +166,11 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   }
   out += fmt::format("  instrument constant E = {}  sigma {}\n\n", f.sec(r.instrument_constant_used_rad.value),
                      f.sig(r.instrument_constant_used_rad.sigma));
+  return out;
+}
 
-  out += "Determinations on the line\n";
+std::string line_determinations_text(const gyro::CampaignResult& r, const AngleFormat& f) {
+  std::string out = "Determinations on the line\n";
   for (std::size_t i = 0; i < r.determinations.size(); ++i) {
     const auto& d = r.determinations[i];
     out += fmt::format("  {:<2} {:<20} {:<13} N_G {:>15}  sigma {:>6}  A_G {:>15}  sigma {}\n", i + 1,
@@ -173,7 +184,12 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
       "white: independent readings; *: the requested model could not be used, white noise (see "
       "Warnings)\n",
       gyro::to_string(r.stochastic_model));
-  out += "\nAzimuth chain (station to target)\n";
+  return out;
+}
+
+// A_G → A → α → T, step by step.
+std::string chain_text(const gyro::CampaignResult& r, const AngleFormat& f) {
+  std::string out = "\nAzimuth chain (station to target)\n";
   const auto& c = r.chain;
   out += fmt::format("  gyro azimuth        A_G = {:>15}  sigma {}\n", f.dir(c.gyro_azimuth_rad.value),
                      f.sig(c.gyro_azimuth_rad.sigma));
@@ -193,7 +209,12 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
                      c.arc_to_chord_applied ? f.sec(c.arc_to_chord_rad) : std::string("not applied"));
   out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n\n", f.dir(c.grid_azimuth_rad.value),
                      f.sig(c.grid_azimuth_rad.sigma));
-  out += fmt::format("Checks (limits: {}, unless marked)\n", r.limits.source);
+  return out;
+}
+
+// The checks with their limits, the one-run standard deviations, notes and warnings.
+std::string checks_text(const gyro::CampaignResult& r, const AngleFormat& f) {
+  std::string out = fmt::format("Checks (limits: {}, unless marked)\n", r.limits.source);
   if (r.checks.empty()) out += "  (none applicable)\n";
   for (const auto& k : r.checks)
     out += "  " + check_text(k) + (k.source == r.limits.source ? "" : "  [" + k.source + "]") + "\n";
@@ -209,6 +230,13 @@ std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
   if (!r.warnings.empty()) out += "\nWarnings\n";
   for (const auto& w : r.warnings) out += "  ! " + w + "\n";
   return out;
+}
+
+}  // namespace
+
+std::string campaign_text(const gyro::CampaignResult& r, const AngleFormat& f) {
+  return campaign_header_text(r, f) + calibration_text(r, f) + line_determinations_text(r, f) + chain_text(r, f) +
+         checks_text(r, f);
 }
 
 }  // namespace meridian::report

@@ -23,6 +23,9 @@ using meridian::NumericalError;
 using namespace meridian::gyro;
 using ::testing::HasSubstr;
 
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kArcsec = kDeg / 3600.0;
+
 // ε by running the recursion ε_i = Δ_i + ρ_1·ε_{i−1} + ρ_2·ε_{i−2} with ε_0 = X_1,
 // ε_{−1} = X_2 (Markov-1: ρ_2 = 0, X_0 = X_1).
 VectorXd recursion(const VectorXd& delta, double x1, double x2, double rho1, double rho2) {
@@ -156,6 +159,7 @@ TEST(Stochastic, RoutesAgree) {
   // a search whose path depends on rounding).
   const auto r = simulated_series(20, 0.6, 2.0, 5.0, 11);
   StochasticInput a, b, c;
+  a.kind = b.kind = c.kind = SeriesKind::Scale;  // fitted as given
   a.readings = b.readings = c.readings = r;
   b.options.route = GlsRoute::NormalEquations;
   c.options.vce_method = meridian::adjust::VceMethod::Helmert;
@@ -197,6 +201,7 @@ TEST(Stochastic, RoutesAgree) {
 TEST(Stochastic, SignalPredictionIsTheDenseFormula) {
   const auto r = simulated_series(16, 0.7, 2.0, 8.0, 5);
   StochasticInput in;
+  in.kind = SeriesKind::Scale;  // fitted as given
   in.readings = r;
   in.options.covariance_functions = false;
   const auto res = analyse_stochastic(in);
@@ -220,6 +225,7 @@ TEST(Stochastic, SignalPredictionIsTheDenseFormula) {
 TEST(Stochastic, ComparisonTableIsComplete) {
   const auto r = simulated_series(20, 0.6, 2.0, 5.0, 3);
   StochasticInput in;
+  in.kind = SeriesKind::Scale;  // fitted as given
   in.readings = r;
   const auto res = analyse_stochastic(in);
   int recommended = 0;
@@ -250,6 +256,7 @@ TEST(Stochastic, ComparisonTableIsComplete) {
 
 TEST(Stochastic, BadInput) {
   StochasticInput in;
+  in.kind = SeriesKind::Scale;
   in.readings = {1.0, 9.0, 2.0, 8.0, 3.0};
   EXPECT_THAT(
       [&] {
@@ -287,6 +294,44 @@ std::vector<double> example_tracking() {
           as(358, 53, 36.5974)};
 }
 
+// The same as booked: circle readings in radians, in [0, 2π) (they cross 0°/360°).
+StochasticInput example_tracking_input() {
+  StochasticInput in;
+  in.kind = SeriesKind::Circle;
+  for (double x : example_tracking())
+    in.readings.push_back(std::fmod(358.0 * kDeg + x * kArcsec, 2.0 * M_PI));
+  return in;
+}
+
+TEST(StochasticUnits, CircleReadingsAreFittedInArcsecFromTheirDegree) {
+  // 358°52′32.7″, 1°32′16.9″, …: unwrapped across 360° and taken from 358°; the booked σ in
+  // arc-seconds; the centre of white noise is the Schuler-type LS centre of those arc-seconds.
+  StochasticInput in = example_tracking_input();
+  in.booked_sigma = 8.0 * kArcsec;
+  const StochasticResult res = analyse_stochastic(in);
+  EXPECT_EQ(res.kind, SeriesKind::Circle);
+  EXPECT_NEAR(res.reference_rad, 358.0 * kDeg, 1e-15);
+  const std::vector<double> as = example_tracking();
+  ASSERT_EQ(res.fitted_readings.size(), as.size());
+  for (std::size_t i = 0; i < as.size(); ++i) EXPECT_NEAR(res.fitted_readings[i], as[i], 1e-8) << i;
+  EXPECT_NEAR(res.booked_sigma, 8.0, 1e-12);
+  EXPECT_EQ(fitted_unit(res.kind), "arcsec");
+  // Scale readings are fitted as they are, in div.
+  StochasticInput div;
+  div.kind = SeriesKind::Scale;
+  div.readings = as;
+  div.booked_sigma = 8.0;
+  const StochasticResult rd = analyse_stochastic(div);
+  EXPECT_EQ(rd.reference_rad, 0.0);
+  EXPECT_EQ(rd.fitted_readings, as);
+  EXPECT_EQ(fitted_unit(rd.kind), "div");
+  // The same fit, to rounding of the conversion.
+  EXPECT_NEAR(res.fit(StochasticModel::WhiteNoise).north.value, rd.fit(StochasticModel::WhiteNoise).north.value,
+              1e-7);
+  EXPECT_NEAR(res.fit(StochasticModel::WhiteNoise).sigma1.value, rd.fit(StochasticModel::WhiteNoise).sigma1.value,
+              1e-7);
+}
+
 bool is_c_type(StochasticModel m) {
   return m == StochasticModel::Exponential || m == StochasticModel::Gaussian ||
          m == StochasticModel::DampedCosine;
@@ -322,6 +367,7 @@ TEST(StochasticDegenerate, ZeroPositionRunFittedExactlyBySignal) {
     ASSERT_LT((G * y - l).norm(), 1e-9);
   }
   StochasticInput in;
+  in.kind = SeriesKind::Scale;  // fitted as given
   in.readings = r;
   const auto res = analyse_stochastic(in);
   const double sw = res.fit(StochasticModel::WhiteNoise).sigma1.value;
@@ -354,8 +400,7 @@ TEST(StochasticDegenerate, ZeroPositionRunFittedExactlyBySignal) {
 TEST(StochasticDegenerate, StationarityEdgeAndAbsurdAmplitude) {
   // examples/tracking.yaml (user trial, finding 8): Markov-1 ML runs to ρ ≈ −0.98 with an
   // amplitude thousands of arcsec from every other model.
-  StochasticInput in;
-  in.readings = example_tracking();
+  const StochasticInput in = example_tracking_input();
   const auto res = analyse_stochastic(in);
   const ModelFit& m1 = res.fit(StochasticModel::Markov1Ml);
   const ModelFit& w = res.fit(StochasticModel::WhiteNoise);
@@ -381,6 +426,7 @@ TEST(StochasticDegenerate, LargestRootModulus) {
   // root −1.0002, modulus ≥ the edge; (0.5, 0.3) has roots 0.852, −0.352 (inside).
   const std::vector<double> r = simulated_series(20, 0.5, 2.0, 2.0, 17);
   StochasticInput in;
+  in.kind = SeriesKind::Scale;  // fitted as given
   in.readings = r;
   const auto res = analyse_stochastic(in);
   for (const auto& f : res.models) {
@@ -402,6 +448,7 @@ TEST(StochasticCovarianceFunctions, AmplitudeIsRemlAtTheShape) {
   // a there, and σ(σ1) = σ1/√(2(n − 3)).
   const auto r = simulated_series(20, 0.6, 2.0, 5.0, 23);
   StochasticInput in;
+  in.kind = SeriesKind::Scale;  // fitted as given
   in.readings = r;
   const auto res = analyse_stochastic(in);
   const int n = 20;
@@ -452,8 +499,7 @@ TEST(StochasticCovarianceFunctions, ShapeAtTheGridEdgeIsSaidAndMatchesWhiteNoise
   // examples/tracking.yaml: c-exponential ends at b = 0.1 lag (user trial, finding 7), where
   // e^{−10} makes D practically a·I: σ1 and m must then be those of white noise (before the fix
   // σ1 was √((n−3)/n) of it).
-  StochasticInput in;
-  in.readings = example_tracking();
+  const StochasticInput in = example_tracking_input();
   const auto res = analyse_stochastic(in);
   const ModelFit& w = res.fit(StochasticModel::WhiteNoise);
   const ModelFit& e = res.fit(StochasticModel::Exponential);
@@ -464,10 +510,8 @@ TEST(StochasticCovarianceFunctions, ShapeAtTheGridEdgeIsSaidAndMatchesWhiteNoise
 }
 
 TEST(StochasticChecks, BookedSigmaExcessIsABookingWarning) {
-  StochasticInput in;
-  in.readings = example_tracking();
-  in.booked_sigma = 8.0;
-  in.unit = "arcsec";
+  StochasticInput in = example_tracking_input();
+  in.booked_sigma = 8.0 * kArcsec;
   {
     const auto res = analyse_stochastic(in);
     // White-noise σ1 ≈ 5″ against 8″: consistent, no warning.
@@ -483,11 +527,11 @@ TEST(StochasticChecks, BookedSigmaExcessIsABookingWarning) {
   EXPECT_EQ(res.r2_misfit_rms, 0.0);
   // Borderline: σ1 at the booked σ is no warning; the test rejects at α = 1 % when
   // (n − 3)·(σ1/σ)² > χ²_0.99(4) = 13.2767 (tables), i.e. σ/σ1 < √(4/13.2767) = 0.54889.
-  in.readings = example_tracking();
+  in.readings = example_tracking_input().readings;
   const double s1w = analyse_stochastic(in).fit(StochasticModel::WhiteNoise).sigma1.value;
-  in.booked_sigma = s1w * 0.54889 * 1.001;  // just inside (not rejected)
+  in.booked_sigma = s1w * 0.54889 * 1.001 * kArcsec;  // just inside (not rejected)
   EXPECT_TRUE(analyse_stochastic(in).warnings.empty());
-  in.booked_sigma = s1w * 0.54889 * 0.97;  // T = 4/(0.54889·0.97)² ≈ 14.1 > 13.28
+  in.booked_sigma = s1w * 0.54889 * 0.97 * kArcsec;  // T = 4/(0.54889·0.97)² ≈ 14.1 > 13.28
   const auto moderate = analyse_stochastic(in).warnings;
   EXPECT_THAT(moderate, ::testing::Contains(HasSubstr("scatter more than booked")));
   EXPECT_THAT(moderate, ::testing::Not(::testing::Contains(HasSubstr("booking error?"))));
@@ -517,6 +561,7 @@ TEST(StochasticChecks, LongSeriesMisfitOfR2IsWarned) {
   std::normal_distribution<double> N(0.0, 5.0);
   for (double& x : r) x += N(rng);
   StochasticInput in;
+  in.kind = SeriesKind::Scale;  // fitted as given
   in.readings = r;
   in.options.markov2 = false;  // not needed here; keeps the test fast
   const auto res = analyse_stochastic(in);

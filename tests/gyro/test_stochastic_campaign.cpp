@@ -190,9 +190,10 @@ TEST(StochasticCampaign, Markov2AndRecommended) {
     in.stochastic_model = StochasticChoice::Recommended;
     const CampaignResult rc = process(in);
     const auto& dr = rc.determinations[0];
-    StochasticInput si;
-    si.readings = arcsec;
-    si.booked_sigma = 2.0;
+    StochasticInput si;  // the determination's series as booked
+    si.kind = SeriesKind::Circle;
+    si.readings = in.line.determinations[0].tracking.reversals_rad;
+    si.booked_sigma = in.line.determinations[0].tracking.sigma_reading_rad;
     const StochasticResult full = analyse_stochastic(si);
     const ModelFit& rec = full.models[static_cast<std::size_t>(full.recommended)];
     EXPECT_FALSE(dr.stochastic.fallback);

@@ -54,6 +54,7 @@ TEST(StochasticMonteCarlo, MlRhoAndReportedSigmaOfNorth) {
   int degenerate = 0;
   for (int k = 0; k < runs; ++k) {
     StochasticInput in;
+    in.kind = SeriesKind::Scale;  // fitted as given
     in.readings = series(n, rho, s1, s2, rng);
     in.options.covariance_functions = false;
     in.options.markov2 = false;
@@ -116,6 +117,7 @@ TEST(StochasticMonteCarlo, CovarianceFunctionSigmaOfNorth) {
                                        StochasticModel::Gaussian, StochasticModel::DampedCosine};
     for (int k = 0; k < runs; ++k) {
       StochasticInput in;
+      in.kind = SeriesKind::Scale;  // fitted as given
       in.readings = series(n, 0.0, 5.0, 0.0, rng);
       in.options.markov2 = false;
       const auto res = analyse_stochastic(in);

@@ -244,6 +244,7 @@ TEST(ReversalGlsR1, RoutesOfTheComparisonAgree) {
   const MatrixXd Dtrue = markov1_factors(n, 0.6).covariance(4.0, 25.0);
   const auto r = r1t_series(Eigen::Vector3d(754.0, 4800.0, 0.005), n, Dtrue, 11);
   StochasticInput a, b;
+  a.kind = b.kind = SeriesKind::Scale;  // fitted as given
   a.readings = b.readings = r;
   b.options.route = GlsRoute::NormalEquations;
   const auto ra = analyse_stochastic(a);
@@ -268,6 +269,7 @@ TEST(ReversalGlsR1, EveryModelOfTheComparisonCarriesItsR1Fit) {
   const MatrixXd Dtrue = markov1_factors(n, 0.6).covariance(4.0, 25.0);
   const auto r = r1t_series(Eigen::Vector3d(754.0, 4800.0, 0.005), n, Dtrue, 5);
   StochasticInput in;
+  in.kind = SeriesKind::Scale;  // fitted as given
   in.readings = r;
   const auto res = analyse_stochastic(in);
   int checked = 0;

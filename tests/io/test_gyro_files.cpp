@@ -17,7 +17,9 @@
 #include "meridian/gravity/synthetic.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
 #include "meridian/io/gyro_files.hpp"
+#include "meridian/io/source_map.hpp"
 #include "meridian/io/gyro_jobs.hpp"
+#include "meridian/io/gyro_simulate.hpp"
 #include "meridian/io/gyro_writers.hpp"
 #include "meridian/io/gravity_egm.hpp"
 #include "meridian/gravity/gravity_field.hpp"
@@ -196,13 +198,14 @@ TEST(GyroFiles, CampaignWriteReadRoundTrip) {
   EXPECT_NEAR(a.line.from.eta_rad->value, b.line.from.eta_rad->value, 1e-15);
 }
 
-TEST(GyroFiles, LocateErrorUsesInnermostRecordedField) {
-  io::FieldLines lines{{"line.determinations", 40}, {"line.determinations[1]", 52}};
+TEST(GyroFiles, SourceMapUsesInnermostRecordedField) {
+  io::SourceMap book;
+  book.add_document("c.yaml", io::FieldLines{{"line.determinations", 40}, {"line.determinations[1]", 52}});
   InputError e("bad", {"", std::nullopt, "line.determinations[1].crossings[0].times_s"});
-  io::locate_error(e, "c.yaml", lines);
+  book.locate(e);
   EXPECT_STREQ(e.what(), "c.yaml:52: line.determinations[1].crossings[0].times_s: bad");
   InputError e2("bad", {"", std::nullopt, "line.determinations[10]"});
-  io::locate_error(e2, "c.yaml", lines);
+  book.locate(e2);
   EXPECT_STREQ(e2.what(), "c.yaml:40: line.determinations[10]: bad");
 }
 
@@ -458,13 +461,15 @@ determinations:
                                3.9, -3.5]}
 )";
   const auto f = io::read_gyro_reduce_file(d.write("t.yaml", tracking));
+  io::SourceMap book;
+  book.add_document(f.file, f.lines);
   for (const auto& [field, expect] : std::vector<std::pair<std::string, int>>{
            {"determinations[0].reversals[3]", 9},
            {"determinations[0].reversals[0]", 6},
            {"determinations[0].zero_position.before.reversals_div[3]", 12},
            {"determinations[0].zero_position.before.reversals_div[1]", 11}}) {
     InputError e("bad", {"", std::nullopt, field});
-    io::locate_error(e, f.file, f.lines);
+    book.locate(e);
     EXPECT_EQ(e.context().line, expect) << field;
   }
   // And end to end: a non-tracking reversal that does not alternate, 4th of a block list.
@@ -598,4 +603,88 @@ TEST(GyroFiles, TolerancesAndRecordSheetRoundTrip) {
   EXPECT_EQ(back.record.date, "2026-11-28");
   EXPECT_EQ(back.instrument.serial, "0713");
   EXPECT_EQ(io::campaign_file_yaml(back), yaml);
+}
+
+TEST(GyroFiles, StochasticRunnerLocatesTheSeries) {
+  // A book whose third determination's reversals fit (R2) exactly: the error is at the line of
+  // its `reversals:` key (22), with the series' field.
+  std::string book = kIssueExample;
+  book += R"(  - mode: tracking
+    label: flat
+    reversals: ["0 00 10", "0 00 20", "0 00 10", "0 00 20", "0 00 10", "0 00 20", "0 00 10"]
+)";
+  TempDir d;
+  const fs::path p = d.write("flat.yaml", book);
+  try {
+    io::run_stochastic_file(p);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().file, p.string());
+    EXPECT_EQ(e.context().line, 22) << e.what();
+    EXPECT_EQ(e.context().field, "determinations[2].reversals");
+  }
+  // No series of 6 readings: at the determinations (the line of their first element, 7).
+  try {
+    io::run_stochastic_file(d.write("short.yaml", kIssueExample));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.context().line, 7) << e.what();
+    EXPECT_EQ(e.context().field, "determinations");
+  }
+}
+
+TEST(GyroFiles, SimulateSettingsAreReadIntoWhatToSimulate) {
+  io::SimulateSettings s;
+  s.mode = "tracking";
+  s.tau_arcsec = 300.0;
+  s.latitude_deg = 45.0;
+  s.centre = "1 00 00";
+  s.sigma_tracking_arcsec = 6.0;
+  s.noise = "markov1";
+  s.sigma_initial_arcsec = 4.0;
+  s.command_line = "meridian gyro simulate --mode tracking";
+  const io::SimulationInput in = io::read_simulate_settings(s);
+  const auto& st = std::get<gyro::StationSimulation>(in.what);
+  EXPECT_EQ(st.mode, gyro::Mode::Tracking);
+  EXPECT_NEAR(st.scale_value_rad, 300.0 * kArcsec, 1e-18);
+  EXPECT_NEAR(st.latitude_rad, M_PI / 4.0, 1e-15);
+  EXPECT_NEAR(st.centre_rad, 3600.0 * kArcsec, 1e-15);
+  EXPECT_NEAR(st.sigma_tracking_rad, 6.0 * kArcsec, 1e-18);
+  EXPECT_NEAR(st.sigma_initial_tracking_rad, 4.0 * kArcsec, 1e-18);
+  EXPECT_EQ(st.noise, gyro::NoiseModel::Markov1);
+  const std::string yaml = io::simulated_book_yaml(io::run_simulation(in));
+  EXPECT_EQ(yaml.rfind("# Simulated by: meridian gyro simulate --mode tracking\n", 0), 0u) << yaml.substr(0, 80);
+  // Campaign mode: the example's truth with the given white σ.
+  io::SimulateSettings c;
+  c.mode = "campaign";
+  c.sim.sigma_time_s = 0.2;
+  const auto truth = std::get<gyro::CampaignTruth>(io::read_simulate_settings(c).what);
+  EXPECT_EQ(truth.sigma_time_s, 0.2);
+  EXPECT_EQ(truth.name, gyro::example_campaign_truth().name);
+  // Errors name the option.
+  const auto field_of = [](const io::SimulateSettings& bad) {
+    try {
+      io::read_simulate_settings(bad);
+    } catch (const InputError& e) {
+      return e.context().field;
+    }
+    return std::string("no error");
+  };
+  io::SimulateSettings b;
+  b.clamps = {"0", "1"};
+  EXPECT_EQ(field_of(b), "--clamp");  // more clamps than determinations
+  b = {};
+  b.mode = "tracking";
+  b.given = {"levels"};
+  EXPECT_EQ(field_of(b), "--levels");
+  b = {};
+  b.mode = "campaign";
+  b.noise = "markov2";
+  EXPECT_EQ(field_of(b), "--noise");
+  b = {};
+  b.sigma_initial_arcsec = 1.0;  // non-tracking
+  EXPECT_EQ(field_of(b), "--sigma-initial-arcsec");
+  b = {};
+  b.mode = "other";
+  EXPECT_EQ(field_of(b), "--mode");
 }

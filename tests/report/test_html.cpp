@@ -53,7 +53,7 @@ TEST(Html, InlinesTheVegaLibrariesAndNeedsNoNetwork) {
 TEST(Html, CampaignDocumentHasEverySection) {
   const auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 4);
   const auto r = gyro::process(sim.input);
-  const Document d = gyro_campaign_document("c.yaml", sim.input, r);
+  const Document d = gyro_campaign_document(r);
   std::vector<std::string> ids;
   for (const auto& s : d.sections) ids.push_back(s.id);
   for (const char* id : {"result", "checks", "calibration", "line", "known-before-1", "known-after-2",
@@ -90,7 +90,7 @@ TEST(Html, ResultSheetComesFirstAndTurnsRedOnAFailedCheck) {
   sim.input.record.observer = "王工";
   sim.input.record.checked_by = "陈工";
   const auto good = gyro::process(sim.input);
-  const Document d = gyro_campaign_document("c.yaml", sim.input, good);
+  const Document d = gyro_campaign_document(good);
   ASSERT_FALSE(d.sections.empty());
   const Section& sheet = d.sections.front();
   EXPECT_EQ(sheet.id, "result-sheet");
@@ -111,7 +111,7 @@ TEST(Html, ResultSheetComesFirstAndTurnsRedOnAFailedCheck) {
   sim.input.line.determinations[0].target_reading_rad->value += 120 * units::kArcsecond;
   const auto bad = gyro::process(sim.input);
   ASSERT_FALSE(bad.all_checks_pass());
-  const Document d2 = gyro_campaign_document("c.yaml", sim.input, bad);
+  const Document d2 = gyro_campaign_document(bad);
   const auto* red = std::get_if<Highlight>(&d2.sections.front().blocks.front());
   ASSERT_NE(red, nullptr);
   EXPECT_TRUE(red->alarm);

@@ -98,6 +98,9 @@ struct CampaignInput {
   /// `stochastic_model:`; stochastic_determination.hpp). A determination for which it cannot be
   /// used keeps white noise, with a warning. White (default): results as without the option.
   StochasticChoice stochastic_model = StochasticChoice::White;
+  /// The campaign file it was read from, as named (for the reports; empty when
+  /// the Input is built in code). Never opened by the library.
+  std::string file;
 };
 
 /// A point resolved in both coordinate systems.
@@ -126,6 +129,9 @@ struct Check {
 
 
 struct CampaignResult {
+  /// What was processed (a copy of the Input): the writers show its file, its
+  /// observations, the record sheet and the angle unit.
+  CampaignInput input;
   std::string name;
   PointResult station;                       ///< C
   std::optional<PointResult> target;         ///< D
@@ -173,8 +179,8 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
 /// Process a campaign: the instrument constant from the known line (or as
 /// given), every determination of the line, the tolerance checks and the
 /// azimuth chain to the grid azimuth. Errors carry field paths such as
-/// "line.determinations[1].crossings[0].times_s" (io::locate_error adds the
-/// file and line). `progress`, when given, is told about each determination
+/// "line.determinations[1].crossings[0].times_s" (the runner's io::SourceMap adds
+/// the file and line). `progress`, when given, is told about each determination
 /// reduced. `deflection`, when given, supplies ξ and η at the points that do
 /// not state them; it is required when the input names a gravity_model
 /// (InputError otherwise).

@@ -19,6 +19,7 @@ namespace meridian::gyro {
 
 struct OrientationsResult {
   std::string station, target;             ///< names of the line's end points
+  std::vector<std::string> files;          ///< each orientation's CampaignInput::file
   std::vector<Uncertain> grid_azimuths_rad;  ///< T of each orientation, as given
   /// Mean T; its σ is the larger of the propagated sqrt(Σσ²)/n and the
   /// empirical sqrt(Σv²/(n(n−1))) (= |T2 − T1|/2 for two orientations).

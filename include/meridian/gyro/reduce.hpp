@@ -5,7 +5,7 @@
 /// applicable one side by side.
 ///
 ///   ReduceInput (io::read_gyro_reduce_file) → process() → ReduceResult
-///   → report::reduce_text / reduce_to_json / gyro_reduce_document
+///   → report::reduce_text / reduce_to_json / gyro_reduce_document (they take only the result)
 
 #include <vector>
 
@@ -25,17 +25,23 @@ struct ReduceInput {
   /// How the file booked its circle angles (its `angle_unit:`), so results
   /// can be printed in the book's unit; the values above are radians.
   AngleUnit angle_unit = AngleUnit::Dms;
+  /// The field book it was read from, as named (for the reports; empty when
+  /// the Input is built in code). Never opened by the library.
+  std::string file;
 };
 
 struct ReduceResult {
+  /// What was reduced (a copy of the Input): the writers show its file, its
+  /// observations and its angle unit.
+  ReduceInput input;
   ResolvedInstrument instrument;                 ///< constants at the station latitude
   std::vector<DeterminationResult> determinations;  ///< parallel to ReduceInput::determinations
 };
 
 /// Resolve the instrument at the station latitude and reduce every
 /// determination. Errors carry field paths ("instrument",
-/// "determinations[2].crossings[0].times_s"; io::locate_error adds the file
-/// and line). `progress`, when given, is told about each determination.
+/// "determinations[2].crossings[0].times_s"; the runner's io::SourceMap adds
+/// the file and line). `progress`, when given, is told about each determination.
 ReduceResult process(const ReduceInput& in, Progress* progress = nullptr);
 
 }  // namespace meridian::gyro

@@ -9,8 +9,16 @@
 /// design G (n×3, columns M, A′, c), unknowns Y = (M, A′, c): M the north reading α_N (tracking
 /// runs) or the zero position, A′ the amplitude α_0 (signed: A′ > 0 when r_2 > r_1 about M,
 /// i.e. even readings lie above the centre), c the damping term. Residuals v = G·Ŷ − L.
-/// Every value is in the unit of the readings (arcsec for circle readings, div for scale
-/// readings): the caller converts at the edges.
+///
+/// Units. The input is SI: circle readings of a tracking run in radians, scale readings of a
+/// zero-position run in divisions (StochasticInput::kind says which; they are not angles). The
+/// models are fitted in the series' fitted unit (fitted_unit): circle readings in arc-seconds
+/// relative to a reference reading (StochasticResult::reference_rad, the first reading unwrapped
+/// and rounded down to a whole degree), scale readings in divisions. Every value of a
+/// StochasticResult — M (relative to the reference), A′, c, σ, the residuals — is in that unit,
+/// and so are the likelihoods: the REML log-likelihood of a series depends on the unit of its
+/// readings (ℓ changes by −(n − 3)·ln s when they are scaled by s), so ℓ, AIC and BIC are stated,
+/// and compare between models, in the fitted unit of the series.
 ///
 /// Stochastic models compared (D = D(L)):
 /// * white noise (ordinary least squares): D = σ_1²·I;
@@ -120,12 +128,26 @@ struct StochasticOptions {
   bool markov2 = true;               ///< include the Markov-2 models (grid and ML)
 };
 
+/// What the readings of a series are (and so the unit its models are fitted in).
+enum class SeriesKind {
+  Circle,  ///< circle readings at the reversal points of a tracking run: angles, radians
+  Scale,   ///< scale readings at the reversal points of a zero-position run: divisions, not angles
+};
+
+/// The unit of a StochasticResult's values for a series of this kind: "arcsec" (Circle, relative
+/// to StochasticResult::reference_rad), "div" (Scale). Used in messages and by the writers.
+std::string fitted_unit(SeriesKind kind);
+
 /// One reversal-point series.
 struct StochasticInput {
-  std::vector<double> readings;  ///< r_1 … r_n in one unit (n ≥ 6: 3 unknowns, 2 components, +1)
-  /// The booked a-priori σ of one reading in the readings' unit (NaN or ≤ 0: none booked).
+  SeriesKind kind = SeriesKind::Circle;
+  /// r_1 … r_n (n ≥ 6: 3 unknowns, 2 components, +1). Circle: circle readings in radians, in any
+  /// turn (readings across 0°/360° are unwrapped, unwrap_circle_readings); Scale: scale readings
+  /// in div.
+  std::vector<double> readings;
+  /// The booked a-priori σ of one reading: radians (Circle) or div (Scale); NaN or ≤ 0: none
+  /// booked.
   double booked_sigma = std::numeric_limits<double>::quiet_NaN();
-  std::string unit;  ///< the readings' unit, for messages only ("arcsec", "div"; may be empty)
   StochasticOptions options;
 };
 
@@ -168,7 +190,7 @@ struct R1GlsFit {
   bool converged = false;     ///< always true when returned (non-convergence throws)
 };
 
-/// One model's fit. Values in the readings' unit; NaN where a quantity does not apply.
+/// One model's fit. Values in the series' fitted unit; NaN where a quantity does not apply.
 struct ModelFit {
   StochasticModel model = StochasticModel::WhiteNoise;
   Uncertain north;      ///< M (α_N or zero position) and m_M
@@ -215,7 +237,16 @@ struct LikelihoodRatioTest {
 };
 
 struct StochasticResult {
+  SeriesKind kind = SeriesKind::Circle;  ///< of the input; fixes the fitted unit (fitted_unit)
+  /// Circle: the reading the series is fitted relative to (radians: the first reading, unwrapped,
+  /// rounded down to a whole degree); a centre M of the result is the reading reference_rad + M″.
+  /// 0 for Scale.
+  double reference_rad = 0.0;
   int readings = 0;
+  /// r_1 … r_n as fitted, in the fitted unit (arcsec relative to reference_rad, or div).
+  std::vector<double> fitted_readings;
+  /// The booked σ of one reading in the fitted unit (NaN when none was booked).
+  double booked_sigma = std::numeric_limits<double>::quiet_NaN();
   std::vector<ModelFit>
       models;           ///< in the order of StochasticModel (models that fail are left out)
   int recommended = 0;  ///< index into models
@@ -228,7 +259,7 @@ struct StochasticResult {
   /// σ_1² > 0 (the covariance would be singular).
   std::vector<double> rho1_grid, rho2_grid;
   Eigen::MatrixXd markov2_surface;
-  /// rms of the part of (R1) that (R2) cannot represent, at the fitted decay (readings' unit;
+  /// rms of the part of (R1) that (R2) cannot represent, at the fitted decay (fitted unit;
   /// 0 when the fitted decay is not positive).
   double r2_misfit_rms = 0.0;
   std::vector<std::string> notes;
@@ -239,9 +270,10 @@ struct StochasticResult {
   const ModelFit& fit(StochasticModel m) const;
 };
 
-/// Fit and compare the models for one series. Throws InputError when n < 6 (3 unknowns and 2
-/// variance components + 1), a reading is not finite, or the series has no scatter (all
-/// residuals of OLS zero); NumericalError when no Markov model could be fitted. Individual
+/// Fit and compare the models for one series (in its fitted unit, see the file comment). Throws
+/// InputError when n < 6 (3 unknowns and 2 variance components + 1), a reading is not finite
+/// (field "readings[i]"), or the series has no scatter (all residuals of OLS zero);
+/// NumericalError when no Markov model could be fitted. Individual
 /// models that fail (covariance not positive definite, VCE not converging) are left out with a
 /// note in StochasticResult::notes. Results never contain NaN in M, A′ or their σ.
 StochasticResult analyse_stochastic(const StochasticInput& input, Progress* progress = nullptr);

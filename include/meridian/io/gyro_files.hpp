@@ -21,7 +21,7 @@ namespace meridian::io {
 struct GyroReduceFile {
   std::string file;
   gyro::ReduceInput input;
-  FieldLines lines;       ///< for io::locate_error
+  FieldLines lines;       ///< where each field was read (io::SourceMap)
 };
 
 /// Read a reduce file. Throws ParseError/InputError with file, line, field.
@@ -31,7 +31,7 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path);
 struct CampaignFile {
   std::string file;
   gyro::CampaignInput campaign;  ///< its gravity_model, if any, is named, not loaded
-  FieldLines lines;              ///< for io::locate_error
+  FieldLines lines;              ///< where each field was read (io::SourceMap)
 };
 
 CampaignFile read_campaign_file(const std::filesystem::path& path);

@@ -3,8 +3,9 @@
 /// Running a gyro file from disk to result: read it, load the engines it
 /// names (a gravity model for ξ, η), process it, and give every error the file
 /// and line of the field it concerns. Shared by `meridian gyro reduce`,
-/// `gyro campaign`, `gyro transit-factor` and `demo`, and by any program
-/// that processes field books.
+/// `gyro campaign`, `gyro orientations`, `gyro transit-factor`, `gyro stochastic`,
+/// `demo` and the Python package, and by any program that processes field books.
+/// A gravity model is loaded only when a campaign names one.
 
 #include <filesystem>
 #include <map>
@@ -17,6 +18,7 @@
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/orientations.hpp"
 #include "meridian/gyro/reduce.hpp"
+#include "meridian/gyro/stochastic_book.hpp"
 #include "meridian/gyro/transit_calibration.hpp"
 #include "meridian/io/gyro_files.hpp"
 
@@ -71,5 +73,14 @@ OrientationsJob run_orientation_files(const std::vector<std::filesystem::path>& 
 
 /// Read a reduce file with two determinations and calibrate the transit factor.
 gyro::TransitFactorCalibration run_transit_factor_file(const std::filesystem::path& path);
+
+/// `meridian gyro stochastic FILE`: read a reduce book, or a campaign file (recognised by its
+/// top-level `campaign:`), split it into its reversal-point series (gyro::stochastic_book) and
+/// analyse every series of at least 6 readings (gyro::process). Throws the reader's
+/// ParseError/InputError (file, line, field) and the analysis' InputError/NumericalError at the
+/// file and line of the series' field ("determinations[2].reversals"), or of the field
+/// "determinations" ("line.determinations"; the line of its first element) when no series is
+/// long enough. No gravity model is loaded.
+gyro::StochasticBookResult run_stochastic_file(const std::filesystem::path& path, Progress* progress = nullptr);
 
 }  // namespace meridian::io

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "meridian/io/gyro_files.hpp"
+#include "meridian/io/gyro_simulate.hpp"
 
 namespace meridian::io {
 
@@ -20,6 +21,10 @@ std::string reduce_file_yaml(const gyro::ReduceInput& input, const std::string& 
 
 /// A `meridian gyro campaign` file.
 std::string campaign_file_yaml(const gyro::CampaignInput& campaign, const std::string& header = {});
+
+/// The text of a simulated book (`meridian gyro simulate`): a reduce file (a station's runs) or a
+/// campaign file, headed by "Simulated by: <command line>" and the truth, one comment line each.
+std::string simulated_book_yaml(const SimulatedBook& simulated);
 
 /// A commented campaign field book to start from (`meridian gyro template`):
 /// every field explained with its unit, both modes, motor-off runs, the

@@ -1,8 +1,8 @@
 #pragma once
 /// \file gyro_html.hpp
 /// HTML report documents for the gyro workflows: the mapping from result
-/// structs (and the observations they came from, for the plots) to a
-/// report::Document. Render with render_html().
+/// structs (each carries the Input it came from: the file, and the
+/// observations for the plots) to a report::Document. Render with render_html().
 
 #include <string>
 #include <vector>
@@ -18,12 +18,10 @@ namespace meridian::report {
 /// `meridian gyro reduce`: one section per determination with the
 /// oscillation plot (observations and fitted model), residuals, zero-position
 /// runs and, for `method: all`, every method side by side.
-Document gyro_reduce_document(const std::string& file, const gyro::ReduceInput& input,
-                              const gyro::ReduceResult& result);
+Document gyro_reduce_document(const gyro::ReduceResult& result);
 
 /// `meridian gyro campaign`: result and azimuth chain, checks, calibration,
 /// the line's determinations, then every determination in detail.
-Document gyro_campaign_document(const std::string& file, const gyro::CampaignInput& input,
-                                const gyro::CampaignResult& result);
+Document gyro_campaign_document(const gyro::CampaignResult& result);
 
 }  // namespace meridian::report

@@ -25,9 +25,9 @@ nlohmann::json method_to_json(const gyro::MethodResult& r, gyro::Mode mode);
 /// method "all" the array `results` (one entry per applicable method).
 nlohmann::json determination_to_json(const gyro::DeterminationResult& r);
 
-/// `meridian gyro reduce --json`: file, torsion_ratio {value, sigma},
-/// notes, determinations.
-nlohmann::json reduce_to_json(const std::string& file, const gyro::ReduceResult& r);
+/// `meridian gyro reduce --json`: file (ReduceInput::file), torsion_ratio
+/// {value, sigma}, notes, determinations.
+nlohmann::json reduce_to_json(const gyro::ReduceResult& r);
 
 /// A whole campaign.
 nlohmann::json campaign_to_json(const gyro::CampaignResult& r);

@@ -22,7 +22,7 @@ std::string determination_text(const gyro::DeterminationResult& r, int index, co
 
 /// `meridian gyro reduce`: a header line (file, count, λ, τ), the
 /// instrument notes, then every determination.
-std::string reduce_text(const std::string& file, const gyro::ReduceResult& r, const AngleFormat& f = AngleFormat());
+std::string reduce_text(const gyro::ReduceResult& r, const AngleFormat& f = AngleFormat());
 
 /// `meridian gyro campaign`: stations, calibration, the line's
 /// determinations, the azimuth chain, checks, notes and warnings.
@@ -34,10 +34,9 @@ std::string check_statement(const gyro::Check& k);
 /// One check as a line: "[PASS] " or "[FAIL] " + check_statement.
 std::string check_text(const gyro::Check& k);
 
-/// `meridian gyro orientations`: each orientation's grid azimuth, the mean
-/// with σ, and the checks.
-std::string orientations_text(const std::vector<std::string>& files, const gyro::OrientationsResult& r,
-                              const AngleFormat& f = AngleFormat());
+/// `meridian gyro orientations`: each orientation's grid azimuth (and file),
+/// the mean with σ, and the checks.
+std::string orientations_text(const gyro::OrientationsResult& r, const AngleFormat& f = AngleFormat());
 
 /// `meridian gyro transit-factor`.
 std::string transit_factor_text(const gyro::TransitFactorCalibration& c);
