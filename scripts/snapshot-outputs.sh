@@ -44,7 +44,7 @@ normalise() {
       *.nc) ncdump "$f" > "$f.cdl" 2> /dev/null && rm -f "$f"; f="$f.cdl" ;;
       *.bin|*.gtx|*.cof|*.pgm) continue ;;
     esac
-    sed -i -E "s|$1|W|g; s|$out|OUT|g; s|$root|ROOT|g; s|$src|ROOT|g; s|\"elapsed_s\": [0-9.e+-]+|\"elapsed_s\": T|; s|(thread\(s\) over [a-z]+), [0-9.]+ s|\1, T s|" "$f"
+    sed -i -E "s|$1|W|g; s|$out|OUT|g; s|$root|ROOT|g; s|$src|ROOT|g; s|\"elapsed_s\": [0-9.e+-]+|\"elapsed_s\": T|; s|^(path .*), [0-9.]+ s$|\1, T s|" "$f"
   done
 }
 runpy() {
@@ -373,7 +373,7 @@ run err-dov-sim-config-dir dov simulate --hours 0.01 --out @W@/l.csv --config @W
 c=examples/nav-scenario-c
 for k in "sigma_speed_m_s: -1" "initial: {x_m: 7.49, y_m: 1.36, sigma_m: 0}" "segment_s: 0" "projection: {central_meridian_deg: 500}"; do
   key=${k%%:*}
-  { grep -v "^$key:" $c/nav.yaml | sed "s|^\(dr\|stations\|lops\|truth\): \(.*\)|\1: $root/$c/\2|"; echo "$k"; } > "$out/nav-$key.yaml"
+  { grep -v "^$key:" $c/nav.yaml | sed -E "s#^(dr|stations|lops|truth): (.*)#\1: $root/$c/\2#"; echo "$k"; } > "$out/nav-$key.yaml"
   run err-nav-$key nav process "$out/nav-$key.yaml"
 done
 # nav: every place an error is located (the reader's rows and keys, the plane, nav::process),

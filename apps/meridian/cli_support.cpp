@@ -7,8 +7,10 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <fmt/format.h>
@@ -65,6 +67,20 @@ void emit_all(std::initializer_list<Output> outputs) {
   for (auto& f : files) f->commit();
   for (const Output& o : outputs)
     if (o.path == "-") emit("", o.text);
+}
+
+void check_output_paths(std::initializer_list<OutputPath> outputs, const std::vector<std::string>& inputs) {
+  for (auto o = outputs.begin(); o != outputs.end(); ++o) {
+    if (o->path.empty()) continue;
+    for (auto later = std::next(o); later != outputs.end(); ++later)
+      if (!later->path.empty() && same_path(o->path, later->path))
+        throw InputError(fmt::format("{} and {} name the same file {}", o->option, later->option, o->path));
+    for (const std::string& in : inputs) {
+      std::error_code ec;
+      if (!in.empty() && (same_path(o->path, in) || std::filesystem::equivalent(o->path, in, ec)))
+        throw InputError(fmt::format("the {} would overwrite the input {}", o->what, in), {"", std::nullopt, o->option});
+    }
+  }
 }
 
 void emit_with_report(const std::string& output, const std::string& text, const std::string& report_path,

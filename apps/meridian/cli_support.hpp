@@ -6,6 +6,7 @@
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "meridian/core/progress.hpp"
 
@@ -53,6 +54,19 @@ void require_html_reports_for(const std::string& report_path);
 /// True when paths a and b name the same file, compared as absolute, normalised paths (neither
 /// need exist yet: two outputs about to be written).
 bool same_path(const std::string& a, const std::string& b);
+
+/// An output file of a command, for check_output_paths: its path (empty: none; "-" standard output,
+/// which two outputs cannot share either), the option
+/// that names it ("--report") and what it holds ("report").
+struct OutputPath {
+  const std::string& path;
+  const char* option;
+  const char* what;
+};
+/// Before any work: refuse two outputs on one file ("-o and --report name the same file X") and an
+/// output that would replace one of `inputs` ("the report would overwrite the input X", field =
+/// the option), paths compared normalised and, for files that exist, as the same file.
+void check_output_paths(std::initializer_list<OutputPath> outputs, const std::vector<std::string>& inputs);
 
 /// An angle option as typed (DMS or decimal degrees, core/dms.hpp) in radians; a parse error
 /// names the option (`name`, e.g. "--latitude").

@@ -118,26 +118,6 @@ struct ProcessArgs {
   bool json = false, quiet = false;
 };
 
-// The outputs must not replace each other, the line they are computed from or the
-// configuration.
-void check_outputs(const ProcessArgs& a, const io::DovConfig& c) {
-  if (!a.output.empty() && !a.report.empty() && same_path(a.output, a.report))
-    throw InputError(fmt::format("--output and --report name the same file {}", a.output));
-  struct Output {
-    const std::string& path;
-    const char* option;
-    const char* what;
-  };
-  for (const Output& o :
-       {Output{a.output, "--output", "profile"}, Output{a.report, "--report", "report"}}) {
-    if (o.path.empty()) continue;
-    std::error_code ec;
-    for (const std::string& in : {c.line_path, a.config})
-      if (std::filesystem::equivalent(o.path, in, ec))
-        throw InputError(fmt::format("the {} would overwrite the input {}", o.what, in),
-                         {"", std::nullopt, o.option});
-  }
-}
 
 // An output written while the line streams (--output, --report): a temporary file beside its
 // path, created now so that a path that cannot be written fails before the work, renamed into
@@ -169,7 +149,8 @@ class StreamedOutput {
 int run_process(const ProcessArgs& a) {
   require_html_reports_for(a.report);
   const io::DovConfig c = io::read_dov_config(a.config);
-  check_outputs(a, c);
+  // The outputs must not replace each other, the line they are computed from or the configuration.
+  check_output_paths({{a.output, "--output", "profile"}, {a.report, "--report", "report"}}, {c.line_path, a.config});
   TerminalProgress progress(a.quiet);
   StreamedOutput profile_file(a.output), report_file(a.report);
   report::DovProfileCsv profile;  // written out 1 MB at a time

@@ -62,30 +62,6 @@ struct ProcessArgs {
   bool json = false, quiet = false;
 };
 
-// No two outputs on one path, and none over an input.
-void check_output_paths(const ProcessArgs& a, const std::vector<std::string>& inputs) {
-  struct Output {
-    const std::string& path;
-    const char* option;
-    const char* what;
-  };
-  const Output outputs[] = {{a.track, "-o", "track"},
-                            {a.geojson, "--geojson", "GeoJSON track"},
-                            {a.rejected, "--rejected", "list of rejected observations"},
-                            {a.report, "--report", "report"}};
-  for (std::size_t i = 0; i < std::size(outputs); ++i) {
-    const Output& o = outputs[i];
-    if (o.path.empty() || o.path == "-") continue;
-    for (std::size_t j = i + 1; j < std::size(outputs); ++j)
-      if (!outputs[j].path.empty() && same_path(o.path, outputs[j].path))
-        throw InputError(fmt::format("{} and {} name the same file {}", o.option, outputs[j].option, o.path));
-    for (const std::string& in : inputs) {
-      std::error_code ec;
-      if (same_path(o.path, in) || std::filesystem::equivalent(o.path, in, ec))
-        throw InputError(fmt::format("the {} would overwrite the input {}", o.what, in), {"", std::nullopt, o.option});
-    }
-  }
-}
 
 // What the options ask of the result: the -o method computed, a projection for --geojson.
 void check_result_for(const ProcessArgs& a, nav::Method method, const nav::Result& r) {
@@ -103,7 +79,11 @@ int run_process(const ProcessArgs& a) {
   require_html_reports_for(a.report);
   const nav::Method method = nav::method_from_string(a.method);
   const io::NavConfig config = io::read_nav_config(a.config);
-  check_output_paths(a, io::nav_input_files(config));
+  check_output_paths({{a.track, "-o", "track"},
+                      {a.geojson, "--geojson", "GeoJSON track"},
+                      {a.rejected, "--rejected", "list of rejected observations"},
+                      {a.report, "--report", "report"}},
+                     io::nav_input_files(config));
   TerminalProgress progress(a.quiet);
   const nav::Result r = io::run_nav(config, &progress).result;
   check_result_for(a, method, r);

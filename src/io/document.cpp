@@ -249,21 +249,4 @@ void Node::allow_only(std::initializer_list<std::string_view> allowed) const {
   }
 }
 
-void locate_error(Error& e, const std::string& file, const FieldLines& lines) {
-  if (!e.context().file.empty()) return;
-  const std::string& field = e.context().field;
-  std::optional<int> line;
-  std::size_t best = 0;
-  for (const auto& [path, l] : lines) {
-    const bool prefix = field.compare(0, path.size(), path) == 0 &&
-                        (field.size() == path.size() || field[path.size()] == '.' ||
-                         field[path.size()] == '[');
-    if (prefix && path.size() >= best) {
-      best = path.size();
-      line = l;
-    }
-  }
-  e.add_context(file, line);
-}
-
 }  // namespace meridian::io

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "meridian/core/checks.hpp"
 #include "meridian/core/error.hpp"
 #include "prepared.hpp"
 
@@ -19,9 +20,8 @@ std::string at(const char* list, std::size_t i, const char* member) {
   return fmt::format("{}[{}].{}", list, i, member);
 }
 
-void require_finite(double v, const std::string& field) {
-  if (!std::isfinite(v)) fail(field, "is not finite");
-}
+// core's check (one message everywhere): "dr[3].time_s: the value is not finite (nan)".
+void require_finite(double v, const std::string& field) { meridian::require_finite(v, "the value", field); }
 
 bool is_covariance(const Eigen::Matrix2d& c, bool definite) {
   if (!c.allFinite()) return false;

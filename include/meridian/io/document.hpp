@@ -25,13 +25,8 @@ namespace meridian::io {
 
 /// Line (1-based) of each node of a file by field path ("determinations[2]",
 /// "line.determinations[0].crossings[1]", …), as recorded while reading.
+/// A runner hands them to io::SourceMap (source_map.hpp), which names the line of an error.
 using FieldLines = std::map<std::string, int>;
-
-/// Give an error thrown while processing a file's contents (its context has
-/// a field path but no file) the file name and the line of the innermost
-/// recorded field that contains its field. Errors that already name a file
-/// are left as they are.
-void locate_error(Error& e, const std::string& file, const FieldLines& lines);
 
 /// One node of a YAML or JSON document (JSON is read by the YAML parser as
 /// is). Accessors check the type and range and throw ParseError/InputError
