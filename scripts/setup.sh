@@ -13,6 +13,9 @@ packages=(
   # Grid synthesis (FFTW) and grid files (netCDF C library; ncdump for the tests; PROJ's cct
   # reads the .gtx geoid grids back in the tests).
   libfftw3-dev libnetcdf-dev netcdf-bin proj-bin
+  # GIS readers of the grids in the tests: GDAL (what QGIS uses) and GMT read each NetCDF grid's
+  # extent, pixel size and CRS back (tests/cli/test_cli_gravity_grid.cpp).
+  gdal-bin gmt
   # The Python package (MERIDIAN_PYTHON=ON, docs/python.md) and its tests.
   python3-dev pybind11-dev python3-pybind11 python3-pytest python3-yaml python3-dask python3-distributed
   python3-netcdf4

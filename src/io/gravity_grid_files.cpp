@@ -140,7 +140,11 @@ class NetCdfGridWriter final : public GridFileWriter {
     std::vector<double> lat(rows), lon(cols);
     for (std::size_t j = 0; j < rows; ++j) lat[j] = spec_.lat_deg(j);
     for (std::size_t i = 0; i < cols; ++i) lon[i] = spec_.lon_deg(i);
-    const double lat_range[2] = {lat.front(), lat.back()}, lon_range[2] = {lon.front(), lon.back()};
+    // A pixel grid's range is its cells' outer edges (GMT's convention, which GDAL follows for
+    // node_offset = 1: the nodes' range there gave a half-cell shift and a wrong pixel size).
+    const bool pixel = spec_.registration == gravity::GridRegistration::Pixel;
+    const double hy = pixel ? spec_.lat_spacing_deg / 2 : 0.0, hx = pixel ? spec_.lon_spacing_deg / 2 : 0.0;
+    const double lat_range[2] = {lat.front() - hy, lat.back() + hy}, lon_range[2] = {lon.front() - hx, lon.back() + hx};
     check(nc_put_att_double(ncid_, lat_var, "actual_range", NC_DOUBLE, 2, lat_range), "cannot define");
     check(nc_put_att_double(ncid_, lon_var, "actual_range", NC_DOUBLE, 2, lon_range), "cannot define");
     const int dims[2] = {lat_dim, lon_dim};
@@ -152,11 +156,12 @@ class NetCdfGridWriter final : public GridFileWriter {
       check(nc_def_var_chunking(ncid_, var, NC_CHUNKED, chunk), "cannot define");
       text(var, "long_name", f.long_name);
       text(var, "units", f.units);
+      text(var, "grid_mapping", "crs");
       vars_.push_back(var);
     }
+    define_crs(meta);
     lo_.assign(vars_.size(), std::numeric_limits<double>::infinity());
     hi_.assign(vars_.size(), -std::numeric_limits<double>::infinity());
-    const bool pixel = spec_.registration == gravity::GridRegistration::Pixel;
     text(NC_GLOBAL, "Conventions", "CF-1.8, COARDS");
     text(NC_GLOBAL, "title", fmt::format("{} synthesised from {} to degree {}", quantity_list(), meta.model_name,
                                          meta.max_degree));
@@ -181,6 +186,20 @@ class NetCdfGridWriter final : public GridFileWriter {
     check(nc_enddef(ncid_), "cannot define");
     check(nc_put_var_double(ncid_, lat_var, lat.data()), "cannot write");
     check(nc_put_var_double(ncid_, lon_var, lon.data()), "cannot write");
+  }
+
+  // CF 1.8 §5.6: a scalar grid mapping variable that GDAL (so QGIS) and xarray read as the CRS.
+  void define_crs(const GridFileMetadata& meta) {
+    int crs = 0;
+    check(nc_def_var(ncid_, "crs", NC_INT, 0, nullptr, &crs), "cannot define");
+    text(crs, "grid_mapping_name", "latitude_longitude");
+    const double a = meta.ellipsoid_a_m, inv_f = 1 / meta.ellipsoid_flattening, zero = 0;
+    check(nc_put_att_double(ncid_, crs, "semi_major_axis", NC_DOUBLE, 1, &a), "cannot define");
+    check(nc_put_att_double(ncid_, crs, "inverse_flattening", NC_DOUBLE, 1, &inv_f), "cannot define");
+    check(nc_put_att_double(ncid_, crs, "longitude_of_prime_meridian", NC_DOUBLE, 1, &zero), "cannot define");
+    const std::string wkt = geographic_crs_wkt(meta.ellipsoid_a_m, meta.ellipsoid_flattening);
+    text(crs, "crs_wkt", wkt);
+    text(crs, "spatial_ref", wkt);  // GDAL's own name for it (older GDAL reads only this)
   }
 
   std::string quantity_list() const {
@@ -278,8 +297,7 @@ class GtxGridWriter final : public StreamGridWriter {
         // longitude themselves (PROJ's own global grids have no repeated column) and PROJ 9.1
         // misplaces every value east of the repeat when it is there (trial finding), so it is
         // not written.
-        columns_(spec.columns() -
-                 (spec.global_longitude() && spec.registration == gravity::GridRegistration::Gridline ? 1 : 0)) {
+        columns_(stored_grid_columns(path, spec)) {
     // Header: first node's latitude and longitude, the two spacings (degrees, float64), rows and
     // columns (int32); then the values row by row from south to north.
     std::string header;
@@ -517,6 +535,28 @@ GridFileFormat grid_file_format_for(const std::filesystem::path& path) {
                                "(geoid heights) or .csv",
                                path.string()),
                    {"", {}, "--output"});
+}
+
+std::size_t stored_grid_columns(const std::filesystem::path& path, const GridSpec& spec) {
+  const bool repeated = spec.global_longitude() && spec.registration == gravity::GridRegistration::Gridline;
+  return spec.columns() - (grid_file_format_for(path) == GridFileFormat::Gtx && repeated ? 1 : 0);
+}
+
+std::string geographic_crs_wkt(double a_m, double flattening) {
+  const auto is = [&](double a, double inv_f) {
+    return a_m == a && std::abs(flattening * inv_f - 1) <= 1e-12;
+  };
+  if (is(6378137.0, 298.257223563))
+    return "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563,"
+           "AUTHORITY[\"EPSG\",\"7030\"]],AUTHORITY[\"EPSG\",\"6326\"]],PRIMEM[\"Greenwich\",0,"
+           "AUTHORITY[\"EPSG\",\"8901\"]],UNIT[\"degree\",0.0174532925199433,AUTHORITY[\"EPSG\",\"9122\"]],"
+           "AXIS[\"Latitude\",NORTH],AXIS[\"Longitude\",EAST],AUTHORITY[\"EPSG\",\"4326\"]]";
+  const std::string name = is(6378137.0, 298.257222101) ? "GRS 1980"
+                           : fmt::format("ellipsoid a = {:.4f} m, 1/f = {:.9f}", a_m, 1 / flattening);
+  return fmt::format("GEOGCS[\"{0} (the gravity model's reference ellipsoid)\",DATUM[\"{0}\",SPHEROID[\"{0}\","
+                     "{1:.17g},{2:.17g}]],PRIMEM[\"Greenwich\",0],UNIT[\"degree\",0.0174532925199433],"
+                     "AXIS[\"Latitude\",NORTH],AXIS[\"Longitude\",EAST]]",
+                     name, a_m, 1 / flattening);
 }
 
 void check_grid_output(const std::filesystem::path& path, const GridSpec& spec) {

@@ -51,7 +51,8 @@ gravity::GridSpec grid_spec(const GridRequest& a) {
 
 // The NetCDF attributes that say where a grid's numbers come from; `history` is the command
 // line the request stands for.
-GridFileMetadata grid_metadata(const GridRequest& a, const gravity::ModelInfo& model, gravity::GridPath path) {
+GridFileMetadata grid_metadata(const GridRequest& a, const gravity::ModelInfo& model, const gravity::NormalGravity& normal,
+                               gravity::GridPath path) {
   GridFileMetadata meta;
   meta.model_name = model.name;
   meta.model_file = model.source_file;
@@ -65,6 +66,8 @@ GridFileMetadata grid_metadata(const GridRequest& a, const gravity::ModelInfo& m
                              a.model.model, a.region, a.spacing, a.quantities, height_arg, a.pixel ? " -r" : "",
                              a.path, a.output);
   meta.height_source = a.height_grid;
+  meta.ellipsoid_a_m = normal.a_m();
+  meta.ellipsoid_flattening = normal.flattening();
   return meta;
 }
 
@@ -75,6 +78,7 @@ gravity::GridRunResult grid_result(const GridRequest& a, const gravity::GridSpec
   const GridFileFormat format = grid_file_format_for(a.output);
   r.format = std::string(to_string(format));
   r.format_label = std::string(display_name(format));
+  r.stored_columns = stored_grid_columns(a.output, spec);
   r.model = model;
   r.spec = spec;
   r.spec.node_heights = nullptr;  // the height file closes with the run
@@ -165,7 +169,7 @@ gravity::GridRunResult run_gravity_grid(const GridRequest& a, const ModelLoaded&
   const LoadedModel m = load_gravity_field(a.model);
   if (loaded) loaded(m.info);
   const gravity::GridPath path = gravity::choose_grid_path(spec, options, m.field.max_order());
-  const std::unique_ptr<GridFileWriter> writer = open_grid_file(a.output, spec, grid_metadata(a, m.info, path));
+  const std::unique_ptr<GridFileWriter> writer = open_grid_file(a.output, spec, grid_metadata(a, m.info, m.field.normal(), path));
   gravity::GridRunResult r = grid_result(a, spec, m.info);
   const auto start = std::chrono::steady_clock::now();
   r.synthesis = gravity::synthesize_grid(

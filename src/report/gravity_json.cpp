@@ -82,6 +82,7 @@ nlohmann::json gravity_grid_to_json(const gravity::GridRunResult& r) {
           {"height_grid", per_node ? json(r.height_grid) : json(nullptr)},
           {"rows", r.synthesis.rows},
           {"columns", r.synthesis.columns},
+          {"stored_columns", r.stored_columns},
           {"nodes", spec.nodes()},
           {"quantities", q},
           {"path_used", std::string(gravity::to_string(r.synthesis.path_used))},

@@ -69,9 +69,15 @@ std::string gravity_grid_text(const gravity::GridRunResult& r) {
   for (const gravity::GridFileQuantity& q : r.quantities)
     names += fmt::format("{}{} [{}]", names.empty() ? "" : ", ", q.name, q.units);
   const gravity::GridSynthesisResult& s = r.synthesis;
-  return fmt::format("wrote {} ({}): {} x {} nodes (lon x lat, {} registration), {}\n"
+  // A global gridline .gtx leaves out the repeated column at W + 360°: say what the file holds.
+  const std::string stored =
+      r.stored_columns == s.columns
+          ? std::string()
+          : fmt::format(" ({} x {} stored: the column at {}° repeats the one at {}° and is left out, readers wrap)",
+                        r.stored_columns, s.rows, r.spec.east_deg, r.spec.west_deg);
+  return fmt::format("wrote {} ({}): {} x {} nodes (lon x lat, {} registration){}, {}\n"
                      "heights {}\npath {}{}, {}, {:.2f} s\n",
-                     r.output, r.format_label, s.columns, s.rows, gravity::to_string(r.spec.registration), names,
+                     r.output, r.format_label, s.columns, s.rows, gravity::to_string(r.spec.registration), stored, names,
                      r.height_grid.empty() ? fmt::format("{} m at every node", r.spec.height_m)
                                            : "per node from " + r.height_grid,
                      gravity::to_string(s.path_used),

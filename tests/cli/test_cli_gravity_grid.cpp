@@ -169,6 +169,72 @@ TEST_F(GravityGridCli, GeoidAsGtxHasTheHeaderAndValuesOfGravityPoint) {
   }
 }
 
+// GDAL (so QGIS) and GMT, independent readers, place both registrations where they are, with
+// the grid's CRS: a pixel grid's extent is its region, a gridline grid's nodes are the centres
+// of cells half a spacing beyond it (GDAL's raster view of point samples).
+double gdal_number(const std::string& text, const std::string& key, int which) {
+  const std::size_t at = text.find(key);
+  if (at == std::string::npos) return std::nan("");
+  const std::size_t open = text.find('(', at);
+  std::string inside = text.substr(open + 1, text.find(')', open) - open - 1);
+  const std::size_t comma = inside.find(',');
+  return std::stod(which == 0 ? inside.substr(0, comma) : inside.substr(comma + 1));
+}
+
+TEST_F(GravityGridCli, GdalAndGmtReadBothRegistrationsAndTheCrs) {
+  ASSERT_EQ(run("gravity synth-model --degree 12 --seed 4 --out m").code, 0);
+  struct Case {
+    const char* args;
+    double origin_lon, origin_lat, pixel_deg;
+    const char* gmt_x;
+    const char* gmt_y;
+  };
+  for (const Case& c : {Case{"-R g -I 30m -r", 0.0, 90.0, 0.5, "x_min: 0 x_max: 360", "y_min: -90 y_max: 90"},
+                        Case{"-R d -I 1d -r", -180.0, 90.0, 1.0, "x_min: -180 x_max: 180", "y_min: -90 y_max: 90"},
+                        Case{"-R -10/20/35/50 -I 15m -r", -10.0, 50.0, 0.25, "x_min: -10 x_max: 20",
+                             "y_min: 35 y_max: 50"},
+                        Case{"-R -10/20/35/50 -I 15m", -10.125, 50.125, 0.25, "x_min: -10 x_max: 20",
+                             "y_min: 35 y_max: 50"}}) {
+    SCOPED_TRACE(c.args);
+    ASSERT_EQ(run(std::string("gravity grid --model m.gfc --quantities geoid,xi ") + c.args + " -o g.nc -q").code, 0);
+    const CmdResult info = shell("gdalinfo NETCDF:g.nc:geoid");
+    ASSERT_EQ(info.code, 0) << "gdalinfo (Debian's gdal-bin, installed by scripts/setup.sh) is required: "
+                            << info.err;
+    EXPECT_NEAR(gdal_number(info.out, "Origin =", 0), c.origin_lon, 1e-9) << info.out;
+    EXPECT_NEAR(gdal_number(info.out, "Origin =", 1), c.origin_lat, 1e-9) << info.out;
+    EXPECT_NEAR(gdal_number(info.out, "Pixel Size =", 0), c.pixel_deg, 1e-12) << info.out;
+    EXPECT_NEAR(gdal_number(info.out, "Pixel Size =", 1), -c.pixel_deg, 1e-12) << info.out;
+    EXPECT_NE(info.out.find("WGS 84"), std::string::npos) << "the CRS is not read:\n" << info.out;
+    EXPECT_EQ(info.out.find("Coordinate System is `'"), std::string::npos) << info.out;
+    const CmdResult g = shell("gmt grdinfo 'g.nc?geoid'");
+    ASSERT_EQ(g.code, 0) << "gmt (Debian's gmt, installed by scripts/setup.sh) is required: " << g.err;
+    EXPECT_NE(g.out.find(c.gmt_x), std::string::npos) << g.out;
+    EXPECT_NE(g.out.find(c.gmt_y), std::string::npos) << g.out;
+  }
+  const CmdResult h = shell("ncdump -h g.nc");
+  for (const char* want : {"int crs ;", "crs:grid_mapping_name = \"latitude_longitude\" ;",
+                           "crs:semi_major_axis = 6378137. ;", "geoid:grid_mapping = \"crs\" ;",
+                           "xi:grid_mapping = \"crs\" ;"})
+    EXPECT_NE(h.out.find(want), std::string::npos) << want << "\n" << h.out;
+}
+
+TEST_F(GravityGridCli, AGlobalGtxSummarySaysTheColumnsItHolds) {
+  ASSERT_EQ(run("gravity synth-model --degree 12 --seed 4 --out m").code, 0);
+  const CmdResult r = run("gravity grid --model m.gfc -R g -I 15d --quantities geoid -o g.gtx -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("25 x 13 nodes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(24 x 13 stored"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(run("gravity grid --model m.gfc -R g -I 15d --quantities geoid -o g.gtx "
+                                           "--json -q").out);
+  EXPECT_EQ(j["columns"], 25);
+  EXPECT_EQ(j["stored_columns"], 24);
+  const std::string d = slurp(dir_ / "g.gtx");
+  EXPECT_EQ((from_big_endian<std::int32_t, std::uint32_t>(d.data() + 36)), 24);
+  const auto n = nlohmann::json::parse(run("gravity grid --model m.gfc -R g -I 15d --quantities geoid -o g.nc "
+                                           "--json -q").out);
+  EXPECT_EQ(n["stored_columns"], 25);
+}
+
 TEST_F(GravityGridCli, BadInputFailsBeforeAnyWork) {
   // The model does not exist: every error below must come before it is looked for.
   struct Case {

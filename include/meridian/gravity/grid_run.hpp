@@ -34,6 +34,9 @@ struct GridRunResult {
   std::string height_grid;   ///< FILE.nc[?VAR] of per-node heights; empty: every node at spec.height_m
   std::vector<GridFileQuantity> quantities;  ///< spec.quantities in order, as stored
   GridSynthesisResult synthesis;             ///< rows, columns, path used, FFT length, threads
+  /// Longitude columns the file holds: synthesis.columns, less the repeated column at W + 360°
+  /// that a global gridline .gtx leaves out (its readers wrap longitudes).
+  std::size_t stored_columns = 0;
   double elapsed_s = 0;      ///< wall time of the synthesis and the write (s)
 };
 

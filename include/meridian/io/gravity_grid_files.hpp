@@ -57,7 +57,21 @@ struct GridFileMetadata {
   /// Empty: every node at GridSpec::height_m (global attribute height_m). Otherwise where the
   /// per-node heights came from (global attribute height_source; height_m is not written).
   std::string height_source;
+  /// The geodetic datum of the nodes' latitudes and longitudes: the model's reference (normal)
+  /// ellipsoid, written as the CF grid mapping `crs` (semi-major axis a in metres, inverse
+  /// flattening 1/f) with its WKT. Defaults: WGS84.
+  double ellipsoid_a_m = 6378137.0;
+  double ellipsoid_flattening = 1 / 298.257223563;
 };
+
+/// The number of longitude columns a grid file of this format stores for `spec`: its columns,
+/// less the repeated column at W + 360° of a global gridline grid in a .gtx (readers wrap).
+std::size_t stored_grid_columns(const std::filesystem::path& path, const gravity::GridSpec& spec);
+
+/// The CF `crs_wkt` (WKT1, as GDAL reads and writes it) of geographic coordinates on an
+/// ellipsoid: "WGS 84" (EPSG 4326) or "GRS 1980" when a and f are those ellipsoids' (f to 1e-12
+/// relative), otherwise an ellipsoid named by its numbers.
+std::string geographic_crs_wkt(double a_m, double flattening);
 
 /// Receives the rows of a synthesis and writes them; commit() makes the file appear.
 class GridFileWriter {
@@ -86,7 +100,12 @@ void check_grid_output(const std::filesystem::path& path, const gravity::GridSpe
 /// NetCDF (netCDF-4 classic model, double precision): dimensions lat (rows,
 /// south to north) and lon (columns, west to east); coordinate variables
 /// lat (degrees_north), lon (degrees_east); one variable per quantity,
-/// (lat, lon), in the units above; GMT's node_offset (0 gridline, 1 pixel).
+/// (lat, lon), in the units above, each with `grid_mapping = "crs"`; GMT's node_offset (0
+/// gridline, 1 pixel). The coordinate variables hold the nodes (a pixel grid's cell centres);
+/// their `actual_range` is the nodes' range for gridline registration and the cells' outer
+/// edges (the region) for pixel registration, as GMT writes it — GDAL and QGIS take a
+/// node_offset = 1 grid's extent from it. A CF grid mapping variable `crs`
+/// (latitude_longitude, the model's ellipsoid, `crs_wkt`) says the datum.
 /// CSV: `lon_deg,lat_deg,<name>_<unit>…` (e.g. xi_arcsec), one line per node, rows
 /// from south to north, 10 decimals for coordinates and 9 for values.
 /// GTX (NOAA VDatum, read by PROJ and GDAL; geoid heights only): a 40-byte big-endian header
