@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "meridian/adjust/data_snooping.hpp"
 #include "meridian/adjust/likelihood.hpp"
 #include "meridian/adjust/nonlinear.hpp"
 #include "meridian/adjust/statistics.hpp"
@@ -32,6 +33,9 @@ constexpr double kMinusInf = -std::numeric_limits<double>::infinity();
 constexpr double kLrtAlpha = 0.05;
 constexpr int kMinReadings = 6;
 constexpr int kMinReadingsMarkov2 = 8;  // 3 unknowns + 4 covariance parameters + 1
+// The drop of the profile restricted likelihood that bounds the correlations a series cannot rule
+// out (correlation_envelope): ½·χ²_{0.68}(1) ≈ 0.5, a 1σ profile-likelihood set of ρ.
+constexpr double kEnvelopeLikelihoodDrop = 0.5;
 // Keep ML estimates this far inside the stationary region.
 constexpr double kEdge = 1e-3;
 
@@ -110,6 +114,8 @@ void finish_fit(ModelFit& f, const std::vector<double>& readings, const MatrixXd
   const double r = static_cast<double>(readings.size()) - 3.0;
   f.aic = -2.0 * f.log_likelihood + 2.0 * k;
   f.bic = -2.0 * f.log_likelihood + k * std::log(r);
+  f.aicc = r - k - 1.0 > 0.0 ? f.aic + 2.0 * k * (k + 1.0) / (r - k - 1.0)
+                             : std::numeric_limits<double>::infinity();
   f.implied_autocorrelation = implied_autocorrelation(D);
   // The non-linear model (R1) under the same D; a failure leaves it out with the reason.
   try {
@@ -403,8 +409,56 @@ double largest_root_modulus(const std::vector<double>& rho) {
   return std::max(std::fabs(rho[0] + sq), std::fabs(rho[0] - sq)) / 2.0;
 }
 
+bool near(double a, double b) { return std::fabs(a - b) < 1e-9; }
+
+// A Markov-2 grid point whose neighbour on the grid lies outside the AR(2) triangle (or off the
+// grid): the maximum may lie beyond the grid.
+bool markov2_grid_edge(const std::vector<double>& rho) {
+  for (const auto& [d1, d2] : {std::pair{0.1, 0.0}, {-0.1, 0.0}, {0.0, 0.1}, {0.0, -0.1}}) {
+    const double a = rho[0] + d1, b = rho[1] + d2;
+    if (std::fabs(a) > 0.9 + 1e-9 || std::fabs(b) > 0.9 + 1e-9 || !ar2_stationary(a, b)) return true;
+  }
+  return false;
+}
+
+// The reasons of degeneracy at a bound of the search (grid edges, shape grid ends, a range
+// beyond the series), of σ_2 → ∞ and of m_M far beyond white noise's.
+std::vector<std::string> edge_reasons(const ModelFit& f, const ModelFit& white, int n) {
+  std::vector<std::string> why;
+  if (f.model == StochasticModel::Markov1Grid && (near(f.rho[0], 0.1) || near(f.rho[0], 0.9)))
+    why.push_back(fmt::format("rho = {:.1f} at the edge of its grid 0.1 ... 0.9: the maximum lies "
+                              "beyond the grid",
+                              f.rho[0]));
+  if (f.model == StochasticModel::Markov2Grid && markov2_grid_edge(f.rho))
+    why.push_back(fmt::format("(rho1, rho2) = ({:.1f}, {:.1f}) at the edge of the grid or the "
+                              "stationarity triangle: the maximum may lie beyond it",
+                              f.rho[0], f.rho[1]));
+  if (!f.shape.empty()) {
+    const double b = f.shape[0];
+    if (b <= 0.1 * (1.0 + 1e-9) || b >= 100.0 * (1.0 - 1e-9))
+      why.push_back(fmt::format("shape b = {:.3g} lags at an end of its grid 0.1 ... 100 lags", b));
+    else if (b >= n - 1.0)
+      why.push_back(fmt::format("correlation range b = {:.3g} lags longer than the series ({} "
+                                "readings): a drift, not a noise, and without a nugget term the "
+                                "fit is absurd",
+                                b, n));
+    if (f.shape.size() > 1 && near(f.shape[1], M_PI / kShapeGridW))
+      why.push_back(fmt::format("shape omega = {:.3g} rad per lag at the lower end of its grid",
+                                f.shape[1]));
+  }
+  const double sw = white.sigma1.value;
+  if (!f.rho.empty() && f.sigma2.value > 100.0 * sw)
+    why.push_back(fmt::format("sigma2 {:.3g} -> infinity (more than 100 times the white-noise "
+                              "sigma1 {:.3g})",
+                              f.sigma2.value, sw));
+  if (f.north.sigma > kDegenerateSigmaNorthRatio * white.north.sigma)
+    why.push_back(fmt::format("m of the centre {:.3g} is more than {} times white noise's {:.3g}",
+                              f.north.sigma, kDegenerateSigmaNorthRatio, white.north.sigma));
+  return why;
+}
+
 // Why a fit is degenerate (empty: it is not). White noise is the yardstick.
-std::string degeneracy_reason(const ModelFit& f, const ModelFit& white, double booked) {
+std::string degeneracy_reason(const ModelFit& f, const ModelFit& white, double booked, int n) {
   if (f.model == StochasticModel::WhiteNoise) return {};
   std::vector<std::string> why;
   const double sw = white.sigma1.value;
@@ -429,6 +483,7 @@ std::string degeneracy_reason(const ModelFit& f, const ModelFit& white, double b
                                       "stationary region (a root of modulus {:.3f} >= {})",
                                       f.rho[0], f.rho[1], root, kStationarityEdge));
   }
+  for (auto& w : edge_reasons(f, white, n)) why.push_back(std::move(w));
   const double dm = std::fabs(f.north.value - white.north.value);
   const double da = std::fabs(f.amplitude.value - white.amplitude.value);
   if (da > kDegenerateShift * sw)
@@ -762,7 +817,7 @@ void add_markov2(StochasticResult& res, const Fitting& fit, Progress* progress) 
 void mark_degenerate(StochasticResult& res) {
   const ModelFit& white = res.fit(StochasticModel::WhiteNoise);
   for (auto& f : res.models) {
-    f.degenerate_reason = degeneracy_reason(f, white, res.booked_sigma);
+    f.degenerate_reason = degeneracy_reason(f, white, res.booked_sigma, res.readings);
     f.degenerate = !f.degenerate_reason.empty();
     if (f.degenerate)
       res.notes.push_back(fmt::format(
@@ -826,20 +881,195 @@ void add_signal_influence(StochasticResult& res, const Fitting& fit) {
   }
 }
 
-// Recommendation: smallest BIC among the non-degenerate models (white noise never is), fewer
-// parameters on a tie.
+// Why model f cannot be recommended (empty: it can).
+std::string not_eligible(const ModelFit& f, int n) {
+  if (f.degenerate) return "degenerate";
+  if (n < minimum_readings_to_recommend(f.model))
+    return fmt::format("needs n >= {}", minimum_readings_to_recommend(f.model));
+  if (!std::isfinite(f.aicc)) return "AICc undefined (too few readings for its parameters)";
+  return {};
+}
+
+// Recommendation: white noise unless an eligible correlated model (not degenerate, long enough
+// series for its family, AICc defined) has an AICc lower by kClearlyBetterAicc; among those the
+// smallest AICc (fewer parameters on a tie). With located outliers no correlated model is
+// recommended: a correlation fitted to a blunder means nothing.
 void recommend(StochasticResult& res) {
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < res.models.size(); ++i) {
+  const int n = res.readings;
+  const ModelFit& white = res.fit(StochasticModel::WhiteNoise);
+  std::size_t white_i = 0, best = 0;
+  for (std::size_t i = 0; i < res.models.size(); ++i)
+    if (res.models[i].model == StochasticModel::WhiteNoise) white_i = best = i;
+  std::vector<std::string> left_out;
+  bool any = false;
+  for (std::size_t i = 0; i < res.models.size(); ++i) {
     const auto& a = res.models[i];
+    if (i == white_i) continue;
+    const std::string why = not_eligible(a, n);
+    if (!why.empty()) {
+      left_out.push_back(fmt::format("{} {}", to_string(a.model), why));
+      continue;
+    }
     const auto& b = res.models[best];
-    if (a.degenerate) continue;
-    if (a.bic < b.bic - 1e-9 ||
-        (std::fabs(a.bic - b.bic) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
+    if (!any || a.aicc < b.aicc - 1e-9 ||
+        (std::fabs(a.aicc - b.aicc) <= 1e-9 && a.covariance_parameters < b.covariance_parameters))
       best = i;
+    any = true;
   }
-  res.models[best].recommended = true;
-  res.recommended = static_cast<int>(best);
+  const std::string gap = left_out.empty() ? "" : fmt::format(" (not eligible: {})", fmt::join(left_out, ", "));
+  std::size_t chosen = white_i;
+  if (!res.outliers.empty()) {
+    std::vector<int> idx;
+    for (const auto& o : res.outliers) idx.push_back(o.reading);
+    res.recommendation_reason = fmt::format(
+        "white noise without reading(s) {} (outliers located by data snooping): no correlated "
+        "model is recommended on a series with a blunder",
+        fmt::join(idx, ", "));
+  } else if (!any) {
+    res.recommendation_reason =
+        fmt::format("white noise: no correlated model can be recommended{}", gap);
+  } else if (res.models[best].aicc <= white.aicc - kClearlyBetterAicc) {
+    chosen = best;
+    res.recommendation_reason = fmt::format(
+        "{}: AICc {:.2f} lower than white noise's {:.2f} by {:.2f} (>= {}), smallest among the "
+        "eligible models{}",
+        to_string(res.models[best].model), res.models[best].aicc, white.aicc,
+        white.aicc - res.models[best].aicc, kClearlyBetterAicc, gap);
+  } else {
+    res.recommendation_reason = fmt::format(
+        "white noise: no correlated model clearly better (best eligible {} has AICc {:.2f} "
+        "against {:.2f}, less than {} lower){}",
+        to_string(res.models[best].model), res.models[best].aicc, white.aicc, kClearlyBetterAicc,
+        gap);
+  }
+  res.models[chosen].recommended = true;
+  res.recommended = static_cast<int>(chosen);
+}
+
+// The σ of the estimator M̂ = hᵀl under the stationary Markov-1 correlation R_ij = ρ^|i−j| at
+// every ρ = 0, 0.1 … 0.9 whose profile restricted likelihood (σ² profiled out by REML,
+// σ̂² = v_Rᵀ R⁻¹ v_R/(n − u)) is within χ²_{0.95}(1)/2 of the best — a profile-likelihood 95 %
+// set of ρ: correlations the series cannot rule out. The largest σ and its ρ; G may carry
+// mean-shift columns of outliers.
+std::pair<double, double> correlation_envelope(const MatrixXd& G, const VectorXd& l,
+                                               const VectorXd& h) {
+  const auto n = l.size();
+  struct Point {
+    double rho, reml, sigma;
+  };
+  std::vector<Point> pts;
+  double best = kMinusInf;
+  for (int k = 0; k <= 9; ++k) {
+    const double rho = 0.1 * k;
+    MatrixXd R(n, n);
+    for (Index i = 0; i < n; ++i)
+      for (Index j = 0; j < n; ++j) R(i, j) = std::pow(rho, static_cast<double>(std::abs(i - j)));
+    try {
+      const adjust::CovarianceFactor fr(R);
+      const auto ls = adjust::solve_linear(G, l, fr);
+      const double s2 = ls.vtpv / static_cast<double>(ls.dof);
+      const auto lik = adjust::gls_log_likelihood(G, l, adjust::CovarianceFactor(MatrixXd(s2 * R)));
+      pts.push_back({rho, lik.reml, std::sqrt(s2 * h.dot(R * h))});
+      best = std::max(best, lik.reml);
+    } catch (const Error&) {
+    }
+  }
+  const double cut = kEnvelopeLikelihoodDrop;
+  std::pair<double, double> out{0.0, 0.0};
+  for (const auto& p : pts)
+    if (p.reml >= best - cut && p.sigma > out.first) out = {p.sigma, p.rho};
+  return out;
+}
+
+// h with M̂ = hᵀl for the GLS of G with covariance factor cov (h = D⁻¹G(GᵀD⁻¹G)⁻¹e_0).
+VectorXd centre_weights(const MatrixXd& G, const adjust::CovarianceFactor& cov) {
+  MatrixXd gw = G;
+  cov.whiten(gw);
+  MatrixXd Ht = gw * (gw.transpose() * gw).ldlt().solve(MatrixXd::Identity(G.cols(), G.cols()));
+  cov.whiten_transposed(Ht);
+  return Ht.col(0);
+}
+
+// The covariance D of a fitted model (white noise: σ_1²·I), rebuilt from its parameters.
+MatrixXd model_covariance(const ModelFit& f, int n) {
+  const double s1 = f.sigma1.value;
+  if (!f.rho.empty()) {
+    const double s2 = std::isfinite(f.sigma2.value) ? f.sigma2.value : 0.0;
+    return factors_for(f.rho, n).covariance(s1 * s1, s2 * s2);
+  }
+  MatrixXd D = MatrixXd::Identity(n, n) * s1 * s1;
+  if (!f.shape.empty())
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) D(i, j) = s1 * s1 * cov_shape(f.model, f.shape, std::abs(i - j));
+  return D;
+}
+
+// The value to use (StochasticResult::answer): see the header.
+void set_answer(StochasticResult& res, const Fitting& fit) {
+  const int n = res.readings;
+  const ModelFit& rec = res.models[static_cast<std::size_t>(res.recommended)];
+  MatrixXd G = fit.G;
+  VectorXd h;
+  int dof = n - 3;
+  if (res.without_outliers) {
+    for (const auto& o : res.outliers) {
+      G.conservativeResize(Eigen::NoChange, G.cols() + 1);
+      G.col(G.cols() - 1) = VectorXd::Unit(n, o.reading - 1);
+    }
+    res.answer = res.without_outliers->north;
+    dof = res.without_outliers->dof;
+    res.answer_basis = "white noise without the outliers, sigma from the remaining readings";
+    h = centre_weights(G, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)));
+  } else {
+    res.answer = rec.north;
+    res.answer_basis = fmt::format("{} (its own sigma)", to_string(rec.model));
+    h = centre_weights(G, adjust::CovarianceFactor(model_covariance(rec, n)));
+    // The same estimator under the covariance of every other non-degenerate model.
+    for (const auto& f : res.models) {
+      if (f.degenerate || &f == &rec) continue;
+      try {
+        const double s = std::sqrt(h.dot(model_covariance(f, n) * h));
+        if (s > res.answer.sigma) {
+          res.answer.sigma = s;
+          res.answer_basis = fmt::format("the estimator of {} under the covariance of {}",
+                                         to_string(rec.model), to_string(f.model));
+        }
+      } catch (const Error&) {
+      }
+    }
+  }
+  const auto [s, rho] = correlation_envelope(G, fit.l, h);
+  if (s > res.answer.sigma) {
+    res.answer.sigma = s;
+    res.answer_basis = fmt::format(
+        "{}, under a stationary Markov-1 correlation rho = {:.1f} that the series cannot rule out "
+        "(profile likelihood within {} of its maximum)",
+        res.without_outliers ? "white noise without the outliers" : to_string(rec.model), rho,
+        kEnvelopeLikelihoodDrop);
+  }
+  res.answer_half95 = adjust::student_t_two_sided_critical(0.05, dof) * res.answer.sigma;
+}
+
+// Data snooping of the readings under white noise (σ from the other readings), iterated, and the
+// white-noise fit without the located outliers. At most one outlier per 5 degrees of freedom.
+void snoop(StochasticResult& res, const Fitting& fit) {
+  const int n = res.readings;
+  adjust::SnoopingOptions o;
+  o.alpha0 = kSnoopingAlpha0;
+  o.max_outliers = std::max(1, (n - 3) / 5);
+  const auto s = adjust::iterated_data_snooping(
+      fit.G, fit.l, adjust::CovarianceFactor::diagonal(VectorXd::Ones(n)), o);
+  if (s.outliers.empty()) return;
+  for (const auto& x : s.outliers)
+    res.outliers.push_back({x.index + 1, x.w, x.t, x.critical, x.dof, {x.error, x.sigma_error}});
+  const auto& r = s.final_fit;
+  OutlierFreeFit w;
+  w.north = {r.x(0), r.sigma_aposteriori(0)};
+  w.amplitude = {r.x(1), r.sigma_aposteriori(1)};
+  w.sigma1 = r.sigma0;
+  w.readings_used = n - static_cast<int>(s.outliers.size());
+  w.dof = r.dof;
+  res.without_outliers = w;
 }
 
 // The likelihood-ratio test of null_m against alt, when both are fitted and non-degenerate.
@@ -868,6 +1098,30 @@ void add_likelihood_ratio_tests(StochasticResult& res) {
 }
 
 }  // namespace
+
+int minimum_readings_to_recommend(StochasticModel m) {
+  switch (m) {
+    case StochasticModel::WhiteNoise:
+      return kMinReadings;
+    case StochasticModel::Exponential:
+    case StochasticModel::Markov1Grid:
+    case StochasticModel::Markov1Ml:
+      return 10;
+    case StochasticModel::Gaussian:
+      return 12;
+    case StochasticModel::DampedCosine:
+    case StochasticModel::Markov2Grid:
+    case StochasticModel::Markov2Ml:
+      return 15;
+  }
+  return kMinReadings;
+}
+
+double interval95_factor(int readings) {
+  if (readings < 4)
+    throw InputError(fmt::format("95 % interval: needs n >= 4 readings, got {}", readings));
+  return adjust::student_t_two_sided_critical(0.05, readings - 3);
+}
 
 std::string fitted_unit(SeriesKind kind) { return kind == SeriesKind::Circle ? "arcsec" : "div"; }
 
@@ -1075,7 +1329,9 @@ StochasticResult analyse_stochastic(const StochasticInput& input, Progress* prog
   report_progress(progress, 4, 5, "comparison");
   mark_degenerate(res);
   add_signal_influence(res, fit);
+  snoop(res, fit);
   recommend(res);
+  set_answer(res, fit);
   add_likelihood_ratio_tests(res);
   series_checks(res, res.fit(StochasticModel::WhiteNoise), fit.G);
   report_progress(progress, 5, 5, "done");

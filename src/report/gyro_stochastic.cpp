@@ -105,6 +105,7 @@ nlohmann::json model_json(const gyro::StochasticResult& r, const gyro::ModelFit&
   jm["log_likelihood"] = json_number(m.log_likelihood);
   jm["aic"] = json_number(m.aic);
   jm["bic"] = json_number(m.bic);
+  jm["aicc"] = json_number(m.aicc);
   jm["covariance_parameters"] = m.covariance_parameters;
   jm["vce_iterations"] = m.vce_iterations;
   jm["recommended"] = m.recommended;
@@ -141,6 +142,38 @@ nlohmann::json series_json(const gyro::StochasticSeries& s) {
                     {"booked_sigma_reading_" + u, json_number(r.booked_sigma)},
                     {"r2_misfit_rms_" + u, json_number(r.r2_misfit_rms)}};
   for (const auto& m : r.models) js["models"].push_back(model_json(r, m));
+  js["recommendation_reason"] = r.recommendation_reason;
+  {
+    // The value to use: the recommended model's, or white noise's without the outliers.
+    nlohmann::json jr{{"model", gyro::to_string(recommended(r).model)},
+                      {"without_outliers", r.without_outliers.has_value()},
+                      {"reason", r.recommendation_reason}};
+    put_centre(jr, r, r.answer);
+    jr["interval95_half_width_" + u] = json_number(r.answer_half95);
+    jr["sigma_basis"] = r.answer_basis;
+    js["recommendation"] = jr;
+  }
+  js["interval95_factor"] = json_number(gyro::interval95_factor(r.readings));
+  js["outliers"] = nlohmann::json::array();
+  for (const auto& x : r.outliers)
+    js["outliers"].push_back({{"reading", x.reading},
+                              {"w", json_number(x.w)},
+                              {"t", json_number(x.t)},
+                              {"critical", json_number(x.critical)},
+                              {"dof", x.dof},
+                              {"error_" + u, json_number(x.error.value)},
+                              {"sigma_error_" + u, json_number(x.error.sigma)}});
+  if (r.without_outliers) {
+    const auto& w = *r.without_outliers;
+    nlohmann::json jw{{"readings_used", w.readings_used}, {"dof", w.dof}};
+    put_centre(jw, r, w.north);
+    jw["amplitude_" + u] = json_number(w.amplitude.value);
+    jw["sigma_amplitude_" + u] = json_number(w.amplitude.sigma);
+    jw["sigma1_" + u] = json_number(w.sigma1);
+    js["without_outliers"] = jw;
+  } else {
+    js["without_outliers"] = nullptr;
+  }
   for (const auto& t : r.tests)
     js["tests"].push_back({{"null", gyro::to_string(t.null_model)},
                            {"alternative", gyro::to_string(t.alternative)},
@@ -153,6 +186,51 @@ nlohmann::json series_json(const gyro::StochasticSeries& s) {
 
 // --- text
 
+// The readings with their white-noise residuals (and the residuals without the outliers).
+std::string readings_text(const gyro::StochasticResult& r) {
+  const std::string u = gyro::fitted_unit(r.kind);
+  std::string o = fmt::format("readings and white-noise residuals v = G·Y - L [{}]:\n", u);
+  for (int i = 0; i < r.readings; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const bool out = std::any_of(r.outliers.begin(), r.outliers.end(),
+                                 [&](const gyro::ReadingOutlier& x) { return x.reading == i + 1; });
+    o += fmt::format("  {:>3} {:>14} {:>10}{}\n", i + 1, fixed(r.fitted_readings[k], tracking(r) ? 2 : 4),
+                     fixed(r.ols_residuals(i), tracking(r) ? 2 : 4), out ? "  outlier" : "");
+  }
+  return o;
+}
+
+std::string outliers_text(const gyro::StochasticResult& r) {
+  const std::string u = gyro::fitted_unit(r.kind);
+  std::string o;
+  if (r.outliers.empty())
+    return fmt::format(
+        "data snooping (white noise, sigma from the other readings, alpha0 = {}): no outlier\n",
+        gyro::kSnoopingAlpha0);
+  for (const auto& x : r.outliers)
+    o += fmt::format(
+        "OUTLIER: reading {} (data snooping, white noise: t = {:.2f} > {:.2f}, {} dof, w = {:.2f}): "
+        "error {} ± {} {}\n",
+        x.reading, x.t, x.critical, x.dof - 1, x.w, fixed(x.error.value, 2), fixed(x.error.sigma, 2), u);
+  if (r.without_outliers) {
+    const auto& w = *r.without_outliers;
+    const auto& white = r.fit(gyro::StochasticModel::WhiteNoise);
+    o += fmt::format(
+        "without the outlier(s): white noise {} ± {} ({} readings, sigma1 {} {}); with them {} ± {}\n",
+        centre_text(r, w.north.value), centre_sigma_text(r, w.north.sigma), w.readings_used,
+        fixed(w.sigma1, 2), u, centre_text(r, white.north.value), centre_sigma_text(r, white.north.sigma));
+  }
+  return o;
+}
+
+// The recommendation in one line, with its value, its 95 % interval and the reason.
+std::string recommendation_text(const gyro::StochasticResult& r) {
+  return fmt::format("recommended: {} {} ± {} (95 %: ± {}; sigma: {}) — {}\n",
+                     gyro::to_string(recommended(r).model), centre_text(r, r.answer.value),
+                     centre_sigma_text(r, r.answer.sigma), centre_sigma_text(r, r.answer_half95),
+                     r.answer_basis, r.recommendation_reason);
+}
+
 std::string series_text(const gyro::StochasticSeries& s) {
   const gyro::StochasticResult& r = s.result;
   const bool tr = tracking(r);
@@ -160,19 +238,19 @@ std::string series_text(const gyro::StochasticSeries& s) {
                               tr ? "circle, arcsec" : "scale, div");
   o += fmt::format(
       "{:<16} {:>16} {:>8} {:>16} {:>8} {:>10} {:>8} {:>17} {:>13} {:>13} {:>8} {:>9} {:>8} "
-      "{:>8}\n",
+      "{:>8} {:>8}\n",
       "model", tr ? "north reading" : "centre [div]", "m", tr ? "north (R1)" : "centre (R1)", "m",
-      "amplitude", "m", "rho | shape", "sigma1", "sigma2", "signal", "lnL", "AIC", "BIC");
+      "amplitude", "m", "rho | shape", "sigma1", "sigma2", "signal", "lnL", "AIC", "BIC", "AICc");
   for (const auto& m : r.models)
     o += fmt::format(
         "{:<16} {:>16} {:>8} {:>16} {:>8} {:>10} {:>8} {:>17} {:>13} {:>13} {:>8} {:>9} {:>8} "
-        "{:>8}{}\n",
+        "{:>8} {:>8}{}\n",
         gyro::to_string(m.model), centre_text(r, m.north.value), centre_sigma_text(r, m.north.sigma),
         m.r1 ? centre_text(r, m.r1->centre.value) : "-", m.r1 ? centre_sigma_text(r, m.r1->centre.sigma) : "-",
         fixed(m.amplitude.value, 2), fixed(m.amplitude.sigma, 2), rho_shape(m, ",", "b=", "w="),
         fixed(m.sigma1.value, 2) + "±" + fixed(m.sigma1.sigma, 2),
         fixed(m.sigma2.value, 2) + "±" + fixed(m.sigma2.sigma, 2), fixed(m.signal_influence(0), 2),
-        fixed(m.log_likelihood, 2), fixed(m.aic, 2), fixed(m.bic, 2),
+        fixed(m.log_likelihood, 2), fixed(m.aic, 2), fixed(m.bic, 2), fixed(m.aicc, 2),
         m.recommended ? "  <- recommended" : (m.degenerate ? "  degenerate" : ""));
   o += fmt::format(
       "(m, sigma1, sigma2 and signal, the influence of the predicted signal on M, in {}; "
@@ -188,8 +266,8 @@ std::string series_text(const gyro::StochasticSeries& s) {
   for (const auto& m : r.models)
     for (const auto& n : m.notes) o += fmt::format("note ({}): {}\n", gyro::to_string(m.model), n);
   for (const auto& n : r.notes) o += "note: " + n + "\n";
-  o += fmt::format("recommended: {} (smallest BIC among the non-degenerate models)\n",
-                   gyro::to_string(recommended(r).model));
+  o += readings_text(r) + outliers_text(r);
+  o += recommendation_text(r);
   return o;
 }
 
@@ -197,11 +275,12 @@ std::string series_text(const gyro::StochasticSeries& s) {
 
 Highlight recommended_highlight(const gyro::StochasticResult& r) {
   const auto& rec = recommended(r);
+  const Uncertain c = r.answer;
   return Highlight{"recommended model", gyro::to_string(rec.model),
-                   tracking(r) ? fmt::format("north reading {} ± {}″", north_dms(r, rec.north.value),
-                                             fixed(rec.north.sigma, 2))
-                               : fmt::format("centre {} ± {} div", fixed(rec.north.value, 4),
-                                             fixed(rec.north.sigma, 4)),
+                   (tracking(r) ? fmt::format("north reading {} ± {}″", north_dms(r, c.value),
+                                              fixed(c.sigma, 2))
+                                : fmt::format("centre {} ± {} div", fixed(c.value, 4), fixed(c.sigma, 4))) +
+                       " — " + r.recommendation_reason,
                    false};
 }
 
@@ -239,7 +318,7 @@ Table comparison_table(const gyro::StochasticResult& r) {
       "North reading / centre and amplitude of the linearised model (R2); (R1): the centre of "
       "the non-linear model r_i = M + (−1)^i·A·e^(−iκ) by GLS with the same covariance. "
       "rho: Markov coefficients; shape: b in lags and ω in rad per lag of the covariance "
-      "functions. Recommended: smallest BIC among the non-degenerate models.";
+      "functions. Recommended: " + r.recommendation_reason + ".";
   return t;
 }
 

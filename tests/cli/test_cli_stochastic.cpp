@@ -396,4 +396,46 @@ TEST_F(CliStochastic, CampaignStochasticModelErrorsNameTheLine) {
   EXPECT_NE(g.err.find("stochastic_model is a campaign option"), std::string::npos) << g.err;
 }
 
+// The trial's cases (../shared/cases/gyro-stochastic, skipped only when absent): the
+// recommendation's 95 % interval contains the truth 0°12'34", its σ is not below white noise's at
+// n = 7, and the blunder at reading 16 is located and named.
+TEST_F(CliStochastic, SharedCasesRecommendationCoversTheTruth) {
+  const std::filesystem::path dir =
+      std::filesystem::path(MERIDIAN_SOURCE_DIR) / ".." / "shared" / "cases" / "gyro-stochastic";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << dir << " absent";
+  const double truth_deg = 12.0 / 60.0 + 34.0 / 3600.0;
+  for (const char* c : {"short-markov1-n7.yaml", "blunder-reading16.yaml", "cgauss-absurd.yaml"}) {
+    const CmdResult r = run("gyro stochastic " + (dir / c).string() + " --json -q");
+    ASSERT_EQ(r.code, 0) << c << r.err;
+    const auto s = nlohmann::json::parse(r.out).at("series")[0];
+    const auto& rec = s.at("recommendation");
+    const double err = std::fabs(rec.at("north_reading_deg").get<double>() - truth_deg) * 3600.0;
+    EXPECT_LE(err, rec.at("interval95_half_width_arcsec").get<double>()) << c;
+    EXPECT_FALSE(s.at("recommendation_reason").get<std::string>().empty());
+    double white_sigma = 0.0;
+    for (const auto& m : s.at("models")) {
+      if (m.at("name") == "white-noise") white_sigma = m.at("sigma_north_arcsec");
+      // No degenerate model is recommended; c-gaussian without nugget is not recommended here.
+      if (m.at("recommended").get<bool>()) {
+        EXPECT_FALSE(m.at("degenerate").get<bool>()) << c;
+      }
+      if (m.at("name") == "c-gaussian" && std::string(c) == "cgauss-absurd.yaml") {
+        EXPECT_FALSE(m.at("recommended").get<bool>());
+      }
+    }
+    if (s.at("readings") == 7) {
+      EXPECT_GE(rec.at("sigma_north_arcsec").get<double>(), white_sigma - 1e-9) << c;
+    }
+    if (std::string(c) == "blunder-reading16.yaml") {
+      ASSERT_EQ(s.at("outliers").size(), 1u) << r.out;
+      EXPECT_EQ(s.at("outliers")[0].at("reading"), 16);
+      EXPECT_NEAR(s.at("outliers")[0].at("error_arcsec").get<double>(), 120.0, 30.0);
+      EXPECT_TRUE(rec.at("without_outliers").get<bool>());
+      const CmdResult t = run("gyro stochastic " + (dir / c).string() + " -q");
+      EXPECT_NE(t.out.find("OUTLIER: reading 16"), std::string::npos) << t.out;
+      EXPECT_NE(t.out.find("without the outlier(s)"), std::string::npos) << t.out;
+    }
+  }
+}
+
 }  // namespace

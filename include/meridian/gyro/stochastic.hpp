@@ -160,6 +160,23 @@ inline constexpr double kR2MisfitRatio = 0.25;
 /// σ_1 of white noise more than this times the booked σ: the warning asks "booking error?"
 /// (below it, a rejected test says the readings scatter more than booked).
 inline constexpr double kBookingErrorRatio = 10.0;
+/// m_M of a model more than this times the white-noise m_M: degenerate (the model explains the
+/// readings by a correlation so strong that the centre is hardly determined).
+inline constexpr double kDegenerateSigmaNorthRatio = 3.0;
+/// A correlated model is recommended only when its AICc is lower than white noise's by at least
+/// this much ("clearly better"; Burnham & Anderson 2002: a difference below 4 leaves the simpler
+/// model well supported).
+inline constexpr double kClearlyBetterAicc = 4.0;
+/// Data snooping of the readings (white noise, σ from the other readings): α0 per reading.
+inline constexpr double kSnoopingAlpha0 = 1e-3;
+
+/// The minimum series length n at which a model of this family may be recommended (see
+/// docs/gyro-stochastic.md, "Recommendation", for the Monte Carlo behind them). White noise: 6.
+int minimum_readings_to_recommend(StochasticModel m);
+
+/// Student's t_{0.975}(n − 3): the factor of m_M for the 95 % interval of the centre of a series
+/// of n readings (n ≥ 4).
+double interval95_factor(int readings);
 
 /// Options of the GLS of (R1) (reversal_gls_nonlinear).
 struct R1GlsOptions {
@@ -211,7 +228,10 @@ struct ModelFit {
   double log_likelihood = 0.0;                                 ///< REML ℓ
   double aic = 0.0;
   double bic = 0.0;
-  int covariance_parameters = 0;  ///< k
+  /// AICc = AIC + 2k(k + 1)/(r − k − 1), r = n − 3 (the number of error contrasts of REML;
+  /// Hurvich & Tsai 1989); +∞ when r − k − 1 ≤ 0 (too few readings for k parameters).
+  double aicc = 0.0;
+  int covariance_parameters = 0;  ///< k (grid values of ρ and shape parameters counted)
   /// VCE iterations at the chosen ρ (0 for models without VCE, and for a Markov model whose
   /// VCE did not settle and whose components are the closed-form maximum: see notes).
   int vce_iterations = 0;
@@ -234,6 +254,27 @@ struct LikelihoodRatioTest {
   int dof = 0;
   double p_value = 1.0;
   bool rejected = false;  ///< the null model is rejected at α = 5 %
+};
+
+/// A reading located by data snooping (adjust::iterated_data_snooping of the white-noise fit of
+/// (R2), σ from the other readings, α0 = kSnoopingAlpha0).
+struct ReadingOutlier {
+  int reading = 0;    ///< 1-based index i of r_i
+  double w = 0.0;     ///< Baarda's w at unit variance factor
+  double t = 0.0;     ///< t = w/σ̂_(i), ~t(dof − 1)
+  double critical = 0.0;  ///< t_{1−α0/2}(dof − 1)
+  int dof = 0;
+  Uncertain error;    ///< estimated error of r_i (fitted unit; > 0: r_i too large)
+};
+
+/// The white-noise fit with the located outliers left out (each given its own unknown, which is
+/// the same as deleting it for independent readings; the index i of the others is kept).
+struct OutlierFreeFit {
+  Uncertain north;   ///< M and m_M (a-posteriori: σ̂0 of the remaining readings)
+  Uncertain amplitude;
+  double sigma1 = 0.0;  ///< σ̂ of one reading from the remaining readings
+  int readings_used = 0;
+  int dof = 0;
 };
 
 struct StochasticResult {
@@ -263,6 +304,22 @@ struct StochasticResult {
   /// 0 when the fitted decay is not positive).
   double r2_misfit_rms = 0.0;
   std::vector<std::string> notes;
+  /// Readings located by data snooping, in the order located (empty: none).
+  std::vector<ReadingOutlier> outliers;
+  /// The white-noise fit without them (set when outliers is not empty).
+  std::optional<OutlierFreeFit> without_outliers;
+  /// Why the recommended model is recommended, one line.
+  std::string recommendation_reason;
+  /// The centre to use and its σ (fitted unit): the recommended model's, or white noise's
+  /// without the outliers; for white noise its σ is the largest of the OLS σ and the σ the OLS
+  /// centre has under the covariance D of every non-degenerate correlated model,
+  /// sqrt([(GᵀG)⁻¹GᵀDG(GᵀG)⁻¹]_00) (a correlation the comparison cannot confirm is not ruled
+  /// out either).
+  Uncertain answer;
+  /// The 95 % half-width of answer: t_{0.975}(dof)·σ, dof = readings used − 3.
+  double answer_half95 = 0.0;
+  /// What answer's σ rests on, one phrase.
+  std::string answer_basis;
   /// Findings about the series itself: σ_1 far above the booked σ, (R2) too short-sighted.
   std::vector<std::string> warnings;
 
