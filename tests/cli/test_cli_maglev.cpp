@@ -344,6 +344,9 @@ TEST_F(MaglevCli, ContinuousDriftCaseGivesItsTruth) {
   ASSERT_TRUE(j.contains("drift"));
   EXPECT_TRUE(j["drift"]["significant"].get<bool>());
   EXPECT_EQ(j["drift"]["sequence"], "1-2");
+  // The segment tests see the series with the drift taken out: nothing rejected for the drift.
+  EXPECT_TRUE(j["position1"]["rejected_segments"].empty());
+  EXPECT_TRUE(j["position2"]["rejected_segments"].empty());
   EXPECT_NEAR(j["drift"]["rate_A_per_s"].get<double>(), 2e-7,
               3.0 * j["drift"]["rate_sigma_A_per_s"].get<double>());
   const CmdResult t = run("maglev reduce " + file + " --scale 8000 --latitude 35 -q");
