@@ -102,6 +102,8 @@ struct ReduceArgs {
   double eta_sigma_arcsec = 0;
   bool no_process = false, no_denoise = false, json = false, quiet = false;
   std::string drift = "linear";
+  std::optional<double> settling_cut;
+  bool no_settling_detect = false;
   std::string report;
   std::size_t segment = 0;
   double alpha = 0.05;
@@ -138,6 +140,8 @@ struct ReduceArgs {
     s.options.process = !no_process;
     s.options.denoise = !no_denoise;
     s.options.drift = maglev::drift_model_from_string(drift);
+    s.options.settling.cut_s = settling_cut;
+    s.options.settling.detect = !no_settling_detect;
     s.options.stationarity.segment_length = segment;
     s.options.stationarity.alpha = alpha;
     s.options.stationarity.autocovariance_lags = lags;
@@ -370,6 +374,12 @@ void add_reduce_command(CLI::App* mg, int& exit_code) {
                   "quadratic")
       ->check(CLI::IsMember({"none", "linear", "quadratic"}))
       ->capture_default_str();
+  red->add_option("--settling-cut", ra->settling_cut,
+                  "Cut this many seconds at the start of every block (default: detected by an "
+                  "exponential fitted and tested)")
+      ->check(CLI::NonNegativeNumber);
+  red->add_flag("--no-settling-detect", ra->no_settling_detect,
+                "Do not look for a settling transient at the start of each block");
   red->add_option("--segment", ra->segment,
                   "Segment length in samples, >= 32 (0: about 20 segments)")
       ->check(segment_length())

@@ -164,9 +164,85 @@ LevelDriftFit fit_on(const Determination& d, std::span<const double> v1,
   return fit_levels_and_drift(data, order);
 }
 
-// Steps 1 with the drift: the drift fitted on all samples, the segment tests on the series without
-// it, the drift refitted on the kept samples, until the kept sets repeat (at most 4 passes).
-void select_with_drift(const ReduceOptions& o, Determination& d, std::vector<std::string>& warnings) {
+// The settling blocks: the blocks on the common clock, or each position's series as one block.
+std::vector<TimeBlock> settling_blocks(const Determination& d) {
+  if (!d.blocks.empty()) return d.blocks;
+  const auto whole = [](int p, const PositionSeries& s) {
+    return TimeBlock{p, 0, s.time_s.size(), s.time_s.front(), s.time_s.back()};
+  };
+  return {whole(1, d.p1.series), whole(2, d.p2.series)};
+}
+
+// The level of position p (fit or mean of its kept detrended samples), its σ and σ²_LR.
+struct LevelNoise {
+  double level = 0.0, sigma = 0.0, lrv = 0.0;
+};
+LevelNoise level_noise(const Determination& d, int p, std::span<const double> x) {
+  LevelNoise l;
+  if (d.fit) {
+    l.level = d.fit->beta(p - 1);
+    l.sigma = std::sqrt(d.fit->covariance(p - 1, p - 1));
+    l.lrv = d.fit->long_run_variance_A2;
+    return l;
+  }
+  const auto& m = p == 1 ? d.p1.kept_mask : d.p2.kept_mask;
+  std::vector<double> k;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (m[i]) k.push_back(x[i]);
+  if (k.size() < 2) return l;
+  const MeanEstimate e = mean_with_autocorrelation(k);
+  l.level = e.mean;
+  l.sigma = e.sigma;
+  l.lrv = e.variance * static_cast<double>(e.n) / e.n_eff;
+  return l;
+}
+
+// The settling cut of every block (given, or detected on the residuals of the current fit) and
+// the masks of the samples cut (1: cut).
+std::vector<SettlingCut> settling_cuts(const ReduceOptions& o, const Determination& d,
+                                       std::span<const double> x1, std::span<const double> x2,
+                                       std::vector<char>& cut1, std::vector<char>& cut2) {
+  std::vector<SettlingCut> cuts;
+  cut1.assign(x1.size(), 0);
+  cut2.assign(x2.size(), 0);
+  if (!o.settling.cut_s && !o.settling.detect) return cuts;
+  const auto blocks = settling_blocks(d);
+  const LevelNoise ln[2] = {level_noise(d, 1, x1), level_noise(d, 2, x2)};
+  std::size_t G = 1;
+  for (const auto& b : blocks) G = std::max(G, settling_time_constants(b.end_s - b.begin_s, b.end - b.begin).size());
+  const double alpha = o.stationarity.alpha / static_cast<double>(G * blocks.size());
+  for (const TimeBlock& b : blocks) {
+    const PositionSeries& s = b.position == 1 ? d.p1.series : d.p2.series;
+    const auto x = b.position == 1 ? x1 : x2;
+    std::optional<SettlingCut> c;
+    if (o.settling.cut_s) {
+      c = SettlingCut{b.position, b.begin_s, *o.settling.cut_s};
+    } else {
+      const LevelNoise& l = ln[b.position - 1];
+      std::vector<double> r(x.begin() + static_cast<std::ptrdiff_t>(b.begin),
+                            x.begin() + static_cast<std::ptrdiff_t>(b.end));
+      for (double& v : r) v -= l.level;
+      c = detect_settling(std::span<const double>(s.time_s).subspan(b.begin, b.end - b.begin), r,
+                          l.lrv, l.sigma, alpha);
+    }
+    if (!c) continue;
+    c->position = b.position;
+    auto& cut = b.position == 1 ? cut1 : cut2;
+    for (std::size_t i = b.begin; i < b.end && s.time_s[i] < b.begin_s + c->cut_s; ++i) {
+      cut[i] = 1;
+      ++c->samples_cut;
+    }
+    cuts.push_back(*c);
+  }
+  return cuts;
+}
+
+// Step 1 with the drift and the settling: the drift fitted on the samples kept so far (all at
+// first), the settling cuts found on its residuals, the segment tests run on the series without
+// the drift, the cut samples removed, until the kept sets repeat (at most 4 passes).
+void select_with_drift(const ReduceOptions& o, Determination& d, std::vector<SettlingCut>& cuts,
+                       std::vector<std::string>& warnings) {
+  std::vector<std::string> w;
   for (int pass = 0; pass < 4; ++pass) {
     if (d.order > 0)
       d.fit = fit_on(d, d.p1.series.current_A, d.p2.series.current_A, d.order);
@@ -174,19 +250,39 @@ void select_with_drift(const ReduceOptions& o, Determination& d, std::vector<std
     d.d2 = drift_values(d.p2.series, d.fit ? &*d.fit : nullptr);
     if (!o.process) return;
     const auto m1 = d.p1.kept_mask, m2 = d.p2.kept_mask;
-    std::vector<std::string> w;
-    select_stable_segments(o, "position1", minus(d.p1.series.current_A, d.d1), d.p1, w);
-    select_stable_segments(o, "position2", minus(d.p2.series.current_A, d.d2), d.p2, w);
-    const bool same = m1 == d.p1.kept_mask && m2 == d.p2.kept_mask;
-    if (same || d.order == 0 || pass == 3) {
-      warnings.insert(warnings.end(), w.begin(), w.end());
-      if (same || d.order == 0) return;
-    }
+    const auto x1 = minus(d.p1.series.current_A, d.d1), x2 = minus(d.p2.series.current_A, d.d2);
+    std::vector<char> c1, c2;
+    cuts = settling_cuts(o, d, x1, x2, c1, c2);
+    w.clear();
+    select_stable_segments(o, "position1", x1, d.p1, w);
+    select_stable_segments(o, "position2", x2, d.p2, w);
+    for (std::size_t i = 0; i < c1.size(); ++i) d.p1.kept_mask[i] &= static_cast<char>(!c1[i]);
+    for (std::size_t i = 0; i < c2.size(); ++i) d.p2.kept_mask[i] &= static_cast<char>(!c2[i]);
+    if (m1 == d.p1.kept_mask && m2 == d.p2.kept_mask) break;
   }
-  if (d.order > 0) {  // the last pass's masks
+  warnings.insert(warnings.end(), w.begin(), w.end());
+  if (d.order > 0) {  // on the last pass's masks
     d.fit = fit_on(d, d.p1.series.current_A, d.p2.series.current_A, d.order);
     d.d1 = drift_values(d.p1.series, &*d.fit);
     d.d2 = drift_values(d.p2.series, &*d.fit);
+  }
+}
+
+// What the settling cuts say (notes; a cut limited to half a block is a warning).
+void explain_settling(const std::vector<SettlingCut>& cuts, ReduceResult& r) {
+  for (const SettlingCut& c : cuts) {
+    const std::string what =
+        c.detected ? fmt::format("detected (exponential {:+.3e} A, τ {:.0f} s, z {:.1f})",
+                                 c.amplitude_A, c.tau_s, c.z)
+                   : std::string("given");
+    r.notes.push_back(fmt::format("position {} block at {:.3f} s: settling cut {:.1f} s ({} "
+                                  "samples), {}",
+                                  c.position, c.block_begin_s, c.cut_s, c.samples_cut, what));
+    if (c.limited)
+      r.warnings.push_back(fmt::format(
+          "position {} block at {:.3f} s: the settling transient lasts beyond half the block; the "
+          "cut stops there and what is left of it may bias α1",
+          c.position, c.block_begin_s));
   }
 }
 
@@ -356,15 +452,18 @@ ReduceResult process(const ReduceInput& in, Progress* progress) {
   d.blocks = time_blocks(in.position1, in.position2);
   d.order = usable_drift_order(in, d.blocks, r.warnings);
   try {
-    select_with_drift(in.options, d, r.warnings);
+    select_with_drift(in.options, d, r.settling, r.warnings);
   } catch (const NumericalError& e) {
     if (e.context().field != "drift") throw;
     r.warnings.push_back(fmt::format("{}: the drift is not modelled and σ does not include it",
                                      e.message()));
     d.order = 0;
     d.fit.reset();
-    select_with_drift(in.options, d, r.warnings);
+    d.p1.kept_mask.assign(d.p1.samples, 1);
+    d.p2.kept_mask.assign(d.p2.samples, 1);
+    select_with_drift(in.options, d, r.settling, r.warnings);
   }
+  explain_settling(r.settling, r);
   report_progress(progress, 1, 2, "positions");
   kept_statistics(clean_kept_runs(in.options, "position1", minus(in.position1.current_A, d.d1),
                                   d.d1, d.p1, r.notes),

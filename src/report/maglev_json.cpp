@@ -97,6 +97,18 @@ json maglev_reduce_to_json(const maglev::ReduceResult& r) {
     }
     if (d.curvature_check_z) j["drift"]["curvature_check_z"] = *d.curvature_check_z;
   }
+  json settling = json::array();
+  for (const auto& c : r.settling) {
+    json e = {{"position", c.position}, {"block_begin_s", c.block_begin_s}, {"cut_s", c.cut_s},
+              {"samples_cut", c.samples_cut}, {"detected", c.detected}, {"limited", c.limited}};
+    if (c.detected) {
+      e["amplitude_A"] = c.amplitude_A;
+      e["tau_s"] = c.tau_s;
+      e["z"] = c.z;
+    }
+    settling.push_back(e);
+  }
+  j["settling"] = settling;
   if (r.median) j["median"] = solution(*r.median);
   if (r.huber) j["huber"] = solution(*r.huber);
   if (r.symmetry)

@@ -381,3 +381,40 @@ TEST_F(MaglevCli, SimulatedSequencesShareOneClockAndTheDrift) {
   EXPECT_EQ(run(sim_ + "--sequence 1,3 --out bad").code, 1);
   EXPECT_EQ(run(sim_ + "--sequence 1,1 --out bad").code, 1);
 }
+
+// The settling case of issue 30 (../shared/cases/maglev-field/settling-1.csv, -2.csv: ∓3e-4 A
+// decaying with τ 20 s after each rotation; truth α1 0.866272865°): the transient detected at
+// both positions, cut and stated, α1 within 3σ (before: −4.1″ ± 0.6″ over 15 seeds with σ
+// 2.5″). A cut given is taken as given. Skipped only when ../shared is absent.
+TEST_F(MaglevCli, SettlingCaseIsDetectedCutAndStated) {
+  const std::filesystem::path shared = std::filesystem::path(MERIDIAN_SOURCE_DIR) / ".." / "shared";
+  if (!std::filesystem::exists(shared)) GTEST_SKIP() << shared << " not present (optional data)";
+  const std::filesystem::path dir = shared / "cases" / "maglev-field";
+  const std::string files =
+      (dir / "settling-1.csv").string() + " " + (dir / "settling-2.csv").string();
+  const std::string opts = " --scale 6000 --latitude 34.25 --reading1 23.111870399 --json -q";
+  const CmdResult r = run("maglev reduce " + files + opts);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double a = j["result"]["alpha1_arcsec"].get<double>();
+  const double s = j["result"]["alpha1_sigma_arcsec"].get<double>();
+  EXPECT_LT(std::abs(a - 0.866272865 * 3600), 3.0 * s) << a << " ± " << s;
+  ASSERT_EQ(j["settling"].size(), 2u);
+  for (const auto& c : j["settling"]) {
+    EXPECT_TRUE(c["detected"].get<bool>());
+    EXPECT_GT(c["cut_s"].get<double>(), 20.0);
+    EXPECT_NEAR(std::abs(c["amplitude_A"].get<double>()), 3e-4, 1e-4);
+  }
+  EXPECT_LT(j["settling"][0]["amplitude_A"].get<double>(), 0.0);  // −3e-4 at position 1
+  const CmdResult g = run("maglev reduce " + files + opts + " --settling-cut 90");
+  ASSERT_EQ(g.code, 0) << g.err;
+  const auto jg = nlohmann::json::parse(g.out);
+  ASSERT_EQ(jg["settling"].size(), 2u);
+  EXPECT_FALSE(jg["settling"][0]["detected"].get<bool>());
+  EXPECT_EQ(jg["settling"][0]["samples_cut"], 900);
+  // The continuous-drift case has no transient: nothing cut.
+  const CmdResult c = run("maglev reduce " + (dir / "continuous-drift.csv").string() +
+                          " --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_TRUE(nlohmann::json::parse(c.out)["settling"].empty());
+}

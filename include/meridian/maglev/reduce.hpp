@@ -56,6 +56,7 @@
 #include "meridian/maglev/model.hpp"
 #include "meridian/maglev/series.hpp"
 #include "meridian/maglev/series_statistics.hpp"
+#include "meridian/maglev/settling.hpp"
 #include "meridian/maglev/stationarity.hpp"
 
 namespace meridian::maglev {
@@ -71,6 +72,8 @@ struct ReduceOptions {
   /// Common drift on the positions' clock (drift.hpp), fitted jointly with the levels when the
   /// positions share one clock; none: each position's mean on its own (a drift then biases α_1).
   DriftModel drift = DriftModel::linear;
+  /// The settling cut at the start of every block (settling.hpp), when processing.
+  SettlingOptions settling;
 };
 
 /// What turns N_G into a target azimuth (optional).
@@ -149,6 +152,7 @@ struct ReduceResult {
   };
   std::optional<Symmetry> symmetry;
   std::optional<DriftResult> drift;  ///< when a drift was fitted
+  std::vector<SettlingCut> settling;  ///< the blocks whose start was cut
   std::optional<gyro::AzimuthChainResult> chain;
   std::vector<std::string> notes, warnings;
 };
