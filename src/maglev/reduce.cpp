@@ -222,8 +222,16 @@ std::vector<SettlingCut> settling_cuts(const ReduceOptions& o, const Determinati
       std::vector<double> r(x.begin() + static_cast<std::ptrdiff_t>(b.begin),
                             x.begin() + static_cast<std::ptrdiff_t>(b.end));
       for (double& v : r) v -= l.level;
+      // σ²_LR of the block's second half: a transient left in the residuals (every block's in
+      // the first pass) would inflate the residuals' σ²_LR and hide itself.
+      const std::span<const double> tail = std::span<const double>(r).subspan(r.size() / 2);
+      double lrv = l.lrv;
+      if (tail.size() >= 16) {
+        const MeanEstimate e = mean_with_autocorrelation(tail);
+        if (e.n_eff > 0.0) lrv = e.variance * static_cast<double>(e.n) / e.n_eff;
+      }
       c = detect_settling(std::span<const double>(s.time_s).subspan(b.begin, b.end - b.begin), r,
-                          l.lrv, l.sigma, alpha);
+                          lrv, l.sigma, alpha);
     }
     if (!c) continue;
     c->position = b.position;
