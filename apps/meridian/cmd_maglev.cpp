@@ -101,6 +101,9 @@ struct ReduceArgs {
   std::optional<double> eta_arcsec;
   double eta_sigma_arcsec = 0;
   bool no_process = false, no_denoise = false, json = false, quiet = false;
+  std::string drift = "linear";
+  std::optional<double> settling_cut;
+  bool no_settling_detect = false;
   std::string report;
   std::size_t segment = 0;
   double alpha = 0.05;
@@ -136,6 +139,9 @@ struct ReduceArgs {
     if (!target.empty()) s.chain = chain();
     s.options.process = !no_process;
     s.options.denoise = !no_denoise;
+    s.options.drift = maglev::drift_model_from_string(drift);
+    s.options.settling.cut_s = settling_cut;
+    s.options.settling.detect = !no_settling_detect;
     s.options.stationarity.segment_length = segment;
     s.options.stationarity.alpha = alpha;
     s.options.stationarity.autocovariance_lags = lags;
@@ -178,7 +184,10 @@ struct SimulateArgs {
   std::string alpha1 = "0.5", latitude = "35", reading1 = "0", out = "maglev";
   double scale = 8000, bias = 2e-4;
   maglev::NoiseSpec noise;
-  std::vector<std::string> bursts;
+  std::vector<std::string> bursts, steps, sequence{"1", "2"};
+  std::string settling;
+  double pause = 30.0;
+  bool drift_restarts = false;
   std::uint64_t seed = 1;
   bool one_file = false;
   std::vector<std::string> calibration_azimuths;
@@ -215,6 +224,27 @@ maglev::PositionBurst parse_burst(const std::string& text) {
   return {static_cast<int>(v[0]), {v[1], v[2], v[3], v[4], v[5], v[6]}};
 }
 
+// "a:b:c" → numbers (`what` names the option in errors); `count` of them expected.
+std::vector<double> colon_numbers(const std::string& text, const char* what, std::size_t count) {
+  std::vector<double> v;
+  std::size_t b = 0;
+  while (b <= text.size()) {
+    std::size_t e = text.find(':', b);
+    if (e == std::string::npos) e = text.size();
+    const std::string part = text.substr(b, e - b);
+    char* end = nullptr;
+    const double x = std::strtod(part.c_str(), &end);
+    if (part.empty() || *end != '\0' || !std::isfinite(x))
+      throw InputError(fmt::format("\"{}\" is not a number in \"{}\"", part, text), option(what));
+    v.push_back(x);
+    b = e + 1;
+  }
+  if (v.size() != count)
+    throw InputError(fmt::format("\"{}\": expected {} numbers separated by ':'", text, count),
+                     option(what));
+  return v;
+}
+
 maglev::DeterminationSimulation SimulateArgs::determination() const {
   maglev::DeterminationSimulation s;
   s.truth.latitude_rad = angle_option(latitude, "--latitude");
@@ -224,6 +254,26 @@ maglev::DeterminationSimulation SimulateArgs::determination() const {
   s.truth.circle_reading1_rad = angle_option(reading1, "--reading1");
   s.noise = noise;
   for (const auto& b : bursts) s.bursts.push_back(parse_burst(b));
+  for (const auto& t : steps) {
+    const auto v = colon_numbers(t, "--step", 3);
+    if (v[0] != 1 && v[0] != 2)
+      throw InputError(fmt::format("step \"{}\": the position must be 1 or 2", t), option("--step"));
+    s.steps.push_back({static_cast<int>(v[0]), {v[1], v[2]}});
+  }
+  if (!settling.empty()) {
+    const auto v = colon_numbers(settling, "--settling", 2);
+    s.noise.settling_A = v[0];
+    s.noise.settling_tau_s = v[1];
+  }
+  s.sequence.clear();
+  for (const auto& p : sequence) {
+    if (p != "1" && p != "2")
+      throw InputError(fmt::format("sequence: \"{}\" is not a position (1 or 2)", p),
+                       option("--sequence"));
+    s.sequence.push_back(p == "1" ? 1 : 2);
+  }
+  s.pause_s = pause;
+  s.drift_restarts = drift_restarts;
   s.seed = seed;
   return s;
 }
@@ -319,6 +369,17 @@ void add_reduce_command(CLI::App* mg, int& exit_code) {
   red->add_flag("--no-process", ra->no_process,
                 "Plain means of all samples (no tests, no denoising)");
   red->add_flag("--no-denoise", ra->no_denoise, "Stationarity tests without wavelet denoising");
+  red->add_option("--drift", ra->drift,
+                  "Common drift on the positions' clock, fitted with the levels: none | linear | "
+                  "quadratic")
+      ->check(CLI::IsMember({"none", "linear", "quadratic"}))
+      ->capture_default_str();
+  red->add_option("--settling-cut", ra->settling_cut,
+                  "Cut this many seconds at the start of every block (default: detected by an "
+                  "exponential fitted and tested)")
+      ->check(CLI::NonNegativeNumber);
+  red->add_flag("--no-settling-detect", ra->no_settling_detect,
+                "Do not look for a settling transient at the start of each block");
   red->add_option("--segment", ra->segment,
                   "Segment length in samples, >= 32 (0: about 20 segments)")
       ->check(segment_length())
@@ -374,8 +435,8 @@ std::string simulate_command_line(const CLI::App* sim) {
     if (o->get_expected_min() == 0) continue;
     std::string value;
     for (const auto& r : o->results()) value += (value.empty() ? "" : ",") + r;
-    if (o->get_lnames().front() == "burst")
-      value = fmt::format("{}", fmt::join(o->results(), " --burst="));
+    if (name == "burst" || name == "step")
+      value = fmt::format("{}", fmt::join(o->results(), " --" + name + "="));
     cmd += "=" + value;
   }
   return cmd;
@@ -392,14 +453,32 @@ void add_simulate_command(CLI::App* mg, int& exit_code) {
   sim->add_option("--bias", sa->bias, "b, A")->capture_default_str();
   sim->add_option("--latitude", sa->latitude, "Latitude (DMS or deg)")->capture_default_str();
   sim->add_option("--reading1", sa->reading1, "r1 (DMS or deg)")->capture_default_str();
-  sim->add_option("--samples", sa->noise.samples, "Samples per position")->capture_default_str();
+  sim->add_option("--samples", sa->noise.samples, "Samples per block (per position for the default 1,2)")->capture_default_str();
   sim->add_option("--rate-hz", sa->noise.rate_hz, "Sample rate")->capture_default_str();
   sim->add_option("--white", sa->noise.white_sigma_A, "White noise sigma (A)")
       ->capture_default_str();
   sim->add_option("--ar1-phi", sa->noise.ar1_phi, "AR(1) coefficient")->capture_default_str();
   sim->add_option("--ar1-sigma", sa->noise.ar1_sigma_A, "AR(1) innovation sigma (A)")
       ->capture_default_str();
-  sim->add_option("--drift", sa->noise.drift_A_per_s, "Drift (A/s)")->capture_default_str();
+  sim->add_option("--drift", sa->noise.drift_A_per_s,
+                  "Drift (A/s), continuous on the common clock of all blocks")
+      ->capture_default_str();
+  sim->add_option("--drift-quadratic", sa->noise.drift_quadratic_A_per_s2,
+                  "Quadratic drift term (A/s^2) on the common clock")
+      ->capture_default_str();
+  sim->add_flag("--drift-restarts", sa->drift_restarts,
+                "Restart the drift at each block (it then cancels; not what instruments do)");
+  sim->add_option("--sequence", sa->sequence,
+                  "Positions of the blocks in time order, e.g. 1,2,2,1 (default 1,2)")
+      ->delimiter(',');
+  sim->add_option("--pause", sa->pause, "Seconds between blocks (the rotation)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sim->add_option("--settling", sa->settling,
+                  "Settling after each rotation AMP_A:TAU_s (+AMP at position 1, -AMP at 2)");
+  sim->add_option("--step", sa->steps,
+                  "Step of the current position:time_s:size_A, time from the start of that "
+                  "position's first block (repeatable)");
   sim->add_option(
       "--burst", sa->bursts,
       "Interference: position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz, times from the start of that position's series (repeatable)");

@@ -55,6 +55,7 @@ def _reduce_options(kw):
         "target_deg": None, "target_sigma_arcsec": 0.0, "instrument_constant_deg": 0.0,
         "instrument_constant_sigma_arcsec": 0.0, "eta_arcsec": None, "eta_sigma_arcsec": 0.0,
         "convergence_deg": 0.0, "process": True, "denoise": True, "segment": 0, "alpha": 0.05, "lags": 10,
+        "drift": "linear",
     }
     denoising = {"wavelet": "db4", "level": 6, "mode": "symmetric", "threshold": "soft", "rule": "universal"}
     for key, value in kw.items():
@@ -113,7 +114,9 @@ def reduce(position1, position2, **options) -> Result:
     reading1_deg, reading1_sigma_arcsec, prior_bias_A, prior_bias_sigma_A (symmetry
     check), target_deg, target_sigma_arcsec, instrument_constant_deg,
     instrument_constant_sigma_arcsec, eta_arcsec, eta_sigma_arcsec, convergence_deg
-    (azimuth chain), process, denoise, segment, alpha, lags, and the denoising's
+    (azimuth chain), process, denoise, segment, alpha, lags, drift ("linear", the
+    common drift on the positions' clock fitted with the levels; "quadratic"; "none"),
+    and the denoising's
     wavelet, level (6), mode, threshold, rule.
     Errors: InputError naming the argument and sample ("position1.time_s[17]")."""
     t1, c1 = _series("position1", position1)

@@ -89,6 +89,7 @@ io::MaglevReduceSetup reduce_setup(const py::dict& o, std::string config = {},
   s.options.stationarity.alpha = o["alpha"].cast<double>();
   s.options.stationarity.autocovariance_lags = o["lags"].cast<int>();
   s.options.denoising = denoise_options(o);
+  s.options.drift = mm::drift_model_from_string(o["drift"].cast<std::string>());
   s.names = {"scale_A_s_per_rad", "latitude_deg", "config", "calibration"};
   return s;
 }

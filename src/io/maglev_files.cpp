@@ -220,10 +220,17 @@ std::string maglev_two_position_csv(const maglev::PositionSeries& p1,
                                     const std::string& header_comment) {
   std::string out = comment_lines(header_comment);
   out += "time [s],current [A],position\n";
-  for (std::size_t i = 0; i < p1.current_A.size(); ++i)
-    out += fmt::format("{:.17g},{:.17g},1\n", p1.time_s[i], p1.current_A[i]);
-  for (std::size_t i = 0; i < p2.current_A.size(); ++i)
-    out += fmt::format("{:.17g},{:.17g},2\n", p2.time_s[i], p2.current_A[i]);
+  // In time order (the blocks of a 1-2-1 sequence as measured); position 1 first on a tie.
+  std::size_t i = 0, j = 0;
+  while (i < p1.current_A.size() || j < p2.current_A.size()) {
+    if (j >= p2.current_A.size() || (i < p1.current_A.size() && p1.time_s[i] <= p2.time_s[j])) {
+      out += fmt::format("{:.17g},{:.17g},1\n", p1.time_s[i], p1.current_A[i]);
+      ++i;
+    } else {
+      out += fmt::format("{:.17g},{:.17g},2\n", p2.time_s[j], p2.current_A[j]);
+      ++j;
+    }
+  }
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "meridian/maglev/model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -37,6 +38,11 @@ Uncertain directive_amplitude(Uncertain K, double latitude_rad) {
 
 TwoPositionSolution two_position(Uncertain m1, Uncertain m2, Uncertain K, double latitude_rad,
                                  Uncertain r1) {
+  return two_position(m1, m2, 0.0, K, latitude_rad, r1);
+}
+
+TwoPositionSolution two_position(Uncertain m1, Uncertain m2, double c12, Uncertain K,
+                                 double latitude_rad, Uncertain r1) {
   require(m1, "mean1");
   require(m2, "mean2");
   require(r1, "circle_reading");
@@ -53,7 +59,11 @@ TwoPositionSolution two_position(Uncertain m1, Uncertain m2, Uncertain K, double
         field("alpha1"));
   const double a = std::asin(s.ratio);
   const double ca = std::cos(a);
-  const double s_means = std::hypot(m1.sigma, m2.sigma);
+  if (!std::isfinite(c12) || std::abs(c12) > m1.sigma * m2.sigma * (1.0 + 1e-12))
+    throw InputError("the covariance of the means exceeds their σ", field("mean1"));
+  const double v = m1.sigma * m1.sigma + m2.sigma * m2.sigma;
+  const double s_means = std::sqrt(std::max(0.0, v - 2.0 * c12));
+  const double s_sum = std::sqrt(std::max(0.0, v + 2.0 * c12));
   // |ratio| = 1 exactly: cos α = 0, the σ is unbounded; report it as a numerical failure.
   if (ca <= 0.0)
     throw NumericalError("α1 = ±90°: the position means give no usable direction", field("alpha1"));
@@ -61,7 +71,7 @@ TwoPositionSolution two_position(Uncertain m1, Uncertain m2, Uncertain K, double
   const double sa_k = std::tan(a) * K.sigma / K.value;
   s.alpha1_rad = {a, std::hypot(sa_means, sa_k)};
   s.north_rad = {wrap(r1.value - a), std::hypot(r1.sigma, s.alpha1_rad.sigma)};
-  s.bias_A = {0.5 * (m1.value + m2.value), 0.5 * s_means};
+  s.bias_A = {0.5 * (m1.value + m2.value), 0.5 * s_sum};
   return s;
 }
 

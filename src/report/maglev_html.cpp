@@ -101,6 +101,25 @@ Section reduce_result_section(const maglev::ReduceResult& r) {
                       fmt::format("{:+.3f}\"", units::rad_to_arcsec(r.processed.alpha1_rad.value -
                                                                     r.plain.alpha1_rad.value))});
   res.blocks.push_back(kv);
+  if (r.drift) {
+    const auto& d = *r.drift;
+    KeyValueList dk{"Drift on the common clock", {}};
+    dk.items.push_back({"model, blocks", fmt::format("{}, {}", maglev::to_string(d.model), d.sequence)});
+    dk.items.push_back({"rate at t_ref", fmt::format("{:+.4e} ± {:.3e} A/s (z = {:.2f}, {})",
+                                                     d.rate_A_per_s.value, d.rate_A_per_s.sigma, d.z,
+                                                     d.significant ? "significant" : "not significant")});
+    if (d.curvature_A_per_s2)
+      dk.items.push_back({"curvature", fmt::format("{:+.4e} ± {:.3e} A/s²", d.curvature_A_per_s2->value,
+                                                   d.curvature_A_per_s2->sigma)});
+    dk.items.push_back({"α1 corrected by", fmt::format("{:+.3f}\"", units::rad_to_arcsec(d.alpha1_correction_rad))});
+    dk.items.push_back({"σ(α1) inflation by the drift",
+                        fmt::format("×{:.2f} ({})", d.sigma_inflation,
+                                    d.separable ? "separable" : "cannot be well separated")});
+    for (const auto& b : d.blocks)
+      dk.items.push_back({fmt::format("block (position {})", b.position),
+                          fmt::format("{:.3f} … {:.3f} s, {} samples", b.begin_s, b.end_s, b.end - b.begin)});
+    res.blocks.push_back(dk);
+  }
   if (!r.notes.empty()) res.blocks.push_back(Notes{"Notes", r.notes, false});
   if (!r.warnings.empty()) res.blocks.push_back(Notes{"Warnings", r.warnings, true});
   return res;

@@ -71,6 +71,44 @@ json maglev_reduce_to_json(const maglev::ReduceResult& r) {
             {"plain", solution(r.plain)},
             {"notes", r.notes},
             {"warnings", r.warnings}};
+  if (r.drift) {
+    const auto& d = *r.drift;
+    json blocks = json::array();
+    for (const auto& b : d.blocks)
+      blocks.push_back({{"position", b.position}, {"begin", b.begin}, {"end", b.end},
+                        {"begin_s", b.begin_s}, {"end_s", b.end_s}});
+    j["drift"] = {{"model", maglev::to_string(d.model)},
+                  {"sequence", d.sequence},
+                  {"blocks", blocks},
+                  {"reference_time_s", d.reference_time_s},
+                  {"rate_A_per_s", d.rate_A_per_s.value},
+                  {"rate_sigma_A_per_s", d.rate_A_per_s.sigma},
+                  {"z", d.z},
+                  {"p", d.p},
+                  {"significant", d.significant},
+                  {"sigma_inflation", d.sigma_inflation},
+                  {"separable", d.separable},
+                  {"alpha1_correction_arcsec", units::rad_to_arcsec(d.alpha1_correction_rad)},
+                  {"residual_long_run_variance_A2", d.long_run_variance_A2},
+                  {"residual_n_eff", d.n_eff}};
+    if (d.curvature_A_per_s2) {
+      j["drift"]["curvature_A_per_s2"] = d.curvature_A_per_s2->value;
+      j["drift"]["curvature_sigma_A_per_s2"] = d.curvature_A_per_s2->sigma;
+    }
+    if (d.curvature_check_z) j["drift"]["curvature_check_z"] = *d.curvature_check_z;
+  }
+  json settling = json::array();
+  for (const auto& c : r.settling) {
+    json e = {{"position", c.position}, {"block_begin_s", c.block_begin_s}, {"cut_s", c.cut_s},
+              {"samples_cut", c.samples_cut}, {"detected", c.detected}, {"limited", c.limited}};
+    if (c.detected) {
+      e["amplitude_A"] = c.amplitude_A;
+      e["tau_s"] = c.tau_s;
+      e["z"] = c.z;
+    }
+    settling.push_back(e);
+  }
+  j["settling"] = settling;
   if (r.median) j["median"] = solution(*r.median);
   if (r.huber) j["huber"] = solution(*r.huber);
   if (r.symmetry)

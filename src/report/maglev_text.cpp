@@ -45,6 +45,26 @@ std::string position_block(const char* name, const maglev::PositionResult& p) {
   }
   return out;
 }
+std::string drift_block(const maglev::DriftResult& d) {
+  std::string out = fmt::format(
+      "drift ({}, common clock, blocks {}): rate {:+.4e} ± {:.3e} A/s at t = {:.3f} s (z = {:.2f}, "
+      "{})\n",
+      maglev::to_string(d.model), d.sequence, d.rate_A_per_s.value, d.rate_A_per_s.sigma,
+      d.reference_time_s, d.z, d.significant ? "significant" : "not significant");
+  if (d.curvature_A_per_s2)
+    out += fmt::format("  curvature {:+.4e} ± {:.3e} A/s²\n", d.curvature_A_per_s2->value,
+                       d.curvature_A_per_s2->sigma);
+  out += fmt::format(
+      "  α1 corrected by {:+.3f}\"; σ(α1) ×{:.2f} for the drift's uncertainty ({}); residual "
+      "σ_LR {:.3e} A, n_eff {:.0f}\n",
+      units::rad_to_arcsec(d.alpha1_correction_rad), d.sigma_inflation,
+      d.separable ? "separable" : "CANNOT BE WELL SEPARATED", std::sqrt(d.long_run_variance_A2),
+      d.n_eff);
+  for (const auto& b : d.blocks)
+    out += fmt::format("  block: position {}  {:.3f} … {:.3f} s  ({} samples)\n", b.position,
+                       b.begin_s, b.end_s, b.end - b.begin);
+  return out;
+}
 }  // namespace
 
 std::string maglev_reduce_text(const maglev::ReduceResult& r) {
@@ -52,6 +72,7 @@ std::string maglev_reduce_text(const maglev::ReduceResult& r) {
   out += fmt::format("directive amplitude A = K·ω·cos φ = {:.9g} A\n\n", r.amplitude_A.value);
   out += position_block("position 1", r.position1);
   out += position_block("position 2", r.position2);
+  if (r.drift) out += drift_block(*r.drift);
   out += "\nresults (α1 east of north; N_G = r1 − α1)\n";
   out += solution_line("processed", r.processed);
   out += solution_line("plain means", r.plain);

@@ -33,13 +33,23 @@ std::size_t count_lines(const std::string& s) {
 
 TEST_F(MaglevCli, CleanDeterminationToATenthOfAnArcsecond) {
   ASSERT_EQ(run(sim_ + "--samples 20000 --seed 3 --out d").code, 0);
-  const CmdResult r = run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 --json -q");
+  // The spec's clean scenario (no drift): the two-position model without a drift term.
+  const CmdResult r =
+      run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 --drift none --json -q");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["result"]["alpha1_arcsec"].get<double>(), 1.1459 * 3600, 0.1);
   EXPECT_NEAR(j["result"]["north_deg"].get<double>(), 360 - 1.1459, 0.1 / 3600);
   EXPECT_LT(j["result"]["alpha1_sigma_arcsec"].get<double>(), 0.05);
   EXPECT_EQ(j["position1"]["samples"], 20000);
+  // The default fits a drift too: one block per position, so σ about doubles (still < 0.1″).
+  const CmdResult d = run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(d.code, 0) << d.err;
+  const auto jd = nlohmann::json::parse(d.out);
+  const double s = jd["result"]["alpha1_sigma_arcsec"].get<double>();
+  EXPECT_LT(s, 0.1);
+  EXPECT_NEAR(jd["result"]["alpha1_arcsec"].get<double>(), 1.1459 * 3600, 3.0 * s);
+  EXPECT_FALSE(jd["drift"]["significant"].get<bool>());
 }
 
 TEST_F(MaglevCli, InterferenceIsRejectedAndListed) {
@@ -315,4 +325,96 @@ TEST_F(MaglevCli, HtmlReportsShowTheSeriesAndSegments) {
   const CmdResult bad = run("maglev reduce bad.csv d-2.csv --scale 8000 --latitude 35 -q --report bad.html");
   EXPECT_EQ(bad.code, 1);
   EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.html"));
+}
+
+// The field case of issue 30 (../shared/cases/maglev-field/continuous-drift.csv: a drift of
+// 2e-7 A/s continuing across both positions on one clock; truth α1 = 0°30′00″ with K 8000 at
+// 35°): within 3σ of the truth, the drift found and reported. Before the drift model:
+// 29′45.339″ ± 3.067″ with no word about a trend. Skipped only when ../shared is absent.
+TEST_F(MaglevCli, ContinuousDriftCaseGivesItsTruth) {
+  const std::filesystem::path shared = std::filesystem::path(MERIDIAN_SOURCE_DIR) / ".." / "shared";
+  if (!std::filesystem::exists(shared)) GTEST_SKIP() << shared << " not present (optional data)";
+  const std::string file = (shared / "cases" / "maglev-field" / "continuous-drift.csv").string();
+  const CmdResult r = run("maglev reduce " + file + " --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double a = j["result"]["alpha1_arcsec"].get<double>();
+  const double s = j["result"]["alpha1_sigma_arcsec"].get<double>();
+  EXPECT_LT(std::abs(a - 1800.0), 3.0 * s) << a << " ± " << s;
+  ASSERT_TRUE(j.contains("drift"));
+  EXPECT_TRUE(j["drift"]["significant"].get<bool>());
+  EXPECT_EQ(j["drift"]["sequence"], "1-2");
+  // The segment tests see the series with the drift taken out: nothing rejected for the drift.
+  EXPECT_TRUE(j["position1"]["rejected_segments"].empty());
+  EXPECT_TRUE(j["position2"]["rejected_segments"].empty());
+  EXPECT_NEAR(j["drift"]["rate_A_per_s"].get<double>(), 2e-7,
+              3.0 * j["drift"]["rate_sigma_A_per_s"].get<double>());
+  const CmdResult t = run("maglev reduce " + file + " --scale 8000 --latitude 35 -q");
+  EXPECT_NE(t.out.find("drift (linear, common clock, blocks 1-2)"), std::string::npos) << t.out;
+}
+
+// `maglev simulate` puts the blocks of a sequence on one clock with the drift continuous; reduce
+// finds the blocks, the drift, and a symmetric sequence barely pays for it.
+TEST_F(MaglevCli, SimulatedSequencesShareOneClockAndTheDrift) {
+  ASSERT_EQ(run(sim_ + "--samples 3000 --rate-hz 10 --drift 2e-7 --sequence 1,2,2,1 --pause 40 "
+                       "--seed 5 --one-file --out s")
+                .code,
+            0);
+  const CmdResult r = run("maglev reduce s.csv --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["drift"]["sequence"], "1-2-2-1");
+  EXPECT_EQ(j["position1"]["samples"], 6000);
+  EXPECT_NEAR(j["drift"]["rate_A_per_s"].get<double>(), 2e-7,
+              4.0 * j["drift"]["rate_sigma_A_per_s"].get<double>());
+  EXPECT_LT(j["drift"]["sigma_inflation"].get<double>(), 1.2);
+  const double a = j["result"]["alpha1_arcsec"].get<double>();
+  EXPECT_LT(std::abs(a - 1.1459 * 3600), 4.0 * j["result"]["alpha1_sigma_arcsec"].get<double>());
+  // --drift none: the symmetric sequence cancels the linear drift by design.
+  const CmdResult n = run("maglev reduce s.csv --scale 8000 --latitude 35 --drift none --json -q");
+  ASSERT_EQ(n.code, 0) << n.err;
+  const auto jn = nlohmann::json::parse(n.out);
+  EXPECT_FALSE(jn.contains("drift"));
+  EXPECT_LT(std::abs(jn["result"]["alpha1_arcsec"].get<double>() - 1.1459 * 3600),
+            4.0 * jn["result"]["alpha1_sigma_arcsec"].get<double>());
+  EXPECT_EQ(run("maglev reduce s.csv --scale 8000 --latitude 35 --drift cubic").code, 2);
+  EXPECT_EQ(run(sim_ + "--sequence 1,3 --out bad").code, 1);
+  EXPECT_EQ(run(sim_ + "--sequence 1,1 --out bad").code, 1);
+}
+
+// The settling case of issue 30 (../shared/cases/maglev-field/settling-1.csv, -2.csv: ∓3e-4 A
+// decaying with τ 20 s after each rotation; truth α1 0.866272865°): the transient detected at
+// both positions, cut and stated, α1 within 3σ (before: −4.1″ ± 0.6″ over 15 seeds with σ
+// 2.5″). A cut given is taken as given. Skipped only when ../shared is absent.
+TEST_F(MaglevCli, SettlingCaseIsDetectedCutAndStated) {
+  const std::filesystem::path shared = std::filesystem::path(MERIDIAN_SOURCE_DIR) / ".." / "shared";
+  if (!std::filesystem::exists(shared)) GTEST_SKIP() << shared << " not present (optional data)";
+  const std::filesystem::path dir = shared / "cases" / "maglev-field";
+  const std::string files =
+      (dir / "settling-1.csv").string() + " " + (dir / "settling-2.csv").string();
+  const std::string opts = " --scale 6000 --latitude 34.25 --reading1 23.111870399 --json -q";
+  const CmdResult r = run("maglev reduce " + files + opts);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double a = j["result"]["alpha1_arcsec"].get<double>();
+  const double s = j["result"]["alpha1_sigma_arcsec"].get<double>();
+  EXPECT_LT(std::abs(a - 0.866272865 * 3600), 3.0 * s) << a << " ± " << s;
+  ASSERT_EQ(j["settling"].size(), 2u);
+  for (const auto& c : j["settling"]) {
+    EXPECT_TRUE(c["detected"].get<bool>());
+    EXPECT_GT(c["cut_s"].get<double>(), 20.0);
+    EXPECT_NEAR(std::abs(c["amplitude_A"].get<double>()), 3e-4, 1e-4);
+  }
+  EXPECT_LT(j["settling"][0]["amplitude_A"].get<double>(), 0.0);  // −3e-4 at position 1
+  const CmdResult g = run("maglev reduce " + files + opts + " --settling-cut 90");
+  ASSERT_EQ(g.code, 0) << g.err;
+  const auto jg = nlohmann::json::parse(g.out);
+  ASSERT_EQ(jg["settling"].size(), 2u);
+  EXPECT_FALSE(jg["settling"][0]["detected"].get<bool>());
+  EXPECT_EQ(jg["settling"][0]["samples_cut"], 900);
+  // The continuous-drift case has no transient: nothing cut.
+  const CmdResult c = run("maglev reduce " + (dir / "continuous-drift.csv").string() +
+                          " --scale 8000 --latitude 35 --json -q");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_TRUE(nlohmann::json::parse(c.out)["settling"].empty());
 }

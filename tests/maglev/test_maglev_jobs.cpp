@@ -242,3 +242,48 @@ TEST(MaglevSimulation, CalibrationSlopesAreRatiosOfTheIdealAmplitude) {
   EXPECT_NEAR(t.slope2_A, -0.99 * A, 1e-12);
   EXPECT_EQ(t.latitude_rad, 0.7);
 }
+
+// The drift of a simulated determination continues on the common clock across the blocks of
+// its sequence (issue 30: the drift restarting at each position cancelled and hid the bias);
+// settling and steps are placed per block and position.
+TEST(MaglevSimulation, DriftIsContinuousOnTheCommonClockAcrossBlocks) {
+  maglev::DeterminationSimulation sim;
+  sim.noise.samples = 100;
+  sim.noise.rate_hz = 10;
+  sim.noise.white_sigma_A = 1e-12;
+  sim.noise.drift_A_per_s = 1e-5;
+  sim.sequence = {1, 2, 2, 1};
+  sim.pause_s = 20;
+  sim.steps = {{2, {15, 3e-3}}};
+  const double A = sim.truth.scale_A_s_per_rad * 7.2921150e-5 * std::cos(sim.truth.latitude_rad);
+  const double m = A * std::sin(sim.truth.alpha1_rad);
+  const maglev::ReduceInput in = maglev::simulate_determination(sim);
+  ASSERT_EQ(in.position1.time_s.size(), 200u);
+  ASSERT_EQ(in.position2.time_s.size(), 200u);
+  // Blocks of 10 s, 20 s apart: position 2 at 30…39.9 s and 60…69.9 s, position 1 again at 90 s.
+  EXPECT_DOUBLE_EQ(in.position2.time_s[0], 30.0);
+  EXPECT_DOUBLE_EQ(in.position1.time_s[100], 90.0);
+  EXPECT_NEAR(in.position1.current_A[100], m + sim.truth.bias_A + 1e-5 * 90.0, 1e-10);
+  EXPECT_NEAR(in.position2.current_A[0], -m + sim.truth.bias_A + 1e-5 * 30.0, 1e-10);
+  // The step 15 s after position 2's first block began (45 s): in its second block only.
+  EXPECT_NEAR(in.position2.current_A[100], -m + sim.truth.bias_A + 1e-5 * 60.0 + 3e-3, 1e-10);
+  EXPECT_NEAR(in.position2.current_A[99], -m + sim.truth.bias_A + 1e-5 * 39.9, 1e-10);
+  // The old behaviour on request: every block's drift from its own start.
+  sim.drift_restarts = true;
+  sim.steps.clear();
+  const maglev::ReduceInput r = maglev::simulate_determination(sim);
+  EXPECT_NEAR(r.position2.current_A[0], -m + sim.truth.bias_A, 1e-10);
+  // Settling: +A at position 1, −A at position 2, from each block's start.
+  sim.drift_restarts = false;
+  sim.noise.drift_A_per_s = 0;
+  sim.noise.settling_A = 2e-4;
+  sim.noise.settling_tau_s = 5;
+  const maglev::ReduceInput s = maglev::simulate_determination(sim);
+  EXPECT_NEAR(s.position1.current_A[100], m + sim.truth.bias_A + 2e-4, 1e-10);
+  EXPECT_NEAR(s.position2.current_A[100] - (-m + sim.truth.bias_A), -2e-4, 1e-10);
+  sim.sequence = {1, 1};
+  EXPECT_THROW(maglev::simulate_determination(sim), InputError);
+  sim.sequence = {1, 2};
+  sim.steps = {{1, {1000, 1e-3}}};
+  EXPECT_THROW(maglev::simulate_determination(sim), InputError);
+}

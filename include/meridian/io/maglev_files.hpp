@@ -58,7 +58,7 @@ maglev::CalibrationInput read_maglev_calibration_table(const std::string& path);
 /// `maglev denoise`'s). `header_comment` lines are written first with "# " before each.
 std::string maglev_series_csv(const maglev::PositionSeries& s,
                               const std::string& header_comment = {});
-/// Same with a `position` column, position 1 then position 2.
+/// Same with a `position` column, the samples of both positions in time order.
 std::string maglev_two_position_csv(const maglev::PositionSeries& p1,
                                     const maglev::PositionSeries& p2,
                                     const std::string& header_comment = {});

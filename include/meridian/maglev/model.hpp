@@ -54,6 +54,14 @@ struct TwoPositionSolution {
 TwoPositionSolution two_position(Uncertain mean1_A, Uncertain mean2_A, Uncertain scale_A_s_per_rad,
                                  double latitude_rad, Uncertain circle_reading1_rad);
 
+/// The same for correlated levels (e.g. the levels of a joint drift fit, drift.hpp):
+/// `covariance_A2` = Cov(Ī_1, Ī_2), so σ²(Ī_1 − Ī_2) = σ_1² + σ_2² − 2c enters α_1 and
+/// σ²(Ī_1 + Ī_2) = σ_1² + σ_2² + 2c enters b̂. Throws as two_position (and InputError when the
+/// covariance exceeds σ_1·σ_2).
+TwoPositionSolution two_position(Uncertain mean1_A, Uncertain mean2_A, double covariance_A2,
+                                 Uncertain scale_A_s_per_rad, double latitude_rad,
+                                 Uncertain circle_reading1_rad);
+
 /// One coarse-seeking position: its offset θ from position 1 and its mean.
 struct CoarsePosition {
   double offset_rad = 0.0;  ///< θ_j, clockwise from position 1

@@ -52,9 +52,11 @@
 #include "meridian/core/uncertain.hpp"
 #include "meridian/gyro/azimuth_chain.hpp"
 #include "meridian/maglev/denoise.hpp"
+#include "meridian/maglev/drift.hpp"
 #include "meridian/maglev/model.hpp"
 #include "meridian/maglev/series.hpp"
 #include "meridian/maglev/series_statistics.hpp"
+#include "meridian/maglev/settling.hpp"
 #include "meridian/maglev/stationarity.hpp"
 
 namespace meridian::maglev {
@@ -67,6 +69,11 @@ struct ReduceOptions {
   double huber_k = 1.345;  ///< tuning of the Huber mean (units of the MAD scale)
   /// Prior bias b₀ for the symmetry check (e.g. I* of a calibration), A.
   std::optional<Uncertain> prior_bias_A;
+  /// Common drift on the positions' clock (drift.hpp), fitted jointly with the levels when the
+  /// positions share one clock; none: each position's mean on its own (a drift then biases α_1).
+  DriftModel drift = DriftModel::linear;
+  /// The settling cut at the start of every block (settling.hpp), when processing.
+  SettlingOptions settling;
 };
 
 /// What turns N_G into a target azimuth (optional).
@@ -107,6 +114,25 @@ struct PositionResult {
   double noise_sigma_A = 0.0;        ///< wavelet noise σ (of the longest run)
 };
 
+/// The common drift of a determination (drift.hpp), when fitted.
+struct DriftResult {
+  DriftModel model = DriftModel::linear;  ///< as fitted
+  std::string sequence;                   ///< the blocks' positions in time order, "1-2-1"
+  std::vector<TimeBlock> blocks;
+  double reference_time_s = 0.0;          ///< t_ref: the levels and b̂ are at this time
+  Uncertain rate_A_per_s;                 ///< drift rate at t_ref
+  std::optional<Uncertain> curvature_A_per_s2;  ///< second derivative (quadratic model)
+  double z = 0.0, p = 1.0;                ///< test of the rate against 0 (normal, two-sided)
+  bool significant = false;               ///< p < α
+  double sigma_inflation = 1.0;           ///< σ(α_1) with / without the drift fitted (sqrt VIF)
+  bool separable = true;                  ///< sigma_inflation ≤ 3
+  double alpha1_correction_rad = 0.0;     ///< α_1 with the drift − α_1 from the levels alone
+  double long_run_variance_A2 = 0.0;      ///< σ²_LR of the residuals
+  double n_eff = 0.0;                     ///< effective samples of the residuals
+  /// Linear model only: z of a quadratic term fitted as a check (|z| large: not linear).
+  std::optional<double> curvature_check_z;
+};
+
 struct ReduceResult {
   // What was reduced (ReduceInput), for the writers.
   std::string source;            ///< ReduceInput::source
@@ -125,6 +151,8 @@ struct ReduceResult {
     bool passed = true;
   };
   std::optional<Symmetry> symmetry;
+  std::optional<DriftResult> drift;  ///< when a drift was fitted
+  std::vector<SettlingCut> settling;  ///< the blocks whose start was cut
   std::optional<gyro::AzimuthChainResult> chain;
   std::vector<std::string> notes, warnings;
 };

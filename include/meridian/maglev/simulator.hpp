@@ -3,9 +3,12 @@
 /// Simulated rotor-current series of model (M1) (maglev-gyro spec §4): for a
 /// chosen α_1, K, b and latitude, each position's series is
 ///
-///   I(t_i) = A·sin α_k + b + w_i + u_i + d·(t_i − t_0) + Σ bursts,
+///   I(t_i) = A·sin α_k + b + w_i + u_i + d·(t_i − t_d) + q·(t_i − t_d)² + Σ bursts
+///            + s·exp(−(t_i − t_0)/τ) + Σ steps,
 ///   w_i ~ N(0, σ_w²) white, u_i = φ·u_{i−1} + N(0, σ_u²) (AR(1), started
-///   stationary), d the drift (A/s),
+///   stationary), d the drift (A/s), q its quadratic term (A/s²), t_d the drift's origin on the
+///   common clock (default t_0: the series' start), s·exp(…) a settling transient after the
+///   rotation, a step adding its size from its time on,
 ///
 /// sampled at `rate_hz` from t_0 = start_s. A burst of interference over
 /// [begin_s, end_s) adds offset_A + amplitude_A·sin(2π·∫f dt) whose
@@ -20,6 +23,7 @@
 /// sample (its times are on the series' clock, which starts at start_s).
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -35,6 +39,12 @@ struct Burst {
   double frequency_begin_hz = 1.0, frequency_end_hz = 5.0;
 };
 
+/// A step of the current (a mechanical or electrical jump): `size_A` from `time_s` on.
+struct Step {
+  double time_s = 0.0;
+  double size_A = 0.0;
+};
+
 struct NoiseSpec {
   std::size_t samples = 20000;
   double rate_hz = 100.0;
@@ -43,7 +53,13 @@ struct NoiseSpec {
   double ar1_phi = 0.0;      ///< AR(1) coefficient, |φ| < 1
   double ar1_sigma_A = 0.0;  ///< σ of the AR(1) innovation
   double drift_A_per_s = 0.0;
+  double drift_quadratic_A_per_s2 = 0.0;
+  /// t_d of the drift on the common clock; unset: start_s (the drift starts with this series).
+  std::optional<double> drift_origin_s;
+  double settling_A = 0.0;      ///< settling transient amplitude at start_s
+  double settling_tau_s = 20.0; ///< its time constant (> 0 when settling_A ≠ 0)
   std::vector<Burst> bursts;
+  std::vector<Step> steps;      ///< times on the series' clock
 };
 
 /// The true determination.
@@ -87,22 +103,42 @@ struct PositionBurst {
   Burst burst;
 };
 
-/// A determination as `maglev simulate` records it (and meridian.maglev.simulate): both positions
-/// with the noise of `noise` (its bursts ignored), position 2 starting `pause_s` after position 1
-/// ends, the bursts placed on their position's clock.
-struct DeterminationSimulation {
-  TwoPositionTruth truth;
-  NoiseSpec noise;  ///< of both positions; position 1 starts at noise.start_s
-  std::vector<PositionBurst> bursts;
-  double pause_s = 30.0;
-  std::uint64_t seed = 1;  ///< position 1; position 2 seed + 1
+/// A step of one position, its time counted from the start of that position's first block; it
+/// stays for the rest of that position's samples.
+struct PositionStep {
+  int position = 1;  ///< 1 or 2
+  Step step;
 };
 
-/// The noise of each position of `sim` (position 2's start and both positions' bursts placed).
-/// Throws InputError for a burst of a position other than 1 or 2.
+/// A determination as `maglev simulate` records it (and meridian.maglev.simulate): blocks of
+/// `noise.samples` samples at the positions of `sequence` in time order (1-2, 1-2-1, 1-2-2-1,
+/// 1-2-1-2, …), each starting `pause_s` after the one before ends, all on one clock starting at
+/// noise.start_s. The drift of `noise` is continuous on that clock (origin noise.start_s, unless
+/// `drift_restarts`: each block's drift from its own start, the old behaviour, which cancels).
+/// After each rotation a settling transient +settling_A (position 1) or −settling_A (position 2)
+/// decays with settling_tau_s. Bursts and steps are placed on their position's clock (from the
+/// start of its first block).
+struct DeterminationSimulation {
+  TwoPositionTruth truth;
+  NoiseSpec noise;  ///< of every block (its bursts and steps ignored); the clock starts at noise.start_s
+  std::vector<PositionBurst> bursts;
+  std::vector<PositionStep> steps;
+  std::vector<int> sequence{1, 2};
+  double pause_s = 30.0;
+  bool drift_restarts = false;
+  std::uint64_t seed = 1;  ///< block b (0-based) uses seed + b
+};
+
+/// The noise of every block of `sim` in time order (position, spec with its start, drift origin,
+/// settling, bursts and steps placed). Throws InputError for a sequence without both positions or
+/// with a position other than 1 or 2, a burst or step of another position, a burst or step that
+/// touches no sample.
+std::vector<std::pair<int, NoiseSpec>> block_noise(const DeterminationSimulation& sim);
+
+/// The noise of each position's first block (block_noise).
 std::pair<NoiseSpec, NoiseSpec> position_noise(const DeterminationSimulation& sim);
 
-/// simulate_determination(truth, position_noise(sim), seed).
+/// The blocks of block_noise simulated (block b with seed + b) and joined per position.
 ReduceInput simulate_determination(const DeterminationSimulation& sim);
 
 /// A calibration experiment as `maglev simulate --calibration-azimuths` describes it: the
