@@ -19,7 +19,7 @@ def test_the_tour_runs_as_written(source_dir, monkeypatch, capsys):
                    "<meridian.gravity.GravityModel 'synth360s1' degree 360>", "(3, 5) float64", "(7, 9)",
                    "lat_deg[1, 0] | latitude 95 deg is outside [-90, 90]", "<dict> station.latitude_deg",
                    "-0°00'16.2\" 359°00'00.0\"", "True",
-                   "358.8541 0.1 [6, 7, 8, 9, 10]", "3000 (4000,)", "(4000,) float64", "413 8000.0",
+                   "358.8542 0.2 [6, 7, 8, 9, 10]", "1800 (4000,)", "(4000,) float64", "413 8000.0",
                    "(901, 3, 3)", "901 ['filtered', 'model', 'smoothed']", "['ekf', 'rts'] 6.81",
                    "(361,) 1800.0", "121", "7 white-noise ['white-noise', 'c-exponential']"]:
         assert quoted in out, quoted
