@@ -198,8 +198,8 @@ struct SimulateArgs {
   maglev::CalibrationSimulation calibration() const;
 };
 
-// --burst position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz
-maglev::PositionBurst parse_burst(const std::string& text) {
+// "a:b:c" → numbers, each finite; `label` names the text in the message ("burst " or empty).
+std::vector<double> split_colon_numbers(const std::string& text, const char* what, const char* label) {
   std::vector<double> v;
   std::size_t b = 0;
   while (b <= text.size()) {
@@ -209,11 +209,16 @@ maglev::PositionBurst parse_burst(const std::string& text) {
     char* end = nullptr;
     const double x = std::strtod(part.c_str(), &end);
     if (part.empty() || *end != '\0' || !std::isfinite(x))
-      throw InputError(fmt::format("\"{}\" is not a number in burst \"{}\"", part, text),
-                       option("--burst"));
+      throw InputError(fmt::format("\"{}\" is not a number in {}\"{}\"", part, label, text), option(what));
     v.push_back(x);
     b = e + 1;
   }
+  return v;
+}
+
+// --burst position:begin_s:end_s:amplitude_A:offset_A:f0_hz:f1_hz
+maglev::PositionBurst parse_burst(const std::string& text) {
+  const std::vector<double> v = split_colon_numbers(text, "--burst", "burst ");
   if (v.size() != 7 || (v[0] != 1 && v[0] != 2))
     throw InputError(
         fmt::format(
@@ -226,19 +231,7 @@ maglev::PositionBurst parse_burst(const std::string& text) {
 
 // "a:b:c" → numbers (`what` names the option in errors); `count` of them expected.
 std::vector<double> colon_numbers(const std::string& text, const char* what, std::size_t count) {
-  std::vector<double> v;
-  std::size_t b = 0;
-  while (b <= text.size()) {
-    std::size_t e = text.find(':', b);
-    if (e == std::string::npos) e = text.size();
-    const std::string part = text.substr(b, e - b);
-    char* end = nullptr;
-    const double x = std::strtod(part.c_str(), &end);
-    if (part.empty() || *end != '\0' || !std::isfinite(x))
-      throw InputError(fmt::format("\"{}\" is not a number in \"{}\"", part, text), option(what));
-    v.push_back(x);
-    b = e + 1;
-  }
+  std::vector<double> v = split_colon_numbers(text, what, "");
   if (v.size() != count)
     throw InputError(fmt::format("\"{}\": expected {} numbers separated by ':'", text, count),
                      option(what));
