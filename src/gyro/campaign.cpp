@@ -444,6 +444,11 @@ class CampaignRun {
           if (z->difference_div)
             add_check("zero position after - before, " + run, *z->difference_div, limits_.zero_position_drift_div,
                       CheckUnit::Div, t.zero_position_div, "zero_position_div", false, true);
+          else  // one side only: the stability the regulations ask for is not checked (a crew mistake)
+            res_.checks.push_back({fmt::format("zero position observed before and after, {} (only {})", run,
+                                               z->before ? "before" : "after"),
+                                   1.0, 2.0, CheckUnit::Runs, false, true, false,
+                                   "coal-mine surveying regulations: zero position before and after every run"});
         } else {
           add_check("zero position alpha_p (given), " + run, v[i].zero_position_used->value,
                     limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div, "zero_position_limit_div",

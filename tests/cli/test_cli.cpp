@@ -437,6 +437,7 @@ TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
       {"fb_badrev_sig.yaml", 1, "check failed: tracking readings scatter as stated, line.determinations[0]"},
       {"03b_no_zero_at_all.yaml", 1, "check failed: zero position observed, line.determinations[0]"},
       {"04b_mdotss_numbers.yaml", 1, "line.determinations[1].crossings[0].times_s: the passages imply a period"},
+      {"crew-mistakes-2/m4a.yaml", 1, "check failed: zero position observed before and after, line.determinations[1]"},
   };
   for (const Case& c : cases) {
     const CmdResult r = run("gyro campaign --strict -o out.txt " + (dir / c.file).string());

@@ -135,6 +135,25 @@ TEST(Regulations, MissingZeroPositionIsReportedAndFails) {
   EXPECT_TRUE(has_warning(r, "no zero position observed"));
 }
 
+// The regulations want the motor-off zero position before and after every run: one side only
+// leaves its stability unchecked, and is a failed check, not a warning only.
+TEST(Regulations, ZeroPositionOnOneSideOnlyFails) {
+  auto sim = clean();
+  const CampaignResult both = process(sim.input);
+  EXPECT_TRUE(both.all_checks_pass());
+  EXPECT_EQ(find_check(both, "zero position observed before and after"), nullptr);
+  sim.input.line.determinations[1].zero_after.reset();
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "zero position observed before and after, line.determinations[1]");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_NE(c->name.find("(only before)"), std::string::npos) << c->name;
+  EXPECT_DOUBLE_EQ(c->value, 1.0);
+  EXPECT_DOUBLE_EQ(c->tolerance, 2.0);
+  EXPECT_FALSE(r.all_checks_pass());
+  EXPECT_TRUE(find_check(r, "zero position after - before, line.determinations[1]") == nullptr);
+}
+
 TEST(Regulations, ZeroPositionBeyondItsLimitFails) {
   auto sim = clean();
   for (double& a : sim.input.line.determinations[1].zero_before->reversals_div) a += 0.8;
