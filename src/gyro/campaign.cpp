@@ -414,6 +414,12 @@ class CampaignRun {
   // Every run: its zero position observed, within its limit, and stable.
   void check_zero_positions() {
     const Tolerances& t = in_.tolerances;
+    // A zero-position run missing (observed < required sides): the limit is the regulations', whatever the class.
+    auto sides_observed = [&](std::string name, int observed, int required) {
+      res_.checks.push_back({std::move(name), static_cast<double>(observed), static_cast<double>(required),
+                             CheckUnit::Runs, observed >= required, true, false,
+                             "coal-mine surveying regulations: zero position before and after every run"});
+    };
     auto checks = [&](const std::vector<DeterminationResult>& v, const std::string& what) {
       for (std::size_t i = 0; i < v.size(); ++i) {
         const std::string run = fmt::format("{}[{}]{}", what, i, v[i].label.empty() ? "" : " (" + v[i].label + ")");
@@ -425,8 +431,7 @@ class CampaignRun {
               res_.instrument_station.instrument.torsion_ratio.value * res_.instrument_station.instrument.scale_value_rad *
                   limits_.zero_position_div / units::kArcsecond,
               limits_.zero_position_div));
-          res_.checks.push_back({"zero position observed, " + run, 0.0, 1.0, CheckUnit::Runs, false, true, false,
-                                 "coal-mine surveying regulations: zero position before and after every run"});
+          sides_observed("zero position observed, " + run, 0, 1);
           continue;
         }
         const auto& z = v[i].zero_position;
@@ -445,10 +450,9 @@ class CampaignRun {
             add_check("zero position after - before, " + run, *z->difference_div, limits_.zero_position_drift_div,
                       CheckUnit::Div, t.zero_position_div, "zero_position_div", false, true);
           else  // one side only: the stability the regulations ask for is not checked (a crew mistake)
-            res_.checks.push_back({fmt::format("zero position observed before and after, {} (only {})", run,
-                                               z->before ? "before" : "after"),
-                                   1.0, 2.0, CheckUnit::Runs, false, true, false,
-                                   "coal-mine surveying regulations: zero position before and after every run"});
+            sides_observed(fmt::format("zero position observed before and after, {} (only {})", run,
+                                       z->before ? "before" : "after"),
+                           1, 2);
         } else {
           add_check("zero position alpha_p (given), " + run, v[i].zero_position_used->value,
                     limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div, "zero_position_limit_div",
