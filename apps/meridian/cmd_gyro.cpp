@@ -1,6 +1,7 @@
 // meridian gyro reduce | campaign | orientations | simulate | transit-factor | template | stochastic
 
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -62,13 +63,23 @@ struct CampaignArgs {
   bool json = false, strict = false, quiet = false;
 };
 
-// --strict and a failed check: say which on stderr, one line each.
-void print_failed_checks(const std::vector<gyro::Check>& checks) {
+// --strict and a failed check: say which on stderr, one line each, with where it was booked
+// ("job.yaml:200: line.determinations[1].target_rounds[0]: ") when `place` knows.
+void print_failed_checks(const std::vector<gyro::Check>& checks,
+                         const std::function<ErrorContext(const gyro::Check&)>& place = {}) {
   std::size_t failed = 0;
   for (const gyro::Check& c : checks) {
     if (c.pass) continue;
     ++failed;
-    std::cerr << "meridian: check failed: " << report::check_statement(c) << "\n";
+    std::string where;
+    if (place) {
+      const ErrorContext p = place(c);
+      if (!p.file.empty()) where += p.file + ":";
+      if (p.line) where += std::to_string(*p.line) + ":";
+      if (!p.field.empty()) where += (where.empty() ? "" : " ") + p.field + ":";
+      if (!where.empty()) where += " ";
+    }
+    std::cerr << "meridian: " << where << "check failed: " << report::check_statement(c) << "\n";
   }
   std::cerr << fmt::format("meridian: --strict: {} check{} failed; no output file written\n", failed,
                            failed == 1 ? "" : "s");
@@ -77,14 +88,15 @@ void print_failed_checks(const std::vector<gyro::Check>& checks) {
 int run_campaign(const CampaignArgs& a) {
   require_html_reports_for(a.report);
   TerminalProgress progress(a.quiet);
-  const gyro::CampaignResult r = io::run_campaign_file(a.file, nullptr, &progress).result;
+  const io::CampaignJob job = io::run_campaign_file(a.file, nullptr, &progress);
+  const gyro::CampaignResult& r = job.result;
   progress.finish();
   const std::string out = a.json ? report::json_text(report::campaign_to_json(r))
                                  : report::campaign_text(r, report::AngleFormat(r.input.angle_unit));
   if (a.strict && !r.all_checks_pass()) {
     // A job that fails its checks is not filed: stdout still shows it, no file is written.
     if (a.output.empty() || a.output == "-") emit("", out);
-    print_failed_checks(r.checks);
+    print_failed_checks(r.checks, [&](const gyro::Check& c) { return io::check_place(job, c); });
     return kInputError;
   }
   emit_with_report(a.output, out, a.report, [&] { return report::render_html(report::gyro_campaign_document(r)); });

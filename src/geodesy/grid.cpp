@@ -321,4 +321,21 @@ double arc_to_chord(const TransverseMercatorGrid& grid, double x_c_m, double y_c
   return wrap_signed_rad(t_chord - t_geodesic);
 }
 
+double grid_azimuth(double x_c_m, double y_c_m, double x_d_m, double y_d_m) {
+  const double dx = x_d_m - x_c_m, dy = y_d_m - y_c_m;
+  if (!std::isfinite(dx) || !std::isfinite(dy))
+    throw InputError("grid azimuth of a line: the coordinates must be finite");
+  if (dx == 0 && dy == 0)
+    throw InputError(fmt::format("grid azimuth of a line: both points are at (x {:.3f} m, y {:.3f} m)", x_c_m, y_c_m));
+  return wrap_positive_rad(std::atan2(dy, dx));
+}
+
+double grid_azimuth_rounding(double x_c_m, double y_c_m, double x_d_m, double y_d_m, double x_half_unit_m,
+                             double y_half_unit_m) {
+  grid_azimuth(x_c_m, y_c_m, x_d_m, y_d_m);  // the same errors
+  const double dx = x_d_m - x_c_m, dy = y_d_m - y_c_m;
+  // dT = (dx·d(dy) − dy·d(dx))/s²
+  return (y_half_unit_m * std::fabs(dx) + x_half_unit_m * std::fabs(dy)) / (dx * dx + dy * dy);
+}
+
 }  // namespace meridian::geodesy

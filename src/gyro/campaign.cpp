@@ -125,6 +125,7 @@ class CampaignRun {
     check_duplicated_runs();
     check_observers();
     reduce_azimuth_chain();
+    check_line_coordinates();
     return std::move(res_);
   }
 
@@ -332,8 +333,8 @@ class CampaignRun {
     for (const auto& w : res_.instrument_constant->warnings) res_.warnings.push_back(w);
     if (known_target)
       res_.known_grid_azimuth_from_coordinates_rad =
-          wrap_positive_rad(std::atan2(known_target->grid.y_east_m - res_.known_station->grid.y_east_m,
-                                       known_target->grid.x_north_m - res_.known_station->grid.x_north_m));
+          geodesy::grid_azimuth(res_.known_station->grid.x_north_m, res_.known_station->grid.y_east_m,
+                                known_target->grid.x_north_m, known_target->grid.y_east_m);
   }
 
   void use_given_instrument_constant() {
@@ -356,15 +357,16 @@ class CampaignRun {
 
   // The checks of the regulations (regulations.hpp), in the order of its table.
   void add_check(std::string name, double value, double limit, CheckUnit unit, const std::optional<double>& override_,
-                 const char* override_key, bool minimum = false, bool signed_value = false) {
+                 const char* override_key, bool minimum = false, bool signed_value = false, std::string field = {}) {
     const bool pass = minimum ? value >= limit : std::fabs(value) <= limit;
     res_.checks.push_back({std::move(name), value, limit, unit, pass, minimum, signed_value,
-                           override_ ? fmt::format("tolerances.{} in the file", override_key) : limits_.source});
+                           override_ ? fmt::format("tolerances.{} in the file", override_key) : limits_.source,
+                           std::move(field)});
   }
   void add_angle_check(std::string name, double value_rad, double limit_rad, const std::optional<double>& override_,
-                       const char* override_key, bool signed_value = false) {
+                       const char* override_key, bool signed_value = false, std::string field = {}) {
     add_check(std::move(name), value_rad / units::kArcsecond, limit_rad / units::kArcsecond, CheckUnit::Arcsec,
-              override_, override_key, false, signed_value);
+              override_, override_key, false, signed_value, std::move(field));
   }
 
   // A limit set in the file that is looser than the regulations' for the
@@ -404,25 +406,27 @@ class CampaignRun {
     const auto runs = [](std::size_t n) { return static_cast<double>(n); };
     const std::optional<double> none;
     add_check("programme: runs on the known line before", runs(in_.known_line->before.size()),
-              limits_.min_runs_before, CheckUnit::Runs, none, "", true);
+              limits_.min_runs_before, CheckUnit::Runs, none, "", true, false, "known_line.before");
     add_check("programme: runs on the line", runs(in_.line.determinations.size()), limits_.min_runs_line,
-              CheckUnit::Runs, none, "", true);
+              CheckUnit::Runs, none, "", true, false, "line.determinations");
     add_check("programme: runs on the known line after", runs(in_.known_line->after.size()), limits_.min_runs_after,
-              CheckUnit::Runs, none, "", true);
+              CheckUnit::Runs, none, "", true, false, "known_line.after");
   }
 
   // Every run: its zero position observed, within its limit, and stable.
   void check_zero_positions() {
     const Tolerances& t = in_.tolerances;
     // A zero-position run missing (observed < required sides): the limit is the regulations', whatever the class.
-    auto sides_observed = [&](std::string name, int observed, int required) {
+    auto sides_observed = [&](std::string name, int observed, int required, std::string field) {
       res_.checks.push_back({std::move(name), static_cast<double>(observed), static_cast<double>(required),
                              CheckUnit::Runs, observed >= required, true, false,
-                             "coal-mine surveying regulations: zero position before and after every run"});
+                             "coal-mine surveying regulations: zero position before and after every run",
+                             std::move(field)});
     };
     auto checks = [&](const std::vector<DeterminationResult>& v, const std::string& what) {
       for (std::size_t i = 0; i < v.size(); ++i) {
         const std::string run = fmt::format("{}[{}]{}", what, i, v[i].label.empty() ? "" : " (" + v[i].label + ")");
+        const std::string field = fmt::format("{}[{}]", what, i);
         if (!v[i].zero_position_used) {
           res_.warnings.push_back(fmt::format(
               "{}: no zero position observed: the correction -lambda tau alpha_p is not applied (it reaches "
@@ -431,7 +435,7 @@ class CampaignRun {
               res_.instrument_station.instrument.torsion_ratio.value * res_.instrument_station.instrument.scale_value_rad *
                   limits_.zero_position_div / units::kArcsecond,
               limits_.zero_position_div));
-          sides_observed("zero position observed, " + run, 0, 1);
+          sides_observed("zero position observed, " + run, 0, 1, field);
           continue;
         }
         const auto& z = v[i].zero_position;
@@ -445,18 +449,19 @@ class CampaignRun {
             }
           add_check(fmt::format("zero position alpha_p (motor-off run {} the gyro run, the larger), {}", which, run),
                     largest, limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div,
-                    "zero_position_limit_div", false, true);
+                    "zero_position_limit_div", false, true, field + ".zero_position." + which);
           if (z->difference_div)
             add_check("zero position after - before, " + run, *z->difference_div, limits_.zero_position_drift_div,
-                      CheckUnit::Div, t.zero_position_div, "zero_position_div", false, true);
+                      CheckUnit::Div, t.zero_position_div, "zero_position_div", false, true,
+                      field + ".zero_position");
           else  // one side only: the stability the regulations ask for is not checked (a crew mistake)
             sides_observed(fmt::format("zero position observed before and after, {} (only {})", run,
                                        z->before ? "before" : "after"),
-                           1, 2);
+                           1, 2, field + ".zero_position");
         } else {
           add_check("zero position alpha_p (given), " + run, v[i].zero_position_used->value,
                     limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div, "zero_position_limit_div",
-                    false, true);
+                    false, true, field + ".zero_position");
         }
       }
     };
@@ -474,7 +479,8 @@ class CampaignRun {
     res_.line_one_run_sigma_rad = res_.gyro_azimuth_mean.one_run_sigma;
     const double spread = res_.gyro_azimuth_mean.max_difference;
     add_angle_check("any two runs on the line, gyro azimuths", spread, limits_.run_difference_rad,
-                    in_.tolerances.determination_difference_rad, "determination_difference_arcsec");
+                    in_.tolerances.determination_difference_rad, "determination_difference_arcsec", false,
+                    "line.determinations");
     if (!res_.checks.back().pass)
       res_.warnings.push_back(fmt::format("gyro azimuths of the line differ by {:.1f}\" (limit {:.1f}\")",
                                           spread / units::kArcsecond, limits_.run_difference_rad / units::kArcsecond));
@@ -495,7 +501,8 @@ class CampaignRun {
              g.sigma0 * rev->sigma_reading / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
              !g.rejected, false, false,
              fmt::format("global test at {:g} %: sigma of a reading from the residuals against the stated {:.1f}\"",
-                         100.0 * g.alpha, rev->sigma_reading / units::kArcsecond)});
+                         100.0 * g.alpha, rev->sigma_reading / units::kArcsecond),
+             fmt::format("{}[{}].reversals", what, i)});
       }
     };
     checks(res_.known_before, "known_line.before");
@@ -528,7 +535,7 @@ class CampaignRun {
         add_angle_check(fmt::format("any two runs on the known line, instrument constants (largest: {} and {})",
                                     run(lo), run(hi)),
                         m.max_difference, limits_.constant_difference_rad, t.instrument_constant_difference_rad,
-                        "instrument_constant_difference_arcsec");
+                        "instrument_constant_difference_arcsec", false, "known_line");
       }
       if (e.difference_rad)
         add_angle_check("instrument constant, mean after - mean before", *e.difference_rad, limits_.constant_means_rad,
@@ -536,12 +543,13 @@ class CampaignRun {
                                                         : t.instrument_constant_difference_rad,
                         t.instrument_constant_means_rad ? "instrument_constant_means_arcsec"
                                                         : "instrument_constant_difference_arcsec",
-                        true);
+                        true, "known_line.after");
       check_known_azimuth();
     }
     const double e = res_.instrument_constant_used_rad.value;
     add_angle_check("instrument constant E plausible", e, limits_.instrument_constant_max_rad,
-                    t.instrument_constant_max_rad, "instrument_constant_max_arcsec", true);
+                    t.instrument_constant_max_rad, "instrument_constant_max_arcsec", true,
+                    in_.known_line ? "known_line.azimuth" : "instrument_constant");
     if (!t.instrument_constant_max_rad)
       res_.checks.back().source = "Meridian plausibility limit: |E| of a gyro-theodolite is well under 10'";
     if (!res_.checks.back().pass)
@@ -552,9 +560,12 @@ class CampaignRun {
   }
 
   // The given azimuth of the known line against the azimuth of its chord
-  // from the coordinates in the same file, both as grid azimuths (a given
-  // geodetic or astronomic azimuth goes through the chain; an astronomic one
-  // keeps its deflection, a few arc-seconds, as no η is applied here).
+  // from the coordinates in the same file, both as grid azimuths. A given
+  // grid azimuth is the coordinates' own (坐标反算): it must agree to their
+  // rounding. A given geodetic or astronomic azimuth is an observation of
+  // its own: it goes through the chain (an astronomic one keeps its
+  // deflection, a few arc-seconds, as no η is applied here) and is held to
+  // max(3σ, the class).
   void check_known_azimuth() {
     if (!res_.known_grid_azimuth_from_coordinates_rad) return;
     const KnownLineInput& k = *in_.known_line;
@@ -569,21 +580,86 @@ class CampaignRun {
     const double given_grid = geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red).grid_rad.value;
     const double diff = wrap_signed_rad(given_grid - *res_.known_grid_azimuth_from_coordinates_rad);
     const auto& override_ = in_.tolerances.known_azimuth_coordinates_rad;
-    const double limit = override_.value_or(
-        std::max(3.0 * k.azimuth.value_rad.sigma, limits_.accuracy_class_arcsec * units::kArcsecond));
-    res_.checks.push_back({fmt::format("known line: the given {} azimuth against its coordinates",
-                                       geodesy::to_string(k.azimuth.kind)),
-                           diff / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
-                           std::fabs(diff) <= limit, false, true,
-                           override_ ? "tolerances.known_azimuth_coordinates_arcsec in the file"
-                                     : "Meridian plausibility limit: max(3 sigma of the given azimuth, the class)"});
+    const bool booked_grid = k.to && k.from.x_north_m && k.from.y_east_m && k.to->x_north_m && k.to->y_east_m;
+    double limit = 0.0;
+    std::string source, name;
+    if (k.azimuth.kind == geodesy::AzimuthKind::Grid && booked_grid) {
+      // Half the last booked digit of each coordinate, and half a second for the azimuth's own digit.
+      const auto half = [](const std::optional<double>& booked, double value) {
+        return booked.value_or(half_unit(value));
+      };
+      const double ux = half(k.from.x_half_unit_m, *k.from.x_north_m) + half(k.to->x_half_unit_m, *k.to->x_north_m);
+      const double uy = half(k.from.y_half_unit_m, *k.from.y_east_m) + half(k.to->y_half_unit_m, *k.to->y_east_m);
+      const double rounding =
+          geodesy::grid_azimuth_rounding(*k.from.x_north_m, *k.from.y_east_m, *k.to->x_north_m, *k.to->y_east_m, ux, uy);
+      limit = rounding + kAzimuthDigitRad;
+      name = "known line: the given grid azimuth against its coordinates, to their rounding";
+      source = fmt::format(
+          "the coordinates' booked digits (x +-{:g} m, y +-{:g} m over both points: {:.2f}\") and half a second "
+          "of the booked azimuth",
+          ux, uy, rounding / units::kArcsecond);
+    } else {
+      limit = std::max(3.0 * k.azimuth.value_rad.sigma, limits_.accuracy_class_arcsec * units::kArcsecond);
+      name = fmt::format("known line: the given {} azimuth against its coordinates", geodesy::to_string(k.azimuth.kind));
+      source = "Meridian plausibility limit: max(3 sigma of the given azimuth, the class)";
+    }
+    if (override_) {
+      limit = *override_;
+      source = "tolerances.known_azimuth_coordinates_arcsec in the file";
+    }
+    res_.checks.push_back({std::move(name), diff / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
+                           std::fabs(diff) <= limit, false, true, std::move(source), "known_line.azimuth.value"});
     if (!res_.checks.back().pass)
       res_.warnings.push_back(fmt::format(
-          "the given azimuth of the known line differs by {:+.1f}\" from the azimuth of the coordinates of "
+          "the given azimuth of the known line {} differs by {:+.1f}\" from the azimuth {} of the coordinates of "
           "{} and {}: check the azimuth, its kind and the coordinates",
-          diff / units::kArcsecond, from.name, to.name));
+          format_direction_dms(Angle::radians(given_grid)), diff / units::kArcsecond,
+          format_direction_dms(Angle::radians(*res_.known_grid_azimuth_from_coordinates_rad)), from.name, to.name));
   }
 
+  // Half the last digit of a coordinate as booked: the decimals of the shortest text that
+  // reads back as the same number (3611402.317 -> 0.0005 m). At most 0.5 m, at least 0.05 mm.
+  static double half_unit(double booked_m) {
+    const std::string text = fmt::format("{}", booked_m);
+    const auto dot = text.find('.');
+    int decimals = 0;
+    if (dot != std::string::npos && text.find_first_of("eE") == std::string::npos)
+      decimals = static_cast<int>(text.size() - dot - 1);
+    return 0.5 * std::pow(10.0, -std::min(decimals, 4));
+  }
+  static constexpr double kAzimuthDigitRad = 0.5 * units::kArcsecond;
+
+  // The gyro's grid azimuth of the line against the azimuth of its end points' coordinates
+  // (gyro − traverse, what the record sheet reports). Beyond 1° (a line booked from/to the
+  // wrong way round, a wrong point) the check fails whatever the file's limit.
+  void check_line_coordinates() {
+    if (!res_.target) return;
+    const double from_coordinates = geodesy::grid_azimuth(res_.station.grid.x_north_m, res_.station.grid.y_east_m,
+                                                          res_.target->grid.x_north_m, res_.target->grid.y_east_m);
+    res_.line_grid_azimuth_from_coordinates_rad = from_coordinates;
+    const double diff = wrap_signed_rad(res_.chain.grid_azimuth_rad.value - from_coordinates);
+    const auto& override_ = in_.tolerances.line_coordinates_rad;
+    const double limit = override_.value_or(limits_.orientation_difference_rad);
+    const bool gross = std::fabs(diff) > units::kDegree;
+    const bool reversed = std::fabs(wrap_signed_rad(diff - units::kPi)) <= units::kDegree;
+    const std::string a = point_label(res_.station, "station"), b = point_label(*res_.target, "target");
+    std::string name = fmt::format("the line {}->{}: gyro grid azimuth against the azimuth of its coordinates", a, b);
+    if (reversed) name += fmt::format(" (180 deg apart: from and to swapped? the coordinates give {}->{} {})", a, b,
+                                      format_direction_dms(Angle::radians(from_coordinates)));
+    else if (gross) name += fmt::format(" (off by {}: a wrong point?)", format_dms(Angle::radians(diff)));
+    res_.checks.push_back({std::move(name), diff / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
+                           !gross && std::fabs(diff) <= limit, false, true,
+                           override_ ? "tolerances.line_coordinates_arcsec in the file"
+                                     : "Meridian: the class limit for two independent orientations (the coordinates "
+                                       "stand for an orientation of the line); beyond 1 deg always fails",
+                           "line.to"});
+    if (!res_.checks.back().pass)
+      res_.warnings.push_back(fmt::format(
+          "the gyro grid azimuth of {}->{} {} differs by {} from the azimuth {} of their coordinates{}", a, b,
+          format_direction_dms(Angle::radians(res_.chain.grid_azimuth_rad.value)),
+          format_dms(Angle::radians(diff), {1, true, true}), format_direction_dms(Angle::radians(from_coordinates)),
+          reversed ? ": line.from and line.to booked the wrong way round?" : ""));
+  }
 
   // The regulations want the same observer above (known line) and below
   // ground (the line); checked where the observers are recorded.
@@ -611,7 +687,8 @@ class CampaignRun {
     for (const auto& o : all) names += (names.empty() ? "" : ", ") + o;
     res_.checks.push_back({"the same observer on the known line and on the line (" + names + ")",
                            static_cast<double>(all.size()), 1.0, CheckUnit::Observers, all.size() == 1, false, false,
-                           "coal-mine surveying regulations: the same observer above and below ground"});
+                           "coal-mine surveying regulations: the same observer above and below ground",
+                           "record.observer"});
     if (all.size() > 1) {
       std::string list;
       for (const auto& o : all) list += (list.empty() ? "" : ", ") + o;
@@ -635,14 +712,18 @@ class CampaignRun {
     }
     add(in_.line.determinations, "line.determinations");
     std::vector<std::string> pairs;
+    std::string second_run;  // the copy, where a checker looks first
     for (std::size_t i = 0; i < runs.size(); ++i)
       for (std::size_t j = i + 1; j < runs.size(); ++j)
-        if (same_observations(*runs[i].in, *runs[j].in)) pairs.push_back(runs[i].name + " and " + runs[j].name);
+        if (same_observations(*runs[i].in, *runs[j].in)) {
+          pairs.push_back(runs[i].name + " and " + runs[j].name);
+          if (second_run.empty()) second_run = runs[j].name;
+        }
     std::string which;
     for (const auto& p : pairs) which += (which.empty() ? " (" : "; ") + p;
     if (!which.empty()) which += ")";
     res_.checks.push_back({"no run booked twice" + which, static_cast<double>(pairs.size()), 0.0, CheckUnit::Runs,
-                           pairs.empty(), false, false, "Meridian: identical observations in two runs"});
+                           pairs.empty(), false, false, "Meridian: identical observations in two runs", second_run});
     for (const auto& p : pairs)
       res_.warnings.push_back(p + " have identical observations: one run was booked twice");
   }

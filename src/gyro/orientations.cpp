@@ -58,16 +58,16 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
     for (const auto& k : in[i].checks) failed += k.pass ? 0 : 1;
     r.checks.push_back({fmt::format("orientation {}: failed checks of its own", i + 1), static_cast<double>(failed),
                         0.0, CheckUnit::Checks, failed == 0, false, false,
-                        "every orientation must pass its own checks"});
+                        "every orientation must pass its own checks", fmt::format("orientations[{}]", i)});
   }
   r.mean = mean_direction(r.grid_azimuths_rad);
   r.checks.push_back({"independent orientations, largest difference of the grid azimuths",
                       r.mean.max_difference / units::kArcsecond, limits.orientation_difference_rad / units::kArcsecond,
                       CheckUnit::Arcsec, r.mean.max_difference <= limits.orientation_difference_rad, false, false,
-                      limits.source});
+                      limits.source, ""});
   r.checks.push_back({"independent orientations, sigma of the mean", r.mean.mean.sigma / units::kArcsecond,
                       limits.orientation_mean_sigma_rad / units::kArcsecond, CheckUnit::Arcsec,
-                      r.mean.mean.sigma <= limits.orientation_mean_sigma_rad, false, false, limits.source});
+                      r.mean.mean.sigma <= limits.orientation_mean_sigma_rad, false, false, limits.source, ""});
   r.notes.push_back(fmt::format("sigma of the mean: the larger of propagated {:.1f}\" and empirical {:.1f}\"",
                                 r.mean.sigma_propagated / units::kArcsecond,
                                 r.mean.sigma_empirical / units::kArcsecond));

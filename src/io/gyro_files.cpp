@@ -1,5 +1,6 @@
 #include "meridian/io/gyro_files.hpp"
 
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -268,6 +269,17 @@ gyro::ReduceOptions read_options(const Node& n) {
   return o;
 }
 
+// Half the last digit of a number as written ("3611402.310" -> 0.0005): the rounding of a
+// booked coordinate.
+double half_last_digit(const std::string& text) {
+  const auto dot = text.find('.');
+  if (dot == std::string::npos || text.find_first_of("eE") != std::string::npos) return 0.5;
+  std::size_t decimals = 0;
+  while (dot + 1 + decimals < text.size() && std::isdigit(static_cast<unsigned char>(text[dot + 1 + decimals])))
+    ++decimals;
+  return 0.5 * std::pow(10.0, -static_cast<double>(decimals));
+}
+
 gyro::PointInput read_point(const Node& n) {
   n.allow_only({"name", "latitude_deg", "longitude_deg", "x_m", "y_m", "eta_arcsec",
                 "eta_sigma_arcsec", "height_m", "xi_arcsec", "xi_sigma_arcsec"});
@@ -280,8 +292,14 @@ gyro::PointInput read_point(const Node& n) {
   if (auto v = n.get("longitude_deg")) p.lon_rad = v->angle().rad();
   if (p.lat_rad.has_value() != p.lon_rad.has_value())
     n.fail("give both latitude_deg and longitude_deg");
-  if (auto v = n.get("x_m")) p.x_north_m = v->number();
-  if (auto v = n.get("y_m")) p.y_east_m = v->number();
+  if (auto v = n.get("x_m")) {
+    p.x_north_m = v->number();
+    p.x_half_unit_m = half_last_digit(v->string());
+  }
+  if (auto v = n.get("y_m")) {
+    p.y_east_m = v->number();
+    p.y_half_unit_m = half_last_digit(v->string());
+  }
   if (p.x_north_m.has_value() != p.y_east_m.has_value()) n.fail("give both x_m and y_m");
   if (!p.lat_rad && !p.x_north_m) n.fail("a point needs latitude_deg/longitude_deg or x_m/y_m");
   if (auto v = n.get("eta_arcsec"))
@@ -390,7 +408,7 @@ gyro::Tolerances read_tolerances(const Node& t) {
   t.allow_only({"determination_difference_arcsec", "instrument_constant_difference_arcsec",
                 "instrument_constant_means_arcsec", "orientation_difference_arcsec", "orientation_mean_sigma_arcsec",
                 "zero_position_div", "zero_position_limit_div", "known_azimuth_coordinates_arcsec",
-                "instrument_constant_max_arcsec"});
+                "instrument_constant_max_arcsec", "line_coordinates_arcsec"});
   gyro::Tolerances r;
   for (const auto& f : detail::tolerance_fields(r))
     if (auto v = t.get(f.key)) *f.member = v->positive_number() * f.unit;

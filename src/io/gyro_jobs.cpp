@@ -58,6 +58,12 @@ CampaignJob run_campaign_file(const std::filesystem::path& path, DeflectionModel
   return job;
 }
 
+ErrorContext check_place(const CampaignJob& job, const gyro::Check& check) {
+  if (!check.field.empty())
+    if (auto where = book(job.file.file, job.file.lines).place(check.field)) return *where;
+  return {job.file.file, std::nullopt, check.field};
+}
+
 OrientationsJob run_orientation_files(const std::vector<std::filesystem::path>& paths, Progress* progress) {
   OrientationsJob job;
   DeflectionModels models;

@@ -41,7 +41,7 @@ template <class T>
 auto tolerance_fields(T& t) {
   using M = std::remove_reference_t<decltype((t.zero_position_div))>;  // const with a const T
   constexpr double arcsec = units::kArcsecond;
-  return std::array<ToleranceField<M>, 9>{{{"determination_difference_arcsec", &t.determination_difference_rad, arcsec},
+  return std::array<ToleranceField<M>, 10>{{{"determination_difference_arcsec", &t.determination_difference_rad, arcsec},
                                            {"instrument_constant_difference_arcsec",
                                             &t.instrument_constant_difference_rad, arcsec},
                                            {"instrument_constant_means_arcsec", &t.instrument_constant_means_rad, arcsec},
@@ -50,7 +50,8 @@ auto tolerance_fields(T& t) {
                                            {"zero_position_div", &t.zero_position_div, 1.0},
                                            {"zero_position_limit_div", &t.zero_position_limit_div, 1.0},
                                            {"known_azimuth_coordinates_arcsec", &t.known_azimuth_coordinates_rad, arcsec},
-                                           {"instrument_constant_max_arcsec", &t.instrument_constant_max_rad, arcsec}}};
+                                           {"instrument_constant_max_arcsec", &t.instrument_constant_max_rad, arcsec},
+                                           {"line_coordinates_arcsec", &t.line_coordinates_rad, arcsec}}};
 }
 
 }  // namespace meridian::io::detail

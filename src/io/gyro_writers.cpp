@@ -505,7 +505,8 @@ tolerances:                         # optional: the limits of the coal-mine surv
   # zero_position_limit_div: 0.5              # |tape zero| of every motor-off run (div)
   # orientation_difference_arcsec: 40         # two independent orientations (`gyro orientations`)
   # orientation_mean_sigma_arcsec: 10         # sigma of their mean
-  # known_azimuth_coordinates_arcsec: 15      # given known azimuth against its coordinates
+  # known_azimuth_coordinates_arcsec: 0.75    # given known azimuth against its coordinates (grid: their rounding)
+  # line_coordinates_arcsec: 40               # the line's gyro azimuth against its coordinates (gyro - traverse)
   # instrument_constant_max_arcsec: 600       # |E| plausible
 
 # options:                          # optional

@@ -96,22 +96,24 @@ std::optional<ErrorContext> SourceMap::resolve(const Rule& r, const std::string&
   return std::nullopt;
 }
 
-void SourceMap::locate(Error& e) const {
-  if (!e.context().file.empty()) return;
-  const std::string& field = e.context().field;
+std::optional<ErrorContext> SourceMap::place(const std::string& field) const {
   // Rules by decreasing prefix length: the most specific place wins.
   std::vector<const Rule*> order;
   for (const Rule& r : rules_)
     if (field.empty() ? r.prefix.empty() && r.kind == Kind::Document : continues(field, r.prefix)) order.push_back(&r);
   std::stable_sort(order.begin(), order.end(),
                    [](const Rule* a, const Rule* b) { return a->prefix.size() > b->prefix.size(); });
-  for (const Rule* r : order) {
-    if (auto where = resolve(*r, field)) {
-      // A place without a line keeps a line the error had (a reader's own row count).
-      if (!where->line && e.context().line) where->line = e.context().line;
-      e.relocate(std::move(*where));
-      return;
-    }
+  for (const Rule* r : order)
+    if (auto where = resolve(*r, field)) return where;
+  return std::nullopt;
+}
+
+void SourceMap::locate(Error& e) const {
+  if (!e.context().file.empty()) return;
+  if (auto where = place(e.context().field)) {
+    // A place without a line keeps a line the error had (a reader's own row count).
+    if (!where->line && e.context().line) where->line = e.context().line;
+    e.relocate(std::move(*where));
   }
 }
 

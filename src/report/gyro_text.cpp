@@ -54,8 +54,13 @@ std::string check_statement(const gyro::Check& k) {
                      k.unit == gyro::CheckUnit::Checks;
   const int decimals = count ? 0 : k.unit == gyro::CheckUnit::Arcsec ? 1 : 2;
   const std::string unit = " " + gyro::to_string(k.unit);
-  return fmt::format("{}: {:.{}f}{} ({} {}{:.{}f}{})", k.name, k.value, decimals, unit, k.minimum ? "at least" : "limit",
-                     k.signed_value ? "+-" : "", k.tolerance, decimals, count ? "" : unit);
+  // An angle of a degree or more is read as D°M'S" (a round 180° off, a line booked the wrong way round).
+  const std::string dms = k.unit == gyro::CheckUnit::Arcsec && std::fabs(k.value) >= 3600.0
+                              ? " = " + format_dms(Angle::radians(k.value * units::kArcsecond))
+                              : std::string();
+  return fmt::format("{}: {:.{}f}{}{} ({} {}{:.{}f}{})", k.name, k.value, decimals, unit, dms,
+                     k.minimum ? "at least" : "limit", k.signed_value ? "+-" : "", k.tolerance, decimals,
+                     count ? "" : unit);
 }
 
 std::string check_text(const gyro::Check& k) {

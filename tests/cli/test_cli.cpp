@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -388,8 +389,17 @@ TEST_F(Cli, StrictListsTheFailedChecksAndWritesNoFile) {
   };
   const std::size_t fails = count(text.out, "[FAIL]");
   ASSERT_GE(fails, 2u);
-  EXPECT_EQ(count(r.err, "meridian: check failed: "), fails) << r.err;
+  EXPECT_EQ(count(r.err, "check failed: "), fails) << r.err;
   EXPECT_NE(r.err.find("check failed: any two runs on the line, gyro azimuths:"), std::string::npos) << r.err;
+  // Each names where it was booked: the file, the line of the key and the field.
+  const std::size_t determinations_line = static_cast<std::size_t>(
+      std::count(job.begin(), job.begin() + static_cast<std::ptrdiff_t>(job.find("  determinations:")), '\n') + 1);
+  // (the key's line, or the line its list starts on)
+  const auto at = [&](std::size_t line) {
+    return r.err.find("strict.yaml:" + std::to_string(line) +
+                      ": line.determinations: check failed: any two runs on the line") != std::string::npos;
+  };
+  EXPECT_TRUE(at(determinations_line) || at(determinations_line + 1)) << r.err;
   EXPECT_NE(r.err.find("(limit 1.0 arcsec)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("checks failed; no output file written"), std::string::npos) << r.err;
   // Without -o the result still goes to stdout, for the crew to see.
@@ -425,9 +435,11 @@ TEST_F(Cli, TemplateIsAFieldBookThatRuns) {
 TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
   const fs::path dir = fs::path(MERIDIAN_SOURCE_DIR) / ".." / "shared" / "cases" / "gyro-field";
   if (!fs::exists(dir / "fieldbook.yaml")) GTEST_SKIP() << dir << " not present (optional data)";
-  const CmdResult clean = run("gyro campaign --strict " + (dir / "fieldbook.yaml").string());
-  EXPECT_EQ(clean.code, 0) << clean.err << clean.out;
-  EXPECT_EQ(clean.out.find("[FAIL]"), std::string::npos);
+  for (const char* good : {"fieldbook.yaml", "crew-mistakes-2/job.yaml"}) {
+    const CmdResult clean = run("gyro campaign --strict " + (dir / good).string());
+    EXPECT_EQ(clean.code, 0) << good << "\n" << clean.err << clean.out;
+    EXPECT_EQ(clean.out.find("[FAIL]"), std::string::npos) << good;
+  }
   struct Case {
     const char* file;
     int code;
@@ -438,6 +450,11 @@ TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
       {"03b_no_zero_at_all.yaml", 1, "check failed: zero position observed, line.determinations[0]"},
       {"04b_mdotss_numbers.yaml", 1, "line.determinations[1].crossings[0].times_s: the passages imply a period"},
       {"crew-mistakes-2/m4a.yaml", 1, "check failed: zero position observed before and after, line.determinations[1]"},
+      {"crew-mistakes-2/m5a.yaml", 1,
+       "m5a.yaml:87: known_line.azimuth.value: check failed: known line: the given grid azimuth against its "
+       "coordinates, to their rounding: 10.0 arcsec"},
+      {"crew-mistakes-2/m6c.yaml", 1, "line.to: check failed: the line Ⅱ4->Ⅱ3: gyro grid azimuth against the azimuth "
+                                      "of its coordinates (180 deg apart: from and to swapped?"},
   };
   for (const Case& c : cases) {
     const CmdResult r = run("gyro campaign --strict -o out.txt " + (dir / c.file).string());

@@ -301,3 +301,30 @@ TEST(GridConvergence, SignConvention) {
   const mg::GeographicPoint up = gk.reverse(p.x_north_m + 100.0, p.y_east_m);
   EXPECT_GT(up.lon_rad, deg_to_rad(115));  // moving grid-north drifts east
 }
+
+TEST(GridAzimuth, QuadrantsSwapAndErrors) {
+  using meridian::geodesy::grid_azimuth;
+  // C (0, 0) to D (x -1, y +1): south-east, 135 deg; D to C: 315 deg.
+  EXPECT_NEAR(grid_azimuth(0, 0, -1, 1), deg_to_rad(135.0), 1e-15);
+  EXPECT_NEAR(grid_azimuth(-1, 1, 0, 0), deg_to_rad(315.0), 1e-15);
+  EXPECT_NEAR(grid_azimuth(10, 10, 20, 10), 0.0, 0.0);              // due north
+  EXPECT_NEAR(grid_azimuth(10, 10, 10, 0), deg_to_rad(270.0), 1e-15);  // due west
+  EXPECT_THROW(grid_azimuth(5, 5, 5, 5), meridian::InputError);
+  EXPECT_THROW(grid_azimuth(5, std::numeric_limits<double>::quiet_NaN(), 6, 5), meridian::InputError);
+}
+
+TEST(GridAzimuth, RoundingBoundsEveryCornerOfTheRoundingBox) {
+  using meridian::geodesy::grid_azimuth;
+  // Brute force: every coordinate moved by +-half a unit (1 mm booked: 0.0005 m), the largest
+  // change of the azimuth against the linearised bound.
+  const double xc = 3611402.317, yc = 479218.654, xd = 3612288.905, yd = 479957.112, h = 0.0005;
+  const double t0 = grid_azimuth(xc, yc, xd, yd);
+  double largest = 0;
+  for (int m = 0; m < 16; ++m) {
+    const auto s = [&](int bit) { return (m >> bit & 1) ? h : -h; };
+    largest = std::max(largest, std::fabs(grid_azimuth(xc + s(0), yc + s(1), xd + s(2), yd + s(3)) - t0));
+  }
+  const double bound = meridian::geodesy::grid_azimuth_rounding(xc, yc, xd, yd, 2 * h, 2 * h);
+  EXPECT_NEAR(bound, largest, 1e-6 * largest);
+  EXPECT_NEAR(rad_to_arcsec(bound), 0.25177, 0.00001);  // 1154 m line, both points to 1 mm (by hand)
+}

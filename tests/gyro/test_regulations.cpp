@@ -315,3 +315,79 @@ TEST(Regulations, TargetRoundsThatDisagreeWarn) {
   d.target_rounds[1].face_right_rad = r + units::kPi + 6 * units::kArcsecond;
   EXPECT_FALSE(has_warning(process(sim.input), "target rounds disagree"));
 }
+
+// The line booked the wrong way round: the gyro azimuth of "C->D" is that of D->C's reverse,
+// 180 deg from the azimuth of the coordinates; it fails whatever limit the file sets.
+TEST(Regulations, LineBookedFromToSwappedFails) {
+  auto sim = clean();
+  const CampaignResult ok = process(sim.input);
+  const Check* c0 = find_check(ok, "the line ", "against the azimuth of its coordinates");
+  ASSERT_NE(c0, nullptr);
+  EXPECT_TRUE(c0->pass);
+  EXPECT_EQ(c0->field, "line.to");
+  // The value is T minus atan2(dy, dx) of the booked coordinates, recomputed here.
+  const auto& f = sim.input.line.from;
+  const auto& t = *sim.input.line.to;
+  ASSERT_TRUE(f.x_north_m && t.x_north_m);
+  const double coord = std::atan2(*t.y_east_m - *f.y_east_m, *t.x_north_m - *f.x_north_m);
+  EXPECT_NEAR(c0->value, wrap_signed_rad(ok.chain.grid_azimuth_rad.value - coord) / units::kArcsecond, 1e-6);
+  EXPECT_NEAR(c0->tolerance, 40.0, 1e-9);  // 15" class: the limit of two orientations
+
+  std::swap(sim.input.line.from.x_north_m, sim.input.line.to->x_north_m);
+  std::swap(sim.input.line.from.y_east_m, sim.input.line.to->y_east_m);
+  std::swap(sim.input.line.from.name, sim.input.line.to->name);
+  sim.input.tolerances.line_coordinates_rad = 10 * units::kDegree;  // a loose file limit does not hide it
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "the line ", "against the azimuth of its coordinates");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_NE(c->name.find("from and to swapped?"), std::string::npos) << c->name;
+  EXPECT_NEAR(std::fabs(c->value), 648000.0, 3600.0);
+  EXPECT_TRUE(has_warning(r, "booked the wrong way round?"));
+}
+
+TEST(Regulations, LineAgainstCoordinatesHasAnEditableLimit) {
+  auto sim = clean();
+  // The target moved sideways by 60" of the line's length: the traverse and the gyro disagree.
+  auto& f = sim.input.line.from;
+  auto& t = *sim.input.line.to;
+  const double dx = *t.x_north_m - *f.x_north_m, dy = *t.y_east_m - *f.y_east_m;
+  const double turn = 60 * units::kArcsecond;
+  t.x_north_m = *f.x_north_m + dx * std::cos(turn) - dy * std::sin(turn);
+  t.y_east_m = *f.y_east_m + dx * std::sin(turn) + dy * std::cos(turn);
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "the line ", "against the azimuth of its coordinates");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_GT(std::fabs(c->value), 40.0);
+  sim.input.tolerances.line_coordinates_rad = 90 * units::kArcsecond;
+  const CampaignResult r2 = process(sim.input);
+  const Check* loose = find_check(r2, "the line ", "against the azimuth of its coordinates");
+  EXPECT_TRUE(loose->pass);
+  EXPECT_EQ(loose->source, "tolerances.line_coordinates_arcsec in the file");
+}
+
+// A given grid azimuth is its coordinates' own: it agrees with them to their rounding, and a
+// 10" typo fails (the class's 15" would pass it).
+TEST(Regulations, KnownGridAzimuthIsHeldToItsCoordinatesRounding) {
+  auto sim = clean();
+  auto& k = *sim.input.known_line;
+  for (std::optional<double>* v : {&k.from.x_north_m, &k.from.y_east_m, &k.to->x_north_m, &k.to->y_east_m})
+    **v = std::round(**v * 1000.0) / 1000.0;  // booked to 1 mm, as the reader records it:
+  for (PointInput* p : {&k.from, &*k.to}) p->x_half_unit_m = p->y_half_unit_m = 0.0005;
+  const double dx = *k.to->x_north_m - *k.from.x_north_m, dy = *k.to->y_east_m - *k.from.y_east_m;
+  k.azimuth.value_rad.value = wrap_positive_rad(std::atan2(dy, dx));
+  const double limit = (0.001 * std::fabs(dx) + 0.001 * std::fabs(dy)) / (dx * dx + dy * dy) / units::kArcsecond + 0.5;
+  const CampaignResult ok = process(sim.input);
+  const Check* c0 = find_check(ok, "known line: the given grid azimuth against its coordinates, to their rounding");
+  ASSERT_NE(c0, nullptr);
+  EXPECT_TRUE(c0->pass);
+  EXPECT_NEAR(c0->tolerance, limit, 1e-9) << c0->source;
+  EXPECT_EQ(c0->field, "known_line.azimuth.value");
+  k.azimuth.value_rad.value += 10 * units::kArcsecond;
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "known line: the given grid azimuth against its coordinates");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_NEAR(c->value, 10.0, 1e-6);
+}

@@ -121,6 +121,22 @@ class TransverseMercatorGrid {
   GridDefinition def_;
 };
 
+/// Grid azimuth of the chord C→D from plane coordinates (坐标方位角, the
+/// "coordinate azimuth" of a traverse): T = atan2(y_D − y_C, x_D − x_C),
+/// radians in [0, 2π), clockwise from grid north. x north, y east, metres
+/// (any common origin). Worked example: C (0, 0), D (x −1, y +1) gives
+/// T = 135° (south-east); swapping C and D gives 315°. Throws InputError for
+/// non-finite input or coincident points.
+double grid_azimuth(double x_c_m, double y_c_m, double x_d_m, double y_d_m);
+
+/// The largest change of grid_azimuth() (radians) when each of the four
+/// coordinates is off by at most half its booked digit: `x_half_unit_m`,
+/// `y_half_unit_m` are the sums of both points' half units (0.001 for two
+/// points booked to 1 mm). Linearised: |dT| ≤ (u_y|Δx| + u_x|Δy|)/s². Throws
+/// InputError as grid_azimuth().
+double grid_azimuth_rounding(double x_c_m, double y_c_m, double x_d_m, double y_d_m, double x_half_unit_m,
+                             double y_half_unit_m);
+
 /// Arc-to-chord correction δ at C for the line C→D (radians), computed
 /// rigorously: δ = T_chord − (α_CD − γ_C), where T_chord = atan2(y_D − y_C,
 /// x_D − x_C) is the grid azimuth of the straight chord, α_CD the geodesic

@@ -34,6 +34,10 @@ struct PointInput {
   std::optional<double> height_m;
   /// ξ at this point (radians, astro − geodetic, north component), if known.
   std::optional<Uncertain> xi_rad{};
+  /// Half the last booked digit of x and y (m; 0.0005 for coordinates booked to 1 mm), as
+  /// the reader saw the text. Unset: inferred from the shortest text of the number (which
+  /// drops trailing zeros, so never tighter than booked).
+  std::optional<double> x_half_unit_m{}, y_half_unit_m{};
 };
 
 /// The known line's azimuth and its kind (converted to astronomic by the
@@ -125,6 +129,10 @@ struct Check {
   bool minimum = false;     ///< true: the value must be at least the limit
   bool signed_value = false;  ///< the value has a sign; the check is |value| ≤ tolerance
   std::string source;       ///< where the limit comes from (regulations, class, the file, Meridian)
+  /// The input field the check is about, as a field path of the Input
+  /// ("line.determinations[1].target_rounds[0]"; empty: the job as a whole).
+  /// The runner's io::SourceMap turns it into the file and line.
+  std::string field;
 };
 
 
@@ -164,6 +172,10 @@ struct CampaignResult {
   /// Grid azimuth of the known line from its end points' coordinates (chord,
   /// atan2(Δy, Δx)), when both are given.
   std::optional<double> known_grid_azimuth_from_coordinates_rad;
+  /// Grid azimuth of the line C→D from its end points' coordinates (the
+  /// traverse's 坐标方位角, geodesy::grid_azimuth), when both are given; the
+  /// record sheet shows chain.grid_azimuth_rad minus it (gyro − traverse).
+  std::optional<double> line_grid_azimuth_from_coordinates_rad;
   std::vector<std::string> notes;
   std::vector<std::string> warnings;
   bool all_checks_pass() const;

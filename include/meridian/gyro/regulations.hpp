@@ -66,6 +66,9 @@ struct Tolerances {
   std::optional<double> zero_position_div;                   ///< zero position drift after − before
   std::optional<double> zero_position_limit_div;             ///< |α_p| of a motor-off run
   std::optional<double> known_azimuth_coordinates_rad;       ///< given vs coordinate azimuth of the known line
+  /// The line's grid azimuth from the gyro against the azimuth of its end points' coordinates
+  /// (gyro − traverse); default the class's limit for two independent orientations.
+  std::optional<double> line_coordinates_rad;
   std::optional<double> instrument_constant_max_rad;         ///< |E|
 };
 

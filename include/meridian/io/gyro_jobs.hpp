@@ -61,6 +61,11 @@ struct CampaignJob {
 CampaignJob run_campaign_file(const std::filesystem::path& path, DeflectionModels* models = nullptr,
                               Progress* progress = nullptr);
 
+/// Where in the campaign file a check's field (gyro::Check::field) was booked: the file,
+/// the line of its innermost key and the key path; the file alone for a check of the
+/// whole job.
+ErrorContext check_place(const CampaignJob& job, const gyro::Check& check);
+
 /// Independent orientations of one line, one campaign file each.
 struct OrientationsJob {
   std::vector<CampaignJob> orientations;

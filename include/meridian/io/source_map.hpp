@@ -73,6 +73,11 @@ class SourceMap {
   /// unchanged; a field no rule matches keeps its path and gets no file.
   void locate(Error& e) const;
 
+  /// The place of a field path by the same rules (for a result that names the field it is
+  /// about, such as a failed check); std::nullopt when no rule matches. An empty field is the
+  /// job's document.
+  std::optional<ErrorContext> place(const std::string& field) const;
+
  private:
   enum class Kind { Document, Rows, Place };
   struct Rule {
