@@ -120,6 +120,7 @@ class CampaignRun {
     check_programme();
     check_zero_positions();
     check_line_runs();
+    check_target_rounds();
     check_tracking_runs();
     check_instrument_constants();
     check_duplicated_runs();
@@ -485,6 +486,75 @@ class CampaignRun {
       res_.warnings.push_back(fmt::format("gyro azimuths of the line differ by {:.1f}\" (limit {:.1f}\")",
                                           spread / units::kArcsecond, limits_.run_difference_rad / units::kArcsecond));
   }
+
+  // The target rounds of every run agree (a face reading booked wrong moves the run's target
+  // reading by half of it; a round with its faces swapped is 180° from the others). Meridian's
+  // plausibility limits, as determination.cpp's warning: directions within max(10", 3·σ·√2),
+  // 2C within 20". The instrument's 2C, the median over every round of the job, tells which
+  // round of a failing run is the wrong one.
+  void check_target_rounds() {
+    struct Run {
+      const DeterminationResult* result;
+      const DeterminationInput* input;
+      std::string field;
+    };
+    std::vector<Run> runs;
+    auto add = [&](const std::vector<DeterminationResult>& v, const std::vector<DeterminationInput>& in,
+                   const char* what) {
+      for (std::size_t i = 0; i < v.size() && i < in.size(); ++i)
+        if (v[i].target && v[i].target->round_rad.size() >= 2)
+          runs.push_back({&v[i], &in[i], fmt::format("{}[{}]", what, i)});
+    };
+    if (in_.known_line) {
+      add(res_.known_before, in_.known_line->before, "known_line.before");
+      add(res_.known_after, in_.known_line->after, "known_line.after");
+    }
+    add(res_.determinations, in_.line.determinations, "line.determinations");
+    if (runs.empty()) return;
+    std::vector<double> all_two_c;
+    for (const Run& r : runs)
+      for (double c : r.result->target->two_c_rad) all_two_c.push_back(c);
+    std::nth_element(all_two_c.begin(), all_two_c.begin() + static_cast<std::ptrdiff_t>(all_two_c.size() / 2),
+                     all_two_c.end());
+    const double instrument_two_c = all_two_c[all_two_c.size() / 2];
+    const auto arcsec = [](double rad) { return rad / units::kArcsecond; };
+    for (const Run& r : runs) {
+      const TargetDirection& t = *r.result->target;
+      const double limit = std::max(10.0 * units::kArcsecond, 3.0 * std::sqrt(2.0) * r.input->target_round_sigma_rad);
+      const auto [lo, hi] = std::minmax_element(t.two_c_rad.begin(), t.two_c_rad.end());
+      const double two_c_variation = *hi - *lo;
+      const bool pass = t.spread_rad <= limit && two_c_variation <= kTwoCVariationRad;
+      const std::string label = r.result->label.empty() ? "" : " (" + r.result->label + ")";
+      std::string name = fmt::format("target rounds agree, {}{}", r.field, label);
+      std::string field = r.field + ".target_rounds";
+      if (!pass) {
+        // The round whose 2C is farthest from the instrument's.
+        std::size_t k = 0;
+        for (std::size_t j = 1; j < t.two_c_rad.size(); ++j)
+          if (std::fabs(t.two_c_rad[j] - instrument_two_c) > std::fabs(t.two_c_rad[k] - instrument_two_c)) k = j;
+        // Faces swapped: the round is 180° from the others and its 2C is the instrument's negated.
+        const bool swapped = t.spread_rad > units::kPi / 2;
+        const bool known = std::fabs(t.two_c_rad[k] - instrument_two_c) > 2.0 * units::kArcsecond;
+        const std::string which = known ? fmt::format("target_rounds[{}]", k) : std::string("one of the rounds");
+        if (known) field = fmt::format("{}.target_rounds[{}]", r.field, k);
+        if (swapped)
+          name += fmt::format(": {} is 180 deg from the others, face left and face right swapped? (its 2C {:+.1f}\", "
+                              "the instrument's {:+.1f}\")",
+                              which, arcsec(t.two_c_rad[k]), arcsec(instrument_two_c));
+        else
+          name += fmt::format(": {}: a face reading booked wrong? (its 2C {:+.1f}\", the instrument's {:+.1f}\"; 2C of "
+                              "the rounds varies by {:.1f}\", limit {:.0f}\")",
+                              which, arcsec(t.two_c_rad[k]), arcsec(instrument_two_c), arcsec(two_c_variation),
+                              arcsec(kTwoCVariationRad));
+      }
+      res_.checks.push_back({std::move(name), arcsec(t.spread_rad), arcsec(limit), CheckUnit::Arcsec, pass, false,
+                             false,
+                             "Meridian plausibility limit: round directions within max(10\", 3 sqrt(2) sigma of a "
+                             "round), 2C within 20\"",
+                             std::move(field)});
+    }
+  }
+  static constexpr double kTwoCVariationRad = 20.0 * units::kArcsecond;
 
   // Each tracking run's internal check: its readings scatter about the model
   // as their stated σ says (the global test of ReversalResult).

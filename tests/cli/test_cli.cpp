@@ -450,6 +450,11 @@ TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
       {"03b_no_zero_at_all.yaml", 1, "check failed: zero position observed, line.determinations[0]"},
       {"04b_mdotss_numbers.yaml", 1, "line.determinations[1].crossings[0].times_s: the passages imply a period"},
       {"crew-mistakes-2/m4a.yaml", 1, "check failed: zero position observed before and after, line.determinations[1]"},
+      {"crew-mistakes-2/m2a.yaml", 1,
+       "known_line.before[0].target_rounds[0]: check failed: target rounds agree, known_line.before[0] (J3-GPS07 "
+       "测前1 (逆转点法) 08:10): target_rounds[0] is 180 deg from the others, face left and face right swapped?"},
+      {"crew-mistakes-2/m2c.yaml", 1,
+       "line.determinations[1].target_rounds[0]: check failed: target rounds agree, line.determinations[1]"},
       {"crew-mistakes-2/m5a.yaml", 1,
        "m5a.yaml:87: known_line.azimuth.value: check failed: known line: the given grid azimuth against its "
        "coordinates, to their rounding: 10.0 arcsec"},

@@ -312,8 +312,46 @@ TEST(Regulations, TargetRoundsThatDisagreeWarn) {
                       r + units::kPi + 65 * units::kArcsecond}};  // one face 1' off
   const CampaignResult res = process(sim.input);
   EXPECT_TRUE(has_warning(res, "line.determinations[0]: the target rounds disagree"));
+  // A failed check, not a warning only: the directions (L + R - 180)/2 spread by 30", limit 10".
+  const Check* c = find_check(res, "target rounds agree, line.determinations[0]");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_NEAR(c->value, 30.0, 1e-6);
+  EXPECT_NEAR(c->tolerance, 10.0, 1e-9);
+  EXPECT_FALSE(res.all_checks_pass());
+  // The other runs book no rounds (their target reading only): the instrument's 2C is this
+  // run's median, so which round is wrong cannot be told from the sign.
   d.target_rounds[1].face_right_rad = r + units::kPi + 6 * units::kArcsecond;
-  EXPECT_FALSE(has_warning(process(sim.input), "target rounds disagree"));
+  const CampaignResult ok = process(sim.input);
+  EXPECT_FALSE(has_warning(ok, "target rounds disagree"));
+  EXPECT_TRUE(find_check(ok, "target rounds agree, line.determinations[0]")->pass);
+}
+
+// A round booked with its faces swapped is 180° from the other rounds and its 2C is the
+// instrument's negated: the check names that round.
+TEST(Regulations, RoundWithFacesSwappedIsNamed) {
+  auto sim = clean();
+  const double two_c = 12 * units::kArcsecond;  // the instrument's collimation, 2C = L - (R - 180)
+  for (auto* v : {&sim.input.line.determinations}) {
+    for (auto& d : *v) {
+      const double r = d.target_reading_rad->value;
+      d.target_reading_rad.reset();
+      d.target_rounds = {{TargetRound::When::Before, r + two_c / 2, r + units::kPi - two_c / 2},
+                         {TargetRound::When::After, r + two_c / 2 + units::kArcsecond, r + units::kPi - two_c / 2}};
+    }
+  }
+  ASSERT_TRUE(find_check(process(sim.input), "target rounds agree, line.determinations[1]")->pass);
+  auto& round = sim.input.line.determinations[1].target_rounds[1];
+  std::swap(round.face_left_rad, round.face_right_rad);
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "target rounds agree, line.determinations[1]");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_NE(c->name.find("target_rounds[1] is 180 deg from the others, face left and face right swapped?"),
+            std::string::npos)
+      << c->name;
+  EXPECT_EQ(c->field, "line.determinations[1].target_rounds[1]");
+  EXPECT_NEAR(c->value, 180.0 * 3600.0, 2.0);
 }
 
 // The line booked the wrong way round: the gyro azimuth of "C->D" is that of D->C's reverse,
