@@ -21,6 +21,7 @@ std::string to_string(CheckUnit u) {
     case CheckUnit::Runs: return "runs";
     case CheckUnit::Observers: return "observers";
     case CheckUnit::Checks: return "checks";
+    case CheckUnit::Entries: return "entries";
     case CheckUnit::Arcsec: break;
   }
   return "arcsec";
@@ -88,7 +89,7 @@ class CampaignRun {
       throw InputError("the campaign names a gravity model but it was not loaded",
                        {"", std::nullopt, "gravity_model"});
     try {
-      limits_ = apply_tolerances(regulation_limits(in.instrument.accuracy_class_arcsec), in.tolerances);
+      limits_ = apply_tolerances(regulation_limits(accuracy_class()), in.tolerances);
     } catch (Error& e) {
       e.add_context("", std::nullopt, "instrument.accuracy_class_arcsec");
       throw;
@@ -117,6 +118,7 @@ class CampaignRun {
     if (in_.known_line) calibrate_on_known_line();
     else use_given_instrument_constant();
     reduce_line();
+    check_accuracy_class();
     check_programme();
     check_zero_positions();
     check_line_runs();
@@ -373,7 +375,7 @@ class CampaignRun {
   // A limit set in the file that is looser than the regulations' for the
   // class is allowed (a project may decide so) but said aloud.
   void warn_looser_limits() {
-    const RegulationLimits reg = regulation_limits(in_.instrument.accuracy_class_arcsec);
+    const RegulationLimits reg = regulation_limits(accuracy_class());
     const Tolerances& t = in_.tolerances;
     const struct {
       const std::optional<double>& set;
@@ -399,6 +401,42 @@ class CampaignRun {
         res_.warnings.push_back(fmt::format("tolerances.{} = {:g}{} in the file is looser than the {:g}{} of {}", r.key,
                                             *r.set / r.unit, r.unit_name, r.regulation / r.unit, r.unit_name,
                                             reg.source));
+  }
+
+  // The class the limits are taken for: as booked; not booked, the class the instrument's name
+  // states, else the 15" default.
+  double accuracy_class() const {
+    if (in_.instrument.accuracy_class_booked) return in_.instrument.accuracy_class_arcsec;
+    return accuracy_class_from_name(in_.instrument.name).value_or(in_.instrument.accuracy_class_arcsec);
+  }
+
+  // The class sets every limit: it must be booked, and no looser than the instrument's name
+  // states (a 25" class booked for a JT15 gives 70" limits instead of 40").
+  void check_accuracy_class() {
+    const std::optional<double> named = accuracy_class_from_name(in_.instrument.name);
+    const double used = limits_.accuracy_class_arcsec;
+    if (!in_.instrument.accuracy_class_booked) {
+      const std::string why = named ? fmt::format("the class of its name, {}", in_.instrument.name)
+                                    : std::string("Meridian's default");
+      res_.checks.push_back({fmt::format("accuracy class booked (not booked: the {:g}\" limits of {} used)", used, why),
+                             0.0, 1.0, CheckUnit::Entries, false, true, false,
+                             "the class sets every limit of the regulations: book instrument.accuracy_class_arcsec",
+                             "instrument"});
+      res_.warnings.push_back(fmt::format(
+          "instrument.accuracy_class_arcsec not booked: the limits of a {:g}\" instrument ({}) are used", used, why));
+      return;
+    }
+    if (!named) return;
+    res_.checks.push_back({fmt::format("accuracy class booked against the instrument's name ({} is a {:g}\" instrument)",
+                                       in_.instrument.name, *named),
+                           used, *named, CheckUnit::Arcsec, used <= *named, false, false,
+                           "the class of the name (gyro/instrument_spec.hpp, accuracy_class_from_name); a tighter "
+                           "class booked is accepted",
+                           "instrument.accuracy_class_arcsec"});
+    if (!res_.checks.back().pass)
+      res_.warnings.push_back(fmt::format(
+          "instrument.accuracy_class_arcsec = {:g}\" is looser than the {:g}\" of a {}: the checks use looser limits",
+          used, *named, in_.instrument.name));
   }
 
   // The programme of one orientation: runs before, on the line and after.
@@ -556,22 +594,39 @@ class CampaignRun {
   }
   static constexpr double kTwoCVariationRad = 20.0 * units::kArcsecond;
 
-  // Each tracking run's internal check: its readings scatter about the model
-  // as their stated σ says (the global test of ReversalResult).
+  // Each tracking run's internal check: its readings scatter about the model as their stated σ
+  // says (the global test of ReversalResult). A run booked without sigma_reading_arcsec is
+  // tested against the class's default (RegulationLimits::default_reading_sigma_rad, with a
+  // note), so that a reversal booked 1' wrong fails whatever was booked; its σ stays the
+  // a-posteriori one (reversal.hpp), the default only tests.
   void check_tracking_runs() {
     auto checks = [&](const std::vector<DeterminationResult>& v, const std::string& what) {
       for (std::size_t i = 0; i < v.size(); ++i) {
         const auto& rev = v[i].primary.reversal;
-        if (!rev || !rev->reading_sigma_test) continue;
-        const adjust::GlobalTestResult& g = *rev->reading_sigma_test;
-        const double limit = rev->sigma_reading * std::sqrt(g.critical_value / g.dof);
+        if (!rev) continue;
+        std::optional<adjust::GlobalTestResult> test = rev->reading_sigma_test;
+        double sigma = rev->sigma_reading;
+        std::string stated = "the stated";
+        if (!test) {
+          if (rev->dof <= 0 || !std::isfinite(rev->sigma0)) continue;
+          sigma = limits_.default_reading_sigma_rad;
+          const double ratio = rev->sigma0 / sigma;
+          test = adjust::global_test(rev->dof * ratio * ratio, rev->dof, kReadingSigmaTestAlpha);
+          stated = fmt::format("the {:g}\" class's default (no sigma_reading_arcsec booked: class/3)",
+                               limits_.accuracy_class_arcsec);
+          res_.notes.push_back(fmt::format(
+              "{}[{}]: no sigma_reading_arcsec booked: its readings are checked against {:.1f}\", the {:g}\" "
+              "class's default (class/3); its sigma is the a-posteriori one of its readings",
+              what, i, sigma / units::kArcsecond, limits_.accuracy_class_arcsec));
+        }
+        const adjust::GlobalTestResult& g = *test;
+        const double limit = sigma * std::sqrt(g.critical_value / g.dof);
         res_.checks.push_back(
             {fmt::format("tracking readings scatter as stated, {}[{}]{}", what, i,
                          v[i].label.empty() ? "" : " (" + v[i].label + ")"),
-             g.sigma0 * rev->sigma_reading / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
-             !g.rejected, false, false,
-             fmt::format("global test at {:g} %: sigma of a reading from the residuals against the stated {:.1f}\"",
-                         100.0 * g.alpha, rev->sigma_reading / units::kArcsecond),
+             rev->sigma0 / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec, !g.rejected, false, false,
+             fmt::format("global test at {:g} %: sigma of a reading from the residuals against {} {:.1f}\"",
+                         100.0 * g.alpha, stated, sigma / units::kArcsecond),
              fmt::format("{}[{}].reversals", what, i)});
       }
     };

@@ -1,5 +1,6 @@
 #include "meridian/gyro/instrument_spec.hpp"
 
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -73,6 +74,24 @@ ResolvedInstrument resolve_instrument(const InstrumentSpec& spec, double station
     }
   }
   return out;
+}
+
+std::optional<double> accuracy_class_from_name(const std::string& name) {
+  std::string up;
+  for (char c : name) up += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (up.find("GAK1") != std::string::npos || up.find("GAK 1") != std::string::npos) return 15.0;
+  for (std::size_t p = up.find("JT"); p != std::string::npos; p = up.find("JT", p + 1)) {
+    // Not inside a longer word ("BJT15" is not a JT15).
+    if (p > 0 && std::isalnum(static_cast<unsigned char>(up[p - 1]))) continue;
+    std::size_t q = p + 2;
+    if (q < up.size() && (up[q] == '-' || up[q] == ' ')) ++q;
+    std::size_t digits = 0;
+    while (q + digits < up.size() && std::isdigit(static_cast<unsigned char>(up[q + digits]))) ++digits;
+    if (digits == 0 || digits > 2) continue;
+    if (q + digits < up.size() && std::isalnum(static_cast<unsigned char>(up[q + digits]))) continue;
+    return std::stod(up.substr(q, digits));
+  }
+  return std::nullopt;
 }
 
 }  // namespace meridian::gyro

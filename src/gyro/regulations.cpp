@@ -44,6 +44,7 @@ RegulationLimits regulation_limits(double accuracy_class_arcsec) {
   l.orientation_difference_rad = scale * row->orientations * units::kArcsecond;
   l.orientation_mean_sigma_rad = scale * row->mean_sigma * units::kArcsecond;
   l.instrument_constant_max_rad = 600.0 * units::kArcsecond;
+  l.default_reading_sigma_rad = accuracy_class_arcsec / 3.0 * units::kArcsecond;
   if (row->class_arcsec == 5.0)
     l.source = fmt::format("project limits for a {}\"-class instrument (gyro total station; spec 7.1)",
                            accuracy_class_arcsec);

@@ -95,6 +95,7 @@ gyro::InstrumentSpec read_instrument(const Node& n) {
     s.latitude_limit_rad = d * units::kDegree;
   }
   if (auto v = n.get("accuracy_class_arcsec")) s.accuracy_class_arcsec = v->positive_number();
+  else s.accuracy_class_booked = false;
   return s;
 }
 

@@ -404,7 +404,7 @@ Section checks_section(const gyro::CampaignResult& r, const AngleFormat& f) {
   for (const auto& k : r.checks) {
     const bool div = k.unit == gyro::CheckUnit::Div;
     const bool runs = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers ||
-                      k.unit == gyro::CheckUnit::Checks;
+                      k.unit == gyro::CheckUnit::Checks || k.unit == gyro::CheckUnit::Entries;
     const int dec = div ? 2 : runs ? 0 : 1;
     const std::string unit = div ? " div" : runs ? "" : "\"";
     cl.checks.push_back({k.name, fmt::format("{:.{}f}{}", k.value, dec, unit),

@@ -51,7 +51,7 @@ std::string determination_text(const gyro::DeterminationResult& r, int index, co
 
 std::string check_statement(const gyro::Check& k) {
   const bool count = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers ||
-                     k.unit == gyro::CheckUnit::Checks;
+                     k.unit == gyro::CheckUnit::Checks || k.unit == gyro::CheckUnit::Entries;
   const int decimals = count ? 0 : k.unit == gyro::CheckUnit::Arcsec ? 1 : 2;
   const std::string unit = " " + gyro::to_string(k.unit);
   // An angle of a degree or more is read as D°M'S" (a round 180° off, a line booked the wrong way round).

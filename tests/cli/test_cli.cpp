@@ -455,6 +455,14 @@ TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
        "测前1 (逆转点法) 08:10): target_rounds[0] is 180 deg from the others, face left and face right swapped?"},
       {"crew-mistakes-2/m2c.yaml", 1,
        "line.determinations[1].target_rounds[0]: check failed: target rounds agree, line.determinations[1]"},
+      {"crew-mistakes-2/m7e.yaml", 1,
+       "m7e.yaml:66: instrument.accuracy_class_arcsec: check failed: accuracy class booked against the instrument's "
+       "name (JT15 陀螺经纬仪 is a 15\" instrument): 25.0 arcsec"},
+      {"crew-mistakes-2/m7f.yaml", 1,
+       "instrument: check failed: accuracy class booked (not booked: the 15\" limits of the class of its name"},
+      {"crew-mistakes-2/m9a.yaml", 1,
+       "m9a.yaml:93: known_line.before[0].reversals: check failed: tracking readings scatter as stated, "
+       "known_line.before[0]"},
       {"crew-mistakes-2/m5a.yaml", 1,
        "m5a.yaml:87: known_line.azimuth.value: check failed: known line: the given grid azimuth against its "
        "coordinates, to their rounding: 10.0 arcsec"},

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+
+#include <boost/math/distributions/chi_squared.hpp>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +15,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/gyro/campaign.hpp"
 #include "meridian/gyro/campaign_simulator.hpp"
+#include "meridian/gyro/instrument_spec.hpp"
 #include "meridian/gyro/orientations.hpp"
 #include "meridian/gyro/plausibility.hpp"
 #include "meridian/gyro/regulations.hpp"
@@ -428,4 +432,83 @@ TEST(Regulations, KnownGridAzimuthIsHeldToItsCoordinatesRounding) {
   ASSERT_NE(c, nullptr);
   EXPECT_FALSE(c->pass);
   EXPECT_NEAR(c->value, 10.0, 1e-6);
+}
+
+// A tracking run booked without sigma_reading_arcsec is checked against the class's default
+// (class/3, 5" for 15"): a reversal booked 1' wrong fails although no sigma was booked.
+TEST(Regulations, TrackingRunWithoutStatedSigmaIsCheckedAgainstTheClassDefault) {
+  CampaignTruth truth = example_campaign_truth();
+  truth.sigma_tracking_arcsec = 3.0;
+  auto sim = simulate_campaign(truth, 5);
+  const auto unbook = [](std::vector<DeterminationInput>& v) {
+    for (auto& d : v) d.tracking.sigma_reading_rad = std::numeric_limits<double>::quiet_NaN();
+  };
+  unbook(sim.input.known_line->before);
+  unbook(sim.input.known_line->after);
+  unbook(sim.input.line.determinations);
+  std::size_t k = 0;
+  while (k < sim.input.line.determinations.size() && sim.input.line.determinations[k].mode != Mode::Tracking) ++k;
+  ASSERT_LT(k, sim.input.line.determinations.size());
+  const std::string run = "line.determinations[" + std::to_string(k) + "]";
+  const CampaignResult ok = process(sim.input);
+  const Check* c0 = find_check(ok, "tracking readings scatter as stated, " + run);
+  ASSERT_NE(c0, nullptr);
+  EXPECT_TRUE(c0->pass) << c0->value;
+  // The limit is 5" sqrt(chi2_0.99(dof)/dof), from Boost's quantile here independently of adjust.
+  const int dof = ok.determinations[k].primary.reversal->dof;
+  ASSERT_GT(dof, 0);
+  const double chi2 = boost::math::quantile(boost::math::chi_squared(dof), 0.99);
+  EXPECT_NEAR(c0->tolerance, 5.0 * std::sqrt(chi2 / dof), 1e-9);
+  EXPECT_NE(c0->source.find("class's default"), std::string::npos) << c0->source;
+  EXPECT_EQ(c0->field, run + ".reversals");
+  sim.input.line.determinations[k].tracking.reversals_rad[1] += 60 * units::kArcsecond;
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "tracking readings scatter as stated, " + run);
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass) << c->value;
+}
+
+TEST(Regulations, AccuracyClassFromTheInstrumentsName) {
+  EXPECT_EQ(accuracy_class_from_name("JT15 陀螺经纬仪"), 15.0);
+  EXPECT_EQ(accuracy_class_from_name("jt-5 No. 12"), 5.0);
+  EXPECT_EQ(accuracy_class_from_name("Y/JT 15"), 15.0);
+  EXPECT_EQ(accuracy_class_from_name("GAK1 on a T2"), 15.0);
+  EXPECT_FALSE(accuracy_class_from_name("BJT15").has_value());
+  EXPECT_FALSE(accuracy_class_from_name("JT150").has_value());
+  EXPECT_FALSE(accuracy_class_from_name("JT15B").has_value());
+  EXPECT_FALSE(accuracy_class_from_name("Gyromat 2000").has_value());
+}
+
+// The class sets every limit: not booked is a failed check (with the class used stated), and a
+// class looser than the instrument's name states fails.
+TEST(Regulations, AccuracyClassMustBeBookedAndMatchTheName) {
+  auto sim = clean();
+  sim.input.instrument.name = "JT15 No. 7";
+  sim.input.instrument.accuracy_class_arcsec = 15;
+  const CampaignResult ok = process(sim.input);
+  const Check* c0 = find_check(ok, "accuracy class booked against the instrument's name");
+  ASSERT_NE(c0, nullptr);
+  EXPECT_TRUE(c0->pass);
+  sim.input.instrument.accuracy_class_arcsec = 5;  // tighter than the name: accepted (the job may then fail others)
+  const CampaignResult tight = process(sim.input);
+  EXPECT_TRUE(find_check(tight, "accuracy class booked against the instrument's name")->pass);
+  sim.input.instrument.accuracy_class_arcsec = 25;
+  const CampaignResult loose = process(sim.input);
+  const Check* c = find_check(loose, "accuracy class booked against the instrument's name");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_EQ(c->field, "instrument.accuracy_class_arcsec");
+  EXPECT_NEAR(loose.limits.run_difference_rad / units::kArcsecond, 70.0, 1e-9);  // what a 25" class gets
+  // Not booked: the class of the name (JT5: 5") sets the limits, and the check fails.
+  sim.input.instrument.name = "JT5";
+  sim.input.instrument.accuracy_class_arcsec = 15;
+  sim.input.instrument.accuracy_class_booked = false;
+  const CampaignResult unbooked = process(sim.input);
+  const Check* b = find_check(unbooked, "accuracy class booked (not booked: the 5\" limits of the class of its name");
+  ASSERT_NE(b, nullptr) << unbooked.checks.front().name;
+  EXPECT_FALSE(b->pass);
+  EXPECT_NEAR(unbooked.limits.run_difference_rad / units::kArcsecond, 10.0, 1e-9);
+  sim.input.instrument.name = "gyro No. 3";
+  EXPECT_NE(find_check(process(sim.input), "accuracy class booked (not booked: the 15\" limits of Meridian's default"),
+            nullptr);
 }

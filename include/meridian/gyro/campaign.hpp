@@ -115,8 +115,9 @@ struct PointResult {
 };
 
 /// Unit of a check's value and tolerance.
-enum class CheckUnit { Arcsec, Div, Runs, Observers, Checks };
-std::string to_string(CheckUnit u);  ///< "arcsec", "div", "runs", "observers", "checks"
+enum class CheckUnit { Arcsec, Div, Runs, Observers, Checks, Entries };
+/// "arcsec", "div", "runs", "observers", "checks", "entries" (a field booked: 1, or not: 0)
+std::string to_string(CheckUnit u);
 
 /// A pass/fail check for the report: `value` against the limit `tolerance`
 /// (at most, or at least for a minimum such as a number of runs).

@@ -34,7 +34,17 @@ struct InstrumentSpec {
   /// Nominal accuracy class (arcsec), e.g. 5, 15 or 25: sets the limits of
   /// the checks (regulations.hpp).
   double accuracy_class_arcsec = kDefaultAccuracyClass_arcsec;
+  /// accuracy_class_arcsec was booked (a file without `accuracy_class_arcsec` sets false: the
+  /// campaign then takes the class from the instrument's name, else the 15″ default, and
+  /// fails the check "accuracy class booked"). Code that builds an Input states its class.
+  bool accuracy_class_booked = true;
 };
+
+/// The accuracy class (arcsec) an instrument's name states, for the names of the
+/// tape-suspended gyro-theodolites of the coal-mine surveying regulations: "JT<n>" (also
+/// "JT-<n>", "JT <n>", any case) is an n″ instrument (JT15 → 15, JT5 → 5); "GAK1" is a
+/// 15″ instrument (spec §7.1). Anything else: std::nullopt (no class is guessed).
+std::optional<double> accuracy_class_from_name(const std::string& name);
 
 /// Instrument constants at `station_lat_rad`, plus what was done to get them.
 struct ResolvedInstrument {

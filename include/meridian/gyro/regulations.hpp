@@ -46,6 +46,9 @@ struct RegulationLimits {
   double orientation_mean_sigma_rad = 0.0;  ///< σ of the mean of two orientations
   int min_runs_before = 2, min_runs_line = 2, min_runs_after = 2;  ///< programme
   double instrument_constant_max_rad = 0.0; ///< plausibility bound on |E|
+  /// σ of one tracking reversal reading for a run that books none (Meridian's default,
+  /// class/3: 5″ for a 15″ class), so that every tracking run's readings are checked.
+  double default_reading_sigma_rad = 0.0;
   std::string source;                       ///< where the limits come from (shown in reports)
 };
 
