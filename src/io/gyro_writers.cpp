@@ -393,13 +393,18 @@ known_line:                         # surface line of known azimuth: calibrates 
       method: schuler               # tracking: two-point | schuler | lsq-linear | lsq | all
       # horizontal-circle readings at the reversals (turning points), in time order (angle_unit)
       reversals: ["359°17′00″", "1°46′13″", "359°17′32″", "1°45′32″", "359°18′07″"]
-      # sigma_reading_arcsec: 5     # a-priori sigma of one reversal reading (arcsec); optional
+      sigma_reading_arcsec: 5       # a-priori sigma of one reversal reading (arcsec); without it the
+                                    # class/3 default only checks the readings
       zero_position:                # motor-off runs: the tape zero, before and after the gyro run
         before: {reversals_div: [4.1, -3.6, 3.9, -3.4, 3.7]}   # scale readings at the reversals (div, east +)
         after:  {reversals_div: [-3.7, 4.0, -3.5, 3.8, -3.3]}  # optional times_s: [...] (s or "m:ss.s")
       # zero_position_div: 0.15     # instead of the runs: the tape zero alpha_p given (div)
-      target_reading: "48°03′53.6″"  # circle reading to K2 (angle_unit): mean of face left and face right
-      target_sigma_arcsec: 2        # sigma of that direction (arcsec); optional
+      target_rounds:                # the rounds (测回), face left (盘左) and face right (盘右), before
+                                    # and after the run (angle_unit); their mean (L + R - 180)/2 is the
+                                    # target reading, 2C = L - (R - 180) is shown and checked
+        - {when: before, left: "48°03′48.6″", right: "228°03′57.6″"}
+        - {when: after,  left: "48°03′49.6″", right: "228°03′58.6″"}
+      target_sigma_arcsec: 2        # sigma of one round's direction (arcsec)
     - mode: non-tracking            # non-tracking: alidade clamped near north, the oscillation is timed
       label: "K1-K2 before 2 (transit) 09:15"
       method: transit               # transit | time-difference | direct | timed-amplitude-1 |
@@ -409,7 +414,11 @@ known_line:                         # surface line of known azimuth: calibrates 
       # period_sigma_s: 0.5         # its sigma (s)
       crossings:                    # passages of the light mark through a graduation
         - level_div: 0              # the graduation (div); 0 is the scale centre
-          first_direction: east     # motion at the first time: east (reading increasing) or west
+          first_direction: east     # motion at the first time: east (东, the reading increasing) or
+                                    # west (西, decreasing). Whether east is 向右 or 向左 as the crew
+                                    # sees the mark depends on the eyepiece: do the sign test once
+                                    # (docs/gyro-theodolite.md 14.3) and note it here, e.g.
+                                    # "this instrument: east = 向左 (mark moving left)"
           times_s: ["0:34.8", "4:11.6", "7:38.3"]   # stopwatch times, increasing
       reversals_div: [9.5, -8.8]    # scale readings at the reversals (div, east +), in time order
       # reversal_times_s: ["2:21.0", "5:53.5"]   # optional, one per reversal reading
@@ -417,26 +426,34 @@ known_line:                         # surface line of known azimuth: calibrates 
       zero_position:
         before: {reversals_div: [3.6, -3.9, 3.4, -3.7, 3.2]}
         after:  {reversals_div: [3.7, -3.8, 3.5, -3.6, 3.3]}
-      target_reading: "48°04′57.0″"
+      target_rounds:
+        - {when: before, left: "48°04′52.0″", right: "228°05′01.0″"}
+        - {when: after,  left: "48°04′53.0″", right: "228°05′02.0″"}
       target_sigma_arcsec: 2
     - mode: tracking
       label: "K1-K2 before 3 (tracking) 09:50"
       method: schuler
       reversals: ["179°57′29″", "182°26′50″", "179°58′21″", "182°26′06″", "179°58′47″"]
+      sigma_reading_arcsec: 5
       zero_position:
         before: {reversals_div: [-3.8, 4.1, -3.6, 3.9, -3.4]}
         after:  {reversals_div: [4.0, -3.7, 3.8, -3.5, 3.6]}
-      target_reading: "228°44′38.8″"
+      target_rounds:
+        - {when: before, left: "228°44′33.8″", right: "48°44′42.8″"}
+        - {when: after,  left: "228°44′34.8″", right: "48°44′43.8″"}
       target_sigma_arcsec: 2
   after:                            # 3 runs after coming up
     - mode: tracking
       label: "K1-K2 after 1 (tracking) 14:45"
       method: schuler
       reversals: ["268°50′44″", "271°19′52″", "268°51′26″", "271°19′16″", "268°52′09″"]
+      sigma_reading_arcsec: 5
       zero_position:
         before: {reversals_div: [3.9, -3.8, 3.7, -3.6, 3.5]}
         after:  {reversals_div: [4.1, -3.7, 3.9, -3.5, 3.7]}
-      target_reading: "317°37′52.4″"
+      target_rounds:
+        - {when: before, left: "317°37′47.4″", right: "137°37′56.4″"}
+        - {when: after,  left: "317°37′48.4″", right: "137°37′57.4″"}
       target_sigma_arcsec: 2
     - mode: non-tracking
       label: "K1-K2 after 2 (transit) 15:20"
@@ -449,16 +466,21 @@ known_line:                         # surface line of known azimuth: calibrates 
       zero_position:
         before: {reversals_div: [-3.6, 3.9, -3.5, 3.8, -3.3]}
         after:  {reversals_div: [3.9, -3.5, 3.7, -3.4, 3.6]}
-      target_reading: "317°36′14.6″"
+      target_rounds:
+        - {when: before, left: "317°36′09.6″", right: "137°36′18.6″"}
+        - {when: after,  left: "317°36′10.6″", right: "137°36′19.6″"}
       target_sigma_arcsec: 2
     - mode: tracking
       label: "K1-K2 after 3 (tracking) 15:55"
       method: schuler
       reversals: ["44°08′07″", "46°37′09″", "44°08′46″", "46°36′39″", "44°09′22″"]
+      sigma_reading_arcsec: 5
       zero_position:
         before: {reversals_div: [-4.0, 3.7, -3.8, 3.5, -3.6]}
         after:  {reversals_div: [-3.9, 3.7, -3.7, 3.6, -3.5]}
-      target_reading: "92°55′31.0″"
+      target_rounds:
+        - {when: before, left: "92°55′26.0″", right: "272°55′35.0″"}
+        - {when: after,  left: "92°55′27.0″", right: "272°55′36.0″"}
       target_sigma_arcsec: 2
 # Instead of known_line, an instrument constant determined earlier:
 # instrument_constant: {value: "0 00 18.0", sigma_arcsec: 5}   # E (angle_unit), its sigma (arcsec)
@@ -472,15 +494,16 @@ line:                               # the line to orient: from the gyro station 
       time: "11:30"                 # clock time of the run (record sheet)
       method: schuler
       reversals: ["88°32′31″", "91°01′36″", "88°33′08″", "91°00′56″", "88°33′40″"]
+      sigma_reading_arcsec: 5
       zero_position:
         before: {reversals_div: [-3.5, 3.9, -3.3, 3.7, -3.2]}
         after:  {reversals_div: [4.0, -3.4, 3.8, -3.3, 3.6]}
-      target_rounds:                # instead of target_reading: the rounds (测回) as booked, face left
-                                    # and face right (angle_unit), before and after the run; their mean
-                                    # (L + R - 180)/2 is the target reading, 2C is shown
+      target_rounds:                # rounds booked to the second, as a DJ2 reads them
         - {when: before, left: "310°18′17″", right: "130°18′26″"}
         - {when: after,  left: "310°18′18″", right: "130°18′26″"}
-      target_sigma_arcsec: 2        # sigma of one round's direction (arcsec)
+      target_sigma_arcsec: 2
+      # target_reading: "310°18′21.8″"  # instead of target_rounds: the circle reading to the target, the
+      #                                 # mean of face left and face right (angle_unit), with target_sigma_arcsec
     - mode: non-tracking            # five transits and four reversal readings
       label: "P1-P2 2 (transit) 12:20"
       method: transit
@@ -492,16 +515,19 @@ line:                               # the line to orient: from the gyro station 
       zero_position:
         before: {reversals_div: [3.8, -3.6, 3.6, -3.4, 3.4]}
         after:  {reversals_div: [3.7, -3.7, 3.5, -3.5, 3.3]}
-      target_reading: "310°18′29.5″"
+      target_rounds:
+        - {when: before, left: "310°18′24.5″", right: "130°18′33.5″"}
+        - {when: after,  left: "310°18′25.5″", right: "130°18′34.5″"}
       target_sigma_arcsec: 2
 
-tolerances:                         # optional: the limits of the coal-mine surveying regulations follow
-                                    # accuracy_class_arcsec (docs/gyro-theodolite.md, "Checks"); set one
-                                    # here only to hold the job to another limit
-  determination_difference_arcsec: 40         # any two runs on the line (15" class 40", 25" class 70")
-  instrument_constant_difference_arcsec: 40   # any two instrument constants, and their before/after means
+# tolerances:                       # optional: the limits of the coal-mine surveying regulations follow
+#                                   # accuracy_class_arcsec (docs/gyro-theodolite.md, "Checks"). Write a
+#                                   # key here only where the job is held to another limit than its
+#                                   # class's (the values shown are the 15" class's):
+  # determination_difference_arcsec: 40       # any two runs on the line (15" class 40", 25" class 70")
+  # instrument_constant_difference_arcsec: 40 # any two instrument constants, and their before/after means
   # instrument_constant_means_arcsec: 40      # the before/after means alone
-  zero_position_div: 0.5                      # tape zero, after minus before a run (div)
+  # zero_position_div: 0.5                    # tape zero, after minus before a run (div)
   # zero_position_limit_div: 0.5              # |tape zero| of every motor-off run (div)
   # orientation_difference_arcsec: 40         # two independent orientations (`gyro orientations`)
   # orientation_mean_sigma_arcsec: 10         # sigma of their mean

@@ -369,8 +369,15 @@ TEST_F(Cli, StrictListsTheFailedChecksAndWritesNoFile) {
   ASSERT_EQ(s.code, 0) << s.err;
   std::string job = slurp(dir_ / "t.yaml");
   // Limits the job cannot meet: 1" between the two line runs, 0.05 div of zero-position drift.
-  job.replace(job.find("determination_difference_arcsec: 40"), 35, "determination_difference_arcsec: 1");
-  job.replace(job.find("zero_position_div: 0.5"), 22, "zero_position_div: 0.05");
+  // (the template's tolerances block is commented out: its limits are the class's)
+  const auto set = [&](const std::string& from, const std::string& to) {
+    const auto at = job.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    job.replace(at, from.size(), to);
+  };
+  set("# tolerances:", "tolerances:");
+  set("# determination_difference_arcsec: 40", "determination_difference_arcsec: 1");
+  set("# zero_position_div: 0.5", "zero_position_div: 0.05");
   const auto f = write("strict.yaml", job);
   const auto out = dir_ / "out.txt", html = dir_ / "out.html";
   const CmdResult r = run("gyro campaign " + f.string() + " --strict -o " + out.string() + " --report " + html.string());
