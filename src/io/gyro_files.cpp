@@ -397,10 +397,13 @@ gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesyste
 
 // The record sheet: free text, shown in reports.
 gyro::RecordSheet read_record(const Node& n) {
-  n.allow_only({"observer", "booker", "computed_by", "checked_by", "date", "weather", "temperature", "remarks"});
+  n.allow_only({"observer", "booker", "computed_by", "checked_by", "date", "weather", "temperature", "remarks",
+                "language"});
   gyro::RecordSheet r;
   for (const auto& [key, target] : detail::record_fields(r))
     if (auto v = n.get(key)) *target = v->string();
+  if (auto v = n.get("language"); v && r.language != "en" && r.language != "zh")
+    v->fail("language must be en (English) or zh (Chinese with the English terms)");
   return r;
 }
 

@@ -17,14 +17,15 @@ namespace meridian::io::detail {
 template <class R>
 auto record_fields(R& r) {
   using Member = decltype(&r.observer);
-  return std::array<std::pair<const char*, Member>, 8>{{{"observer", &r.observer},
+  return std::array<std::pair<const char*, Member>, 9>{{{"observer", &r.observer},
                                                         {"booker", &r.booker},
                                                         {"computed_by", &r.computed_by},
                                                         {"checked_by", &r.checked_by},
                                                         {"date", &r.date},
                                                         {"weather", &r.weather},
                                                         {"temperature", &r.temperature},
-                                                        {"remarks", &r.remarks}}};
+                                                        {"remarks", &r.remarks},
+                                                        {"language", &r.language}}};
 }
 
 /// A key of `tolerances:`, the member it fills and the file's unit in

@@ -301,68 +301,149 @@ std::string line_name(const gyro::CampaignResult& r) {
   return r.station.name + (r.target ? " to " + r.target->name : "");
 }
 
-// The one-page result sheet (成果表) that goes to the mine: the result, what
-// it rests on, whether every check passed, and who answers for it.
+// The labels of the result sheet in the job's language (RecordSheet::language): English, or
+// Chinese with the English term beside it, as a mine files it.
+struct SheetLabels {
+  bool zh = false;
+  std::string operator()(const char* en, const char* cn) const {
+    return zh ? fmt::format("{} {}", cn, en) : std::string(en);
+  }
+};
+
+// The one-page result sheet (成果表) that goes to the mine: the result, what it rests on (the
+// known line, E before and after, the runs), gyro minus traverse, whether every check passed,
+// the warnings, and who answers for it.
 Section result_sheet_section(const gyro::CampaignInput& in, const gyro::CampaignResult& r, const AngleFormat& f) {
+  const SheetLabels L{in.record.language == "zh"};
   const auto& c = r.chain;
-  Section s{"result-sheet", "Result sheet", {}, 2};
+  Section s{"result-sheet", L("Result sheet", "陀螺定向成果表"), {}, 2};
   s.page_break_after = true;
   int failed = 0;
   for (const auto& k : r.checks) failed += k.pass ? 0 : 1;
   const std::string detail =
-      failed == 0 ? fmt::format("all {} checks pass", r.checks.size())
-                  : fmt::format("{} OF {} CHECKS FAILED: do not use this azimuth before they are resolved", failed,
-                                r.checks.size());
-  s.blocks.push_back(Highlight{"Grid azimuth " + line_name(r),
+      failed == 0 ? fmt::format("{}: {}", L("all checks pass", "全部检核合格"), r.checks.size())
+                  : fmt::format("{} OF {} CHECKS FAILED: do not use this azimuth before they are resolved{}", failed,
+                                r.checks.size(), L.zh ? " (检核不合格, 不得使用)" : "");
+  s.blocks.push_back(Highlight{L("Grid azimuth", "坐标方位角") + " " + line_name(r),
                                f.dir(c.grid_azimuth_rad.value, 1) + "  \u00b1 " + f.sig(c.grid_azimuth_rad.sigma, 1), detail,
                                failed > 0});
   std::vector<KeyValue> job;
-  if (!r.name.empty()) job.push_back({"job", r.name});
-  if (!in.record.date.empty()) job.push_back({"date", in.record.date});
+  if (!r.name.empty()) job.push_back({L("job", "工程"), r.name});
+  if (!in.record.date.empty()) job.push_back({L("date", "日期"), in.record.date});
   const std::string& serial = in.instrument.serial;
-  job.push_back({"instrument", (in.instrument.name.empty() ? std::string("gyro-theodolite") : in.instrument.name) +
-                                   (serial.empty() || in.instrument.name.find(serial) != std::string::npos
-                                        ? ""
-                                        : ", No. " + serial) +
-                                   fmt::format(", {}\" class", in.instrument.accuracy_class_arcsec)});
+  job.push_back({L("instrument", "仪器"),
+                 (in.instrument.name.empty() ? std::string("gyro-theodolite") : in.instrument.name) +
+                     (serial.empty() || in.instrument.name.find(serial) != std::string::npos ? "" : ", No. " + serial) +
+                     fmt::format(", {:g}\" class{}", r.limits.accuracy_class_arcsec,
+                                 in.instrument.accuracy_class_booked ? "" : " (NOT BOOKED: the class used)")});
   if (in.known_line)
-    job.push_back({"programme (runs before / on the line / after)",
+    job.push_back({L("programme (runs before / on the line / after)", "观测程序 (测前 / 定向边 / 测后)"),
                    fmt::format("{}-{}-{}", in.known_line->before.size(), in.line.determinations.size(),
                                in.known_line->after.size())});
-  if (!in.record.weather.empty()) job.push_back({"weather", in.record.weather});
-  if (!in.record.temperature.empty()) job.push_back({"temperature", in.record.temperature});
-  if (!in.record.remarks.empty()) job.push_back({"remarks", in.record.remarks});
-  s.blocks.push_back(KeyValueList{"Job", job});
+  job.push_back({L("station", "测站") + " " + r.station.name,
+                 fmt::format("{} {}, {} {}", L("latitude", "纬度"), format_dms(Angle::radians(r.station.lat_rad), {2, true, false}),
+                             L("longitude", "经度"), format_dms(Angle::radians(r.station.lon_rad), {2, true, false}))});
+  job.push_back({L("grid", "坐标系"), geodesy::describe(in.grid)});
+  if (!in.record.weather.empty()) job.push_back({L("weather", "天气"), in.record.weather});
+  if (!in.record.temperature.empty()) job.push_back({L("temperature", "温度"), in.record.temperature});
+  if (!in.record.remarks.empty()) job.push_back({L("remarks", "备注"), in.record.remarks});
+  s.blocks.push_back(KeyValueList{L("Job", "工程概况"), job});
+
   Table t;
-  t.title = "Result";
-  t.columns = {"quantity", "value", "sigma"};
+  t.title = L("Result", "成果");
+  t.columns = {L("quantity", "项目"), L("value", "数值"), L("sigma", "中误差")};
   t.numeric = {false, true, true};
-  t.rows.push_back({"grid azimuth T " + line_name(r), f.dir(c.grid_azimuth_rad.value, 1), f.sig(c.grid_azimuth_rad.sigma, 1)});
-  t.rows.push_back({"geodetic azimuth alpha", f.dir(c.geodetic_azimuth_rad.value, 1), f.sig(c.geodetic_azimuth_rad.sigma, 1)});
-  t.rows.push_back({"astronomic azimuth A", f.dir(c.astronomic_azimuth_rad.value, 1), f.sig(c.astronomic_azimuth_rad.sigma, 1)});
-  t.rows.push_back({"instrument constant E", f.sec(r.instrument_constant_used_rad.value, 1),
+  t.rows.push_back({L("grid azimuth T", "坐标方位角 T") + " " + line_name(r), f.dir(c.grid_azimuth_rad.value, 1),
+                    f.sig(c.grid_azimuth_rad.sigma, 1)});
+  if (r.line_grid_azimuth_from_coordinates_rad) {
+    t.rows.push_back({L("azimuth of the coordinates (traverse)", "导线坐标方位角"),
+                      f.dir(*r.line_grid_azimuth_from_coordinates_rad, 1), ""});
+    t.rows.push_back({L("gyro minus traverse azimuth", "陀螺方位角与导线方位角之差"),
+                      f.sec(wrap_signed_rad(c.grid_azimuth_rad.value - *r.line_grid_azimuth_from_coordinates_rad), 1),
+                      ""});
+  }
+  t.rows.push_back({L("geodetic azimuth alpha", "大地方位角 α"), f.dir(c.geodetic_azimuth_rad.value, 1),
+                    f.sig(c.geodetic_azimuth_rad.sigma, 1)});
+  t.rows.push_back({L("astronomic azimuth A", "天文方位角 A"), f.dir(c.astronomic_azimuth_rad.value, 1),
+                    f.sig(c.astronomic_azimuth_rad.sigma, 1)});
+  if (r.instrument_constant) {
+    const auto mean_of = [](const std::vector<Uncertain>& v) -> std::optional<double> {
+      if (v.empty()) return std::nullopt;
+      return gyro::mean_direction(v).mean.value;
+    };
+    const auto& e = *r.instrument_constant;
+    if (auto b = mean_of(e.before))
+      t.rows.push_back({L("instrument constant E, mean before", "仪器常数 E (测前平均)"), f.sec(wrap_signed_rad(*b), 1), ""});
+    if (auto a = mean_of(e.after))
+      t.rows.push_back({L("instrument constant E, mean after", "仪器常数 E (测后平均)"), f.sec(wrap_signed_rad(*a), 1), ""});
+    if (e.difference_rad)
+      t.rows.push_back({L("E after minus before", "测后与测前之差"), f.sec(*e.difference_rad, 1), ""});
+  }
+  t.rows.push_back({L("instrument constant E used", "仪器常数 E"), f.sec(r.instrument_constant_used_rad.value, 1),
                     f.sig(r.instrument_constant_used_rad.sigma, 1)});
   if (r.constant_one_run_sigma_rad)
-    t.rows.push_back({"instrument constant, one run m", "", f.sig(*r.constant_one_run_sigma_rad, 1)});
-  t.rows.push_back({fmt::format("gyro azimuth A_G, mean of {} runs", r.gyro_azimuths.size()),
+    t.rows.push_back({L("instrument constant, one run m", "仪器常数一次测定中误差"), "", f.sig(*r.constant_one_run_sigma_rad, 1)});
+  t.rows.push_back({fmt::format("{} ({} {})", L("gyro azimuth A_G, mean", "陀螺方位角 A_G 平均"), r.gyro_azimuths.size(),
+                                L("runs", "测回")),
                     f.dir(c.gyro_azimuth_rad.value, 1), f.sig(c.gyro_azimuth_rad.sigma, 1)});
-  if (r.line_one_run_sigma_rad) t.rows.push_back({"gyro azimuth, one run m", "", f.sig(*r.line_one_run_sigma_rad, 1)});
-  t.rows.push_back({"meridian convergence gamma at " + r.station.name, f.dms(c.convergence_rad, 2), ""});
+  if (r.line_one_run_sigma_rad)
+    t.rows.push_back({L("gyro azimuth, one run m", "陀螺方位角一次测定中误差"), "", f.sig(*r.line_one_run_sigma_rad, 1)});
+  t.rows.push_back({L("meridian convergence gamma at", "子午线收敛角 γ") + " " + r.station.name, f.dms(c.convergence_rad, 2), ""});
   for (const auto* p : {&r.station, r.target ? &*r.target : nullptr})
     if (p)
-      t.rows.push_back({"coordinates of " + p->name, fmt::format("x {:.3f} m, y {:.3f} m", p->grid.x_north_m, p->grid.y_east_m),
-                        ""});
+      t.rows.push_back({L("coordinates of", "坐标") + " " + p->name,
+                        fmt::format("x {:.3f} m, y {:.3f} m", p->grid.x_north_m, p->grid.y_east_m), ""});
   s.blocks.push_back(t);
+
+  if (in.known_line && r.known_station) {
+    const auto& k = *in.known_line;
+    std::vector<KeyValue> kl;
+    kl.push_back({L("given azimuth", "已知方位角") + " " + r.known_station->name +
+                      (r.known_target ? " to " + r.known_target->name : ""),
+                  fmt::format("{} ({}), {} {}", f.dir(k.azimuth.value_rad.value, 1), geodesy::to_string(k.azimuth.kind),
+                              L("sigma", "中误差"), f.sig(k.azimuth.value_rad.sigma, 1))});
+    for (const auto* p : {&*r.known_station, r.known_target ? &*r.known_target : nullptr})
+      if (p)
+        kl.push_back({L("coordinates of", "坐标") + " " + p->name,
+                      fmt::format("x {:.3f} m, y {:.3f} m", p->grid.x_north_m, p->grid.y_east_m)});
+    if (r.known_grid_azimuth_from_coordinates_rad)
+      kl.push_back({L("azimuth of its coordinates", "坐标反算方位角"), f.dir(*r.known_grid_azimuth_from_coordinates_rad, 1)});
+    s.blocks.push_back(KeyValueList{L("Known line", "已知边"), kl});
+  }
+
+  // Every run: when, which mode, and what it gave (E on the known line, A_G on the line).
+  Table runs;
+  runs.title = L("Runs", "观测测回");
+  runs.columns = {L("run", "测回"), L("time", "时间"), L("mode", "方法"), L("result", "结果")};
+  runs.numeric = {false, false, false, true};
+  const auto add_runs = [&](const std::vector<gyro::DeterminationInput>& din, const std::vector<gyro::DeterminationResult>& dr,
+                            const std::vector<Uncertain>* e, const std::vector<Uncertain>* ag, const char* what) {
+    for (std::size_t i = 0; i < dr.size() && i < din.size(); ++i) {
+      std::string value;
+      if (e && i < e->size()) value = "E " + f.sec(wrap_signed_rad((*e)[i].value), 1);
+      else if (ag && i < ag->size()) value = "A_G " + f.dir((*ag)[i].value, 1);
+      runs.rows.push_back({fmt::format("{} {}", what, label_of(dr[i], i)), din[i].time, gyro::to_string(dr[i].mode), value});
+    }
+  };
+  if (in.known_line) {
+    const auto* ic = r.instrument_constant ? &*r.instrument_constant : nullptr;
+    add_runs(in.known_line->before, r.known_before, ic ? &ic->before : nullptr, nullptr, L.zh ? "测前" : "before:");
+    add_runs(in.known_line->after, r.known_after, ic ? &ic->after : nullptr, nullptr, L.zh ? "测后" : "after:");
+  }
+  add_runs(in.line.determinations, r.determinations, nullptr, &r.gyro_azimuths, L.zh ? "定向边" : "line:");
+  s.blocks.push_back(runs);
+
   if (failed > 0) {
     std::vector<std::string> items;
     for (const auto& k : r.checks)
       if (!k.pass) items.push_back(check_text(k));
-    s.blocks.push_back(Notes{"Failed checks", items, true});
+    s.blocks.push_back(Notes{L("Failed checks", "不合格检核"), items, true});
   }
-  s.blocks.push_back(Signatures{{{"observer", in.record.observer},
-                                 {"booker", in.record.booker},
-                                 {"computed by", in.record.computed_by},
-                                 {"checked by", in.record.checked_by}}});
+  if (!r.warnings.empty()) s.blocks.push_back(Notes{L("Warnings", "警告"), r.warnings, true});
+  s.blocks.push_back(Signatures{{{L("observer", "观测者"), in.record.observer},
+                                 {L("booker", "记录者"), in.record.booker},
+                                 {L("computed by", "计算者"), in.record.computed_by},
+                                 {L("checked by", "检查者"), in.record.checked_by}}});
   return s;
 }
 

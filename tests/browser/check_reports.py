@@ -130,7 +130,8 @@ def write_cjk_campaign_report(meridian, examples, out):
     books them; returns an error message or None."""
     text = open(os.path.join(examples, "campaign.yaml"), encoding="utf-8").read()
     text = text.replace("C (shaft bottom)", "井底车场 C").replace("D (main drift)", "主巷 D")
-    text = 'record: {observer: "王工", booker: "李工", computed_by: "张工", checked_by: "陈工"}\n' + text
+    text = ('record: {observer: "王工", booker: "李工", computed_by: "张工", checked_by: "陈工", language: zh}\n'
+            + text)
     book = os.path.join(out, "campaign-cjk.yaml")
     with open(book, "w", encoding="utf-8") as f:
         f.write(text)
@@ -210,6 +211,25 @@ def main():
     else:
         passed += 1
         print(f"ok   {pdf} (Chinese names set in Noto Sans CJK)")
+    # The result sheet in each language: its labels, and a picture of it kept beside the page.
+    sheets = {"campaign.html": ["Result sheet", "Grid azimuth", "gyro minus traverse azimuth", "Known line", "Runs"],
+              "campaign-cjk.html": ["陀螺定向成果表", "坐标方位角 Grid azimuth", "仪器常数 E", "一次测定中误差",
+                                    "陀螺方位角与导线方位角之差", "已知边 Known line", "观测者"]}
+    for name, labels in sheets.items():
+        page = os.path.join(args.out, name)
+        if not os.path.exists(page):
+            continue
+        html = open(page, encoding="utf-8").read()
+        sheet = html[html.find('id="result-sheet"'):html.find('id="inputs"')]
+        missing = [l for l in labels if l not in sheet]
+        png = page[:-5] + ".png"
+        shot = subprocess.run([args.meridian, "report", "screenshot", page, "-o", png], capture_output=True, text=True)
+        if missing or shot.returncode != 0 or not os.path.exists(png) or os.path.getsize(png) < 10000:
+            failed += 1
+            print(f"FAIL {name} result sheet: missing {missing}, screenshot exit {shot.returncode} {shot.stderr}")
+        else:
+            passed += 1
+            print(f"ok   {name} result sheet ({len(labels)} labels; picture {png})")
     if args.screenshots:
         for page in pages:
             subprocess.run([args.meridian, "report", "screenshot", page], check=False)

@@ -81,6 +81,9 @@ struct RecordSheet {
   std::string weather;       ///< e.g. "surface overcast, wind 2 m/s; underground 1.2 m/s"
   std::string temperature;   ///< e.g. "surface 6 C, underground 24 C"
   std::string remarks;
+  /// The language of the result sheet: "en" (or empty) English; "zh" Chinese labels with the
+  /// English term beside each (坐标方位角 grid azimuth), as a mine files it.
+  std::string language;
 };
 
 struct CampaignInput {
