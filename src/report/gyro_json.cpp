@@ -62,7 +62,8 @@ json checks_json(const std::vector<gyro::Check>& checks) {
                  {"pass", k.pass},
                  {"minimum", k.minimum},
                  {"signed_value", k.signed_value},
-                 {"source", k.source}});
+                 {"source", k.source},
+                 {"field", k.field}});
   return a;
 }
 
@@ -265,6 +266,17 @@ json campaign_to_json(const gyro::CampaignResult& r) {
   j["convergence_arcsec"] = arcsec(c.convergence_rad);
   j["arc_to_chord_arcsec"] = c.arc_to_chord_applied ? arcsec(c.arc_to_chord_rad) : json(nullptr);
   j["grid_azimuth"] = az(c.grid_azimuth_rad);
+  // The traverse's azimuth of the line from its coordinates, and gyro minus traverse.
+  if (r.line_grid_azimuth_from_coordinates_rad) {
+    j["grid_azimuth_from_coordinates_deg"] = json_number(*r.line_grid_azimuth_from_coordinates_rad / units::kDegree);
+    j["gyro_minus_traverse_arcsec"] =
+        arcsec(wrap_signed_rad(c.grid_azimuth_rad.value - *r.line_grid_azimuth_from_coordinates_rad));
+  } else {
+    j["grid_azimuth_from_coordinates_deg"] = nullptr;
+    j["gyro_minus_traverse_arcsec"] = nullptr;
+  }
+  j["accuracy_class_arcsec"] = json_number(r.limits.accuracy_class_arcsec);
+  j["accuracy_class_booked"] = r.input.instrument.accuracy_class_booked;
   j["checks"] = checks_json(r.checks);
   j["limits_source"] = r.limits.source;
   j["instrument_constant_one_run_sigma_arcsec"] =

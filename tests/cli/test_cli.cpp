@@ -423,6 +423,13 @@ TEST_F(Cli, TemplateIsAFieldBookThatRuns) {
   const CmdResult r = run("gyro campaign " + f.string() + " --strict -o " + out.string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(slurp(out).find("GRID AZIMUTH"), std::string::npos);
+  // Gyro minus traverse: T against atan2(dy, dx) of the template's P1 and P2, recomputed here.
+  const auto j = nlohmann::json::parse(run("gyro campaign " + f.string() + " --json").out);
+  const double coord_deg = std::atan2(428000.330 - 428105.330, 3963200.752 - 3963321.552) * 180.0 / M_PI + 360.0;
+  EXPECT_NEAR(j["grid_azimuth_from_coordinates_deg"].get<double>(), coord_deg, 1e-9);
+  const double d = (j["grid_azimuth"]["deg"].get<double>() - coord_deg) * 3600.0;
+  EXPECT_NEAR(j["gyro_minus_traverse_arcsec"].get<double>(), d, 1e-6);
+  EXPECT_TRUE(j["accuracy_class_booked"].get<bool>());
   // Not a copy of an example: no example file is the template.
   for (const auto& e : fs::directory_iterator(MERIDIAN_EXAMPLES_DIR))
     EXPECT_NE(slurp(e.path()), c.out) << e.path();
