@@ -95,18 +95,35 @@ std::vector<Block> nontracking_observation_blocks(const gyro::DeterminationInput
   const auto& o = in.nontracking;
   std::vector<Block> b;
   Table t;
-  t.title = "Timed passages as booked";
-  t.columns = {"crossings", "level (div)", "first passage", "times (s)", "times (m:ss.s)", "t3 - t1 (s)",
-               "dt = -t1 + 2 t2 - t3 (s)"};
-  t.numeric = {false, true, false, true, true, true, true};
+  t.title = "Timed passages as booked (观测手簿)";
+  t.columns = {"crossings", "level (div)", "first passage", "times (s)", "times (m:ss.s)",
+               "half-periods t[j+1] - t[j] (s), east/west alternate", "t3 - t1 (s)",
+               "dt of each triple, (-1)^j (-t[j] + 2 t[j+1] - t[j+2]) (s)"};
+  t.numeric = {false, true, false, true, true, true, true, true};
+  std::size_t most_times = 0;
   for (std::size_t i = 0; i < o.crossings.size(); ++i) {
     const auto& c = o.crossings[i];
+    const auto& ts = c.times_s;
+    most_times = std::max(most_times, ts.size());
     std::string m;
-    for (double x : c.times_s) m += (m.empty() ? "" : ", ") + mss(x);
-    const bool three = c.times_s.size() >= 3;
+    for (double x : ts) m += (m.empty() ? "" : ", ") + mss(x);
+    std::vector<double> half, triples;
+    for (std::size_t j = 0; j + 1 < ts.size(); ++j) half.push_back(ts[j + 1] - ts[j]);
+    // Referred to the first passage's direction: a triple starting on the other direction
+    // changes sign.
+    for (std::size_t j = 0; j + 2 < ts.size(); ++j)
+      triples.push_back((j % 2 == 0 ? 1.0 : -1.0) * (-ts[j] + 2 * ts[j + 1] - ts[j + 2]));
     t.rows.push_back({fmt::format("[{}]", i), num(c.level_div, 2), c.first_direction > 0 ? "east" : "west",
-                      numbers(c.times_s, 1), m, three ? num(c.times_s[2] - c.times_s[0], 1) : "",
-                      three ? num(-c.times_s[0] + 2 * c.times_s[1] - c.times_s[2], 1) : ""});
+                      numbers(ts, 1), m, numbers(half, 1), ts.size() >= 3 ? num(ts[2] - ts[0], 1) : "",
+                      numbers(triples, 2)});
+  }
+  if (o.crossings.size() == 1 && most_times == 5) {
+    // Five transits, T_B unknown: the least-squares dt in closed form (spec 4.1), for a checker.
+    const auto& ts = o.crossings.front().times_s;
+    t.note = fmt::format(
+        "Five transits: least squares with T_B unknown gives dt = (-2 t1 + 3 t2 - 2 t3 + 3 t4 - 2 t5)/3 = {} s "
+        "from the times above (spec 4.1); the dt used is below.",
+        num((-2 * ts[0] + 3 * ts[1] - 2 * ts[2] + 3 * ts[3] - 2 * ts[4]) / 3.0, 2));
   }
   b.push_back(t);
   std::vector<KeyValue> kv;
@@ -115,7 +132,11 @@ std::vector<Block> nontracking_observation_blocks(const gyro::DeterminationInput
   if (const auto& beta = r.primary.beta) {
     if (beta->amplitude_div) kv.push_back({"amplitude B used", num(beta->amplitude_div->value, 3) + " div"});
     if (beta->period_s) kv.push_back({"period T_B used", num(beta->period_s->value, 2) + " s"});
-    if (beta->time_difference_s) kv.push_back({"transit time difference dt", num(beta->time_difference_s->value, 2) + " s"});
+    if (beta->time_difference_s)
+      kv.push_back({"transit time difference dt used", fmt::format("{} s (sigma {} s){}", num(beta->time_difference_s->value, 2),
+                                                                  num(beta->time_difference_s->sigma, 2),
+                                                                  most_times > 3 ? ", least squares over every passage"
+                                                                                 : "")});
     if (r.primary.method == gyro::Method{gyro::NonTrackingMethod::Transit}) {
       if (inst.transit_factor_rad_per_div_s)
         kv.push_back({"transit factor c used (calibrated)",

@@ -3,6 +3,7 @@
 #include <regex>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "meridian/gyro/campaign_simulator.hpp"
@@ -120,4 +121,34 @@ TEST(Html, ResultSheetComesFirstAndTurnsRedOnAFailedCheck) {
   EXPECT_NE(html.find("class=\"highlight alarm\""), std::string::npos);
   EXPECT_NE(html.find("class=\"page-break\""), std::string::npos);
   EXPECT_NE(html.find("counter(pages)"), std::string::npos);
+}
+
+// Page 1 holds gyro minus traverse and the warnings; a five-transit run shows the dt a checker
+// recomputes by hand ((-2 t1 + 3 t2 - 2 t3 + 3 t4 - 2 t5)/3, computed here from the times).
+TEST(Html, ResultSheetHasGyroMinusTraverseAndFiveTransitsShowTheirDt) {
+  auto sim = gyro::simulate_campaign(gyro::example_campaign_truth(), 4);
+  sim.input.record.language = "zh";
+  // One non-tracking run on the line timed over five transits: two more passages, a period on.
+  std::vector<double>* times = nullptr;
+  for (auto& d : sim.input.line.determinations)
+    if (d.mode == gyro::Mode::NonTracking && !d.nontracking.crossings.empty()) {
+      d.nontracking.crossings.resize(1);
+      times = &d.nontracking.crossings[0].times_s;
+      break;
+    }
+  ASSERT_NE(times, nullptr);
+  ASSERT_EQ(times->size(), 3u);
+  const double period = (*times)[2] - (*times)[0];
+  times->push_back((*times)[1] + period);
+  times->push_back((*times)[2] + period);
+  const std::vector<double> t = *times;
+  const auto r = gyro::process(sim.input);
+  ASSERT_TRUE(r.line_grid_azimuth_from_coordinates_rad.has_value());
+  const std::string html = render_html(gyro_campaign_document(r));
+  const std::string sheet = html.substr(0, html.find("id=\"inputs\""));
+  EXPECT_NE(sheet.find("陀螺方位角与导线方位角之差 gyro minus traverse azimuth"), std::string::npos);
+  EXPECT_NE(sheet.find("坐标方位角 Grid azimuth"), std::string::npos);
+  EXPECT_NE(sheet.find("已知边 Known line"), std::string::npos);
+  const double dt = (-2 * t[0] + 3 * t[1] - 2 * t[2] + 3 * t[3] - 2 * t[4]) / 3.0;
+  EXPECT_NE(html.find(fmt::format("- 2 t5)/3 = {:.2f} s", dt)), std::string::npos) << dt;
 }
