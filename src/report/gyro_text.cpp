@@ -212,8 +212,15 @@ std::string chain_text(const gyro::CampaignResult& r, const AngleFormat& f) {
                      f.dms(c.convergence_rad, 2));
   out += fmt::format("  + arc-to-chord delta    = {:>15}\n",
                      c.arc_to_chord_applied ? f.sec(c.arc_to_chord_rad) : std::string("not applied"));
-  out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n\n", f.dir(c.grid_azimuth_rad.value),
+  out += fmt::format("  GRID AZIMUTH        T   = {:>15}  sigma {}\n", f.dir(c.grid_azimuth_rad.value),
                      f.sig(c.grid_azimuth_rad.sigma));
+  if (r.line_grid_azimuth_from_coordinates_rad) {
+    const double d = wrap_signed_rad(c.grid_azimuth_rad.value - *r.line_grid_azimuth_from_coordinates_rad);
+    out += fmt::format("  traverse (coordinates)  = {:>15}  gyro - traverse {}\n",
+                       f.dir(*r.line_grid_azimuth_from_coordinates_rad),
+                       std::fabs(d) >= units::kDegree ? format_dms(Angle::radians(d), {1, true, true}) : f.sec(d));
+  }
+  out += "\n";
   return out;
 }
 
