@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "meridian/core/angle.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
@@ -12,6 +13,14 @@ namespace meridian::gyro {
 
 bool OrientationsResult::all_checks_pass() const {
   return std::all_of(checks.begin(), checks.end(), [](const Check& c) { return c.pass; });
+}
+
+double point_distance_m(const PointResult& a, const PointResult& b) {
+  // Two points a few metres apart at most matter: a sphere of the mean radius is exact to 0.5 %.
+  constexpr double kRadius_m = 6371000.0;
+  const double dn = (b.lat_rad - a.lat_rad) * kRadius_m;
+  const double de = wrap_signed_rad(b.lon_rad - a.lon_rad) * std::cos(0.5 * (a.lat_rad + b.lat_rad)) * kRadius_m;
+  return std::hypot(dn, de);
 }
 
 OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
@@ -34,11 +43,31 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
   r.target = in.front().target ? in.front().target->name : std::string();
   for (std::size_t i = 0; i < in.size(); ++i) {
     const CampaignResult& c = in[i];
-    const std::string target = c.target ? c.target->name : std::string();
-    if (c.station.name != r.station || target != r.target)
-      throw InputError(fmt::format("orientation {} is of the line {}-{}, not {}-{}", i + 1, c.station.name, target,
-                                   r.station, r.target),
-                       {"", std::nullopt, fmt::format("orientations[{}]", i)});
+    const std::string field = fmt::format("orientations[{}]", i);
+    // The same line is the same points: by their coordinates (names may be written differently,
+    // "Ⅱ3" and a full-width "Ⅱ３"; a point moved keeps its name), by name where one has none.
+    const auto same_point = [&](const PointResult& p, const PointResult& q, const char* role) {
+      const double d = point_distance_m(p, q);
+      if (d > kSamePointTolerance_m)
+        throw InputError(fmt::format("orientation {}: its {} {} is {:.3f} m from the {} {} of orientation 1 (limit "
+                                     "{:.2f} m): not the same line",
+                                     i + 1, role, p.name, d, role, q.name, kSamePointTolerance_m),
+                         {"", std::nullopt, field});
+      if (p.name != q.name && i > 0)
+        r.notes.push_back(fmt::format("orientation {}: its {} is named {} and {} in orientation 1; the same point by its "
+                                      "coordinates ({:.3f} m apart)",
+                                      i + 1, role, p.name, q.name, d));
+    };
+    same_point(c.station, in.front().station, "station");
+    if (c.target && in.front().target) {
+      same_point(*c.target, *in.front().target, "target");
+    } else {
+      const std::string target = c.target ? c.target->name : std::string();
+      if (target != r.target)
+        throw InputError(fmt::format("orientation {} is of the line {}-{}, not {}-{}", i + 1, c.station.name, target,
+                                     r.station, r.target),
+                         {"", std::nullopt, field});
+    }
     // The same runs twice are one orientation, not two independent ones.
     for (std::size_t j = 0; j < i; ++j) {
       const auto& a = in[j].gyro_azimuths;

@@ -266,10 +266,26 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   CampaignResult strict = b;
   strict.limits.orientation_difference_rad = 15 * units::kArcsecond;
   EXPECT_NEAR(combine_orientations({a, strict}).checks[2].tolerance, 15.0, 1e-12);
-  // Another line, or one orientation alone, is an input error.
-  CampaignResult other = b;
-  other.station.name = "E";
-  EXPECT_THROW(combine_orientations({a, other}), InputError);
+  // The same point under another name (a full-width digit) is the same line, with a note.
+  CampaignResult renamed = b;
+  renamed.station.name = a.station.name + "\uFF13";
+  const OrientationsResult same = combine_orientations({a, renamed});
+  EXPECT_TRUE(std::any_of(same.notes.begin(), same.notes.end(), [](const std::string& n) {
+    return n.find("the same point by its coordinates") != std::string::npos;
+  }));
+  // A station 42 m away under the same name is another line: 42 m north is 42/6371000 rad.
+  CampaignResult moved = b;
+  moved.station.lat_rad += 42.0 / 6371000.0;
+  EXPECT_NEAR(point_distance_m(moved.station, b.station), 42.0, 1e-6);
+  try {
+    combine_orientations({a, moved});
+    ADD_FAILURE() << "a station moved 42 m was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("42.000 m from the station"), std::string::npos) << e.what();
+  }
+  CampaignResult near = b;
+  near.station.lat_rad += 0.02 / 6371000.0;  // 2 cm: the same mark
+  EXPECT_NO_THROW(combine_orientations({a, near}));
   EXPECT_THROW(combine_orientations({a}), InputError);
 }
 

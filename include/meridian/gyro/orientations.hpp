@@ -30,13 +30,24 @@ struct OrientationsResult {
   bool all_checks_pass() const;
 };
 
+/// Two orientations' points are the same when within this distance (m): a station mark is
+/// re-occupied to a few millimetres; 5 cm leaves room for coordinates rounded or re-computed.
+inline constexpr double kSamePointTolerance_m = 0.05;
+
+/// Distance (m) between two points from their latitudes and longitudes (a sphere of 6371 km;
+/// for the few metres that matter here exact to 0.5 %).
+double point_distance_m(const PointResult& a, const PointResult& b);
+
 /// Combine the results of independent orientations of one line (at least
-/// two, with the same station and target names). Each orientation must pass
-/// its own checks (a check per orientation); the limits are the tightest of
-/// the orientations' (their classes and tolerances). Throws InputError when
-/// fewer than two results are given, when they are not of the same line, or
-/// when two have the same runs on the line (not independent; field
-/// "orientations[i]").
+/// two). The line is the same when the stations (and the targets, where both
+/// have one) lie within kSamePointTolerance_m of orientation 1's, whatever
+/// their names (names that differ give a note); a target missing in one is
+/// compared by name. Each orientation must pass its own checks (a check per
+/// orientation); the limits are the tightest of the orientations' (their
+/// classes and tolerances). Throws InputError when fewer than two results
+/// are given, when they are not of the same line (naming the point and the
+/// distance), or when two have the same runs on the line (not independent;
+/// field "orientations[i]").
 OrientationsResult combine_orientations(const std::vector<CampaignResult>& orientations);
 
 }  // namespace meridian::gyro
