@@ -558,10 +558,10 @@ class CampaignRun {
     const auto arcsec = [](double rad) { return rad / units::kArcsecond; };
     for (const Run& r : runs) {
       const TargetDirection& t = *r.result->target;
-      const double limit = std::max(10.0 * units::kArcsecond, 3.0 * std::sqrt(2.0) * r.input->target_round_sigma_rad);
-      const auto [lo, hi] = std::minmax_element(t.two_c_rad.begin(), t.two_c_rad.end());
-      const double two_c_variation = *hi - *lo;
-      const bool pass = t.spread_rad <= limit && two_c_variation <= kTwoCVariationRad;
+      const RoundsAgreement agreement = rounds_agreement(t, r.input->target_round_sigma_rad);
+      const double limit = agreement.spread_limit_rad;
+      const double two_c_variation = agreement.two_c_variation_rad;
+      const bool pass = agreement.agree;
       const std::string label = r.result->label.empty() ? "" : " (" + r.result->label + ")";
       std::string name = fmt::format("target rounds agree, {}{}", r.field, label);
       std::string field = r.field + ".target_rounds";
@@ -583,7 +583,7 @@ class CampaignRun {
           name += fmt::format(": {}: a face reading booked wrong? (its 2C {:+.1f}\", the instrument's {:+.1f}\"; 2C of "
                               "the rounds varies by {:.1f}\", limit {:.0f}\")",
                               which, arcsec(t.two_c_rad[k]), arcsec(instrument_two_c), arcsec(two_c_variation),
-                              arcsec(kTwoCVariationRad));
+                              arcsec(kTwoCVariationLimit_rad));
       }
       res_.checks.push_back({std::move(name), arcsec(t.spread_rad), arcsec(limit), CheckUnit::Arcsec, pass, false,
                              false,
@@ -592,7 +592,6 @@ class CampaignRun {
                              std::move(field)});
     }
   }
-  static constexpr double kTwoCVariationRad = 20.0 * units::kArcsecond;
 
   // Each tracking run's internal check: its readings scatter about the model as their stated σ
   // says (the global test of ReversalResult). A run booked without sigma_reading_arcsec is

@@ -93,14 +93,12 @@ TargetDirection reduce_target(const DeterminationInput& in) {
 // plausibility limits: rounds within max(10", 3·σ·√2), 2C within 20".
 std::optional<std::string> target_rounds_warning(const TargetDirection& t, double sigma_round_rad) {
   if (t.round_rad.size() < 2) return std::nullopt;
-  const double spread_limit = std::max(10.0 * units::kArcsecond, 3.0 * std::sqrt(2.0) * sigma_round_rad);
-  const auto [lo, hi] = std::minmax_element(t.two_c_rad.begin(), t.two_c_rad.end());
-  const double two_c_variation = *hi - *lo;
-  if (t.spread_rad <= spread_limit && two_c_variation <= 20.0 * units::kArcsecond) return std::nullopt;
+  const RoundsAgreement a = rounds_agreement(t, sigma_round_rad);
+  if (a.agree) return std::nullopt;
   return fmt::format("the target rounds disagree: directions spread by {:.1f}\" (limit {:.1f}\"), 2C varies by "
                      "{:.1f}\" (limit 20\"): a face reading booked wrong?",
-                     units::rad_to_arcsec(t.spread_rad), units::rad_to_arcsec(spread_limit),
-                     units::rad_to_arcsec(two_c_variation));
+                     units::rad_to_arcsec(t.spread_rad), units::rad_to_arcsec(a.spread_limit_rad),
+                     units::rad_to_arcsec(a.two_c_variation_rad));
 }
 
 }  // namespace

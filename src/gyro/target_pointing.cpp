@@ -53,4 +53,14 @@ TargetDirection reduce_target_rounds(const std::vector<TargetRound>& rounds, dou
   return t;
 }
 
+RoundsAgreement rounds_agreement(const TargetDirection& t, double sigma_round_rad) {
+  RoundsAgreement a;
+  a.spread_limit_rad = std::max(10.0 * units::kArcsecond, 3.0 * std::sqrt(2.0) * sigma_round_rad);
+  if (t.two_c_rad.size() < 2) return a;
+  const auto [lo, hi] = std::minmax_element(t.two_c_rad.begin(), t.two_c_rad.end());
+  a.two_c_variation_rad = *hi - *lo;
+  a.agree = t.spread_rad <= a.spread_limit_rad && a.two_c_variation_rad <= kTwoCVariationLimit_rad;
+  return a;
+}
+
 }  // namespace meridian::gyro

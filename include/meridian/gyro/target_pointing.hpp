@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "meridian/core/uncertain.hpp"
+#include "meridian/core/units.hpp"
 
 namespace meridian::gyro {
 
@@ -37,5 +38,17 @@ struct TargetDirection {
 /// not about 180° from the face-left one (|2C| > 1°: a face booked wrong),
 /// naming the round ("target_rounds[1]").
 TargetDirection reduce_target_rounds(const std::vector<TargetRound>& rounds, double sigma_pointing_rad);
+
+/// Whether the rounds of one run agree, by Meridian's plausibility limits: the round directions
+/// within max(10″, 3·√2·σ of a round) and 2C within kTwoCVariationLimit_rad (a face reading
+/// booked wrong moves the mean by half its error). Radians.
+struct RoundsAgreement {
+  double spread_limit_rad = 0.0;   ///< max(10″, 3·√2·sigma_round_rad)
+  double two_c_variation_rad = 0.0;  ///< max − min of the rounds' 2C
+  bool agree = true;               ///< spread ≤ its limit and 2C variation ≤ 20″
+};
+inline constexpr double kTwoCVariationLimit_rad = 20.0 * units::kArcsecond;  ///< 20″
+/// The agreement of `t`'s rounds (at least two; one round always agrees).
+RoundsAgreement rounds_agreement(const TargetDirection& t, double sigma_round_rad);
 
 }  // namespace meridian::gyro
