@@ -1,6 +1,7 @@
 #include "meridian/geodesy/grid.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -328,6 +329,15 @@ double grid_azimuth(double x_c_m, double y_c_m, double x_d_m, double y_d_m) {
   if (dx == 0 && dy == 0)
     throw InputError(fmt::format("grid azimuth of a line: both points are at (x {:.3f} m, y {:.3f} m)", x_c_m, y_c_m));
   return wrap_positive_rad(std::atan2(dy, dx));
+}
+
+double half_last_digit_m(std::string_view text) {
+  const auto dot = text.find('.');
+  if (dot == std::string_view::npos || text.find_first_of("eE") != std::string_view::npos) return 0.5;
+  std::size_t decimals = 0;
+  while (dot + 1 + decimals < text.size() && std::isdigit(static_cast<unsigned char>(text[dot + 1 + decimals])))
+    ++decimals;
+  return 0.5 * std::pow(10.0, -static_cast<double>(decimals));
 }
 
 double grid_azimuth_rounding(double x_c_m, double y_c_m, double x_d_m, double y_d_m, double x_half_unit_m,

@@ -741,15 +741,10 @@ class CampaignRun {
           format_direction_dms(Angle::radians(*res_.known_grid_azimuth_from_coordinates_rad)), from.name, to.name));
   }
 
-  // Half the last digit of a coordinate as booked: the decimals of the shortest text that
+  // Half the last digit of a coordinate set in code: the decimals of the shortest text that
   // reads back as the same number (3611402.317 -> 0.0005 m). At most 0.5 m, at least 0.05 mm.
   static double half_unit(double booked_m) {
-    const std::string text = fmt::format("{}", booked_m);
-    const auto dot = text.find('.');
-    int decimals = 0;
-    if (dot != std::string::npos && text.find_first_of("eE") == std::string::npos)
-      decimals = static_cast<int>(text.size() - dot - 1);
-    return 0.5 * std::pow(10.0, -std::min(decimals, 4));
+    return std::max(geodesy::half_last_digit_m(fmt::format("{}", booked_m)), 0.5e-4);
   }
   static constexpr double kAzimuthDigitRad = 0.5 * units::kArcsecond;
 

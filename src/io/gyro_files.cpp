@@ -1,6 +1,5 @@
 #include "meridian/io/gyro_files.hpp"
 
-#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -9,6 +8,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/ellipsoid.hpp"
 #include "meridian/geodesy/frames.hpp"
+#include "meridian/geodesy/grid.hpp"
 #include "meridian/geodesy/laplace.hpp"
 #include "meridian/io/document.hpp"
 #include "meridian/io/source_map.hpp"
@@ -270,17 +270,6 @@ gyro::ReduceOptions read_options(const Node& n) {
   return o;
 }
 
-// Half the last digit of a number as written ("3611402.310" -> 0.0005): the rounding of a
-// booked coordinate.
-double half_last_digit(const std::string& text) {
-  const auto dot = text.find('.');
-  if (dot == std::string::npos || text.find_first_of("eE") != std::string::npos) return 0.5;
-  std::size_t decimals = 0;
-  while (dot + 1 + decimals < text.size() && std::isdigit(static_cast<unsigned char>(text[dot + 1 + decimals])))
-    ++decimals;
-  return 0.5 * std::pow(10.0, -static_cast<double>(decimals));
-}
-
 gyro::PointInput read_point(const Node& n) {
   n.allow_only({"name", "latitude_deg", "longitude_deg", "x_m", "y_m", "eta_arcsec",
                 "eta_sigma_arcsec", "height_m", "xi_arcsec", "xi_sigma_arcsec"});
@@ -295,11 +284,11 @@ gyro::PointInput read_point(const Node& n) {
     n.fail("give both latitude_deg and longitude_deg");
   if (auto v = n.get("x_m")) {
     p.x_north_m = v->number();
-    p.x_half_unit_m = half_last_digit(v->string());
+    p.x_half_unit_m = geodesy::half_last_digit_m(v->string());
   }
   if (auto v = n.get("y_m")) {
     p.y_east_m = v->number();
-    p.y_half_unit_m = half_last_digit(v->string());
+    p.y_half_unit_m = geodesy::half_last_digit_m(v->string());
   }
   if (p.x_north_m.has_value() != p.y_east_m.has_value()) n.fail("give both x_m and y_m");
   if (!p.lat_rad && !p.x_north_m) n.fail("a point needs latitude_deg/longitude_deg or x_m/y_m");

@@ -328,3 +328,11 @@ TEST(GridAzimuth, RoundingBoundsEveryCornerOfTheRoundingBox) {
   EXPECT_NEAR(bound, largest, 1e-6 * largest);
   EXPECT_NEAR(rad_to_arcsec(bound), 0.25177, 0.00001);  // 1154 m line, both points to 1 mm (by hand)
 }
+
+TEST(GridAzimuth, HalfTheLastDigitAsWritten) {
+  using meridian::geodesy::half_last_digit_m;
+  EXPECT_DOUBLE_EQ(half_last_digit_m("3611402.310"), 0.0005);  // trailing zero kept: booked to 1 mm
+  EXPECT_DOUBLE_EQ(half_last_digit_m("3611402.31"), 0.005);
+  EXPECT_DOUBLE_EQ(half_last_digit_m("39479218"), 0.5);
+  EXPECT_DOUBLE_EQ(half_last_digit_m("3.6e6"), 0.5);
+}

@@ -19,6 +19,7 @@
 /// such offsets are far outside any practical zone.
 
 #include <string>
+#include <string_view>
 
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/ellipsoid.hpp"
@@ -128,6 +129,10 @@ class TransverseMercatorGrid {
 /// T = 135° (south-east); swapping C and D gives 315°. Throws InputError for
 /// non-finite input or coincident points.
 double grid_azimuth(double x_c_m, double y_c_m, double x_d_m, double y_d_m);
+
+/// Half the last digit of a coordinate as written (metres): "3611402.310" → 0.0005, "12" or
+/// "1.2e3" → 0.5. The rounding of a booked coordinate, for grid_azimuth_rounding().
+double half_last_digit_m(std::string_view text);
 
 /// The largest change of grid_azimuth() (radians) when each of the four
 /// coordinates is off by at most half its booked digit: `x_half_unit_m`,
