@@ -16,6 +16,8 @@ packages=(
   # GIS readers of the grids in the tests: GDAL (what QGIS uses) and GMT read each NetCDF grid's
   # extent, pixel size and CRS back (tests/cli/test_cli_gravity_grid.cpp).
   gdal-bin gmt
+  # Unicode normalisation (NFKC) of point names: a full-width "Ⅱ３" is "Ⅱ3" (core/unicode.hpp).
+  libutf8proc-dev
   # The Python package (MERIDIAN_PYTHON=ON, docs/python.md) and its tests.
   python3-dev pybind11-dev python3-pybind11 python3-pytest python3-yaml python3-dask python3-distributed
   python3-netcdf4

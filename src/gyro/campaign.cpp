@@ -203,6 +203,25 @@ class CampaignRun {
     return d;
   }
 
+  // The deflection at a point as error sources of T (error_sources.hpp): `sign` +1 at the known
+  // station (T follows A_known), −1 at the line's station (α = A − η·tan φ + c_z); `zenith_rad` the
+  // z of the zenith-distance term where it is applied; `alpha_rad` the geodetic azimuth of the sight.
+  void record_deflection_sources(const PointInput& p, const PointResult& r, const PointDeflection& d, double sign,
+                                 std::optional<double> zenith_rad, double alpha_rad) {
+    const double cot_z = zenith_rad ? 1.0 / std::tan(*zenith_rad) : 0.0;
+    const auto source = [&](bool given) { return given ? std::string("given in the file") : deflection_->description; };
+    if (d.eta_rad) {
+      const double partial = sign * (std::tan(r.lat_rad) - std::cos(alpha_rad) * cot_z);
+      res_.shared_error_sources.push_back({ErrorSource::Kind::Eta, source(p.eta_rad.has_value()), r.lat_rad, r.lon_rad,
+                                           std::nullopt, std::nullopt, d.eta_rad->value, partial * d.eta_rad->sigma, r.name});
+    }
+    if (d.xi_rad && zenith_rad) {
+      const double partial = sign * std::sin(alpha_rad) * cot_z;
+      res_.shared_error_sources.push_back({ErrorSource::Kind::Xi, source(p.xi_rad.has_value()), r.lat_rad, r.lon_rad,
+                                           std::nullopt, std::nullopt, d.xi_rad->value, partial * d.xi_rad->sigma, r.name});
+    }
+  }
+
   // The sight of a line for the zenith-distance term of the Laplace equation.
   struct Sight {
     std::string label;                  // e.g. "line D1->D2"
@@ -292,6 +311,11 @@ class CampaignRun {
                              "arc-to-chord correction neglected)");
       }
     }
+    ErrorSource given{ErrorSource::Kind::KnownAzimuth, fmt::format("known_line.azimuth ({})", to_string(k.azimuth.kind)),
+                      from.lat_rad, from.lon_rad, std::nullopt, std::nullopt, k.azimuth.value_rad.value,
+                      k.azimuth.value_rad.sigma, from.name};
+    if (known_target) given.to_lat_rad = known_target->lat_rad, given.to_lon_rad = known_target->lon_rad;
+    res_.shared_error_sources.push_back(given);
     if (k.azimuth.kind == geodesy::AzimuthKind::Astronomic)
       return geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red).astronomic_rad;
     const PointDeflection d = deflection_at(k.from, from);
@@ -309,6 +333,8 @@ class CampaignRun {
       red.zenith_distance_rad = sight.zenith_rad;
     }
     const geodesy::AzimuthSteps steps = geodesy::azimuth_steps(k.azimuth.kind, k.azimuth.value_rad, red);
+    record_deflection_sources(k.from, from, d, +1.0,
+                              steps.zenith_term_applied ? sight.zenith_rad : std::nullopt, steps.geodetic_rad.value);
     note_zenith_term(sight, d, from.name.empty() ? "the known station" : from.name, steps.zenith_term_applied,
                      steps.zenith_correction_rad);
     return steps.astronomic_rad;
@@ -345,6 +371,9 @@ class CampaignRun {
       throw InputError("no instrument constant: give known_line (calibration) or instrument_constant",
                        {"", std::nullopt, "known_line"});
     res_.instrument_constant_used_rad = *in_.instrument_constant_rad;
+    res_.shared_error_sources.push_back({ErrorSource::Kind::InstrumentConstant, "instrument_constant", 0.0, 0.0,
+                                         std::nullopt, std::nullopt, in_.instrument_constant_rad->value,
+                                         in_.instrument_constant_rad->sigma, ""});
     res_.notes.push_back("instrument constant E given, not calibrated in this campaign");
   }
 
@@ -889,6 +918,9 @@ class CampaignRun {
       chain.arc_to_chord_rad = geodesy::arc_to_chord(grid_, res_.station.grid.x_north_m, res_.station.grid.y_east_m,
                                                      res_.target->grid.x_north_m, res_.target->grid.y_east_m);
     res_.chain = azimuth_chain(chain);
+    record_deflection_sources(in_.line.from, res_.station, d, -1.0,
+                              res_.chain.zenith_term_applied ? sight.zenith_rad : std::nullopt,
+                              res_.chain.geodetic_azimuth_rad.value);
     for (const auto& n : res_.chain.notes) res_.notes.push_back(n);
     note_zenith_term(sight, d, res_.station.name.empty() ? "the station" : res_.station.name,
                      res_.chain.zenith_term_applied, res_.chain.zenith_correction_rad);

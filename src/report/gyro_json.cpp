@@ -170,6 +170,16 @@ json orientations_to_json(const gyro::OrientationsResult& r) {
   j["mean_grid_azimuth"] = az(r.mean.mean);
   j["mean_grid_azimuth"]["sigma_propagated_arcsec"] = arcsec(r.mean.sigma_propagated);
   j["mean_grid_azimuth"]["sigma_empirical_arcsec"] = arcsec(r.mean.sigma_empirical);
+  j["mean_grid_azimuth"]["sigma_own_arcsec"] = arcsec(r.sigma_own_propagated_rad);
+  j["mean_grid_azimuth"]["sigma_shared_arcsec"] = arcsec(r.sigma_shared_rad);
+  j["mean_grid_azimuth"]["sigma_if_independent_arcsec"] = arcsec(r.sigma_if_independent_rad);
+  j["covariance_arcsec2"] = json::array();
+  for (const auto& row : r.covariance_rad2) {
+    json jr = json::array();
+    for (double c : row) jr.push_back(c / (units::kArcsecond * units::kArcsecond));
+    j["covariance_arcsec2"].push_back(jr);
+  }
+  j["shared_sources"] = strings(r.shared_sources);
   j["largest_difference_arcsec"] = arcsec(r.mean.max_difference);
   j["checks"] = checks_json(r.checks);
   j["all_checks_pass"] = r.all_checks_pass();

@@ -502,6 +502,18 @@ TEST_F(Cli, IndependentOrientationsOfOneLine) {
   // Each grid azimuth is the one `gyro campaign` gives for that file.
   const auto a = nlohmann::json::parse(run("gyro campaign a.yaml --json").out);
   EXPECT_DOUBLE_EQ(j["grid_azimuths"][0]["deg"].get<double>(), a["grid_azimuth"]["deg"].get<double>());
+  // The σ of the mean from the stated covariance, in closed form: sqrt(max(own, empirical)² + shared²)
+  // with shared² = C12 for two that share the same contributions (ΣΣC/4 minus the own parts).
+  const auto& m = j["mean_grid_azimuth"];
+  const double c12 = j["covariance_arcsec2"][0][1].get<double>();
+  EXPECT_GT(c12, 0.0);
+  EXPECT_EQ(j["shared_sources"].size(), 3u);
+  const double prop = std::sqrt(j["covariance_arcsec2"][0][0].get<double>() + j["covariance_arcsec2"][1][1].get<double>() +
+                                2 * c12) / 2;
+  EXPECT_NEAR(m["sigma_propagated_arcsec"].get<double>(), prop, 1e-9);
+  const double own = m["sigma_own_arcsec"].get<double>(), emp = m["sigma_empirical_arcsec"].get<double>();
+  EXPECT_NEAR(m["sigma_shared_arcsec"].get<double>(), std::sqrt(c12), 1e-9);
+  EXPECT_NEAR(m["sigma_arcsec"].get<double>(), std::sqrt(std::pow(std::max(own, emp), 2) + c12), 1e-9);
   EXPECT_NE(run("gyro orientations a.yaml").code, 0);  // one file: a command-line error
 }
 

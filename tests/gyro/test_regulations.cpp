@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <random>
 #include <string>
 
 #include <boost/math/distributions/chi_squared.hpp>
@@ -242,9 +244,23 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   const OrientationsResult r = combine_orientations({a, b});
   const double d = std::fabs(wrap_signed_rad(a.chain.grid_azimuth_rad.value - b.chain.grid_azimuth_rad.value));
   EXPECT_NEAR(r.mean.max_difference, d, 1e-15);
-  // σ of the mean: the larger of the propagated and |T1 − T2|/2.
-  const double prop = std::hypot(a.chain.grid_azimuth_rad.sigma, b.chain.grid_azimuth_rad.sigma) / 2;
-  EXPECT_NEAR(r.mean.mean.sigma, std::max(prop, d / 2), 1e-12);
+  // σ of the mean in closed form: both calibrate on the same known line (σ_k of its given azimuth)
+  // with the same η booked at the same two points, so cov(T1, T2) = σ_k² + (tan φ_A σ_ηA)² + (tan φ_C σ_ηC)²
+  // (no zenith term here) and var(mean) = (σ1² + σ2² + 2 cov)/4; the own parts are bounded by |T1 − T2|/2.
+  ASSERT_FALSE(a.chain.zenith_term_applied);
+  const auto sq = [](double x) { return x * x; };
+  const KnownLineInput& k = *a.input.known_line;
+  ASSERT_TRUE(k.from.eta_rad && a.input.line.from.eta_rad);
+  const double cov = sq(k.azimuth.value_rad.sigma) + sq(std::tan(a.known_station->lat_rad) * k.from.eta_rad->sigma) +
+                     sq(std::tan(a.station.lat_rad) * a.input.line.from.eta_rad->sigma);
+  const double s1 = a.chain.grid_azimuth_rad.sigma, s2 = b.chain.grid_azimuth_rad.sigma;
+  EXPECT_NEAR(r.covariance_rad2[0][1], cov, 1e-22);
+  EXPECT_NEAR(r.covariance_rad2[1][0], cov, 1e-22);
+  EXPECT_NEAR(r.mean.sigma_propagated, std::sqrt(sq(s1) + sq(s2) + 2 * cov) / 2, 1e-15);
+  EXPECT_NEAR(r.sigma_if_independent_rad, std::hypot(s1, s2) / 2, 1e-15);
+  const double own = std::sqrt(sq(s1) + sq(s2) - 2 * cov) / 2;
+  EXPECT_NEAR(r.mean.mean.sigma, std::sqrt(sq(std::max(own, d / 2)) + cov), 1e-15);
+  EXPECT_EQ(r.shared_sources.size(), 3u);
   ASSERT_EQ(r.checks.size(), 4u);  // each orientation's own checks, the difference, the σ of the mean
   EXPECT_TRUE(r.checks[0].pass && r.checks[1].pass);
   EXPECT_NEAR(r.checks[2].tolerance, 40.0, 1e-12);
@@ -271,6 +287,14 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   renamed.station.name = a.station.name + "\uFF13";
   const OrientationsResult same = combine_orientations({a, renamed});
   EXPECT_TRUE(std::any_of(same.notes.begin(), same.notes.end(), [](const std::string& n) {
+    return n.find("the same point by its coordinates") != std::string::npos;
+  }));
+  // A name that is the same after NFKC (a full-width Ｃ for C) is the same name: no note.
+  ASSERT_EQ(a.station.name.substr(0, 1), "C");
+  CampaignResult full_width = b;
+  full_width.station.name = "\uFF23" + a.station.name.substr(1);
+  const OrientationsResult fw = combine_orientations({a, full_width});
+  EXPECT_TRUE(std::none_of(fw.notes.begin(), fw.notes.end(), [](const std::string& n) {
     return n.find("the same point by its coordinates") != std::string::npos;
   }));
   // A station 42 m away under the same name is another line: 42 m north is 42/6371000 rad.
@@ -527,4 +551,44 @@ TEST(Regulations, AccuracyClassMustBeBookedAndMatchTheName) {
   sim.input.instrument.name = "gyro No. 3";
   EXPECT_NE(find_check(process(sim.input), "accuracy class booked (not booked: the 15\" limits of Meridian's default"),
             nullptr);
+}
+
+TEST(Orientations, SharedKnownLineAndEtaCorrelateTheOrientationsAsStated) {
+  // Monte Carlo: pairs of orientations whose runs are independent but whose known line azimuth and
+  // booked η carry one common error per pair, drawn with their booked σ. The sample covariance of the
+  // two orientations' errors must be the stated C_12 (within 3 standard errors of a sample covariance,
+  // sqrt((σ1²σ2² + C²)/n)) and clearly not the 0 of independence; the mean's σ must not be optimistic.
+  std::mt19937_64 rng(2026);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  const int pairs = 400;
+  double s12 = 0, c12 = 0, v1 = 0, v2 = 0, zz = 0;
+  for (int p = 0; p < pairs; ++p) {
+    SimulatedCampaign a = clean(1000 + 2 * p), b = clean(1001 + 2 * p);
+    const double ek = unit(rng) * a.input.known_line->azimuth.value_rad.sigma;
+    const double ea = unit(rng) * a.input.known_line->from.eta_rad->sigma;
+    const double ec = unit(rng) * a.input.line.from.eta_rad->sigma;
+    for (SimulatedCampaign* s : {&a, &b}) {
+      s->input.known_line->azimuth.value_rad.value += ek;
+      s->input.known_line->from.eta_rad->value += ea;
+      s->input.line.from.eta_rad->value += ec;
+    }
+    const CampaignResult ra = process(a.input), rb = process(b.input);
+    const OrientationsResult r = combine_orientations({ra, rb});
+    const double e1 = wrap_signed_rad(ra.chain.grid_azimuth_rad.value - a.true_grid_azimuth_rad);
+    const double e2 = wrap_signed_rad(rb.chain.grid_azimuth_rad.value - b.true_grid_azimuth_rad);
+    s12 += e1 * e2;
+    c12 += r.covariance_rad2[0][1];
+    v1 += e1 * e1, v2 += e2 * e2;
+    const double e = wrap_signed_rad(r.mean.mean.value - a.true_grid_azimuth_rad);
+    zz += (e / r.mean.mean.sigma) * (e / r.mean.mean.sigma);
+  }
+  const double n = pairs, as2 = units::kArcsecond * units::kArcsecond;
+  const double sample = s12 / n, stated = c12 / n;
+  const double se = std::sqrt((v1 / n) * (v2 / n) + sample * sample) / std::sqrt(n);
+  std::printf("cov(T1, T2) over %d pairs: sample %.2f, stated %.2f, standard error %.2f arcsec^2; RMS of "
+              "error/sigma of the mean %.3f\n",
+              pairs, sample / as2, stated / as2, se / as2, std::sqrt(zz / n));
+  EXPECT_LT(std::abs(sample - stated), 3 * se);
+  EXPECT_GT(sample, 3 * se);  // independence (cov 0) is refuted
+  EXPECT_LT(std::sqrt(zz / n), 1.15);
 }

@@ -17,6 +17,7 @@
 #include "meridian/gyro/calibration.hpp"
 #include "meridian/gyro/deflection_model.hpp"
 #include "meridian/gyro/determination.hpp"
+#include "meridian/gyro/error_sources.hpp"
 #include "meridian/gyro/instrument_spec.hpp"
 #include "meridian/gyro/regulations.hpp"
 
@@ -180,6 +181,10 @@ struct CampaignResult {
   /// traverse's 坐标方位角, geodesy::grid_azimuth), when both are given; the
   /// record sheet shows chain.grid_azimuth_rad minus it (gyro − traverse).
   std::optional<double> line_grid_azimuth_from_coordinates_rad;
+  /// The parts of σ(chain.grid_azimuth_rad) that another orientation of the
+  /// line may share (error_sources.hpp); their Σ c² ≤ σ(T)², the rest is this
+  /// campaign's own.
+  std::vector<ErrorSource> shared_error_sources;
   std::vector<std::string> notes;
   std::vector<std::string> warnings;
   bool all_checks_pass() const;
