@@ -117,11 +117,12 @@ int run_template(const TemplateArgs& a) {
 
 struct OrientationsArgs {
   std::vector<std::string> files;
-  std::string output;
+  std::string output, report;
   bool json = false, strict = false, quiet = false;
 };
 
 int run_orientations(const OrientationsArgs& a) {
+  require_html_reports_for(a.report);
   TerminalProgress progress(a.quiet);
   std::vector<std::filesystem::path> paths(a.files.begin(), a.files.end());
   const io::OrientationsJob job = io::run_orientation_files(paths, &progress);
@@ -134,7 +135,11 @@ int run_orientations(const OrientationsArgs& a) {
     print_failed_checks(job.result.checks);
     return kInputError;
   }
-  emit(a.output, out);
+  emit_with_report(a.output, out, a.report, [&] {
+    std::vector<gyro::CampaignResult> results;
+    for (const auto& o : job.orientations) results.push_back(o.result);
+    return report::render_html(report::gyro_orientations_document(job.result, results));
+  });
   return kOk;
 }
 
@@ -225,6 +230,7 @@ void add_orientations(CLI::App& gyro, int& exit_code) {
   ori->add_flag("--json", oa->json, "Print JSON instead of text");
   ori->add_flag("--strict", oa->strict, "Exit with code 1 when a check fails (and write nothing)");
   ori->add_option("-o,--output", oa->output, "Write to this file (atomically) instead of stdout");
+  ori->add_option("--report", oa->report, "Also write a self-contained HTML result sheet (成果表) to this file");
   ori->add_flag("-q,--quiet", oa->quiet, "No progress bar");
   ori->callback([oa, &exit_code] { exit_code = guarded([&] { return run_orientations(*oa); }); });
 }

@@ -9,6 +9,7 @@
 #include "gyro_plots.hpp"
 #include "meridian/report/format.hpp"
 #include "meridian/report/gyro_text.hpp"
+#include "meridian/core/error.hpp"
 #include "meridian/core/angle.hpp"
 #include "meridian/core/units.hpp"
 #include "meridian/geodesy/grid.hpp"
@@ -469,41 +470,51 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
 }
 
 // The grid azimuth and every step of the chain from the field data to it.
+// The chain from field data to the grid azimuth: the 计算表 (computation sheet) of the job.
 Section campaign_result_section(const gyro::CampaignResult& r, const AngleFormat& f) {
+  const SheetLabels L{r.input.record.language == "zh"};
   const auto& c = r.chain;
-  Section result{"result", "Result", {}, 2};
-  result.blocks.push_back(Highlight{"Grid azimuth " + line_name(r),
+  Section result{"result", L("Computation sheet", "计算表"), {}, 2};
+  result.blocks.push_back(Highlight{L("Grid azimuth", "坐标方位角") + " " + line_name(r),
                                     f.dir(c.grid_azimuth_rad.value, 1) + "  \u00b1 " + f.sig(c.grid_azimuth_rad.sigma, 1),
-                                    r.all_checks_pass() ? "all tolerance checks pass" : "SOME TOLERANCE CHECKS FAIL"});
+                                    r.all_checks_pass() ? L("all tolerance checks pass", "全部检核合格")
+                                                        : L("SOME TOLERANCE CHECKS FAIL", "检核不合格")});
   Table chain;
-  chain.title = "From field data to grid azimuth";
-  chain.columns = {"quantity", "value", "sigma", "how"};
+  chain.title = L("From field data to grid azimuth", "由观测值到坐标方位角");
+  chain.columns = {L("quantity", "项目"), L("value", "数值"), L("sigma", "中误差"), L("how", "说明")};
   chain.numeric = {false, true, true, false};
   chain.rows = {
-      {"gyro azimuth A_G (mean of the line's determinations)", f.dir(c.gyro_azimuth_rad.value, 2),
-       f.sig(c.gyro_azimuth_rad.sigma, 2), fmt::format("{} determinations; A_G = r - N_G", r.determinations.size())},
-      {"instrument constant E", f.sec(r.instrument_constant_used_rad.value, 2), f.sig(r.instrument_constant_used_rad.sigma, 2),
-       r.instrument_constant ? "calibrated on the known line" : "given"},
-      {"astronomic azimuth A = A_G + E", f.dir(c.astronomic_azimuth_rad.value, 2), f.sig(c.astronomic_azimuth_rad.sigma, 2), ""},
-      {"Laplace correction -eta tan(phi)", c.laplace_applied ? f.sec(c.laplace_correction_rad, 2) : "not applied", "",
+      {L("gyro azimuth A_G (mean of the line's determinations)", "陀螺方位角 A_G (定向边各测回平均)"),
+       f.dir(c.gyro_azimuth_rad.value, 2), f.sig(c.gyro_azimuth_rad.sigma, 2),
+       fmt::format("{} determinations; A_G = r - N_G", r.determinations.size())},
+      {L("instrument constant E", "仪器常数 E"), f.sec(r.instrument_constant_used_rad.value, 2),
+       f.sig(r.instrument_constant_used_rad.sigma, 2),
+       r.instrument_constant ? L("calibrated on the known line", "已知边上测定") : L("given", "给定")},
+      {L("astronomic azimuth A = A_G + E", "天文方位角 A = A_G + E"), f.dir(c.astronomic_azimuth_rad.value, 2),
+       f.sig(c.astronomic_azimuth_rad.sigma, 2), ""},
+      {L("Laplace correction -eta tan(phi)", "拉普拉斯改正 -η tan φ"),
+       c.laplace_applied ? f.sec(c.laplace_correction_rad, 2) : L("not applied", "未加"), "",
        c.laplace_applied ? "eta at the station" : "eta unknown"},
-      {"zenith-distance term -(xi sin alpha - eta cos alpha) cot z",
-       c.zenith_term_applied ? f.sec(c.zenith_correction_rad, 2) : "not applied", "",
+      {L("zenith-distance term -(xi sin alpha - eta cos alpha) cot z", "天顶距项 -(ξ sin α - η cos α) cot z"),
+       c.zenith_term_applied ? f.sec(c.zenith_correction_rad, 2) : L("not applied", "未加"), "",
        c.zenith_term_applied ? "z = " + format_dms(Angle::radians(*c.zenith_distance_rad), {0, true, false})
                              : "sight horizontal, or xi/eta unknown"},
-      {"geodetic azimuth alpha", f.dir(c.geodetic_azimuth_rad.value, 2), f.sig(c.geodetic_azimuth_rad.sigma, 2), ""},
-      {"meridian convergence gamma (subtracted)", f.dms(c.convergence_rad, 2), "exact", "GeographicLib transverse Mercator"},
-      {"arc-to-chord correction delta (added)", c.arc_to_chord_applied ? f.sec(c.arc_to_chord_rad, 2) : "not applied",
+      {L("geodetic azimuth alpha", "大地方位角 α"), f.dir(c.geodetic_azimuth_rad.value, 2),
+       f.sig(c.geodetic_azimuth_rad.sigma, 2), ""},
+      {L("meridian convergence gamma (subtracted)", "子午线收敛角 γ (减)"), f.dms(c.convergence_rad, 2), "exact",
+       "GeographicLib transverse Mercator"},
+      {L("arc-to-chord correction delta (added)", "方向改化 δ (加)"),
+       c.arc_to_chord_applied ? f.sec(c.arc_to_chord_rad, 2) : L("not applied", "未加"),
        c.arc_to_chord_applied ? "exact" : "", c.arc_to_chord_applied ? "rigorous, from the geodesic" : "no target coordinates"},
-      {"grid azimuth T = alpha - gamma + delta", f.dir(c.grid_azimuth_rad.value, 2), f.sig(c.grid_azimuth_rad.sigma, 2), ""}};
+      {L("grid azimuth T = alpha - gamma + delta", "坐标方位角 T = α - γ + δ"), f.dir(c.grid_azimuth_rad.value, 2),
+       f.sig(c.grid_azimuth_rad.sigma, 2), ""}};
   result.blocks.push_back(chain);
   return result;
 }
 
-Section checks_section(const gyro::CampaignResult& r, const AngleFormat& f) {
-  Section checks{"checks", "Tolerance checks", {}, 2};
+CheckList check_list(const std::vector<gyro::Check>& list) {
   CheckList cl;
-  for (const auto& k : r.checks) {
+  for (const auto& k : list) {
     const bool div = k.unit == gyro::CheckUnit::Div;
     const bool runs = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers ||
                       k.unit == gyro::CheckUnit::Checks || k.unit == gyro::CheckUnit::Entries;
@@ -514,7 +525,13 @@ Section checks_section(const gyro::CampaignResult& r, const AngleFormat& f) {
                                      k.tolerance, dec, unit),
                          k.pass, k.source});
   }
-  checks.blocks.push_back(cl);
+  return cl;
+}
+
+Section checks_section(const gyro::CampaignResult& r, const AngleFormat& f) {
+  const SheetLabels L{r.input.record.language == "zh"};
+  Section checks{"checks", L("Tolerance checks", "限差检核"), {}, 2};
+  checks.blocks.push_back(check_list(r.checks));
   std::vector<KeyValue> m;
   if (r.constant_one_run_sigma_rad)
     m.push_back({"instrument constant, one run (m = sqrt([vv]/(n-1)))", f.sig(*r.constant_one_run_sigma_rad, 1)});
@@ -665,6 +682,118 @@ Document gyro_campaign_document(const gyro::CampaignResult& r) {
   add_detail_sections(doc.sections, "line-determination", "Line", in.line.determinations, r.determinations,
                       r.instrument_station.instrument, f);
   doc.sections.push_back(notes_section(r));
+  return doc;
+}
+
+Document gyro_orientations_document(const gyro::OrientationsResult& r, const std::vector<gyro::CampaignResult>& o) {
+  if (o.size() != r.grid_azimuths_rad.size() || o.empty())
+    throw InputError(fmt::format("the orientations report needs the {} campaign results combined, got {}",
+                                 r.grid_azimuths_rad.size(), o.size()));
+  const gyro::CampaignResult& first = o.front();
+  const SheetLabels L{first.input.record.language == "zh"};
+  const AngleFormat f(first.input.angle_unit);
+  const std::string line = r.station + (r.target.empty() ? "" : " to " + r.target);
+  Document doc;
+  doc.title = "Independent gyro orientations: " + line;
+  doc.subtitle = fmt::format("{} orientations", o.size());
+  doc.footer = report_generator();
+  for (std::size_t i = 0; i < r.files.size(); ++i) doc.header.push_back({fmt::format("orientation {}", i + 1), r.files[i]});
+
+  Section s{"result-sheet", L("Result sheet of the independent orientations", "陀螺定向成果表 (独立定向)"), {}, 2};
+  s.page_break_after = true;
+  int failed = 0;
+  for (const auto& k : r.checks) failed += k.pass ? 0 : 1;
+  const std::string detail =
+      failed == 0 ? fmt::format("{}: {}", L("all checks pass", "全部检核合格"), r.checks.size())
+                  : fmt::format("{} OF {} CHECKS FAILED: do not use this azimuth before they are resolved{}", failed,
+                                r.checks.size(), L.zh ? " (检核不合格, 不得使用)" : "");
+  s.blocks.push_back(Highlight{L("Mean grid azimuth", "平均坐标方位角") + " " + line,
+                               f.dir(r.mean.mean.value, 1) + "  \u00b1 " + f.sig(r.mean.mean.sigma, 1), detail,
+                               failed > 0});
+  std::vector<KeyValue> job;
+  job.push_back({L("station", "测站") + " " + first.station.name,
+                 fmt::format("{} {}, {} {}", L("latitude", "纬度"),
+                             format_dms(Angle::radians(first.station.lat_rad), {2, true, false}), L("longitude", "经度"),
+                             format_dms(Angle::radians(first.station.lon_rad), {2, true, false}))});
+  for (const auto* p : {&first.station, first.target ? &*first.target : nullptr})
+    if (p)
+      job.push_back({L("coordinates of", "坐标") + " " + p->name,
+                     fmt::format("x {:.3f} m, y {:.3f} m", p->grid.x_north_m, p->grid.y_east_m)});
+  job.push_back({L("grid", "坐标系"), geodesy::describe(first.input.grid)});
+  job.push_back({L("limits", "限差依据"), r.limits.source});
+  s.blocks.push_back(KeyValueList{L("Line", "定向边"), job});
+
+  Table t;
+  t.title = L("Orientations", "各次定向");
+  t.columns = {"#", L("date", "日期"), L("instrument", "仪器"), L("programme", "观测程序"), L("E used", "仪器常数 E"),
+               L("grid azimuth T", "坐标方位角 T"), L("sigma", "中误差"), L("T minus mean", "与平均值之差"),
+               L("own checks", "本次检核")};
+  t.numeric = {true, false, false, false, true, true, true, true, false};
+  for (std::size_t i = 0; i < o.size(); ++i) {
+    const gyro::CampaignResult& c = o[i];
+    const gyro::CampaignInput& in = c.input;
+    const std::string programme = in.known_line ? fmt::format("{}-{}-{}", in.known_line->before.size(),
+                                                              in.line.determinations.size(), in.known_line->after.size())
+                                                : fmt::format("{} ({})", in.line.determinations.size(), L("E given", "E 给定"));
+    t.rows.push_back({std::to_string(i + 1), in.record.date, in.instrument.name, programme,
+                      f.sec(c.instrument_constant_used_rad.value, 1), f.dir(r.grid_azimuths_rad[i].value, 1),
+                      f.sig(r.grid_azimuths_rad[i].sigma, 1),
+                      f.sec(wrap_signed_rad(r.grid_azimuths_rad[i].value - r.mean.mean.value), 1),
+                      c.all_checks_pass() ? L("pass", "合格") : L("FAILED", "不合格")});
+  }
+  s.blocks.push_back(t);
+
+  Table m;
+  m.title = L("Mean and its sigma", "平均值及其中误差");
+  m.columns = {L("quantity", "项目"), L("value", "数值")};
+  m.numeric = {false, true};
+  m.rows.push_back({L("mean grid azimuth", "平均坐标方位角"), f.dir(r.mean.mean.value, 1)});
+  m.rows.push_back({L("sigma of the mean (used)", "平均值中误差"), f.sig(r.mean.mean.sigma, 2)});
+  m.rows.push_back({L("own parts, propagated", "各次独立部分 (传播)"), f.sig(r.sigma_own_propagated_rad, 2)});
+  if (std::isfinite(r.mean.sigma_empirical))
+    m.rows.push_back({L("from the scatter of the orientations", "由各次互差"), f.sig(r.mean.sigma_empirical, 2)});
+  m.rows.push_back({L("shared parts (correlated)", "共同部分 (相关)"), f.sig(r.sigma_shared_rad, 2)});
+  m.rows.push_back({L("as if independent (not used)", "按独立计算 (未用)"), f.sig(r.sigma_if_independent_rad, 2)});
+  m.rows.push_back({L("largest difference of the orientations", "各次定向最大互差"), f.sec(r.mean.max_difference, 1)});
+  if (first.line_grid_azimuth_from_coordinates_rad) {
+    m.rows.push_back({L("azimuth of the coordinates (traverse)", "导线坐标方位角"),
+                      f.dir(*first.line_grid_azimuth_from_coordinates_rad, 1)});
+    m.rows.push_back({L("mean minus traverse azimuth", "平均陀螺方位角与导线方位角之差"),
+                      f.sec(wrap_signed_rad(r.mean.mean.value - *first.line_grid_azimuth_from_coordinates_rad), 1)});
+  }
+  m.note = L("sigma = sqrt(max(own, scatter)^2 + shared^2): the scatter cannot show what the orientations share.",
+             "中误差 = sqrt(max(独立部分, 互差)^2 + 共同部分^2)");
+  s.blocks.push_back(m);
+  {
+    std::vector<std::string> labels;
+    std::vector<Uncertain> values = r.grid_azimuths_rad;
+    for (std::size_t i = 0; i < values.size(); ++i) labels.push_back(fmt::format("{} {}", L("orientation", "定向"), i + 1));
+    if (first.line_grid_azimuth_from_coordinates_rad) {
+      labels.push_back(L("traverse (coordinates)", "导线坐标"));
+      values.push_back({*first.line_grid_azimuth_from_coordinates_rad, 0.0});
+    }
+    s.blocks.push_back(gyro_plots::spread_plot(
+        L("Orientations about their mean", "各次定向与平均值"), labels, values, r.mean.mean.value, r.mean.mean.sigma,
+        "T minus the mean (arcsec)", "Bars: +-1 sigma of each orientation; band: +-1 sigma of the mean."));
+  }
+  if (!r.shared_sources.empty())
+    s.blocks.push_back(Notes{L("Shared by the orientations (correlated)", "各次定向共同的误差来源"), r.shared_sources, false});
+  if (failed > 0) {
+    std::vector<std::string> items;
+    for (const auto& k : r.checks)
+      if (!k.pass) items.push_back(check_text(k));
+    s.blocks.push_back(Notes{L("Failed checks", "不合格检核"), items, true});
+  }
+  s.blocks.push_back(Signatures{{{L("computed by", "计算者"), first.input.record.computed_by},
+                                 {L("checked by", "检查者"), first.input.record.checked_by}}});
+  doc.sections.push_back(s);
+
+  Section checks{"checks", L("Tolerance checks", "限差检核"), {}, 2};
+  checks.blocks.push_back(check_list(r.checks));
+  doc.sections.push_back(checks);
+  Section notes{"notes", L("Notes", "说明"), {}, 2};
+  notes.blocks.push_back(Notes{"", r.notes, false});
+  doc.sections.push_back(notes);
   return doc;
 }
 

@@ -27,6 +27,8 @@ REQUIRED = {
     "campaign.html": ["result-sheet", "inputs", "result", "checks", "calibration", "line", "line-determination-1",
                       "notes"],
     "campaign-cjk.html": ["result-sheet", "result", "checks"],
+    "orientations.html": ["result-sheet", "checks", "notes"],
+    "orientations-cjk.html": ["result-sheet", "checks", "notes"],
     "spec-scenario-2.html": ["summary", "determination-1"],
     "tracking.html": ["summary", "determination-1"],
     "gravity-points.html": ["summary", "maps", "definitions"],
@@ -144,6 +146,33 @@ def write_cjk_campaign_report(meridian, examples, out):
     return None
 
 
+def write_orientations_reports(meridian, out):
+    """Two independent orientations of one line (`gyro simulate --mode campaign`, two seeds)
+    combined with `gyro orientations --report`, in English and with Chinese labels; returns an
+    error message or None."""
+    books = []
+    for seed in (21, 22):
+        book = os.path.join(out, f"orientation-{seed}.yaml")
+        sim = subprocess.run([meridian, "gyro", "simulate", "--mode", "campaign", "--seed", str(seed), "-o", book],
+                             capture_output=True, text=True)
+        if sim.returncode != 0:
+            return "meridian gyro simulate --mode campaign: " + sim.stderr
+        books.append(book)
+    zh = []
+    for book in books:
+        text = open(book, encoding="utf-8").read()
+        cjk = book[:-5] + "-cjk.yaml"
+        with open(cjk, "w", encoding="utf-8") as f:
+            f.write('record: {computed_by: "张工", checked_by: "陈工", language: zh}\n' + text)
+        zh.append(cjk)
+    for name, files in (("orientations.html", books), ("orientations-cjk.html", zh)):
+        run = subprocess.run([meridian, "gyro", "orientations", *files, "-q", "--report", os.path.join(out, name)],
+                             capture_output=True, text=True)
+        if run.returncode != 0:
+            return f"meridian gyro orientations --report {name}: " + run.stderr
+    return None
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--meridian", required=True)
@@ -162,7 +191,8 @@ def main():
         return 1
     passed = failed = 0
     for problem in (write_gravity_report(args.meridian, args.out), write_dov_report(args.meridian, args.out),
-                    write_cjk_campaign_report(args.meridian, args.examples, args.out)):
+                    write_cjk_campaign_report(args.meridian, args.examples, args.out),
+                    write_orientations_reports(args.meridian, args.out)):
         if problem:
             failed += 1
             print("FAIL", problem)
@@ -214,14 +244,25 @@ def main():
     # The result sheet in each language: its labels, and a picture of it kept beside the page.
     sheets = {"campaign.html": ["Result sheet", "Grid azimuth", "gyro minus traverse azimuth", "Known line", "Runs"],
               "campaign-cjk.html": ["陀螺定向成果表", "坐标方位角 Grid azimuth", "仪器常数 E", "一次测定中误差",
-                                    "陀螺方位角与导线方位角之差", "已知边 Known line", "观测者"]}
+                                    "陀螺方位角与导线方位角之差", "已知边 Known line", "观测者"],
+              "orientations.html": ["Result sheet of the independent orientations", "Mean grid azimuth",
+                                    "shared parts (correlated)", "as if independent (not used)", "Orientations",
+                                    "mean minus traverse azimuth", "computed by"],
+              "orientations-cjk.html": ["陀螺定向成果表", "平均坐标方位角 Mean grid azimuth", "平均值中误差",
+                                        "共同部分 (相关)", "各次定向 Orientations", "各次定向共同的误差来源",
+                                        "计算者", "张工"]}
     for name, labels in sheets.items():
         page = os.path.join(args.out, name)
         if not os.path.exists(page):
             continue
         html = open(page, encoding="utf-8").read()
-        sheet = html[html.find('id="result-sheet"'):html.find('id="inputs"')]
+        end = html.find('id="inputs"') if 'id="inputs"' in html else html.find('id="checks"')
+        sheet = html[html.find('id="result-sheet"'):end]
         missing = [l for l in labels if l not in sheet]
+        # The campaign's computation sheet (计算表) and checks after the result sheet, in the job's language.
+        if name == "campaign-cjk.html":
+            missing += [l for l in ("计算表 Computation sheet", "限差检核 Tolerance checks", "拉普拉斯改正")
+                        if l not in html]
         png = page[:-5] + ".png"
         shot = subprocess.run([args.meridian, "report", "screenshot", page, "-o", png], capture_output=True, text=True)
         if missing or shot.returncode != 0 or not os.path.exists(png) or os.path.getsize(png) < 10000:
