@@ -41,7 +41,7 @@ fi
 # The report JavaScript, exactly as pinned in the lockfile.
 stamp=web/node_modules/.meridian-lock
 if ! cmp -s web/package-lock.json "$stamp" 2> /dev/null; then
-  echo "setup: npm ci in web/ (vega, vega-lite, vega-embed)"
+  echo "setup: npm ci in web/ (vega, vega-lite, vega-embed; yaml for the field book)"
   (cd web && npm ci --no-audit --no-fund --loglevel=error)
   cp web/package-lock.json "$stamp"
 fi

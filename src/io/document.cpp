@@ -15,22 +15,6 @@
 namespace meridian::io {
 namespace {
 
-// Whether line `line` (1-based) of a YAML block document has a tab in its
-// leading whitespace. A JSON document (a flow mapping) may indent with tabs.
-bool indented_with_tab(const std::string& text, int line) {
-  const std::size_t first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string::npos && text[first] == '{') return false;
-  std::size_t b = 0;
-  for (int l = 1; l < line; ++l) {
-    b = text.find('\n', b);
-    if (b == std::string::npos) return false;
-    ++b;
-  }
-  for (std::size_t i = b; i < text.size() && (text[i] == ' ' || text[i] == '\t'); ++i)
-    if (text[i] == '\t') return true;
-  return false;
-}
-
 // The whole scalar as a number (possibly not finite); nullopt when it is not one.
 std::optional<double> whole_number(const std::string& s) {
   double v = 0;
@@ -58,49 +42,16 @@ std::string printable(const std::string& s) {
 
 }  // namespace
 
-Node::Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
-           std::shared_ptr<LineMap> lines)
-    : node_(std::move(node)), path_(std::move(path)), file_(std::move(file)), lines_(std::move(lines)) {
-  if (node_.Mark().line >= 0) (*lines_)[path_] = node_.Mark().line + 1;
+Node::Node(std::shared_ptr<const DocumentTree> root, const DocumentTree* node, std::string path,
+           std::shared_ptr<const std::string> file, std::shared_ptr<LineMap> lines)
+    : root_(std::move(root)), node_(node), path_(std::move(path)), file_(std::move(file)), lines_(std::move(lines)) {
+  if (node_->line > 0) (*lines_)[path_] = node_->line;
 }
 
-Node Node::load_file(const std::filesystem::path& path) {
-  auto file = std::make_shared<const std::string>(path.string());
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw IoError("is a directory, not a file", {*file, std::nullopt, {}});
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open the file", {*file, std::nullopt, {}});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError("cannot read the file", {*file, std::nullopt, {}});
-  const std::string text = ss.str();
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
-    throw ParseError("the file is empty", {*file, std::nullopt, {}});
-  if (text.find('\0') != std::string::npos)
-    throw ParseError("the file contains NUL bytes: not a text file", {*file, std::nullopt, {}});
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    const std::optional<int> line =
-        e.mark.line >= 0 ? std::optional<int>(e.mark.line + 1) : std::nullopt;
-    if (line && indented_with_tab(text, *line))
-      throw ParseError(
-          fmt::format("tabs are not allowed for indentation (line {}); indent with spaces", *line),
-          {*file, line, {}});
-    throw ParseError(fmt::format("syntax error: {} (column {})", e.msg, e.mark.column + 1),
-                     {*file, line, {}});
-  }
-  Node n(root, "", file, std::make_shared<LineMap>());
-  if (!root.IsMap()) n.fail("the top level must be a mapping of fields (YAML) or an object (JSON)");
-  return n;
-}
-
-int Node::line() const { return node_.Mark().line + 1; }
+int Node::line() const { return node_->line; }
 
 std::optional<int> Node::mark_line() const {
-  const int l = node_.Mark().line;
-  return l >= 0 ? std::optional<int>(l + 1) : std::nullopt;
+  return node_->line > 0 ? std::optional<int>(node_->line) : std::nullopt;
 }
 
 void Node::locate(Error& e) const { e.add_context(*file_, mark_line(), path_); }
@@ -114,19 +65,23 @@ std::string Node::child_path(const std::string& key) const {
 }
 
 std::optional<Node> Node::get(const std::string& key) const {
-  if (!node_.IsMap()) fail("expected a mapping of fields");
-  YAML::Node c = node_[key];
-  if (!c) return std::nullopt;
+  if (!is_map()) fail("expected a mapping of fields");
+  const DocumentTree::Member* m = nullptr;
+  for (const auto& c : node_->members)
+    if (c.key == key) {
+      m = &c;
+      break;
+    }
+  if (!m) return std::nullopt;
   // A key written without a value ("sigma_arcsec:") is null in YAML: taking the default for it
   // would hide a value the user meant to give (trial finding), so it is an error.
-  if (c.IsNull()) {
-    std::optional<int> line = mark_line();  // the key's own line (an empty value's mark is the next one)
-    for (const auto& kv : node_)
-      if (kv.first.IsScalar() && kv.first.Scalar() == key && kv.first.Mark().line >= 0) line = kv.first.Mark().line + 1;
+  if (m->value.kind == DocumentTree::Kind::Null) {
+    // The key's own line (an empty value's mark is the next one).
+    const std::optional<int> line = m->key_line > 0 ? std::optional<int>(m->key_line) : mark_line();
     throw InputError(fmt::format("\"{}\" has no value: give one (or remove the line, where the field has a default)", key),
                      {*file_, line, child_path(key)});
   }
-  return Node(c, child_path(key), file_, lines_);
+  return Node(root_, &m->value, child_path(key), file_, lines_);
 }
 
 Node Node::require(const std::string& key) const {
@@ -136,16 +91,16 @@ Node Node::require(const std::string& key) const {
 }
 
 std::vector<Node> Node::elements() const {
-  if (!node_.IsSequence()) fail("expected a list");
+  if (!is_sequence()) fail("expected a list");
   std::vector<Node> out;
   std::size_t i = 0;
-  for (const auto& c : node_) out.emplace_back(c, fmt::format("{}[{}]", path_, i++), file_, lines_);
+  for (const auto& c : node_->elements) out.emplace_back(root_, &c, fmt::format("{}[{}]", path_, i++), file_, lines_);
   return out;
 }
 
 double Node::number() const {
-  if (!node_.IsScalar()) fail("expected a number");
-  const std::string& s = node_.Scalar();
+  if (!is_scalar()) fail("expected a number");
+  const std::string& s = node_->scalar;
   const auto v = whole_number(s);
   if (!v) fail(fmt::format("expected a number, got \"{}\"", s));
   if (!std::isfinite(*v)) fail(fmt::format("expected a finite number, got \"{}\"", s));
@@ -171,8 +126,8 @@ int Node::integer() const {
 }
 
 bool Node::boolean() const {
-  if (!node_.IsScalar()) fail("expected true or false");
-  const std::string& s = node_.Scalar();
+  if (!is_scalar()) fail("expected true or false");
+  const std::string& s = node_->scalar;
   // YAML 1.2's core schema (true, True, TRUE) and the YAML 1.1 yes/no that files still use.
   for (const char* t : {"true", "True", "TRUE", "yes", "Yes", "YES"})
     if (s == t) return true;
@@ -182,8 +137,8 @@ bool Node::boolean() const {
 }
 
 std::string Node::string() const {
-  if (!node_.IsScalar()) fail("expected a text value");
-  const std::string& s = node_.Scalar();
+  if (!is_scalar()) fail("expected a text value");
+  const std::string& s = node_->scalar;
   // Text goes on into JSON and HTML, which need UTF-8: say where it is not.
   if (const auto bad = first_invalid_utf8(s))
     fail(fmt::format("text is not UTF-8 (byte 0x{:02X} at position {} of \"{}\"); save the file as UTF-8",
@@ -194,12 +149,12 @@ std::string Node::string() const {
 Angle Node::angle() const { return angle(AngleUnit::Dms); }
 
 Angle Node::angle(AngleUnit unit) const {
-  if (!node_.IsScalar()) {
+  if (!is_scalar()) {
     if (unit == AngleUnit::Dms)
       fail("expected an angle (DMS text such as \"157 21 00\" or decimal degrees)");
     fail(fmt::format("expected an angle (angle_unit {})", to_string(unit)));
   }
-  const std::string& s = node_.Scalar();
+  const std::string& s = node_->scalar;
   try {
     return parse_angle(s, unit);
   } catch (Error& e) {
@@ -215,8 +170,8 @@ std::vector<double> Node::numbers() const {
 }
 
 double Node::time_s() const {
-  if (!node_.IsScalar()) fail("expected a time (seconds, or a stopwatch reading m:ss.s)");
-  const std::string& s = node_.Scalar();
+  if (!is_scalar()) fail("expected a time (seconds, or a stopwatch reading m:ss.s)");
+  const std::string& s = node_->scalar;
   if (whole_number(s)) return number();  // a number keeps its rules (finite)
   try {
     return parse_stopwatch_s(s);
@@ -233,18 +188,21 @@ std::vector<double> Node::times_s() const {
 }
 
 void Node::allow_only(std::initializer_list<std::string_view> allowed) const {
-  if (!node_.IsMap()) fail("expected a mapping of fields");
+  if (!is_map()) fail("expected a mapping of fields");
   std::set<std::string> seen;
-  for (const auto& kv : node_) {
-    const std::string key = kv.first.Scalar();
-    Node k(kv.first, child_path(key), file_, lines_);
-    if (!seen.insert(key).second) k.fail("duplicate field");
+  for (const auto& m : node_->members) {
+    const std::string& key = m.key;
+    const auto fail_key = [&](const std::string& message) {
+      throw InputError(message, {*file_, m.key_line > 0 ? std::optional<int>(m.key_line) : mark_line(), child_path(key)});
+    };
+    if (m.key_line > 0) (*lines_)[child_path(key)] = m.key_line;
+    if (!seen.insert(key).second) fail_key("duplicate field");
     bool ok = false;
     for (auto a : allowed) ok = ok || a == key;
     if (!ok) {
       std::string list;
       for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      k.fail(fmt::format("unknown field \"{}\" (accepted here: {})", key, list));
+      fail_key(fmt::format("unknown field \"{}\" (accepted here: {})", key, list));
     }
   }
 }

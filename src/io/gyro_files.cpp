@@ -461,11 +461,15 @@ GyroReduceFile read_gyro_reduce_file(const std::filesystem::path& path) {
 }
 
 CampaignFile read_campaign_file(const std::filesystem::path& path) {
-  const Node root = Node::load_file(path);
+  return read_campaign_document(Node::load_file(path));
+}
+
+CampaignFile read_campaign_document(const Node& root) {
+  const std::filesystem::path path = root.file();
   root.allow_only({"campaign", "angle_unit", "record", "instrument", "grid", "known_line", "instrument_constant",
                    "line", "tolerances", "options", "gravity_model", "stochastic_model"});
   CampaignFile f;
-  f.file = path.string();
+  f.file = root.file();
   gyro::CampaignInput& c = f.campaign;
   c.file = f.file;
   c.angle_unit = read_angle_unit(root);

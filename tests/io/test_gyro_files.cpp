@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -687,4 +688,75 @@ TEST(GyroFiles, SimulateSettingsAreReadIntoWhatToSimulate) {
   b = {};
   b.mode = "other";
   EXPECT_EQ(field_of(b), "--mode");
+}
+
+namespace {
+
+std::string text_of(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(DocumentTree, ACampaignThroughTreeJsonIsTheSameCampaign) {
+  // The browser field book hands the readers a tree made by another parser (document.hpp,
+  // load_tree_json): the example campaign through yaml-cpp's tree written as tree JSON must read
+  // and reduce to exactly what the file gives.
+  using meridian::io::Node;
+  const std::filesystem::path book = std::filesystem::path(MERIDIAN_SOURCE_DIR) / "examples" / "campaign.yaml";
+  const Node from_file = Node::load_file(book);
+  const Node from_tree = Node::load_tree_json(meridian::io::to_tree_json(from_file.tree()), book.string());
+  const auto a = meridian::io::read_campaign_document(from_file);
+  const auto b = meridian::io::read_campaign_document(from_tree);
+  EXPECT_EQ(a.lines, b.lines);
+  const meridian::gyro::CampaignResult ra = meridian::gyro::process(a.campaign);
+  const meridian::gyro::CampaignResult rb = meridian::gyro::process(b.campaign);
+  EXPECT_EQ(ra.chain.grid_azimuth_rad.value, rb.chain.grid_azimuth_rad.value);
+  EXPECT_EQ(ra.chain.grid_azimuth_rad.sigma, rb.chain.grid_azimuth_rad.sigma);
+  ASSERT_EQ(ra.checks.size(), rb.checks.size());
+  for (std::size_t i = 0; i < ra.checks.size(); ++i) EXPECT_EQ(ra.checks[i].value, rb.checks[i].value);
+}
+
+TEST(DocumentTree, ErrorsNameTheSamePlaceEitherWay) {
+  using meridian::io::Node;
+  // A bad value, a key without a value, an unknown field, a duplicate: file, line and field as from yaml-cpp.
+  std::string text = text_of(std::filesystem::path(MERIDIAN_SOURCE_DIR) / "examples" / "campaign.yaml");
+  const auto at = text.find("latitude_deg");
+  ASSERT_NE(at, std::string::npos);
+  for (const std::string& bad : {std::string("latitude_dog"), std::string("latitude_deg:\n  x")}) {
+    std::string t = text;
+    t.replace(at, std::string("latitude_deg").size(), bad);
+    std::string from_yaml, from_tree;
+    try {
+      (void)meridian::io::read_campaign_document(Node::load_text(t, "book.yaml"));
+    } catch (const meridian::Error& e) {
+      from_yaml = e.what();
+    }
+    try {
+      const Node n = Node::load_text(t, "book.yaml");
+      (void)meridian::io::read_campaign_document(Node::load_tree_json(meridian::io::to_tree_json(n.tree()), "book.yaml"));
+    } catch (const meridian::Error& e) {
+      from_tree = e.what();
+    } catch (...) {
+      from_tree = "?";
+    }
+    EXPECT_FALSE(from_yaml.empty()) << bad;
+    EXPECT_EQ(from_yaml, from_tree) << bad;
+  }
+  // Not a tree: named as such, never a crash.
+  for (const char* j : {"", "[]", "{\"kind\": \"map\"}", "{\"kind\": \"scalar\", \"line\": 1}",
+                        "{\"kind\": \"map\", \"members\": [{\"key\": 1, \"value\": {}}]}",
+                        "{\"kind\": \"sequence\", \"elements\": [], \"line\": -3}", "{\"kind\": \"tree\"}"})
+    EXPECT_THROW((void)Node::load_tree_json(j, "t.json"), meridian::ParseError) << j;
+  // A top level that is not a map is the readers' own message.
+  EXPECT_THROW((void)Node::load_tree_json("{\"kind\": \"scalar\", \"scalar\": \"x\", \"line\": 1}", "t.json"),
+               meridian::InputError);
+  // Nesting beyond the limit is an error, not a stack overflow.
+  std::string deep;
+  for (int i = 0; i < 300; ++i) deep += "{\"kind\": \"sequence\", \"elements\": [";
+  deep += "{\"kind\": \"null\"}";
+  for (int i = 0; i < 300; ++i) deep += "]}";
+  EXPECT_THROW((void)Node::load_tree_json(deep, "t.json"), meridian::ParseError);
+  EXPECT_THROW((void)Node::load_text(std::string(300, '[') + std::string(300, ']'), "t.yaml"), meridian::ParseError);
 }

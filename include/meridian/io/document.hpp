@@ -15,11 +15,10 @@
 #include <string_view>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
-
 #include "meridian/core/angle.hpp"
 #include "meridian/core/dms.hpp"
 #include "meridian/core/error.hpp"
+#include "meridian/io/document_tree.hpp"
 
 namespace meridian::io {
 
@@ -29,30 +28,33 @@ namespace meridian::io {
 using FieldLines = std::map<std::string, int>;
 
 /// One node of a YAML or JSON document (JSON is read by the YAML parser as
-/// is). Accessors check the type and range and throw ParseError/InputError
+/// is), over its DocumentTree (document_tree.hpp). Accessors check the type and range and throw ParseError/InputError
 /// with file, line and field path. Copies share the document.
 
 class Node {
  public:
   using LineMap = FieldLines;
 
-  Node(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
-       std::shared_ptr<LineMap> lines);
-  Node(const Node&) = default;
-  // YAML::Node's assignment writes through to the document; rebind instead.
-  Node& operator=(const Node& o) {
-    node_.reset(o.node_);
-    path_ = o.path_;
-    file_ = o.file_;
-    lines_ = o.lines_;
-    return *this;
-  }
+  /// `node` within the document `root` (which it keeps alive), at field path `path`.
+  Node(std::shared_ptr<const DocumentTree> root, const DocumentTree* node, std::string path,
+       std::shared_ptr<const std::string> file, std::shared_ptr<LineMap> lines);
 
   /// Load a YAML or JSON file (JSON is read by the YAML parser as is).
   /// A syntax error on a line indented with a tab is reported as "tabs are
   /// not allowed for indentation (line N)" (YAML forbids them; JSON's tabs,
   /// which are allowed, never cause a syntax error).
   static Node load_file(const std::filesystem::path& path);
+  /// Parse YAML or JSON `text` (yaml-cpp) as if read from the file named `file` (for messages):
+  /// the same checks as load_file after reading (empty, NUL bytes, tabs, syntax, top level).
+  static Node load_text(const std::string& text, const std::string& file);
+  /// A document tree another parser made, written as JSON (nlohmann): every node an object
+  /// {"kind": "null"|"scalar"|"sequence"|"map", "line": N, "scalar": "text as written",
+  ///  "elements": [node…], "members": [{"key": "k", "key_line": N, "value": node}…]};
+  /// `file` names it in messages. Throws ParseError for JSON that is not such a tree, and
+  /// InputError when the top level is not a map.
+  static Node load_tree_json(const std::string& tree_json, const std::string& file);
+  /// The tree this node reads.
+  const DocumentTree& tree() const { return *node_; }
 
   const std::string& path() const { return path_; }
   const std::string& file() const { return *file_; }
@@ -60,9 +62,9 @@ class Node {
   const LineMap& visited_lines() const { return *lines_; }
   int line() const;  ///< 1-based
 
-  bool is_map() const { return node_.IsMap(); }
-  bool is_sequence() const { return node_.IsSequence(); }
-  bool is_scalar() const { return node_.IsScalar(); }
+  bool is_map() const { return node_->kind == DocumentTree::Kind::Map; }
+  bool is_sequence() const { return node_->kind == DocumentTree::Kind::Sequence; }
+  bool is_scalar() const { return node_->kind == DocumentTree::Kind::Scalar; }
 
   /// Member `key`; nullopt when absent. Requires a map. Throws InputError (file, line, field)
   /// when the key is present without a value (YAML null: "key:", "key: ~", "key: null"), so a
@@ -108,7 +110,8 @@ class Node {
   std::optional<int> mark_line() const;  ///< 1-based line, when the parser knows it
   /// Give an error about this node's value its file, line and path.
   void locate(Error& e) const;
-  YAML::Node node_;
+  std::shared_ptr<const DocumentTree> root_;
+  const DocumentTree* node_;
   std::string path_;
   std::shared_ptr<const std::string> file_;
   std::shared_ptr<LineMap> lines_;

@@ -35,5 +35,8 @@ struct CampaignFile {
 };
 
 CampaignFile read_campaign_file(const std::filesystem::path& path);
+/// The same from a document already parsed (Node::load_text, Node::load_tree_json: the browser
+/// field book's); its file name is root.file() (a relative gravity_model path is taken from there).
+CampaignFile read_campaign_document(const Node& root);
 
 }  // namespace meridian::io
