@@ -1,6 +1,7 @@
 // meridian gyro reduce | campaign | orientations | simulate | transit-factor | template | stochastic
 
 #include <filesystem>
+#include <cstdio>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -132,7 +133,13 @@ int run_orientations(const OrientationsArgs& a) {
                                  : report::orientations_text(job.result, f);
   if (a.strict && !job.result.all_checks_pass()) {
     if (a.output.empty() || a.output == "-") emit("", out);
-    print_failed_checks(job.result.checks);
+    // A check about orientation j names its file.
+    print_failed_checks(job.result.checks, [&](const gyro::Check& c) {
+      unsigned j = 0;
+      if (std::sscanf(c.field.c_str(), "orientations[%u]", &j) == 1 && j < job.result.files.size())
+        return ErrorContext{job.result.files[j], std::nullopt, c.field};
+      return ErrorContext{"", std::nullopt, c.field};
+    });
     return kInputError;
   }
   emit_with_report(a.output, out, a.report, [&] {

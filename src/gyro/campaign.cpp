@@ -22,6 +22,7 @@ std::string to_string(CheckUnit u) {
     case CheckUnit::Observers: return "observers";
     case CheckUnit::Checks: return "checks";
     case CheckUnit::Entries: return "entries";
+    case CheckUnit::Seconds: return "s";
     case CheckUnit::Arcsec: break;
   }
   return "arcsec";
@@ -124,6 +125,7 @@ class CampaignRun {
     check_line_runs();
     check_target_rounds();
     check_tracking_runs();
+    check_booked_periods();
     check_instrument_constants();
     check_duplicated_runs();
     check_observers();
@@ -538,6 +540,33 @@ class CampaignRun {
     checks(res_.determinations, "line.determinations");
   }
 
+  // A booked period_s against the period the transit times imply: T_A booked for T_B, or another
+  // station's period, scales ΔN by the ratio (428.4/466.4 moves T by several arc-seconds).
+  void check_booked_periods() {
+    auto checks = [&](const std::vector<DeterminationResult>& v, const std::vector<DeterminationInput>& in,
+                      const std::string& what) {
+      for (std::size_t i = 0; i < v.size() && i < in.size(); ++i) {
+        const auto& b = v[i].primary.beta;
+        if (!b || !b->period_from_passages_s || !in[i].nontracking.period_s) continue;
+        const Uncertain booked = *in[i].nontracking.period_s, implied = *b->period_from_passages_s;
+        const double diff = implied.value - booked.value;
+        const double limit = std::max(3.0 * std::hypot(implied.sigma, booked.sigma), kPeriodFloor_s);
+        res_.checks.push_back(
+            {fmt::format("booked period agrees with the transit times, {}[{}]{}: passages {:.1f} s, booked {:.1f} s",
+                         what, i, v[i].label.empty() ? "" : " (" + v[i].label + ")", implied.value, booked.value),
+             diff, limit, CheckUnit::Seconds, std::abs(diff) <= limit, false, true,
+             "Meridian plausibility limit: max(3 sigma of the difference, 1 s)",
+             fmt::format("{}[{}].period_s", what, i)});
+      }
+    };
+    if (in_.known_line) {
+      checks(res_.known_before, in_.known_line->before, "known_line.before");
+      checks(res_.known_after, in_.known_line->after, "known_line.after");
+    }
+    checks(res_.determinations, in_.line.determinations, "line.determinations");
+  }
+  static constexpr double kPeriodFloor_s = 1.0;
+
   // Any two runs on the line, and their one-run standard deviation.
   void check_line_runs() {
     if (res_.gyro_azimuths.size() < 2) {
@@ -559,6 +588,12 @@ class CampaignRun {
   // plausibility limits, as determination.cpp's warning: directions within max(10", 3·σ·√2),
   // 2C within 20". The instrument's 2C, the median over every round of the job, tells which
   // round of a failing run is the wrong one.
+  static std::vector<std::string> two_c_arcsec(const TargetDirection& t) {
+    std::vector<std::string> v;
+    for (double c : t.two_c_rad) v.push_back(fmt::format("{:+.1f}\"", c / units::kArcsecond));
+    return v;
+  }
+
   void check_target_rounds() {
     struct Run {
       const DeterminationResult* result;
@@ -590,11 +625,23 @@ class CampaignRun {
       const RoundsAgreement agreement = rounds_agreement(t, r.input->target_round_sigma_rad);
       const double limit = agreement.spread_limit_rad;
       const double two_c_variation = agreement.two_c_variation_rad;
-      const bool pass = agreement.agree;
+      // The same face reading booked wrong in every round of a run keeps its rounds in agreement but
+      // moves their 2C together: held to the instrument's (the job's median 2C, from three runs or more).
+      std::size_t far = 0;
+      for (std::size_t j = 1; j < t.two_c_rad.size(); ++j)
+        if (std::fabs(t.two_c_rad[j] - instrument_two_c) > std::fabs(t.two_c_rad[far] - instrument_two_c)) far = j;
+      const bool two_c_off = runs.size() >= 3 && agreement.agree && t.spread_rad <= units::kPi / 2 &&
+                             std::fabs(t.two_c_rad[far] - instrument_two_c) > kTwoCVariationLimit_rad;
+      const bool pass = agreement.agree && !two_c_off;
       const std::string label = r.result->label.empty() ? "" : " (" + r.result->label + ")";
       std::string name = fmt::format("target rounds agree, {}{}", r.field, label);
       std::string field = r.field + ".target_rounds";
-      if (!pass) {
+      if (two_c_off) {
+        field = fmt::format("{}.target_rounds[{}]", r.field, far);
+        name += fmt::format(": the rounds agree, but their 2C ({}) differ from the instrument's {:+.1f}\" (the job's median) "
+                            "by more than {:.0f}\": the same face reading booked wrong in each round?",
+                            fmt::join(two_c_arcsec(t), ", "), arcsec(instrument_two_c), arcsec(kTwoCVariationLimit_rad));
+      } else if (!pass) {
         // The round whose 2C is farthest from the instrument's.
         std::size_t k = 0;
         for (std::size_t j = 1; j < t.two_c_rad.size(); ++j)
@@ -617,7 +664,7 @@ class CampaignRun {
       res_.checks.push_back({std::move(name), arcsec(t.spread_rad), arcsec(limit), CheckUnit::Arcsec, pass, false,
                              false,
                              "Meridian plausibility limit: round directions within max(10\", 3 sqrt(2) sigma of a "
-                             "round), 2C within 20\"",
+                             "round), 2C within 20\" of each other and of the job's median",
                              std::move(field)});
     }
   }
@@ -874,18 +921,6 @@ class CampaignRun {
                            pairs.empty(), false, false, "Meridian: identical observations in two runs", second_run});
     for (const auto& p : pairs)
       res_.warnings.push_back(p + " have identical observations: one run was booked twice");
-  }
-
-  static bool same_observations(const DeterminationInput& a, const DeterminationInput& b) {
-    if (a.mode != b.mode) return false;
-    if (a.mode == Mode::Tracking) return a.tracking.reversals_rad == b.tracking.reversals_rad;
-    const auto& x = a.nontracking;
-    const auto& y = b.nontracking;
-    if (x.crossings.size() != y.crossings.size() || x.reversals_div != y.reversals_div) return false;
-    for (std::size_t i = 0; i < x.crossings.size(); ++i)
-      if (x.crossings[i].level_div != y.crossings[i].level_div || x.crossings[i].times_s != y.crossings[i].times_s)
-        return false;
-    return !x.crossings.empty() || !x.reversals_div.empty();
   }
 
   // Step 3: mean A_G + E → astronomic → geodetic → grid azimuth of C→D.

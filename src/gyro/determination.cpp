@@ -228,4 +228,16 @@ Uncertain gyro_azimuth(const DeterminationResult& r, const DeterminationInput& i
   return {wrap_positive_rad(t.value - r.primary.north.north_rad), std::hypot(t.sigma, r.primary.north.sigma_rad)};
 }
 
+bool same_observations(const DeterminationInput& a, const DeterminationInput& b) {
+  if (a.mode != b.mode) return false;
+  if (a.mode == Mode::Tracking) return a.tracking.reversals_rad == b.tracking.reversals_rad;
+  const auto& x = a.nontracking;
+  const auto& y = b.nontracking;
+  if (x.crossings.size() != y.crossings.size() || x.reversals_div != y.reversals_div) return false;
+  for (std::size_t i = 0; i < x.crossings.size(); ++i)
+    if (x.crossings[i].level_div != y.crossings[i].level_div || x.crossings[i].times_s != y.crossings[i].times_s)
+      return false;
+  return !x.crossings.empty() || !x.reversals_div.empty();
+}
+
 }  // namespace meridian::gyro

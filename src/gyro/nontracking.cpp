@@ -276,6 +276,7 @@ BetaResult transit_result(const Propagated& p, const NonTrackingObservations& ob
   if (known) {
     // Times against the given T_B: the transits' own period estimate. σ of the
     // difference from the timing σ and σ(T_B); 1 ms floor for rounded times.
+    r.period_from_passages_s = Uncertain{p.value[6], p.sigma[6]};
     const double diff = p.value[6] - obs.period_s->value;
     const double sd = std::hypot(p.sigma[6], obs.period_s->sigma);
     if (std::abs(diff) > std::max(3.0 * sd, 1e-3))

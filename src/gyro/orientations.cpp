@@ -42,6 +42,20 @@ std::string to_string(ErrorSource::Kind kind) {
 
 namespace {
 
+// Every run of a campaign with its field path.
+std::vector<std::pair<const DeterminationInput*, std::string>> runs_of(const CampaignInput& c) {
+  std::vector<std::pair<const DeterminationInput*, std::string>> v;
+  const auto add = [&](const std::vector<DeterminationInput>& runs, const char* what) {
+    for (std::size_t i = 0; i < runs.size(); ++i) v.emplace_back(&runs[i], fmt::format("{}[{}]", what, i));
+  };
+  if (c.known_line) {
+    add(c.known_line->before, "known_line.before");
+    add(c.known_line->after, "known_line.after");
+  }
+  add(c.line.determinations, "line.determinations");
+  return v;
+}
+
 // Values booked to 0.001″ and a smooth model 5 cm apart agree far better than this.
 constexpr double kSameValue_rad = 0.001 * units::kArcsecond;
 
@@ -159,18 +173,6 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
                                      r.station, r.target),
                          {"", std::nullopt, field});
     }
-    // The same runs twice are one orientation, not two independent ones.
-    for (std::size_t j = 0; j < i; ++j) {
-      const auto& a = in[j].gyro_azimuths;
-      const auto& b = c.gyro_azimuths;
-      const bool same = a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
-                          return x.value == y.value && x.sigma == y.sigma;
-                        });
-      if (same)
-        throw InputError(fmt::format("orientations {} and {} have the same runs on the line: they are not independent",
-                                     j + 1, i + 1),
-                         {"", std::nullopt, fmt::format("orientations[{}]", i)});
-    }
     r.grid_azimuths_rad.push_back(c.chain.grid_azimuth_rad);
   }
   for (std::size_t i = 0; i < in.size(); ++i) {
@@ -189,6 +191,21 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
   r.checks.push_back({"independent orientations, sigma of the mean", r.mean.mean.sigma / units::kArcsecond,
                       limits.orientation_mean_sigma_rad / units::kArcsecond, CheckUnit::Arcsec,
                       r.mean.mean.sigma <= limits.orientation_mean_sigma_rad, false, false, limits.source, ""});
+  // Independent orientations have runs of their own: a run whose gyro observations are another
+  // orientation's (a copied book with a face reading retyped, or the same calibration runs reused)
+  // makes them one orientation, and a shared E would be counted as independent.
+  for (std::size_t j = 1; j < in.size(); ++j) {
+    std::vector<std::string> shared;
+    for (std::size_t i = 0; i < j; ++i)
+      for (const auto& [x, xname] : runs_of(in[j].input))
+        for (const auto& [y, yname] : runs_of(in[i].input))
+          if (same_observations(*x, *y)) shared.push_back(fmt::format("{} = orientation {}'s {}", xname, i + 1, yname));
+    r.checks.push_back({fmt::format("orientation {}: no run of another orientation{}", j + 1,
+                                    shared.empty() ? "" : fmt::format(" ({})", fmt::join(shared, "; "))),
+                        static_cast<double>(shared.size()), 0.0, CheckUnit::Runs, shared.empty(), false, false,
+                        "independent orientations: each its own calibration and runs (spec 7.1)",
+                        fmt::format("orientations[{}]", j)});
+  }
   if (r.sigma_shared_rad > 0)
     r.notes.push_back(fmt::format(
         "sigma of the mean {:.2f}\" = sqrt(max(own propagated {:.2f}\", empirical {:.2f}\")^2 + shared {:.2f}\"^2); "

@@ -519,7 +519,8 @@ CheckList check_list(const std::vector<gyro::Check>& list) {
     const bool runs = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers ||
                       k.unit == gyro::CheckUnit::Checks || k.unit == gyro::CheckUnit::Entries;
     const int dec = div ? 2 : runs ? 0 : 1;
-    const std::string unit = div ? " div" : runs ? "" : "\"";
+    const bool seconds = k.unit == gyro::CheckUnit::Seconds;
+    const std::string unit = div ? " div" : runs ? "" : seconds ? " s" : "\"";
     cl.checks.push_back({k.name, fmt::format("{:.{}f}{}", k.value, dec, unit),
                          fmt::format("{}{}{:.{}f}{}", k.minimum ? "at least " : "", k.signed_value ? "\u00b1" : "",
                                      k.tolerance, dec, unit),

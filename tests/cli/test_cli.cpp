@@ -491,6 +491,41 @@ TEST_F(Cli, FieldBookCasesPassOrFailTheRegulations) {
   }
 }
 
+// A face reading booked 1' wrong the same way in both rounds of a run (helper trial, issue 36):
+// the rounds agree with each other, but their 2C is 60" from the instrument's; and a wrong period_s.
+TEST_F(Cli, TheSameFaceSlipInEveryRoundAndAWrongPeriodFail) {
+  const fs::path job = fs::path(MERIDIAN_SOURCE_DIR) / ".." / "shared" / "cases" / "gyro-field" / "crew-mistakes-2" / "job.yaml";
+  if (!fs::exists(job)) GTEST_SKIP() << job << " not present (optional data)";
+  std::ifstream in(job);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* r : {"right: \"346 07 33\"}", "right: \"346 07 30\"}"}) {
+    const auto at = text.find(r);
+    ASSERT_NE(at, std::string::npos) << r;
+    text.replace(at + 12, 2, "08");  // 346 07 → 346 08
+  }
+  std::ofstream(dir_ / "slip.yaml") << text;
+  const CmdResult r = run("gyro campaign --strict -o out.txt slip.yaml");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("slip.yaml:200: line.determinations[1].target_rounds[0]: check failed: target rounds agree"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the same face reading booked wrong in each round?"), std::string::npos) << r.err;
+  // The tracking period T_A (7:46.4) booked for T_B (7:08.4) on the line's transit run: the passages
+  // give 428.5 s, and the booked period would scale its ΔN by 428.4/466.4.
+  std::ifstream in2(job);
+  std::string t2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+  const auto at = t2.find("period_s: \"7:08.4\"", t2.find("\nline:"));
+  ASSERT_NE(at, std::string::npos);
+  t2.replace(at + 13, 4, "46.4");
+  std::ofstream(dir_ / "period.yaml") << t2;
+  const CmdResult p = run("gyro campaign --strict -o out.txt period.yaml");
+  EXPECT_EQ(p.code, 1) << p.err;
+  EXPECT_NE(p.err.find("period.yaml:179: line.determinations[0].period_s: check failed: booked period agrees with the "
+                       "transit times"),
+            std::string::npos)
+      << p.err;
+  EXPECT_NE(p.err.find("passages 428.5 s, booked 466.4 s"), std::string::npos) << p.err;
+}
+
 TEST_F(Cli, IndependentOrientationsOfOneLine) {
   ASSERT_EQ(run("gyro simulate --mode campaign --seed 21 -o a.yaml").code, 0);
   ASSERT_EQ(run("gyro simulate --mode campaign --seed 22 -o b.yaml").code, 0);

@@ -261,7 +261,9 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   const double own = std::sqrt(sq(s1) + sq(s2) - 2 * cov) / 2;
   EXPECT_NEAR(r.mean.mean.sigma, std::sqrt(sq(std::max(own, d / 2)) + cov), 1e-15);
   EXPECT_EQ(r.shared_sources.size(), 3u);
-  ASSERT_EQ(r.checks.size(), 4u);  // each orientation's own checks, the difference, the σ of the mean
+  // each orientation's own checks, the difference, the σ of the mean, orientation 2 has no run of orientation 1
+  ASSERT_EQ(r.checks.size(), 5u);
+  EXPECT_TRUE(r.checks[4].pass);
   EXPECT_TRUE(r.checks[0].pass && r.checks[1].pass);
   EXPECT_NEAR(r.checks[2].tolerance, 40.0, 1e-12);
   EXPECT_NEAR(r.checks[3].tolerance, 10.0, 1e-12);
@@ -276,8 +278,18 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   CampaignResult failing = b;
   failing.checks.front().pass = false;
   EXPECT_FALSE(combine_orientations({a, failing}).checks[1].pass);
-  // The same runs twice are not two independent orientations.
-  EXPECT_THROW(combine_orientations({a, a}), InputError);
+  // The same runs twice are not two independent orientations: the check names the runs.
+  const OrientationsResult twice = combine_orientations({a, a});
+  EXPECT_FALSE(twice.checks[4].pass);
+  EXPECT_NE(twice.checks[4].name.find("line.determinations[0] = orientation 1's line.determinations[0]"), std::string::npos)
+      << twice.checks[4].name;
+  // Orientation 2 with orientation 1's calibration runs (its own line runs) is not independent either.
+  SimulatedCampaign reuse = clean(42);
+  reuse.input.known_line->before = clean(41).input.known_line->before;
+  const OrientationsResult same_e = combine_orientations({a, process(reuse.input)});
+  EXPECT_FALSE(same_e.checks[4].pass);
+  EXPECT_EQ(same_e.checks[4].value, 3.0);  // the three runs before
+  EXPECT_EQ(same_e.checks[4].field, "orientations[1]");
   // The tightest limits of the orientations apply.
   CampaignResult strict = b;
   strict.limits.orientation_difference_rad = 15 * units::kArcsecond;

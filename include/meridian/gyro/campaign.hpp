@@ -119,8 +119,8 @@ struct PointResult {
 };
 
 /// Unit of a check's value and tolerance.
-enum class CheckUnit { Arcsec, Div, Runs, Observers, Checks, Entries };
-/// "arcsec", "div", "runs", "observers", "checks", "entries" (a field booked: 1, or not: 0)
+enum class CheckUnit { Arcsec, Div, Runs, Observers, Checks, Entries, Seconds };
+/// "arcsec", "div", "runs", "observers", "checks", "entries" (a field booked: 1, or not: 0), "s"
 std::string to_string(CheckUnit u);
 
 /// A pass/fail check for the report: `value` against the limit `tolerance`

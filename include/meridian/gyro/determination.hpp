@@ -117,4 +117,10 @@ DeterminationResult reduce_determination(const DeterminationInput& in, const Ins
 /// otherwise.
 Uncertain gyro_azimuth(const DeterminationResult& r, const DeterminationInput& in);
 
+/// Whether two runs hold the same gyro observations (the same mode; for tracking the same
+/// reversal readings, for motor-off the same crossing levels and times and reversal readings),
+/// exactly as booked: a run booked twice, or the same run in two orientations. Target and
+/// zero-position readings are not compared (a copied run with one face reading retyped is still a copy).
+bool same_observations(const DeterminationInput& a, const DeterminationInput& b);
+
 }  // namespace meridian::gyro

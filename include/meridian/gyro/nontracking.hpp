@@ -79,6 +79,9 @@ struct BetaResult {
   double approximation_error_div = 0.0;
   std::optional<Uncertain> amplitude_div;   ///< B implied/used (div)
   std::optional<Uncertain> period_s;        ///< T_B implied/used (s)
+  /// Transit with period_s booked: T_B that the transit times alone imply (s, with σ), which
+  /// the campaign holds the booked period to.
+  std::optional<Uncertain> period_from_passages_s;
   std::vector<std::string> warnings;        ///< e.g. transit times against period_s
   std::vector<std::string> assumptions;     ///< e.g. "k = 0 (damping neglected)"
 };

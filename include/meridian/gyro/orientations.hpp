@@ -63,10 +63,11 @@ double shared_covariance_rad2(const CampaignResult& a, const CampaignResult& b);
 /// holds the error sources the orientations share (their known line, the
 /// deflection at the same points; error_sources.hpp) as correlated. Each orientation must pass its own checks (a check per
 /// orientation); the limits are the tightest of the orientations' (their
-/// classes and tolerances). Throws InputError when fewer than two results
-/// are given, when they are not of the same line (naming the point and the
-/// distance), or when two have the same runs on the line (not independent;
-/// field "orientations[i]").
+/// classes and tolerances). A run whose gyro observations are another
+/// orientation's (same_observations: a copied book, reused calibration runs)
+/// fails the check "no run of another orientation" (field "orientations[j]").
+/// Throws InputError when fewer than two results are given, or when they are
+/// not of the same line (naming the point and the distance).
 OrientationsResult combine_orientations(const std::vector<CampaignResult>& orientations);
 
 }  // namespace meridian::gyro
