@@ -289,14 +289,14 @@ def integer(name, value, low, high=None):
     naming the argument and the allowed range otherwise."""
     from .errors import InputError
 
-    span = f"[{low}, {high}]" if high is not None else f"≥ {low}"
     if isinstance(value, (bool, _np.bool_)) or not isinstance(value, (int, _np.integer)):
-        raise InputError(f"must be an integer in {span}, got {value!r}", field=name)
+        within = f"in [{low}, {high}]" if high is not None else f"≥ {low}"
+        raise InputError(f"must be an integer {within}, got {value!r}", field=name)
     v = int(value)
     if high is None and v < low:
-        raise InputError(f"must be {span}, is {v}", field=name)
-    if v < low or (high is not None and v > high):
-        raise InputError(f"{v} is outside the allowed range {span}", field=name)
+        raise InputError(f"must be ≥ {low}, is {v}", field=name)
+    if high is not None and not low <= v <= high:
+        raise InputError(f"{v} is outside the allowed range [{low}, {high}]", field=name)
     return v
 
 

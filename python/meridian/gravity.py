@@ -98,6 +98,10 @@ class GravityModel:
         line) or IoError.
         """
         path_or_name = str(path_or_name)
+        if max_degree is not None and (isinstance(max_degree, (bool, _np.bool_))
+                                       or not isinstance(max_degree, (int, _np.integer))):
+            raise _InputError(f"must be an integer in [0, the file's degree] (or None: the file's degree), "
+                              f"got {max_degree!r}", field="max_degree")
         md = -1 if max_degree is None else _integer("max_degree", max_degree, 0)
         threads = _integer("threads", threads, 0, cls.MAX_THREADS)
         try:

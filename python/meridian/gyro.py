@@ -35,7 +35,9 @@ def reduce(source) -> Result:
     """Reduce the determinations of one station (`meridian gyro reduce FILE --json`).
 
     source: a path to a YAML/JSON reduce file, or a dict with its content (instrument,
-    station, determinations, optional angle_unit and options; docs/file-formats.md).
+    station, determinations, optional angle_unit and options; docs/file-formats.md), as
+    yaml.safe_load gives it or with numpy numbers and arrays, dates, paths in it (written
+    as JSON for the reader; docs/python.md "Dicts"); the result's file is then "<dict>".
     Raises ParseError/InputError naming file (or "<dict>"), line and field."""
     return Result(_run(_core.gyro.reduce_file, source))
 

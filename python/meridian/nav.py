@@ -1,11 +1,12 @@
 """Marine navigation post-processing (docs/navigation.md): `meridian nav` from Python.
 
-* process(config): the configuration and the files it names (DR/stations/LOP/fix
-  CSVs, or NMEA 0183 logs in an ``nmea:`` block) as `meridian nav process CONFIG
-  --json` runs them. The Result's attributes are the keys of the CLI's --json
+* process(config): the configuration (a path, or a dict with its content) and the
+  files it names (DR/stations/LOP/fix CSVs, or NMEA 0183 logs in an ``nmea:`` block)
+  as `meridian nav process CONFIG --json` runs them. The Result's attributes are the keys of the CLI's --json
   summary (epochs, method_order, methods[name].rms_m, rejected, …; to_dict() gives
-  it), and ``tracks`` maps each method's name ("dead-reckoning", …, "ekf", "rts")
-  to a Table named like the columns of `nav process -o TRACK --method NAME`:
+  it; a mapping, ``"rts" in r.methods``, names that are not identifiers also as
+  attributes: ``r.methods.dead_reckoning``), and ``tracks`` maps each method's name
+  ("dead-reckoning", …, "ekf", "rts"; ``tracks.dead_reckoning``) to a Table named like the columns of `nav process -o TRACK --method NAME`:
   time_s, x_m (north), y_m (east), lat_deg, lon_deg (with a projection),
   sigma_x_m, sigma_y_m, cov_xy_m2, bias_north_m_s, bias_east_m_s,
   sigma_bias_north_m_s, sigma_bias_east_m_s (NaN where the method states no σ,
