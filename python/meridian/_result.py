@@ -266,9 +266,9 @@ def degrees(name, value):
             e.field = name
             raise
     try:
-        return float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"must be an angle in degrees, got {value!r}", field=name) from None
+        return number(name, value)
+    except InputError:
+        raise InputError(f"must be an angle in degrees (a number or text), got {value!r}", field=name) from None
 
 
 def renamed(error, names):
@@ -298,6 +298,33 @@ def integer(name, value, low, high=None):
     if high is not None and not low <= v <= high:
         raise InputError(f"{v} is outside the allowed range [{low}, {high}]", field=name)
     return v
+
+
+def number(name, value, optional=False):
+    """value as a float: an int, a float or a numpy integer/floating scalar (or 0-d array), not
+    a bool and not text (None when `optional` and value is None). InputError naming the
+    argument otherwise, never Python's ValueError or pybind11's cast errors. Ranges are the
+    engine's to check (it names them in the argument's units)."""
+    from .errors import InputError
+
+    if value is None and optional:
+        return None
+    v = value
+    if isinstance(v, _np.ndarray) and v.ndim == 0:
+        v = v[()]
+    if isinstance(v, (bool, _np.bool_)) or not isinstance(v, (int, float, _np.integer, _np.floating)):
+        raise InputError(f"must be a number, got {value!r}", field=name)
+    return float(v)
+
+
+def boolean(name, value):
+    """value as a bool: True/False or a numpy bool, nothing else (the string "no" is not
+    False). InputError naming the argument otherwise."""
+    from .errors import InputError
+
+    if not isinstance(value, (bool, _np.bool_)):
+        raise InputError(f"must be True or False, got {value!r}", field=name)
+    return bool(value)
 
 
 def _json_value(value):
@@ -348,7 +375,7 @@ def write_json(source, f, what="<dict>"):
     json.dump(plain(source, ""), f)
 
 
-def run_on_mapping(run, source, prefix, paths=()):
+def run_on_mapping(run, source, prefix, paths=(), argument="source"):
     """run(path) on a file (a str or os.PathLike), or on a mapping written by write_json to a
     temporary file (removed afterwards). `paths`: the key paths ("dr", "nmea.heading") of
     the mapping that name files: relative ones are made absolute from the current directory
@@ -362,7 +389,7 @@ def run_on_mapping(run, source, prefix, paths=()):
     if not isinstance(source, _abc.Mapping):
         if not isinstance(source, (str, _os.PathLike)):
             from .errors import InputError
-            raise InputError(f"must be a path or a dict, got {type(source).__name__}", field="source")
+            raise InputError(f"must be a path or a dict, got {type(source).__name__}", field=argument)
         return run(_os.fspath(source)), None
     source = _absolute_paths(source, paths)
     fd, path = tempfile.mkstemp(suffix=".json", prefix=prefix)

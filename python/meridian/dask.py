@@ -28,6 +28,7 @@ import dask.array as _da
 import numpy as _np
 
 from . import gravity as _gravity
+from ._result import boolean as _boolean
 from .errors import Error as _Error, InputError as _InputError
 
 __all__ = ["deflection", "grid", "grid_to_netcdf", "open_model"]
@@ -108,7 +109,7 @@ def deflection(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks="auto"):
             "auto", shape, limit=100_000 * 8, dtype=_np.float64)
     arrays = [_da.broadcast_to(_da.asarray(a).astype(_np.float64), shape).rechunk(chunks) for a in arrays]
     n = 3 if geoid else 2
-    stacked = _da.map_blocks(_functools.partial(_block, recipe, bool(geoid)), *arrays, new_axis=0,
+    stacked = _da.map_blocks(_functools.partial(_block, recipe, _boolean("geoid", geoid)), *arrays, new_axis=0,
                             chunks=((n,),) + arrays[0].chunks, dtype=_np.float64,
                             name="meridian-deflection")
     return _gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
@@ -153,7 +154,7 @@ def grid(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks=(256, -1)):
     lat2 = _da.from_array(lat[:, None], chunks=(chunks[0], 1))
     lon2 = _da.from_array(lon[None, :], chunks=(1, chunks[1]))
     n = 3 if geoid else 2
-    stacked = _da.map_blocks(_functools.partial(_grid_block, recipe, bool(geoid), float(h)), lat2, lon2,
+    stacked = _da.map_blocks(_functools.partial(_grid_block, recipe, _boolean("geoid", geoid), float(h)), lat2, lon2,
                             new_axis=0, chunks=((n,),) + chunks, dtype=_np.float64, name="meridian-grid")
     return _gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
 

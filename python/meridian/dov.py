@@ -36,7 +36,8 @@ import tempfile as _tempfile
 import warnings as _warnings
 
 from . import _core
-from ._result import (Result as _Result, Table as _Table, degrees as _degrees, real_array as _real_array,
+from ._result import (number as _number, Result as _Result, Table as _Table, degrees as _degrees,
+                      real_array as _real_array,
                       integer as _integer, write_json as _write_json)
 from .errors import Error as _Error, InputError as _InputError
 
@@ -145,7 +146,7 @@ def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height
                        ("sigma_model_arcsec", sigma_model_arcsec), ("sigma_ins_arcsec", sigma_ins_arcsec),
                        ("eps_u_deg_per_h", eps_u_deg_per_h), ("phi_e_arcsec", phi_e_arcsec),
                        ("phi_n_arcsec", phi_n_arcsec), ("phi_u_arcsec", phi_u_arcsec)]:
-        o[key] = float(value)
+        o[key] = _number(key, value)
     o["seed"] = _integer("seed", seed, 0, 2**64 - 1)
     if not isinstance(transport_rate, bool):
         raise _InputError(f"must be True or False, is {transport_rate!r}", field="transport_rate")

@@ -22,7 +22,7 @@ from typing import NamedTuple as _NamedTuple, Optional as _Optional
 import numpy as _np
 
 from . import _core
-from ._result import integer as _integer
+from ._result import boolean as _boolean, integer as _integer
 from .errors import InputError as _InputError
 
 __all__ = ["GravityModel", "Deflection", "synthetic_model", "search_path"]
@@ -169,7 +169,7 @@ class GravityModel:
             ) from None
         flat = [_np.ascontiguousarray(_np.broadcast_to(a, shape)).reshape(-1) for a in arrays]
         try:
-            xi, eta, n = self._core.evaluate(*flat, bool(geoid))
+            xi, eta, n = self._core.evaluate(*flat, _boolean("geoid", geoid))
         except _InputError as e:
             _relocate(e, names, shapes, shape)
             raise
@@ -206,7 +206,8 @@ class GravityModel:
                 raise _InputError(f"must be 1-D for grid(), got shape {a.shape}", field=name)
         if h.ndim != 0:
             return self.deflection(lat[:, None], lon[None, :], h, geoid=geoid)
-        xi, eta, n = self._core.grid(_np.ascontiguousarray(lat), _np.ascontiguousarray(lon), float(h), bool(geoid))
+        xi, eta, n = self._core.grid(_np.ascontiguousarray(lat), _np.ascontiguousarray(lon), float(h),
+                                     _boolean("geoid", geoid))
         return Deflection(xi, eta, n)
 
 

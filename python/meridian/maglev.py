@@ -25,7 +25,8 @@ import os as _os
 import numpy as _np
 
 from . import _core
-from ._result import (Result as _Result, Table as _Table, degrees as _degrees, integer as _integer,
+from ._result import (boolean as _boolean, number as _number, Result as _Result, Table as _Table,
+                      degrees as _degrees, integer as _integer,
                       real_array as _real_array, renamed as _renamed)
 from .errors import Error as _Error, InputError as _InputError
 
@@ -69,9 +70,11 @@ def _reduce_options(kw):
     for key in ("latitude_deg", "reading1_deg", "target_deg", "instrument_constant_deg"):
         o[key] = _degrees(key, o[key])
     for key in ("process", "denoise"):
-        o[key] = bool(o[key])
+        o[key] = _boolean(key, o[key])
+    for key in _NUMBERS:
+        o[key] = _number(key, o[key], optional=True)
     o["segment"] = _integer("segment", o["segment"], 0, 2**31 - 1)
-    o["lags"] = _integer("lags", o["lags"], -2**31, 2**31 - 1)
+    o["lags"] = _integer("lags", o["lags"], 1, 2**31 - 1)
     if o["segment"] != 0 and o["segment"] < 32:
         raise _InputError(f"{o['segment']} is not 0 (automatic) or at least 32", field="segment")
     if not 0.0 < o["alpha"] < 1.0:
@@ -83,6 +86,11 @@ def _reduce_options(kw):
         raise _InputError("must be at least 1", field="level")
     return o
 
+
+# The options that are numbers (None: not given, where the option's default is None).
+_NUMBERS = ("scale_A_s_per_rad", "scale_sigma_A_s_per_rad", "reading1_sigma_arcsec", "prior_bias_A",
+            "prior_bias_sigma_A", "target_sigma_arcsec", "instrument_constant_sigma_arcsec", "eta_arcsec",
+            "eta_sigma_arcsec", "convergence_deg", "alpha")
 
 # The engine's names of the constants (maglev/model.hpp) as the keyword arguments call them.
 _CONSTANTS = {"latitude": "latitude_deg", "scale": "scale_A_s_per_rad"}
@@ -182,18 +190,19 @@ def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None
     result). The Result's to_dict() is also the stored calibration that
     reduce_files(calibration=…) reads, once written as JSON."""
     lat = _degrees("latitude_deg", latitude_deg)
+    alpha = _number("alpha", alpha)
     if not 0.0 < alpha < 1.0:
         raise _InputError(f"{alpha} is not in (0, 1)", field="alpha")
-    nominal = None if nominal_scale_A_s_per_rad is None else float(nominal_scale_A_s_per_rad)
+    nominal = _number("nominal_scale_A_s_per_rad", nominal_scale_A_s_per_rad, optional=True)
     if isinstance(table, (str, _os.PathLike)):
-        text = _core.maglev.calibrate_file(_os.fspath(table), lat, float(alpha), nominal)
+        text = _core.maglev.calibrate_file(_os.fspath(table), lat, alpha, nominal)
     else:
         try:
             cols = [_real_array(k, table[k]) for k in _TABLE]
         except KeyError as e:
             raise _InputError(f"needs the columns {', '.join(_TABLE)}", field=f"table[{e.args[0]!r}]") from None
         try:
-            text = _core.maglev.calibrate_arrays(*cols, lat, float(alpha), nominal)
+            text = _core.maglev.calibrate_arrays(*cols, lat, alpha, nominal)
         except _Error as e:
             raise _renamed(e, {"setups": "table", "latitude": "latitude_deg"})
     return _Result(_json.loads(text))
@@ -202,10 +211,11 @@ def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None
 def _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s):
     if not (isinstance(samples, (int, _np.integer)) and samples > 0):
         raise _InputError(f"must be a positive integer, got {samples!r}", field="samples")
-    if not 0.0 < float(rate_hz) < float("inf"):
+    if not 0.0 < _number("rate_hz", rate_hz) < float("inf"):
         raise _InputError(f"must be > 0 (samples per second), is {rate_hz}", field="rate_hz")
-    return {"samples": int(samples), "rate_hz": float(rate_hz), "white_A": float(white_A),
-            "ar1_phi": float(ar1_phi), "ar1_sigma_A": float(ar1_sigma_A), "drift_A_per_s": float(drift_A_per_s)}
+    return {"samples": int(samples), "rate_hz": _number("rate_hz", rate_hz), "white_A": _number("white_A", white_A),
+            "ar1_phi": _number("ar1_phi", ar1_phi), "ar1_sigma_A": _number("ar1_sigma_A", ar1_sigma_A),
+            "drift_A_per_s": _number("drift_A_per_s", drift_A_per_s)}
 
 
 def simulate(*, alpha1_deg=0.5, scale_A_s_per_rad=8000.0, bias_A=2e-4, latitude_deg=35.0, reading1_deg=0.0,
@@ -215,12 +225,13 @@ def simulate(*, alpha1_deg=0.5, scale_A_s_per_rad=8000.0, bias_A=2e-4, latitude_
     two Tables (time_s, current_A), position 2 starting 30 s after position 1 ends.
     bursts: (position, begin_s, end_s, amplitude_A, offset_A, f0_hz, f1_hz) tuples,
     times from the start of that position's series (the CLI's --burst)."""
-    truth = {"alpha1_deg": _degrees("alpha1_deg", alpha1_deg), "scale_A_s_per_rad": float(scale_A_s_per_rad),
-             "bias_A": float(bias_A), "latitude_deg": _degrees("latitude_deg", latitude_deg),
+    truth = {"alpha1_deg": _degrees("alpha1_deg", alpha1_deg),
+             "scale_A_s_per_rad": _number("scale_A_s_per_rad", scale_A_s_per_rad),
+             "bias_A": _number("bias_A", bias_A), "latitude_deg": _degrees("latitude_deg", latitude_deg),
              "reading1_deg": _degrees("reading1_deg", reading1_deg)}
     b = []
     for i, burst in enumerate(bursts):
-        v = [float(x) for x in burst]
+        v = [_number(f"bursts[{i}]", x) for x in burst]
         if len(v) != 7 or v[0] not in (1.0, 2.0):
             raise _InputError("expected (position 1 or 2, begin_s, end_s, amplitude_A, offset_A, f0_hz, f1_hz)",
                              field=f"bursts[{i}]")
@@ -236,10 +247,12 @@ def simulate_calibration(azimuths_deg, *, scale_A_s_per_rad=8000.0, latitude_deg
     """Simulate a calibration table (`maglev simulate --calibration-azimuths`): a Table of
     azimuth_deg, mean1_A, sigma1_A, mean2_A, sigma2_A for calibrate()."""
     az = _real_array("azimuths_deg", [_degrees("azimuths_deg", a) for a in azimuths_deg])
-    truth = {"scale_A_s_per_rad": float(scale_A_s_per_rad), "latitude_deg": _degrees("latitude_deg", latitude_deg),
-             "slope_ratio1": float(slope_ratio1), "slope_ratio2": float(slope_ratio2),
+    truth = {"scale_A_s_per_rad": _number("scale_A_s_per_rad", scale_A_s_per_rad),
+             "latitude_deg": _degrees("latitude_deg", latitude_deg),
+             "slope_ratio1": _number("slope_ratio1", slope_ratio1),
+             "slope_ratio2": _number("slope_ratio2", slope_ratio2),
              "best_azimuth_deg": _degrees("best_azimuth_deg", best_azimuth_deg),
-             "constant_deviation_A": float(constant_deviation_A)}
+             "constant_deviation_A": _number("constant_deviation_A", constant_deviation_A)}
     return _Table(_core.maglev.simulate_calibration(
         az, truth, _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s),
         _integer("seed", seed, 0, 2**64 - 1)))

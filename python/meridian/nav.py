@@ -6,7 +6,8 @@
   summary (epochs, method_order, methods[name].rms_m, rejected, …; to_dict() gives
   it; a mapping, ``"rts" in r.methods``, names that are not identifiers also as
   attributes: ``r.methods.dead_reckoning``), and ``tracks`` maps each method's name
-  ("dead-reckoning", …, "ekf", "rts"; ``tracks.dead_reckoning``) to a Table named like the columns of `nav process -o TRACK --method NAME`:
+  ("dead-reckoning", …, "ekf", "rts"; ``tracks.dead_reckoning``) to a Table named
+  like the columns of `nav process -o TRACK --method NAME`:
   time_s, x_m (north), y_m (east), lat_deg, lon_deg (with a projection),
   sigma_x_m, sigma_y_m, cov_xy_m2, bias_north_m_s, bias_east_m_s,
   sigma_bias_north_m_s, sigma_bias_east_m_s (NaN where the method states no σ,
@@ -25,8 +26,8 @@ import json as _json
 import os as _os
 
 from . import _core
-from ._result import (Result as _Result, Table as _Table, integer as _integer, renamed as _renamed,
-                      run_on_mapping as _run_on_mapping)
+from ._result import (Result as _Result, Table as _Table, boolean as _boolean, integer as _integer,
+                      number as _number, renamed as _renamed, run_on_mapping as _run_on_mapping)
 from .errors import Error as _Error, InputError as _InputError
 
 __all__ = ["inspect", "process", "simulate", "METHODS", "SCENARIOS"]
@@ -45,7 +46,7 @@ def inspect(*files, accept_missing_checksum=False) -> _Result:
     if not files:
         raise _InputError("give at least one NMEA file", field="files")
     return _Result(_json.loads(_core.nav.inspect_files([_os.fspath(f) for f in files],
-                                                     bool(accept_missing_checksum))))
+                                                     _boolean("accept_missing_checksum", accept_missing_checksum))))
 
 
 #: The keys of a configuration that name files (relative ones, in a dict, are from the
@@ -62,7 +63,7 @@ def process(config) -> _Result:
     ``tracks`` is a Result mapping each method's name to its Table (``tracks["rts"]``,
     ``tracks.dead_reckoning``). Errors name the file, line and column (or the
     configuration's key; for a dict the file "<dict>")."""
-    (text, tracks), _ = _run_on_mapping(_core.nav.process_file, config, "meridian_nav_", _PATH_KEYS)
+    (text, tracks), _ = _run_on_mapping(_core.nav.process_file, config, "meridian_nav_", _PATH_KEYS, "config")
     return _Result(_json.loads(text), {"tracks": _Result({name: _Table(cols) for name, cols in tracks})})
 
 
@@ -78,7 +79,8 @@ def simulate(out, scenario="A", *, seed=1, stations=3, duration_s=1800.0, fixes_
     out = _os.fspath(out)
     try:
         files, blunders, settings = _core.nav.simulate(out, str(scenario), seed, stations,
-                                                       float(duration_s), float(fixes_every_s))
+                                                       _number("duration_s", duration_s),
+                                                       _number("fixes_every_s", fixes_every_s))
     except _Error as e:
         raise _renamed(e, {"simulation.stations": "stations", "simulation.duration_s": "duration_s",
                           "simulation.fix_interval_s": "fixes_every_s"})

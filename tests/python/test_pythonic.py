@@ -153,6 +153,39 @@ def test_threads_and_synthetic_arguments_give_a_meridian_error():
         assert e.value.field == field
 
 
+def test_numbers_and_flags_give_a_meridian_error():
+    # before: ValueError ("could not convert string to float"), pybind11's TypeError or cast
+    # RuntimeError, or silently: bool("no") is True, format_dms(second_decimals=2.5) gave 2 decimals
+    from meridian import angle
+
+    model = mg.synthetic_model(4, 1)
+    p1, p2 = maglev.simulate(samples=400, rate_hz=20, seed=3)
+    for call, field in ((lambda: angle.parse_deg("10", 5), "unit"),
+                        (lambda: angle.format_dms(1.0, 2.5), "second_decimals"),
+                        (lambda: angle.format_dms(1.0, 99), "second_decimals"),
+                        (lambda: angle.format_ddd_mmss(1.0, 7), "second_decimals"),
+                        (lambda: angle.format_direction_dms("x"), "deg"),
+                        (lambda: maglev.reduce(p1, p2, scale_A_s_per_rad="x", latitude_deg=35), "scale_A_s_per_rad"),
+                        (lambda: maglev.reduce(p1, p2, scale_A_s_per_rad=8000, latitude_deg=True), "latitude_deg"),
+                        (lambda: maglev.reduce(p1, p2, scale_A_s_per_rad=8000, latitude_deg=35, lags=2.5), "lags"),
+                        (lambda: maglev.reduce(p1, p2, scale_A_s_per_rad=8000, latitude_deg=35, denoise="no"),
+                         "denoise"),
+                        (lambda: maglev.simulate(rate_hz="x"), "rate_hz"),
+                        (lambda: maglev.calibrate("examples/maglev-calibration.csv", latitude_deg=35, alpha="x"),
+                         "alpha"),
+                        (lambda: dov.simulate(hours="x"), "hours"),
+                        (lambda: nav.simulate("/nonexistent", duration_s="x"), "duration_s"),
+                        (lambda: nav.process(5), "config"),
+                        (lambda: gyro.reduce(5), "source"),
+                        (lambda: model.deflection(1.0, 2.0, geoid="no"), "geoid"),
+                        (lambda: model.grid([1.0], [2.0], geoid=None), "geoid")):
+        with pytest.raises(meridian.InputError) as e:
+            call()
+        assert e.value.field == field, (field, str(e.value))
+    assert angle.format_dms(1.0, np.int64(2)) == angle.format_dms(1.0, 2) == "1°00'00.00\""
+    assert angle.format_dms(np.float32(0.5)) == "0°30'00.0\"" and angle.format_dms(np.array(0.5)) == "0°30'00.0\""
+
+
 def test_dov_latitude_error_in_degrees(source_dir, cli, tmp_path):
     # before: "latitude 1.6580627893946132 rad is beyond ±π/2" for a line given in lat_deg
     line = dov.simulate(hours=0.01, seed=2).to_dict()
