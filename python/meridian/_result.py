@@ -50,7 +50,9 @@ def _attribute(keys, name):
 
 
 def _attribute_names(keys):
-    return [k if k.isidentifier() and not _keyword.iskeyword(k) else identifier(k) for k in keys]
+    """The names by which the keys are attributes (for dir()): ambiguous ones left out."""
+    names = [k if k.isidentifier() and not _keyword.iskeyword(k) else identifier(k) for k in keys]
+    return [n for n in dict.fromkeys(names) if _attribute(keys, n) is not _MISSING]
 
 
 # repr: every key at the top, at most this many keys (items) of a nested mapping (list), this

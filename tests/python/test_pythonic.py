@@ -83,6 +83,7 @@ def test_attribute_names_are_identifiers(nav_run):
     with pytest.raises(AttributeError):
         both.a_b
     assert (both["a-b"], both["a b"]) == (1, 2)
+    assert "a_b" not in dir(both) and Result({"a-b": 1, "a_b": 2}).a_b == 2   # the identifier key wins
 
 
 def test_maglev_denoise_values_still_an_attribute():
