@@ -11,8 +11,8 @@ on demand, as it needs dask). Errors: meridian.Error and its subclasses
 
 from . import _core  # noqa: F401  (the compiled library)
 from .errors import Error, InputError, IoError, NumericalError, ParseError
-from . import angle, dov, gravity, gyro, maglev, nav
+from . import angle, dov, errors, gravity, gyro, maglev, nav
 
 __version__ = "0.1.0"
 __all__ = ["Error", "InputError", "ParseError", "NumericalError", "IoError",
-           "angle", "dov", "gravity", "gyro", "maglev", "nav"]
+           "angle", "dov", "errors", "gravity", "gyro", "maglev", "nav"]

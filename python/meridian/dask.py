@@ -20,20 +20,20 @@ Needs Debian's python3-dask and python3-distributed (and python3-netcdf4 for
 grid_to_netcdf); `import meridian` does not import this module.
 """
 
-import functools
-import os
-import threading
+import functools as _functools
+import os as _os
+import threading as _threading
 
-import dask
-import dask.array as da
-import numpy as np
+import dask.array as _da
+import numpy as _np
 
-from . import gravity
-from .errors import Error, InputError
+from . import gravity as _gravity
+from ._result import boolean as _boolean
+from .errors import Error as _Error, InputError as _InputError
 
 __all__ = ["deflection", "grid", "grid_to_netcdf", "open_model"]
 
-_lock = threading.Lock()
+_lock = _threading.Lock()
 _models = {}
 
 
@@ -42,24 +42,24 @@ def open_model(recipe):
     with _lock:
         m = _models.get(recipe)
         if m is None:
-            m = _models[recipe] = gravity._reopen(recipe)
+            m = _models[recipe] = _gravity._reopen(recipe)
         return m
 
 
 def _recipe(model):
-    if not isinstance(model, gravity.GravityModel):
-        raise InputError("must be a meridian.gravity.GravityModel", field="model")
+    if not isinstance(model, _gravity.GravityModel):
+        raise _InputError("must be a meridian.gravity.GravityModel", field="model")
     return model._recipe
 
 
 def _block(recipe, geoid, lat, lon, h, block_info=None):
     try:
         d = open_model(recipe).deflection(lat, lon, h, geoid=geoid)
-    except Error as e:
+    except _Error as e:
         _to_global_index(e, block_info)
         raise
     parts = [d.xi_arcsec, d.eta_arcsec] + ([d.geoid_m] if geoid else [])
-    return np.stack([np.asarray(p, dtype=np.float64) for p in parts])
+    return _np.stack([_np.asarray(p, dtype=_np.float64) for p in parts])
 
 
 def _to_global_index(err, block_info):
@@ -94,31 +94,31 @@ def deflection(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks="auto"):
     names = ("lat_deg", "lon_deg", "h_m")
     arrays = []
     for name, v in zip(names, (lat_deg, lon_deg, h_m)):
-        a = v if isinstance(v, da.Array) else gravity._real_array(name, v)
+        a = v if isinstance(v, _da.Array) else _gravity._real_array(name, v)
         if a.dtype.kind not in "iuf":
-            raise InputError(f"must be real numbers, got dtype {a.dtype}", field=name)
+            raise _InputError(f"must be real numbers, got dtype {a.dtype}", field=name)
         arrays.append(a)
     try:
-        shape = np.broadcast_shapes(*(a.shape for a in arrays))
+        shape = _np.broadcast_shapes(*(a.shape for a in arrays))
     except ValueError:
-        raise InputError("shapes " + ", ".join(str(a.shape) for a in arrays) + " do not broadcast together",
+        raise _InputError("shapes " + ", ".join(str(a.shape) for a in arrays) + " do not broadcast together",
                          field=", ".join(names)) from None
     if chunks == "auto":
-        given = [a for a in arrays if isinstance(a, da.Array) and a.shape == shape]
-        chunks = given[0].chunks if given else da.core.normalize_chunks(
-            "auto", shape, limit=100_000 * 8, dtype=np.float64)
-    arrays = [da.broadcast_to(da.asarray(a).astype(np.float64), shape).rechunk(chunks) for a in arrays]
+        given = [a for a in arrays if isinstance(a, _da.Array) and a.shape == shape]
+        chunks = given[0].chunks if given else _da.core.normalize_chunks(
+            "auto", shape, limit=100_000 * 8, dtype=_np.float64)
+    arrays = [_da.broadcast_to(_da.asarray(a).astype(_np.float64), shape).rechunk(chunks) for a in arrays]
     n = 3 if geoid else 2
-    stacked = da.map_blocks(functools.partial(_block, recipe, bool(geoid)), *arrays, new_axis=0,
-                            chunks=((n,),) + arrays[0].chunks, dtype=np.float64,
+    stacked = _da.map_blocks(_functools.partial(_block, recipe, _boolean("geoid", geoid)), *arrays, new_axis=0,
+                            chunks=((n,),) + arrays[0].chunks, dtype=_np.float64,
                             name="meridian-deflection")
-    return gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
+    return _gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
 
 
 def _grid_block(recipe, geoid, h, lat2, lon2, block_info=None):
     try:
         d = open_model(recipe).grid(lat2[:, 0], lon2[0, :], h, geoid=geoid)
-    except Error as e:
+    except _Error as e:
         if block_info:
             r0 = block_info[0]["array-location"][0][0]
             c0 = block_info[1]["array-location"][1][0]
@@ -131,7 +131,7 @@ def _grid_block(recipe, geoid, h, lat2, lon2, block_info=None):
                 i, j = (int(x) for x in field[7:-1].split(","))
                 e.field = f"points[{i + r0}, {j + c0}]"
         raise
-    return np.stack([d.xi_arcsec, d.eta_arcsec] + ([d.geoid_m] if geoid else []))
+    return _np.stack([d.xi_arcsec, d.eta_arcsec] + ([d.geoid_m] if geoid else []))
 
 
 def grid(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks=(256, -1)):
@@ -142,21 +142,21 @@ def grid(model, lat_deg, lon_deg, h_m=0.0, *, geoid=True, chunks=(256, -1)):
     bit; with an array h_m, deflection() on the mesh. Errors: as GravityModel.grid, with
     indices in the whole grid."""
     recipe = _recipe(model)
-    lat = gravity._real_array("lat_deg", lat_deg)
-    lon = gravity._real_array("lon_deg", lon_deg)
-    h = gravity._real_array("h_m", h_m)
+    lat = _gravity._real_array("lat_deg", lat_deg)
+    lon = _gravity._real_array("lon_deg", lon_deg)
+    h = _gravity._real_array("h_m", h_m)
     for name, a in (("lat_deg", lat), ("lon_deg", lon)):
         if a.ndim != 1:
-            raise InputError(f"must be 1-D for grid(), got shape {a.shape}", field=name)
-    chunks = da.core.normalize_chunks(chunks, (lat.size, lon.size), dtype=np.float64)
+            raise _InputError(f"must be 1-D for grid(), got shape {a.shape}", field=name)
+    chunks = _da.core.normalize_chunks(chunks, (lat.size, lon.size), dtype=_np.float64)
     if h.ndim != 0:
         return deflection(model, lat[:, None], lon[None, :], h, geoid=geoid, chunks=chunks)
-    lat2 = da.from_array(lat[:, None], chunks=(chunks[0], 1))
-    lon2 = da.from_array(lon[None, :], chunks=(1, chunks[1]))
+    lat2 = _da.from_array(lat[:, None], chunks=(chunks[0], 1))
+    lon2 = _da.from_array(lon[None, :], chunks=(1, chunks[1]))
     n = 3 if geoid else 2
-    stacked = da.map_blocks(functools.partial(_grid_block, recipe, bool(geoid), float(h)), lat2, lon2,
-                            new_axis=0, chunks=((n,),) + chunks, dtype=np.float64, name="meridian-grid")
-    return gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
+    stacked = _da.map_blocks(_functools.partial(_grid_block, recipe, _boolean("geoid", geoid), float(h)), lat2, lon2,
+                            new_axis=0, chunks=((n,),) + chunks, dtype=_np.float64, name="meridian-grid")
+    return _gravity.Deflection(stacked[0], stacked[1], stacked[2] if geoid else None)
 
 
 def grid_to_netcdf(path, model, lat_deg, lon_deg, h_m=0.0, *, rows_per_chunk=256, client=None):
@@ -169,13 +169,13 @@ def grid_to_netcdf(path, model, lat_deg, lon_deg, h_m=0.0, *, rows_per_chunk=256
     """
     import netCDF4
 
-    lat = gravity._real_array("lat_deg", lat_deg)
-    lon = gravity._real_array("lon_deg", lon_deg)
-    h = gravity._real_array("h_m", h_m)
+    lat = _gravity._real_array("lat_deg", lat_deg)
+    lon = _gravity._real_array("lon_deg", lon_deg)
+    h = _gravity._real_array("h_m", h_m)
     if h.ndim != 0:
-        raise InputError("must be a scalar for grid_to_netcdf()", field="h_m")
+        raise _InputError("must be a scalar for grid_to_netcdf()", field="h_m")
     d = grid(model, lat, lon, float(h), chunks=(int(rows_per_chunk), -1))
-    tmp = f"{os.fspath(path)}.tmp{os.getpid()}"
+    tmp = f"{_os.fspath(path)}.tmp{_os.getpid()}"
     try:
         with netCDF4.Dataset(tmp, "w", format="NETCDF4") as nc:
             nc.Conventions = "CF-1.8"
@@ -203,17 +203,17 @@ def grid_to_netcdf(path, model, lat_deg, lon_deg, h_m=0.0, *, rows_per_chunk=256
                 out["xi"][r0:r1, :] = block[0]
                 out["eta"][r0:r1, :] = block[1]
                 out["geoid"][r0:r1, :] = block[2]
-        os.replace(tmp, path)
+        _os.replace(tmp, path)
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        if _os.path.exists(tmp):
+            _os.unlink(tmp)
     return path
 
 
 def _row_blocks(d):
     """(r0, r1, delayed (3, rows, cols) array) for each row block of a grid() result."""
-    stacked = da.stack([d.xi_arcsec, d.eta_arcsec, d.geoid_m])
-    starts = np.cumsum((0,) + d.xi_arcsec.chunks[0])
+    stacked = _da.stack([d.xi_arcsec, d.eta_arcsec, d.geoid_m])
+    starts = _np.cumsum((0,) + d.xi_arcsec.chunks[0])
     return [(int(starts[i]), int(starts[i + 1]), stacked[:, starts[i]:starts[i + 1], :])
             for i in range(len(starts) - 1)]
 

@@ -29,14 +29,17 @@ truth_eta_arcsec, truth_xi_arcsec.
 >>> r.profile.smoothed_xi_arcsec                      # doctest: +SKIP
 """
 
-import json
-import os
-import tempfile
-import warnings
+import json as _json
+import re as _re
+import os as _os
+import tempfile as _tempfile
+import warnings as _warnings
 
 from . import _core
-from ._result import Result, Table, degrees, real_array
-from .errors import Error, InputError
+from ._result import (number as _number, Result as _Result, Table as _Table, degrees as _degrees,
+                      real_array as _real_array,
+                      integer as _integer, write_json as _write_json)
+from .errors import Error as _Error, InputError as _InputError
 
 __all__ = ["process", "read_line", "simulate", "LINE_COLUMNS"]
 
@@ -47,7 +50,7 @@ LINE_COLUMNS = ("time_s", "lat_deg", "lon_deg", "height_m", "speed_m_s", "lgu_bo
 
 def _result(out):
     text, profile = out
-    return Result(json.loads(text), {"profile": Table(profile)})
+    return _Result(_json.loads(text), {"profile": _Table(profile)})
 
 
 def _line(line):
@@ -58,15 +61,28 @@ def _line(line):
         except (KeyError, TypeError):
             if name.startswith("truth_"):
                 continue
-            raise InputError(f"the line needs the array {name}", field=name) from None
+            raise _InputError(f"the line needs the array {name}", field=name) from None
         ndim = 3 if name.endswith("_body_to_nav") else 1
-        cols[name] = real_array(name, value, ndim)
+        cols[name] = _real_array(name, value, ndim)
     if ("truth_eta_arcsec" in cols) != ("truth_xi_arcsec" in cols):
-        raise InputError("give both truth_eta_arcsec and truth_xi_arcsec, or neither", field="truth_eta_arcsec")
+        raise _InputError("give both truth_eta_arcsec and truth_xi_arcsec, or neither", field="truth_eta_arcsec")
     return cols
 
 
-def process(source, **options) -> Result:
+_LATITUDE_IN_RADIANS = _re.compile(r"latitude \S+ rad is beyond ±π/2")
+
+
+def _in_degrees(error, cols):
+    """The engine's check of a sample's latitude speaks radians (dov/deflection.hpp works in
+    them); a line given in lat_deg hears it in degrees, as a line file's reader says it."""
+    field = error.field or ""
+    if field.startswith("lat_deg[") and _LATITUDE_IN_RADIANS.fullmatch(error.message or ""):
+        value = cols["lat_deg"][int(field[len("lat_deg["):-1])]
+        error.message = f"latitude {value:.15g}° is beyond ±90°"
+        error.args = (error.message,)
+
+
+def process(source, **options) -> _Result:
     """Filter and smooth a line (`dov process --json`), from a configuration file or arrays.
 
     source: the path of a YAML/JSON configuration (its line file, CSV or binary,
@@ -79,72 +95,73 @@ def process(source, **options) -> Result:
     transport_rate_baseline_s).
     Errors: the file, line and column for files; for arrays the array and element
     ("lat_deg[3]"), or "<options>" and the key."""
-    if isinstance(source, (str, os.PathLike)):
+    if isinstance(source, (str, _os.PathLike)):
         if options:
             raise TypeError("options are the configuration's keys: give them with a line of arrays")
-        return _result(_core.dov.process_file(os.fspath(source)))
+        return _result(_core.dov.process_file(_os.fspath(source)))
     cols = _line(source)
     if "line" in options or "gravity_model" in options:
-        raise InputError("not an option of a line given as arrays", field="line" if "line" in options else
+        raise _InputError("not an option of a line given as arrays", field="line" if "line" in options else
                          "gravity_model")
-    fd, path = tempfile.mkstemp(suffix=".json", prefix="meridian_dov_")
+    fd, path = _tempfile.mkstemp(suffix=".json", prefix="meridian_dov_")
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            json.dump({"line": "<arrays>", **options}, f)
+        with _os.fdopen(fd, "w", encoding="utf-8") as f:
+            _write_json({"line": "<arrays>", **options}, f, "<options>")
         try:  # an error about a sample names its array and element ("lat_deg[3]"): the runner's
             return _result(_core.dov.process_arrays(cols, path))
-        except Error as e:
+        except _Error as e:
             if e.file == path:
                 e.file, e.line = "<options>", None
+            _in_degrees(e, cols)
             raise
     finally:
-        os.unlink(path)
+        _os.unlink(path)
 
 
-def read_line(path) -> Table:
+def read_line(path) -> _Table:
     """A line file, CSV or the binary format (told apart by content, as `dov process` does),
     read whole into the arrays simulate() gives (and process() takes): the model columns only
     when the file has them, the truth columns only when it has them. Errors name the file,
     line (CSV) or sample index (binary) and column, as the CLI's."""
-    columns, ignored = _core.dov.read_line(os.fspath(path))
+    columns, ignored = _core.dov.read_line(_os.fspath(path))
     if ignored:  # as the CLI warns: a misspelt optional column would otherwise vanish
-        warnings.warn(f"{os.fspath(path)}: column{'s' if len(ignored) > 1 else ''} {', '.join(ignored)} "
+        _warnings.warn(f"{_os.fspath(path)}: column{'s' if len(ignored) > 1 else ''} {', '.join(ignored)} "
                       f"not used (a misspelt optional column such as model_eta_arcsec or truth_eta_arcsec "
                       f"is not read; docs/file-formats.md lists the names)", stacklevel=2)
-    return Table(columns)
+    return _Table(columns)
 
 
 def simulate(*, latitude_deg=30.0, longitude_deg=114.0, heading_deg=60.0, height_m=0.0, speed_m_s=5.0,
              rate_hz=1.0, hours=4.0, sigma_model_arcsec=3.0, sigma_ins_arcsec=0.5, eps_u_deg_per_h=0.003,
-             phi_e_arcsec=0.0, phi_n_arcsec=0.0, phi_u_arcsec=0.0, seed=1, transport_rate=False) -> Table:
+             phi_e_arcsec=0.0, phi_n_arcsec=0.0, phi_u_arcsec=0.0, seed=1, transport_rate=False) -> _Table:
     """Simulate a line (`meridian dov simulate`, the same defaults; the same seed gives the
     same line): a Table of the line's arrays, with truth. Angles in degrees (numbers or
     any notation of meridian.angle) and arc-seconds. transport_rate=True: the true attitude
     error also turns with the transport rate (`--transport-rate`; process it with
     transport_rate=True)."""
-    o = {"latitude_deg": degrees("latitude_deg", latitude_deg),
-         "longitude_deg": degrees("longitude_deg", longitude_deg),
-         "heading_deg": degrees("heading_deg", heading_deg)}
+    o = {"latitude_deg": _degrees("latitude_deg", latitude_deg),
+         "longitude_deg": _degrees("longitude_deg", longitude_deg),
+         "heading_deg": _degrees("heading_deg", heading_deg)}
     for key, value in [("height_m", height_m), ("speed_m_s", speed_m_s), ("rate_hz", rate_hz), ("hours", hours),
                        ("sigma_model_arcsec", sigma_model_arcsec), ("sigma_ins_arcsec", sigma_ins_arcsec),
                        ("eps_u_deg_per_h", eps_u_deg_per_h), ("phi_e_arcsec", phi_e_arcsec),
                        ("phi_n_arcsec", phi_n_arcsec), ("phi_u_arcsec", phi_u_arcsec)]:
-        o[key] = float(value)
-    o["seed"] = int(seed)
+        o[key] = _number(key, value)
+    o["seed"] = _integer("seed", seed, 0, 2**64 - 1)
     if not isinstance(transport_rate, bool):
-        raise InputError(f"must be True or False, is {transport_rate!r}", field="transport_rate")
+        raise _InputError(f"must be True or False, is {transport_rate!r}", field="transport_rate")
     o["transport_rate"] = bool(transport_rate)
     # The simulator's own checks name its members in radians; say it in these arguments' terms.
     if not abs(o["latitude_deg"]) < 89.0:
-        raise InputError(f"must be strictly between -89° and 89°, is {o['latitude_deg']:.6g}°",
+        raise _InputError(f"must be strictly between -89° and 89°, is {o['latitude_deg']:.6g}°",
                          field="latitude_deg")
     if not o["rate_hz"] > 0.0 or o["rate_hz"] == float("inf"):
-        raise InputError(f"must be > 0 (samples per second), is {o['rate_hz']}", field="rate_hz")
+        raise _InputError(f"must be > 0 (samples per second), is {o['rate_hz']}", field="rate_hz")
     if not o["hours"] * 3600.0 * o["rate_hz"] >= 1.0:
-        raise InputError(f"{o['hours']} h at {o['rate_hz']} Hz gives less than one step", field="hours")
+        raise _InputError(f"{o['hours']} h at {o['rate_hz']} Hz gives less than one step", field="hours")
     try:
-        return Table(_core.dov.simulate(o))
-    except InputError as e:
+        return _Table(_core.dov.simulate(o))
+    except _InputError as e:
         if e.field == "simulation.duration_s":
             e.field = "hours"
             e.message = f"the track leaves ±89° of latitude within {o['hours']} h ({e.message})"

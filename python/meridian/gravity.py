@@ -17,38 +17,39 @@ geodetic on the model's reference ellipsoid (WGS84 for the EGMs): latitude in
 ellipsoid in [−12 000, 10 000 000] m.
 """
 
-from typing import NamedTuple, Optional
+from typing import NamedTuple as _NamedTuple, Optional as _Optional
 
-import numpy as np
+import numpy as _np
 
 from . import _core
-from .errors import InputError
+from ._result import boolean as _boolean, integer as _integer
+from .errors import InputError as _InputError
 
 __all__ = ["GravityModel", "Deflection", "synthetic_model", "search_path"]
 
 
-class Deflection(NamedTuple):
+class Deflection(_NamedTuple):
     """What GravityModel.deflection returns: float64 arrays of the broadcast shape
     of the inputs (numpy float64 scalars for scalar inputs)."""
 
-    xi_arcsec: np.ndarray   #: north–south deflection ξ (″)
-    eta_arcsec: np.ndarray  #: east–west deflection η (″)
-    geoid_m: Optional[np.ndarray]  #: geoid height N (m) at (lat, lon); None when geoid=False
+    xi_arcsec: _np.ndarray   #: north–south deflection ξ (″)
+    eta_arcsec: _np.ndarray  #: east–west deflection η (″)
+    geoid_m: _Optional[_np.ndarray]  #: geoid height N (m) at (lat, lon); None when geoid=False
 
 
 def _real_array(name, value):
     """value as a float64 array; InputError (field = name) for any other kind of data."""
-    a = np.asarray(value)
+    a = _np.asarray(value)
     if a.dtype.kind not in "iuf":
-        raise InputError(
+        raise _InputError(
             f"must be real numbers (integer or floating dtype), got dtype {a.dtype}", field=name
         )
-    return a.astype(np.float64, copy=False)
+    return a.astype(_np.float64, copy=False)
 
 
 def _own_index(flat, shape, own_shape):
     """The index into an argument of shape own_shape of element `flat` of the broadcast."""
-    full = np.unravel_index(flat, shape) if shape else ()
+    full = _np.unravel_index(flat, shape) if shape else ()
     full = full[len(full) - len(own_shape):] if own_shape else ()
     return tuple(0 if n == 1 else int(i) for i, n in zip(full, own_shape))
 
@@ -64,7 +65,7 @@ def _relocate(err, names, shapes, shape):
             return
     if field.startswith("points["):
         flat = int(field[len("points[") : -1])
-        err.field = "points[" + ", ".join(map(str, np.unravel_index(flat, shape) if shape else ())) + "]"
+        err.field = "points[" + ", ".join(map(str, _np.unravel_index(flat, shape) if shape else ())) + "]"
 
 
 class GravityModel:
@@ -75,6 +76,9 @@ class GravityModel:
     so a dask worker opens it again rather than receiving the coefficients.
     """
 
+    #: Threads a batch may use (0: one per core).
+    MAX_THREADS = 1024
+
     def __init__(self, core, recipe):
         self._core = core
         self._recipe = recipe
@@ -84,20 +88,33 @@ class GravityModel:
         """Load a model: a `.gfc` (ICGEM) or `.egm` (GeographicLib) file, or a name such
         as ``"egm96"`` looked up as NAME.egm / NAME.gfc in search_path().
 
-        max_degree: truncate while reading (None: the file's degree).
-        threads: threads of each batch evaluation (0: one per core).
-        Raises InputError (not found: the message lists the directories searched),
-        ParseError (bad file, with file and line) or IoError.
+        max_degree: truncate while reading, an integer in [0, the file's degree] (None: the
+        file's degree); a float (2.9) or a degree above the file's is refused with an
+        InputError (field "max_degree") naming the allowed range, where the CLI's
+        --max-degree takes the file's degree.
+        threads: threads of each batch evaluation, an integer in [0, 1024] (0: one per core).
+        Raises InputError (not found: the message lists the directories searched; field
+        "max_degree" or "threads" for a bad argument), ParseError (bad file, with file and
+        line) or IoError.
         """
         path_or_name = str(path_or_name)
-        md = -1 if max_degree is None else int(max_degree)
+        if max_degree is not None and (isinstance(max_degree, (bool, _np.bool_))
+                                       or not isinstance(max_degree, (int, _np.integer))):
+            raise _InputError(f"must be an integer in [0, the file's degree] (or None: the file's degree), "
+                              f"got {max_degree!r}", field="max_degree")
+        md = -1 if max_degree is None else _integer("max_degree", max_degree, 0)
+        threads = _integer("threads", threads, 0, cls.MAX_THREADS)
         try:
-            core = _core.gravity.open(path_or_name, md, int(threads))
-        except InputError as e:
+            core = _core.gravity.open(path_or_name, md, threads)
+        except _InputError as e:
             if e.field == "--model":  # the lookup names the CLI's option
                 e.field = "path_or_name"
             raise
-        return cls(core, ("open", path_or_name, md, int(threads)))
+        file_degree = core.info["file_max_degree"]
+        if md > file_degree:
+            raise _InputError(f"{md} is outside the allowed range [0, {file_degree}] (the degree of "
+                              f"{core.info['name']!r})", field="max_degree")
+        return cls(core, ("open", path_or_name, md, threads))
 
     @property
     def name(self) -> str:
@@ -144,16 +161,16 @@ class GravityModel:
         arrays = [_real_array(n, v) for n, v in zip(names, (lat_deg, lon_deg, h_m))]
         shapes = [a.shape for a in arrays]
         try:
-            shape = np.broadcast_shapes(*shapes)
+            shape = _np.broadcast_shapes(*shapes)
         except ValueError:
-            raise InputError(
+            raise _InputError(
                 "shapes " + ", ".join(map(str, shapes)) + " do not broadcast together",
                 field=", ".join(names),
             ) from None
-        flat = [np.ascontiguousarray(np.broadcast_to(a, shape)).reshape(-1) for a in arrays]
+        flat = [_np.ascontiguousarray(_np.broadcast_to(a, shape)).reshape(-1) for a in arrays]
         try:
-            xi, eta, n = self._core.evaluate(*flat, bool(geoid))
-        except InputError as e:
+            xi, eta, n = self._core.evaluate(*flat, _boolean("geoid", geoid))
+        except _InputError as e:
             _relocate(e, names, shapes, shape)
             raise
         except Exception as e:  # NumericalError: index into the broadcast shape
@@ -186,10 +203,11 @@ class GravityModel:
         h = _real_array("h_m", h_m)
         for name, a in (("lat_deg", lat), ("lon_deg", lon)):
             if a.ndim != 1:
-                raise InputError(f"must be 1-D for grid(), got shape {a.shape}", field=name)
+                raise _InputError(f"must be 1-D for grid(), got shape {a.shape}", field=name)
         if h.ndim != 0:
             return self.deflection(lat[:, None], lon[None, :], h, geoid=geoid)
-        xi, eta, n = self._core.grid(np.ascontiguousarray(lat), np.ascontiguousarray(lon), float(h), bool(geoid))
+        xi, eta, n = self._core.grid(_np.ascontiguousarray(lat), _np.ascontiguousarray(lon), float(h),
+                                     _boolean("geoid", geoid))
         return Deflection(xi, eta, n)
 
 
@@ -205,11 +223,15 @@ def _reopen(recipe):
 def synthetic_model(degree=360, seed=1, *, threads=0) -> GravityModel:
     """A random model with Kaula's rule (σ of C̄nm, S̄nm = 1e-5/n²), GM and a of
     EGM96/EGM2008, WGS84 reference; the same seed gives the same coefficients on
-    every platform (include/meridian/gravity/synthetic.hpp). degree in [2, 2190]
-    (InputError, field "degree", otherwise). `meridian gravity synth-model --degree D
-    --seed S` writes the same model to files."""
-    core = _core.gravity.synthetic(int(degree), int(seed), int(threads))
-    return GravityModel(core, ("synthetic", int(degree), int(seed), int(threads)))
+    every platform (include/meridian/gravity/synthetic.hpp). degree: an integer in
+    [2, 2190]; seed: an integer in [0, 2⁶⁴ − 1]; threads as GravityModel.open (InputError,
+    field "degree", "seed" or "threads", naming the range otherwise). `meridian gravity
+    synth-model --degree D --seed S` writes the same model to files."""
+    degree = _integer("degree", degree, 2, 2190)
+    seed = _integer("seed", seed, 0, 2**64 - 1)
+    threads = _integer("threads", threads, 0, GravityModel.MAX_THREADS)
+    core = _core.gravity.synthetic(degree, seed, threads)
+    return GravityModel(core, ("synthetic", degree, seed, threads))
 
 
 def search_path() -> list:

@@ -12,43 +12,34 @@ is None), and whose to_dict() gives that JSON as plain Python data.
 >>> r.determinations[0].north_reading_deg            # doctest: +SKIP
 """
 
-import json
-import os
-import tempfile
+import json as _json
 
 from . import _core
-from ._result import Result
-from .errors import Error
+from ._result import Result, run_on_mapping as _run_on_mapping
 
 __all__ = ["Result", "reduce", "campaign", "stochastic"]
 
 
 def _run(run, source):
-    """run(path) on a file, or on a dict written to a temporary JSON file; errors about a
-    dict name "<dict>" (and the field) instead of the temporary file and its line."""
-    if isinstance(source, dict):
-        fd, path = tempfile.mkstemp(suffix=".json", prefix="meridian_gyro_")
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as f:
-                json.dump(source, f)
-            try:
-                return run(path)
-            except Error as e:
-                if e.file == path:
-                    e.file, e.line = "<dict>", None
-                raise
-        finally:
-            os.unlink(path)
-    return run(os.fspath(source))
+    """The JSON result of run(path) on a file, or on a mapping written as JSON to a temporary
+    file (_result.run_on_mapping: errors name "<dict>"); the result's "file" is then "<dict>"
+    too, not the temporary file's path."""
+    text, path = _run_on_mapping(run, source, "meridian_gyro_")
+    data = _json.loads(text)
+    if path is not None and isinstance(data, dict) and data.get("file") == path:
+        data["file"] = "<dict>"
+    return data
 
 
 def reduce(source) -> Result:
     """Reduce the determinations of one station (`meridian gyro reduce FILE --json`).
 
     source: a path to a YAML/JSON reduce file, or a dict with its content (instrument,
-    station, determinations, optional angle_unit and options; docs/file-formats.md).
+    station, determinations, optional angle_unit and options; docs/file-formats.md), as
+    yaml.safe_load gives it or with numpy numbers and arrays, dates, paths in it (written
+    as JSON for the reader; docs/python.md "Dicts"); the result's file is then "<dict>".
     Raises ParseError/InputError naming file (or "<dict>"), line and field."""
-    return Result(json.loads(_run(_core.gyro.reduce_file, source)))
+    return Result(_run(_core.gyro.reduce_file, source))
 
 
 def campaign(source) -> Result:
@@ -56,7 +47,7 @@ def campaign(source) -> Result:
     A gravity_model it names is looked up as by the CLI (relative paths from the
     file's directory; for a dict, from the current directory's view of a temporary
     file, so give absolute paths or names)."""
-    return Result(json.loads(_run(_core.gyro.campaign_file, source)))
+    return Result(_run(_core.gyro.campaign_file, source))
 
 
 def stochastic(source) -> Result:
@@ -66,4 +57,4 @@ def stochastic(source) -> Result:
     north reading (or zero position), its σ, the ρ and variance components with their σ,
     log-likelihood, AIC and BIC; ``result.series[k].recommended`` names the recommended one.
     Series of fewer than 6 readings are not analysed; a file without any is an InputError."""
-    return Result(json.loads(_run(_core.gyro.stochastic_file, source)))
+    return Result(_run(_core.gyro.stochastic_file, source))

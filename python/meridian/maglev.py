@@ -19,14 +19,16 @@ or arc-seconds (`_arcsec`); currents in A, K in A·s/rad.
 >>> r = maglev.reduce(p1, p2, scale_A_s_per_rad=8000, latitude_deg=35)   # doctest: +SKIP
 """
 
-import json
-import os
+import json as _json
+import os as _os
 
-import numpy as np
+import numpy as _np
 
 from . import _core
-from ._result import Result, Table, degrees, real_array, renamed
-from .errors import Error, InputError
+from ._result import (boolean as _boolean, number as _number, Result as _Result, Table as _Table,
+                      degrees as _degrees, integer as _integer,
+                      real_array as _real_array, renamed as _renamed)
+from .errors import Error as _Error, InputError as _InputError
 
 __all__ = ["reduce", "reduce_files", "denoise", "calibrate", "simulate", "simulate_calibration",
            "WAVELETS", "MODES", "THRESHOLDS", "RULES"]
@@ -38,12 +40,12 @@ RULES = ("universal", "sure")
 
 
 def _denoise_options(wavelet, level, mode, threshold, rule):
-    if not isinstance(level, (int, np.integer)) or isinstance(level, bool) or level < 0:
-        raise InputError(f"must be a positive integer (or None), got {level!r}", field="level")
+    if not isinstance(level, (int, _np.integer)) or isinstance(level, bool) or level < 0:
+        raise _InputError(f"must be a positive integer (or None), got {level!r}", field="level")
     for name, value, accepted in [("wavelet", wavelet, WAVELETS), ("mode", mode, MODES),
                                   ("threshold", threshold, THRESHOLDS), ("rule", rule, RULES)]:
         if value not in accepted:
-            raise InputError(f"{value!r} is not one of {', '.join(accepted)}", field=name)
+            raise _InputError(f"{value!r} is not one of {', '.join(accepted)}", field=name)
     return {"wavelet": str(wavelet), "level": int(level), "mode": str(mode), "threshold": str(threshold),
             "rule": str(rule)}
 
@@ -66,20 +68,29 @@ def _reduce_options(kw):
         else:
             raise TypeError(f"unexpected keyword argument {key!r}")
     for key in ("latitude_deg", "reading1_deg", "target_deg", "instrument_constant_deg"):
-        o[key] = degrees(key, o[key])
+        o[key] = _degrees(key, o[key])
     for key in ("process", "denoise"):
-        o[key] = bool(o[key])
+        o[key] = _boolean(key, o[key])
+    for key in _NUMBERS:
+        o[key] = _number(key, o[key], optional=True)
+    o["segment"] = _integer("segment", o["segment"], 0, 2**31 - 1)
+    o["lags"] = _integer("lags", o["lags"], 1, 2**31 - 1)
     if o["segment"] != 0 and o["segment"] < 32:
-        raise InputError(f"{o['segment']} is not 0 (automatic) or at least 32", field="segment")
+        raise _InputError(f"{o['segment']} is not 0 (automatic) or at least 32", field="segment")
     if not 0.0 < o["alpha"] < 1.0:
-        raise InputError(f"{o['alpha']} is not in (0, 1)", field="alpha")
+        raise _InputError(f"{o['alpha']} is not in (0, 1)", field="alpha")
     if o["lags"] < 1:
-        raise InputError(f"{o['lags']} is not a positive number", field="lags")
+        raise _InputError(f"{o['lags']} is not a positive number", field="lags")
     o.update(_denoise_options(**denoising))
     if o["level"] < 1:
-        raise InputError("must be at least 1", field="level")
+        raise _InputError("must be at least 1", field="level")
     return o
 
+
+# The options that are numbers (None: not given, where the option's default is None).
+_NUMBERS = ("scale_A_s_per_rad", "scale_sigma_A_s_per_rad", "reading1_sigma_arcsec", "prior_bias_A",
+            "prior_bias_sigma_A", "target_sigma_arcsec", "instrument_constant_sigma_arcsec", "eta_arcsec",
+            "eta_sigma_arcsec", "convergence_deg", "alpha")
 
 # The engine's names of the constants (maglev/model.hpp) as the keyword arguments call them.
 _CONSTANTS = {"latitude": "latitude_deg", "scale": "scale_A_s_per_rad"}
@@ -87,25 +98,25 @@ _CONSTANTS = {"latitude": "latitude_deg", "scale": "scale_A_s_per_rad"}
 
 def _series(name, value):
     """(time_s, current_A) of a position: a pair, a mapping or a Table with those keys."""
-    if isinstance(value, Table) or hasattr(value, "keys"):
+    if isinstance(value, _Table) or hasattr(value, "keys"):
         try:
             t, c = value["time_s"], value["current_A"]
         except KeyError:
-            raise InputError("needs time_s and current_A", field=name) from None
+            raise _InputError("needs time_s and current_A", field=name) from None
     else:
         try:
             t, c = value
         except (TypeError, ValueError):
-            raise InputError("must be (time_s, current_A) or a mapping with those keys", field=name) from None
-    return real_array(f"{name}.time_s", t), real_array(f"{name}.current_A", c)
+            raise _InputError("must be (time_s, current_A) or a mapping with those keys", field=name) from None
+    return _real_array(f"{name}.time_s", t), _real_array(f"{name}.current_A", c)
 
 
 def _result(out):
     text, series1, series2 = out
-    return Result(json.loads(text), {"series1": Table(series1), "series2": Table(series2)})
+    return _Result(_json.loads(text), {"series1": _Table(series1), "series2": _Table(series2)})
 
 
-def reduce(position1, position2, **options) -> Result:
+def reduce(position1, position2, **options) -> _Result:
     """Reduce one two-position determination (`maglev reduce --json`) from arrays.
 
     position1, position2: (time_s, current_A) pairs of 1-D arrays, or mappings/Tables
@@ -123,22 +134,22 @@ def reduce(position1, position2, **options) -> Result:
     t2, c2 = _series("position2", position2)
     try:
         out = _core.maglev.reduce_arrays(t1, c1, t2, c2, _reduce_options(options))
-    except Error as e:
-        raise renamed(e, _CONSTANTS)
+    except _Error as e:
+        raise _renamed(e, _CONSTANTS)
     return _result(out)
 
 
-def reduce_files(file1, file2=None, *, config=None, calibration=None, **options) -> Result:
+def reduce_files(file1, file2=None, *, config=None, calibration=None, **options) -> _Result:
     """`maglev reduce FILE [FILE2] --json`: one CSV with a position column, or one per
     position; config: the YAML/JSON constants (K, latitude, circle_reading1, …);
     calibration: a stored calibration (`maglev calibrate --json`); keyword options as
     reduce(), overriding the files. Errors name the file, line and column."""
-    files = [os.fspath(file1)] + ([os.fspath(file2)] if file2 is not None else [])
+    files = [_os.fspath(file1)] + ([_os.fspath(file2)] if file2 is not None else [])
     try:
-        out = _core.maglev.reduce_files(files, os.fspath(config) if config else "",
-                                        os.fspath(calibration) if calibration else "", _reduce_options(options))
-    except Error as e:
-        raise renamed(e, _CONSTANTS) if not e.file else e
+        out = _core.maglev.reduce_files(files, _os.fspath(config) if config else "",
+                                        _os.fspath(calibration) if calibration else "", _reduce_options(options))
+    except _Error as e:
+        raise _renamed(e, _CONSTANTS) if not e.file else e
     return _result(out)
 
 
@@ -154,9 +165,9 @@ def denoise(series, wavelet="db4", level=None, mode="symmetric", threshold="soft
     noise_sigma, thresholds (level 1 first), zeroed, coefficients, level.
     Errors: InputError (field "series", or the option) for an empty or non-finite
     series, a level too deep for its length, an unknown name."""
-    x = real_array("series", series)
-    if level is not None and (not isinstance(level, (int, np.integer)) or isinstance(level, bool) or level < 1):
-        raise InputError(f"must be a positive integer (or None), got {level!r}", field="level")
+    x = _real_array("series", series)
+    if level is not None and (not isinstance(level, (int, _np.integer)) or isinstance(level, bool) or level < 1):
+        raise _InputError(f"must be a positive integer (or None), got {level!r}", field="level")
     o = _denoise_options(wavelet, 0 if level is None else level, mode, threshold, rule)
     values, sigma, thresholds, zeroed, coefficients, used = _core.maglev.denoise(x, o)
     if not full:
@@ -164,13 +175,13 @@ def denoise(series, wavelet="db4", level=None, mode="symmetric", threshold="soft
     info = {"noise_sigma": sigma, "thresholds": thresholds, "zeroed": zeroed, "coefficients": coefficients,
             "level": used, "wavelet": o["wavelet"], "mode": o["mode"], "threshold": o["threshold"],
             "rule": o["rule"]}
-    return Result(info, {"values": values})
+    return _Result(info, {"values": values})
 
 
 _TABLE = ("azimuth_deg", "mean1_A", "sigma1_A", "mean2_A", "sigma2_A")
 
 
-def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None) -> Result:
+def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None) -> _Result:
     """Multi-angle calibration (`maglev calibrate TABLE --json`): lines per position,
     trend deviation, best azimuth α*, constant deviation I*, K from the slopes.
 
@@ -178,31 +189,33 @@ def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None
     azimuth_deg, mean1_A, sigma1_A, mean2_A, sigma2_A (a simulate_calibration()
     result). The Result's to_dict() is also the stored calibration that
     reduce_files(calibration=…) reads, once written as JSON."""
-    lat = degrees("latitude_deg", latitude_deg)
+    lat = _degrees("latitude_deg", latitude_deg)
+    alpha = _number("alpha", alpha)
     if not 0.0 < alpha < 1.0:
-        raise InputError(f"{alpha} is not in (0, 1)", field="alpha")
-    nominal = None if nominal_scale_A_s_per_rad is None else float(nominal_scale_A_s_per_rad)
-    if isinstance(table, (str, os.PathLike)):
-        text = _core.maglev.calibrate_file(os.fspath(table), lat, float(alpha), nominal)
+        raise _InputError(f"{alpha} is not in (0, 1)", field="alpha")
+    nominal = _number("nominal_scale_A_s_per_rad", nominal_scale_A_s_per_rad, optional=True)
+    if isinstance(table, (str, _os.PathLike)):
+        text = _core.maglev.calibrate_file(_os.fspath(table), lat, alpha, nominal)
     else:
         try:
-            cols = [real_array(k, table[k]) for k in _TABLE]
+            cols = [_real_array(k, table[k]) for k in _TABLE]
         except KeyError as e:
-            raise InputError(f"needs the columns {', '.join(_TABLE)}", field=f"table[{e.args[0]!r}]") from None
+            raise _InputError(f"needs the columns {', '.join(_TABLE)}", field=f"table[{e.args[0]!r}]") from None
         try:
-            text = _core.maglev.calibrate_arrays(*cols, lat, float(alpha), nominal)
-        except Error as e:
-            raise renamed(e, {"setups": "table", "latitude": "latitude_deg"})
-    return Result(json.loads(text))
+            text = _core.maglev.calibrate_arrays(*cols, lat, alpha, nominal)
+        except _Error as e:
+            raise _renamed(e, {"setups": "table", "latitude": "latitude_deg"})
+    return _Result(_json.loads(text))
 
 
 def _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s):
-    if not (isinstance(samples, (int, np.integer)) and samples > 0):
-        raise InputError(f"must be a positive integer, got {samples!r}", field="samples")
-    if not 0.0 < float(rate_hz) < float("inf"):
-        raise InputError(f"must be > 0 (samples per second), is {rate_hz}", field="rate_hz")
-    return {"samples": int(samples), "rate_hz": float(rate_hz), "white_A": float(white_A),
-            "ar1_phi": float(ar1_phi), "ar1_sigma_A": float(ar1_sigma_A), "drift_A_per_s": float(drift_A_per_s)}
+    if not (isinstance(samples, (int, _np.integer)) and samples > 0):
+        raise _InputError(f"must be a positive integer, got {samples!r}", field="samples")
+    if not 0.0 < _number("rate_hz", rate_hz) < float("inf"):
+        raise _InputError(f"must be > 0 (samples per second), is {rate_hz}", field="rate_hz")
+    return {"samples": int(samples), "rate_hz": _number("rate_hz", rate_hz), "white_A": _number("white_A", white_A),
+            "ar1_phi": _number("ar1_phi", ar1_phi), "ar1_sigma_A": _number("ar1_sigma_A", ar1_sigma_A),
+            "drift_A_per_s": _number("drift_A_per_s", drift_A_per_s)}
 
 
 def simulate(*, alpha1_deg=0.5, scale_A_s_per_rad=8000.0, bias_A=2e-4, latitude_deg=35.0, reading1_deg=0.0,
@@ -212,19 +225,20 @@ def simulate(*, alpha1_deg=0.5, scale_A_s_per_rad=8000.0, bias_A=2e-4, latitude_
     two Tables (time_s, current_A), position 2 starting 30 s after position 1 ends.
     bursts: (position, begin_s, end_s, amplitude_A, offset_A, f0_hz, f1_hz) tuples,
     times from the start of that position's series (the CLI's --burst)."""
-    truth = {"alpha1_deg": degrees("alpha1_deg", alpha1_deg), "scale_A_s_per_rad": float(scale_A_s_per_rad),
-             "bias_A": float(bias_A), "latitude_deg": degrees("latitude_deg", latitude_deg),
-             "reading1_deg": degrees("reading1_deg", reading1_deg)}
+    truth = {"alpha1_deg": _degrees("alpha1_deg", alpha1_deg),
+             "scale_A_s_per_rad": _number("scale_A_s_per_rad", scale_A_s_per_rad),
+             "bias_A": _number("bias_A", bias_A), "latitude_deg": _degrees("latitude_deg", latitude_deg),
+             "reading1_deg": _degrees("reading1_deg", reading1_deg)}
     b = []
     for i, burst in enumerate(bursts):
-        v = [float(x) for x in burst]
+        v = [_number(f"bursts[{i}]", x) for x in burst]
         if len(v) != 7 or v[0] not in (1.0, 2.0):
-            raise InputError("expected (position 1 or 2, begin_s, end_s, amplitude_A, offset_A, f0_hz, f1_hz)",
+            raise _InputError("expected (position 1 or 2, begin_s, end_s, amplitude_A, offset_A, f0_hz, f1_hz)",
                              field=f"bursts[{i}]")
         b.append(v)
     p1, p2 = _core.maglev.simulate(truth, _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s),
-                                   b, int(seed))
-    return Table(p1), Table(p2)
+                                   b, _integer("seed", seed, 0, 2**64 - 1))
+    return _Table(p1), _Table(p2)
 
 
 def simulate_calibration(azimuths_deg, *, scale_A_s_per_rad=8000.0, latitude_deg=35.0, slope_ratio1=1.0,
@@ -232,10 +246,13 @@ def simulate_calibration(azimuths_deg, *, scale_A_s_per_rad=8000.0, latitude_deg
                          rate_hz=100.0, white_A=1e-5, ar1_phi=0.0, ar1_sigma_A=0.0, drift_A_per_s=0.0, seed=1):
     """Simulate a calibration table (`maglev simulate --calibration-azimuths`): a Table of
     azimuth_deg, mean1_A, sigma1_A, mean2_A, sigma2_A for calibrate()."""
-    az = real_array("azimuths_deg", [degrees("azimuths_deg", a) for a in azimuths_deg])
-    truth = {"scale_A_s_per_rad": float(scale_A_s_per_rad), "latitude_deg": degrees("latitude_deg", latitude_deg),
-             "slope_ratio1": float(slope_ratio1), "slope_ratio2": float(slope_ratio2),
-             "best_azimuth_deg": degrees("best_azimuth_deg", best_azimuth_deg),
-             "constant_deviation_A": float(constant_deviation_A)}
-    return Table(_core.maglev.simulate_calibration(
-        az, truth, _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s), int(seed)))
+    az = _real_array("azimuths_deg", [_degrees("azimuths_deg", a) for a in azimuths_deg])
+    truth = {"scale_A_s_per_rad": _number("scale_A_s_per_rad", scale_A_s_per_rad),
+             "latitude_deg": _degrees("latitude_deg", latitude_deg),
+             "slope_ratio1": _number("slope_ratio1", slope_ratio1),
+             "slope_ratio2": _number("slope_ratio2", slope_ratio2),
+             "best_azimuth_deg": _degrees("best_azimuth_deg", best_azimuth_deg),
+             "constant_deviation_A": _number("constant_deviation_A", constant_deviation_A)}
+    return _Table(_core.maglev.simulate_calibration(
+        az, truth, _noise(samples, rate_hz, white_A, ar1_phi, ar1_sigma_A, drift_A_per_s),
+        _integer("seed", seed, 0, 2**64 - 1)))

@@ -21,5 +21,6 @@ def test_the_tour_runs_as_written(source_dir, monkeypatch, capsys):
                    "-0°00'16.2\" 359°00'00.0\"", "True",
                    "358.8542 0.2 [6, 7, 8, 9, 10]", "1800 (4000,)", "(4000,) float64", "413 8000.0",
                    "(901, 3, 3)", "901 ['filtered', 'model', 'smoothed']", "['ekf', 'rts'] 6.81",
-                   "(361,) 1800.0", "121", "7 white-noise ['white-noise', 'c-exponential']"]:
+                   "(361,) 1800.0", "121", "True 590.9",
+                   "Result(cov_xy_m2=-1.37182497799293, sigma_x_m=10.714924183654398,", "7 white-noise ['white-noise', 'c-exponential']"]:
         assert quoted in out, quoted

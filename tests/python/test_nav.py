@@ -90,6 +90,20 @@ def test_process_nmea_matches_the_cli(cli, read_csv, nmea_job, tmp_path):
     compare_tracks(cli, read_csv, config, r, ["ekf", "dead-reckoning"], tmp_path)
 
 
+def test_process_nmea_dict_files_from_the_current_directory(cli, nmea_job, monkeypatch):
+    # the nmea block's files in a dict (docs/python.md "Dicts"): relative to the current directory
+    ref = json.loads(cli("nav", "process", nmea_job / "nav.yaml", "--json", "-q").stdout)
+    monkeypatch.chdir(nmea_job.parent)
+    log = f"{nmea_job.name}/log.nmea"
+    config = {"nmea": {"heading": log, "speed": log, "positions": log, "speed_sentence": "vtg",
+                       "fix_interval_s": np.int64(60), "sigma_fix_m": np.float64(5)}}
+    assert nav.process(config).to_dict() == ref
+    config["nmea"]["heading"] = "log.nmea"   # not in the current directory: named as resolved from it
+    with pytest.raises(meridian.Error) as e:
+        nav.process(config)
+    assert e.value.file == str(nmea_job.parent / "log.nmea")
+
+
 def test_inspect_matches_the_cli(cli, nmea_job, tmp_path):
     log = nmea_job / "log.nmea"
     bad = tmp_path / "bad.nmea"
