@@ -532,6 +532,10 @@ class CampaignRun {
           add_check("zero position alpha_p (given), " + run, v[i].zero_position_used->value,
                     limits_.zero_position_div, CheckUnit::Div, t.zero_position_limit_div, "zero_position_limit_div",
                     false, true, field + ".zero_position");
+          // A value typed in is not the motor-off runs the regulations want on both sides of the run: it is
+          // held to the same rule as a run observed on one side only.
+          sides_observed(fmt::format("zero position observed before and after, {} (given as a value, not observed)", run),
+                         0, 2, field + ".zero_position");
         }
       }
     };

@@ -604,3 +604,19 @@ TEST(Orientations, SharedKnownLineAndEtaCorrelateTheOrientationsAsStated) {
   EXPECT_GT(sample, 3 * se);  // independence (cov 0) is refuted
   EXPECT_LT(std::sqrt(zz / n), 1.15);
 }
+
+TEST(Regulations, AZeroPositionTypedInIsNotObservedBeforeAndAfter) {
+  // The regulations want motor-off runs before and after every run: a value booked instead is held to
+  // the rule of a run observed on one side only (helper trial, issue 36: it used to pass).
+  auto sim = clean();
+  auto& d = sim.input.line.determinations[1];
+  d.zero_before.reset();
+  d.zero_after.reset();
+  d.zero_position = Uncertain{-0.2, 0.05};
+  const CampaignResult r = process(sim.input);
+  const Check* c = find_check(r, "zero position observed before and after, line.determinations[1]", "given as a value");
+  ASSERT_NE(c, nullptr);
+  EXPECT_FALSE(c->pass);
+  EXPECT_EQ(c->field, "line.determinations[1].zero_position");
+  EXPECT_FALSE(r.all_checks_pass());
+}
