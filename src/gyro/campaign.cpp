@@ -811,6 +811,9 @@ class CampaignRun {
       limit = *override_;
       source = "tolerances.known_azimuth_coordinates_arcsec in the file";
     }
+    if (std::fabs(wrap_signed_rad(diff - units::kPi)) <= units::kDegree)
+      name += fmt::format(" (180 deg apart: from and to swapped? the coordinates give {}->{} {})", from.name, to.name,
+                          format_direction_dms(Angle::radians(*res_.known_grid_azimuth_from_coordinates_rad)));
     res_.checks.push_back({std::move(name), diff / units::kArcsecond, limit / units::kArcsecond, CheckUnit::Arcsec,
                            std::fabs(diff) <= limit, false, true, std::move(source), "known_line.azimuth.value"});
     if (!res_.checks.back().pass)

@@ -95,6 +95,7 @@ void correlate(const std::vector<CampaignResult>& in, OrientationsResult& r) {
   const double nn = static_cast<double>(n) * static_cast<double>(n);
   r.covariance_rad2.assign(n, std::vector<double>(n, 0.0));
   double total = 0, own = 0, independent = 0;
+  std::vector<const ErrorSource*> listed;
   for (std::size_t i = 0; i < n; ++i) {
     const double si = in[i].chain.grid_azimuth_rad.sigma;
     independent += si * si;
@@ -106,6 +107,10 @@ void correlate(const std::vector<CampaignResult>& in, OrientationsResult& r) {
           for (const ErrorSource& y : in[j].shared_error_sources) shared = shared || same_error_source(x, y);
       if (!shared) continue;
       shared_i += x.contribution_rad * x.contribution_rad;
+      // One source under two spellings of its point's name ("Ⅱ3", "Ⅱ３") is listed once.
+      if (std::any_of(listed.begin(), listed.end(), [&](const ErrorSource* l) { return same_error_source(*l, x); }))
+        continue;
+      listed.push_back(&x);
       const std::string what = x.point.empty() ? fmt::format("{} ({})", to_string(x.kind), x.source)
                                                : fmt::format("{} at {} ({})", to_string(x.kind), x.point, x.source);
       if (std::find(r.shared_sources.begin(), r.shared_sources.end(), what) == r.shared_sources.end())
