@@ -389,7 +389,8 @@ known_line:                         # surface line of known azimuth: calibrates 
     sigma_arcsec: 3                 # its sigma (arcsec)
   before:                           # 3 runs before going underground
     - mode: tracking                # tracking: the light mark is followed with the slow-motion screw
-      label: "K1-K2 before 1 (tracking) 08:40"   # free text, shown in the report
+      label: "K1-K2 before 1 (tracking)"   # free text, shown in the report
+      time: "08:40"
       method: schuler               # tracking: two-point | schuler | lsq-linear | lsq | all
       # horizontal-circle readings at the reversals (turning points), in time order (angle_unit)
       reversals: ["359°17′00″", "1°46′13″", "359°17′32″", "1°45′32″", "359°18′07″"]
@@ -406,7 +407,8 @@ known_line:                         # surface line of known azimuth: calibrates 
         - {when: after,  left: "48°03′49.6″", right: "228°03′58.6″"}
       target_sigma_arcsec: 2        # sigma of one round's direction (arcsec)
     - mode: non-tracking            # non-tracking: alidade clamped near north, the oscillation is timed
-      label: "K1-K2 before 2 (transit) 09:15"
+      label: "K1-K2 before 2 (transit)"
+      time: "09:15"
       method: transit               # transit | time-difference | direct | timed-amplitude-1 |
                                     # timed-amplitude-2 | lsq | all
       clamp_reading: "0°28′00″"     # N', circle reading of the clamped alidade (angle_unit)
@@ -431,7 +433,8 @@ known_line:                         # surface line of known azimuth: calibrates 
         - {when: after,  left: "48°04′53.0″", right: "228°05′02.0″"}
       target_sigma_arcsec: 2
     - mode: tracking
-      label: "K1-K2 before 3 (tracking) 09:50"
+      label: "K1-K2 before 3 (tracking)"
+      time: "09:50"
       method: schuler
       reversals: ["179°57′29″", "182°26′50″", "179°58′21″", "182°26′06″", "179°58′47″"]
       sigma_reading_arcsec: 5
@@ -444,7 +447,8 @@ known_line:                         # surface line of known azimuth: calibrates 
       target_sigma_arcsec: 2
   after:                            # 3 runs after coming up
     - mode: tracking
-      label: "K1-K2 after 1 (tracking) 14:45"
+      label: "K1-K2 after 1 (tracking)"
+      time: "14:45"
       method: schuler
       reversals: ["268°50′44″", "271°19′52″", "268°51′26″", "271°19′16″", "268°52′09″"]
       sigma_reading_arcsec: 5
@@ -456,7 +460,8 @@ known_line:                         # surface line of known azimuth: calibrates 
         - {when: after,  left: "317°37′48.4″", right: "137°37′57.4″"}
       target_sigma_arcsec: 2
     - mode: non-tracking
-      label: "K1-K2 after 2 (transit) 15:20"
+      label: "K1-K2 after 2 (transit)"
+      time: "15:20"
       method: transit
       clamp_reading: "270°00′00″"
       period_s: "7:04.0"
@@ -471,7 +476,8 @@ known_line:                         # surface line of known azimuth: calibrates 
         - {when: after,  left: "317°36′10.6″", right: "137°36′19.6″"}
       target_sigma_arcsec: 2
     - mode: tracking
-      label: "K1-K2 after 3 (tracking) 15:55"
+      label: "K1-K2 after 3 (tracking)"
+      time: "15:55"
       method: schuler
       reversals: ["44°08′07″", "46°37′09″", "44°08′46″", "46°36′39″", "44°09′22″"]
       sigma_reading_arcsec: 5
@@ -505,7 +511,8 @@ line:                               # the line to orient: from the gyro station 
       # target_reading: "310°18′21.8″"  # instead of target_rounds: the circle reading to the target, the
       #                                 # mean of face left and face right (angle_unit), with target_sigma_arcsec
     - mode: non-tracking            # five transits and four reversal readings
-      label: "P1-P2 2 (transit) 12:20"
+      label: "P1-P2 2 (transit)"
+      time: "12:20"
       method: transit
       clamp_reading: "89°50′00″"
       period_s: "7:04.0"
