@@ -465,7 +465,8 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
   s.blocks.push_back(Signatures{{{L("observer", "观测者"), in.record.observer},
                                  {L("booker", "记录者"), in.record.booker},
                                  {L("computed by", "计算者"), in.record.computed_by},
-                                 {L("checked by", "检查者"), in.record.checked_by}}});
+                                 {L("checked by", "检查者"), in.record.checked_by}},
+                                {L("name", "姓名"), L("signature", "签名"), L("date", "日期")}});
   return s;
 }
 
@@ -512,8 +513,11 @@ Section campaign_result_section(const gyro::CampaignResult& r, const AngleFormat
   return result;
 }
 
-CheckList check_list(const std::vector<gyro::Check>& list) {
+CheckList check_list(const std::vector<gyro::Check>& list, const SheetLabels& L) {
   CheckList cl;
+  cl.columns = {L("check", "检核项目"), L("value", "实测值"), L("limit", "限差"), L("result", "结论"),
+                L("source of the limit", "限差依据")};
+  cl.verdicts = {L("PASS", "合格"), L("FAIL", "不合格"), L("no check applies", "无适用检核")};
   for (const auto& k : list) {
     const bool div = k.unit == gyro::CheckUnit::Div;
     const bool runs = k.unit == gyro::CheckUnit::Runs || k.unit == gyro::CheckUnit::Observers ||
@@ -522,7 +526,7 @@ CheckList check_list(const std::vector<gyro::Check>& list) {
     const bool seconds = k.unit == gyro::CheckUnit::Seconds;
     const std::string unit = div ? " div" : runs ? "" : seconds ? " s" : "\"";
     cl.checks.push_back({k.name, fmt::format("{:.{}f}{}", k.value, dec, unit),
-                         fmt::format("{}{}{:.{}f}{}", k.minimum ? "at least " : "", k.signed_value ? "\u00b1" : "",
+                         fmt::format("{}{}{:.{}f}{}", k.minimum ? (L.zh ? "\u2265 " : "at least ") : "", k.signed_value ? "\u00b1" : "",
                                      k.tolerance, dec, unit),
                          k.pass, k.source});
   }
@@ -532,13 +536,14 @@ CheckList check_list(const std::vector<gyro::Check>& list) {
 Section checks_section(const gyro::CampaignResult& r, const AngleFormat& f) {
   const SheetLabels L{r.input.record.language == "zh"};
   Section checks{"checks", L("Tolerance checks", "限差检核"), {}, 2};
-  checks.blocks.push_back(check_list(r.checks));
+  checks.blocks.push_back(check_list(r.checks, L));
   std::vector<KeyValue> m;
   if (r.constant_one_run_sigma_rad)
-    m.push_back({"instrument constant, one run (m = sqrt([vv]/(n-1)))", f.sig(*r.constant_one_run_sigma_rad, 1)});
+    m.push_back({L("instrument constant, one run (m = sqrt([vv]/(n-1)))", "仪器常数一测回中误差 (m = sqrt([vv]/(n-1)))"),
+                 f.sig(*r.constant_one_run_sigma_rad, 1)});
   if (r.line_one_run_sigma_rad)
-    m.push_back({"gyro azimuth on the line, one run", f.sig(*r.line_one_run_sigma_rad, 1)});
-  if (!m.empty()) checks.blocks.push_back(KeyValueList{"One-run standard deviations", m});
+    m.push_back({L("gyro azimuth on the line, one run", "测线陀螺方位角一测回中误差"), f.sig(*r.line_one_run_sigma_rad, 1)});
+  if (!m.empty()) checks.blocks.push_back(KeyValueList{L("One-run standard deviations", "一测回中误差"), m});
   return checks;
 }
 
@@ -786,11 +791,12 @@ Document gyro_orientations_document(const gyro::OrientationsResult& r, const std
     s.blocks.push_back(Notes{L("Failed checks", "不合格检核"), items, true});
   }
   s.blocks.push_back(Signatures{{{L("computed by", "计算者"), first.input.record.computed_by},
-                                 {L("checked by", "检查者"), first.input.record.checked_by}}});
+                                 {L("checked by", "检查者"), first.input.record.checked_by}},
+                                {L("name", "姓名"), L("signature", "签名"), L("date", "日期")}});
   doc.sections.push_back(s);
 
   Section checks{"checks", L("Tolerance checks", "限差检核"), {}, 2};
-  checks.blocks.push_back(check_list(r.checks));
+  checks.blocks.push_back(check_list(r.checks, L));
   doc.sections.push_back(checks);
   Section notes{"notes", L("Notes", "说明"), {}, 2};
   notes.blocks.push_back(Notes{"", r.notes, false});

@@ -169,16 +169,23 @@ struct Renderer {
     out += "<table class=\"checks\">";
     if (!c.title.empty()) out += "<caption>" + html_escape(c.title) + "</caption>";
     const bool sources = std::any_of(c.checks.begin(), c.checks.end(), [](const CheckRow& k) { return !k.source.empty(); });
-    out += std::string("<thead><tr><th>check</th><th>value</th><th>limit</th><th>result</th>") +
-           (sources ? "<th>source of the limit</th>" : "") + "</tr></thead><tbody>";
+    auto heading = [&](std::size_t i, const char* fallback) {
+      return html_escape(i < c.columns.size() ? c.columns[i] : std::string(fallback));
+    };
+    auto verdict = [&](std::size_t i, const char* fallback) {
+      return html_escape(i < c.verdicts.size() ? c.verdicts[i] : std::string(fallback));
+    };
+    out += "<thead><tr><th>" + heading(0, "check") + "</th><th>" + heading(1, "value") + "</th><th>" +
+           heading(2, "limit") + "</th><th>" + heading(3, "result") + "</th>" +
+           (sources ? "<th>" + heading(4, "source of the limit") + "</th>" : std::string()) + "</tr></thead><tbody>";
     for (const auto& k : c.checks) {
       out += fmt::format("<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"{}\">{}</td>",
                          html_escape(k.name), html_escape(k.value), html_escape(k.tolerance),
-                         k.pass ? "pass" : "fail", k.pass ? "PASS" : "FAIL");
+                         k.pass ? "pass" : "fail", k.pass ? verdict(0, "PASS") : verdict(1, "FAIL"));
       if (sources) out += "<td class=\"source\">" + html_escape(k.source) + "</td>";
       out += "</tr>";
     }
-    if (c.checks.empty()) out += "<tr><td colspan=\"4\">no check applies</td></tr>";
+    if (c.checks.empty()) out += "<tr><td colspan=\"4\">" + verdict(2, "no check applies") + "</td></tr>";
     out += "</tbody></table>\n";
   }
   void block(const Plot& p) {
@@ -200,8 +207,9 @@ struct Renderer {
     out += "</ul></div>\n";
   }
   void block(const Signatures& s) {
-    out += "<table class=\"signatures\"><thead><tr><th></th><th>name</th><th>signature</th><th>date</th></tr>"
-           "</thead><tbody>";
+    out += "<table class=\"signatures\"><thead><tr><th></th>";
+    for (const auto& c : s.columns) out += "<th>" + html_escape(c) + "</th>";
+    out += "</tr></thead><tbody>";
     for (const auto& p : s.people)
       out += "<tr><td>" + html_escape(p.key) + "</td><td>" + html_escape(p.value) +
              "</td><td class=\"blank\"></td><td class=\"blank\"></td></tr>";

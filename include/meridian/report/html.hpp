@@ -54,6 +54,10 @@ struct CheckRow {
 struct CheckList {
   std::string title;
   std::vector<CheckRow> checks;
+  /// Headings of the check, value, limit, result and source columns (the sheet's language).
+  std::vector<std::string> columns = {"check", "value", "limit", "result", "source of the limit"};
+  /// Words for a passed and a failed check, and the text when no check applies.
+  std::vector<std::string> verdicts = {"PASS", "FAIL", "no check applies"};
 };
 
 /// A Vega-Lite plot: the specification with its data inline.
@@ -85,6 +89,8 @@ struct Highlight {
 /// be empty), and blank space for signature and date.
 struct Signatures {
   std::vector<KeyValue> people;  ///< key: role, value: name
+  /// Headings of the name, signature and date columns (the sheet's language).
+  std::vector<std::string> columns = {"name", "signature", "date"};
 };
 
 using Block = std::variant<Paragraph, KeyValueList, Table, CheckList, Plot, Notes, Highlight, Signatures>;
