@@ -62,6 +62,22 @@ PointResult resolve_point(const PointInput& p, const geodesy::TransverseMercator
     e.add_context("", std::nullopt, field);
     throw;
   }
+  // A standard zone's point far beyond its half width is another zone's coordinates or the
+  // wrong zone number (helper trial, issue 36: 8 deg off was only seen in gyro - traverse).
+  // Zones overlap in practice; 0.5 deg beyond the edge is tolerated.
+  const auto& def = grid.definition();
+  if (def.system != geodesy::ZoneSystem::Custom) {
+    const double half_deg = def.system == geodesy::ZoneSystem::GaussKruger3 ? 1.5 : 3.0;
+    const double off_deg =
+        std::fabs(std::remainder(r.lon_rad - def.central_meridian_rad, 2.0 * units::kPi)) / units::kDegree;
+    if (off_deg > half_deg + 0.5)
+      warnings.push_back(fmt::format(
+          "{}: {:.2f} deg of longitude from the central meridian {:.1f} deg of zone {}, beyond the zone's "
+          "half width {:g} deg: the wrong zone, or coordinates of another zone? (convergence "
+          "{:.0f}\")",
+          field, off_deg, def.central_meridian_rad / units::kDegree, def.zone, half_deg,
+          r.grid.convergence_rad / units::kArcsecond));
+  }
   return r;
 }
 

@@ -173,6 +173,12 @@ OrientationsResult combine_orientations(const std::vector<CampaignResult>& in) {
       same_point(*c.target, *in.front().target, "target");
     } else {
       const std::string target = c.target ? c.target->name : std::string();
+      if (target.empty() != r.target.empty())
+        throw InputError(fmt::format("orientation {} {}: that it is the same line cannot be shown; give line.to in "
+                                     "every file",
+                                     target.empty() ? i + 1 : 1,
+                                     "names no target (line.to) while the other gives one"),
+                         {"", std::nullopt, field});
       if (!same_name_nfkc(target, r.target))
         throw InputError(fmt::format("orientation {} is of the line {}-{}, not {}-{}", i + 1, c.station.name, target,
                                      r.station, r.target),

@@ -107,6 +107,21 @@ gyro::ZeroPositionRun read_zero_run(const Node& n) {
   return r;
 }
 
+// A direction (circle reading or azimuth) as booked, in [0, full circle): a value beyond it is
+// refused, not wrapped, since 399 47 00 in a degrees book is a gon value or a slip, never an
+// azimuth (helper trial, issue 36: it was taken as 39 47 00). Negative values wrap.
+Angle read_circle_direction(const Node& n, AngleUnit unit) {
+  const Angle a = n.angle(unit);
+  const double full = 2.0 * units::kPi;
+  if (a.rad() > full * (1.0 + 1e-15)) {
+    const bool gon_like = unit != AngleUnit::Gon && a.rad() < 400.0 / 360.0 * full * (1.0 + 1e-15);
+    n.fail(fmt::format("a direction is less than a full circle ({}): \"{}\" is {:.6f} deg{}",
+                       unit == AngleUnit::Gon ? "400 gon" : "360 deg", n.string(), a.deg(),
+                       gon_like ? ": a gon value in a book whose angle_unit is not gon?" : ""));
+  }
+  return a.normalized_positive();
+}
+
 int read_direction(const Node& n) {
   const std::string s = n.string();
   if (s == "east" || s == "e" || s == "+" || s == "+1" || s == "1") return +1;
@@ -198,15 +213,15 @@ gyro::TargetRound read_target_round(const Node& r, AngleUnit unit) {
   if (w == "before") t.when = gyro::TargetRound::When::Before;
   else if (w == "after") t.when = gyro::TargetRound::When::After;
   else when.fail(fmt::format("expected before or after, got \"{}\"", w));
-  t.face_left_rad = r.require("left").angle(unit).normalized_positive().rad();
-  t.face_right_rad = r.require("right").angle(unit).normalized_positive().rad();
+  t.face_left_rad = read_circle_direction(r.require("left"), unit).rad();
+  t.face_right_rad = read_circle_direction(r.require("right"), unit).rad();
   return t;
 }
 
 // The circle reading to the target, and/or the rounds it is reduced from.
 void read_target(const Node& n, AngleUnit unit, gyro::DeterminationInput& d) {
   if (auto v = n.get("target_reading"))
-    d.target_reading_rad = Uncertain{v->angle(unit).normalized_positive().rad(),
+    d.target_reading_rad = Uncertain{read_circle_direction(*v, unit).rad(),
                                      sigma_or(n, "target_sigma_arcsec", 0.0) * units::kArcsecond};
   if (auto rounds = n.get("target_rounds")) {
     for (const Node& r : rounds->elements()) d.target_rounds.push_back(read_target_round(r, unit));
@@ -492,7 +507,7 @@ CampaignFile read_campaign_document(const Node& root) {
     else if (ks == "geodetic") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Geodetic;
     else if (ks == "grid") kl.azimuth.kind = gyro::KnownAzimuth::Kind::Grid;
     else kind.fail(fmt::format("unknown azimuth kind \"{}\" (expected astronomic, geodetic or grid)", ks));
-    kl.azimuth.value_rad = {az.require("value").angle(c.angle_unit).normalized_positive().rad(),
+    kl.azimuth.value_rad = {read_circle_direction(az.require("value"), c.angle_unit).rad(),
                             sigma_or(az, "sigma_arcsec", 0.0) * units::kArcsecond};
     if (auto b = k->get("before")) kl.before = read_determinations(*b, c.instrument, c.angle_unit);
     if (auto a = k->get("after")) kl.after = read_determinations(*a, c.instrument, c.angle_unit);

@@ -322,6 +322,17 @@ TEST(Orientations, TwoIndependentOrientationsOfOneLine) {
   CampaignResult near = b;
   near.station.lat_rad += 0.02 / 6371000.0;  // 2 cm: the same mark
   EXPECT_NO_THROW(combine_orientations({a, near}));
+  // A file that names no target (no line.to) beside one that does is refused, naming it.
+  ASSERT_TRUE(b.target);
+  CampaignResult no_target = b;
+  no_target.target.reset();
+  no_target.input.line.to.reset();
+  try {
+    combine_orientations({a, no_target});
+    ADD_FAILURE() << "an orientation without a target was taken for the same line";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("orientation 2 names no target (line.to)"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(combine_orientations({a}), InputError);
 }
 

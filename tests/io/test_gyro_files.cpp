@@ -760,3 +760,65 @@ TEST(DocumentTree, ErrorsNameTheSamePlaceEitherWay) {
   EXPECT_THROW((void)Node::load_tree_json(deep, "t.json"), meridian::ParseError);
   EXPECT_THROW((void)Node::load_text(std::string(300, '[') + std::string(300, ']'), "t.yaml"), meridian::ParseError);
 }
+
+TEST(GyroFiles, ADirectionBeyondAFullCircleIsRefusedNotWrapped) {
+  // Helper trial (issue 36): a known azimuth booked 399 47 00 in a degrees book read as 39 47 00.
+  using meridian::io::Node;
+  const std::string text = text_of(std::filesystem::path(MERIDIAN_SOURCE_DIR) / "examples" / "campaign.yaml");
+  const std::string az = "value: \"28 21 04.1081\"";
+  ASSERT_NE(text.find(az), std::string::npos);
+  std::string t = text;
+  t.replace(t.find(az), az.size(), "value: \"399 47 00\"");
+  std::string what;
+  try {
+    (void)meridian::io::read_campaign_document(Node::load_text(t, "book.yaml"));
+  } catch (const meridian::Error& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("known_line.azimuth.value"), std::string::npos) << what;
+  EXPECT_NE(what.find("less than a full circle (360 deg)"), std::string::npos) << what;
+  EXPECT_NE(what.find("a gon value in a book whose angle_unit is not gon?"), std::string::npos) << what;
+  // A circle reading of 360 00 00 is 0; one of 400 20 00 is refused (and is no gon value either).
+  for (const auto& [reading, refused] : {std::pair{"360 00 00", false}, std::pair{"400 20 00", true}}) {
+    t = text;
+    const std::string first = "target_reading: \"117 56 54.8129\"";
+    ASSERT_NE(t.find(first), std::string::npos);
+    t.replace(t.find(first), first.size(), std::string("target_reading: \"") + reading + "\"");
+    what.clear();
+    try {
+      const auto c = meridian::io::read_campaign_document(Node::load_text(t, "book.yaml")).campaign;
+      EXPECT_EQ(c.known_line->before[0].target_reading_rad->value, 0.0);
+    } catch (const meridian::Error& e) {
+      what = e.what();
+    }
+    EXPECT_EQ(!what.empty(), refused) << reading << ": " << what;
+    if (refused) {
+      EXPECT_NE(what.find("book.yaml:48"), std::string::npos) << what;
+      EXPECT_NE(what.find("target_reading"), std::string::npos) << what;
+      EXPECT_EQ(what.find("gon value"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(GyroFiles, APointFarOutsideItsZoneIsWarnedOf) {
+  // Helper trial (issue 36): coordinates of another zone were accepted, caught only by gyro - traverse.
+  using meridian::io::Node;
+  const std::string text = text_of(std::filesystem::path(MERIDIAN_SOURCE_DIR) / "examples" / "campaign.yaml");
+  auto warnings_of = [](const std::string& t) {
+    const auto r = meridian::gyro::process(meridian::io::read_campaign_document(Node::load_text(t, "b.yaml")).campaign);
+    std::string all;
+    for (const auto& w : r.warnings) all += w + "\n";
+    return all;
+  };
+  EXPECT_EQ(warnings_of(text).find("half width"), std::string::npos) << warnings_of(text);
+  // 300 km farther west: 3.4 deg from 114 E at 37.8 N, beyond GK3's 1.5 deg half width.
+  std::string t = text;
+  const std::string y = "y_m: 372430.12";
+  ASSERT_NE(t.find(y), std::string::npos);
+  t.replace(t.find(y), y.size(), "y_m: 72430.12");
+  const std::string w = warnings_of(t);
+  EXPECT_NE(w.find("known_line.from: 4."), std::string::npos) << w;
+  EXPECT_NE(w.find("from the central meridian 114.0 deg of zone 38, beyond the zone's half width 1.5 deg"),
+            std::string::npos)
+      << w;
+}
