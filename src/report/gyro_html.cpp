@@ -380,9 +380,15 @@ Section result_sheet_section(const gyro::CampaignInput& in, const gyro::Campaign
   if (r.line_grid_azimuth_from_coordinates_rad) {
     t.rows.push_back({L("azimuth of the coordinates (traverse)", "导线坐标方位角"),
                       f.dir(*r.line_grid_azimuth_from_coordinates_rad, 1), ""});
+    // Its limit beside it: the sheet is read on its own (helper trial, issue 36).
+    std::string limit;
+    for (const auto& k : r.checks)
+      if (k.field == "line.to" && k.name.find("azimuth of its coordinates") != std::string::npos)
+        limit = fmt::format("{} \u00b1{:.1f}\" {}", L("limit", "限差"), k.tolerance,
+                            k.pass ? L("PASS", "合格") : L("FAIL", "不合格"));
     t.rows.push_back({L("gyro minus traverse azimuth", "陀螺方位角与导线方位角之差"),
                       f.sec(wrap_signed_rad(c.grid_azimuth_rad.value - *r.line_grid_azimuth_from_coordinates_rad), 1),
-                      ""});
+                      limit});
   }
   t.rows.push_back({L("geodetic azimuth alpha", "大地方位角 α"), f.dir(c.geodetic_azimuth_rad.value, 1),
                     f.sig(c.geodetic_azimuth_rad.sigma, 1)});

@@ -149,6 +149,11 @@ TEST(Html, ResultSheetHasGyroMinusTraverseAndFiveTransitsShowTheirDt) {
   EXPECT_NE(sheet.find("陀螺方位角与导线方位角之差 gyro minus traverse azimuth"), std::string::npos);
   EXPECT_NE(sheet.find("坐标方位角 Grid azimuth"), std::string::npos);
   EXPECT_NE(sheet.find("已知边 Known line"), std::string::npos);
+  // Its limit and verdict beside it, and the check table's headings in the sheet's language.
+  EXPECT_NE(sheet.find("限差 limit \u00b140.0&quot; 合格 PASS"), std::string::npos);
+  EXPECT_NE(html.find("<th>检核项目 check</th><th>实测值 value</th><th>限差 limit</th><th>结论 result</th>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<th>姓名 name</th><th>签名 signature</th><th>日期 date</th>"), std::string::npos);
   const double dt = (-2 * t[0] + 3 * t[1] - 2 * t[2] + 3 * t[3] - 2 * t[4]) / 3.0;
   EXPECT_NE(html.find(fmt::format("- 2 t5)/3 = {:.2f} s", dt)), std::string::npos) << dt;
 }
