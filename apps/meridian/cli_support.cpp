@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -48,10 +50,34 @@ void require_html_reports_for(const std::string& report_path) {
     throw Error(report::html_reports_unavailable_message(), {"", std::nullopt, "--report"});
 }
 
+void write_standard_output(std::string_view text, bool flush) {
+  errno = 0;
+  const std::size_t n = std::fwrite(text.data(), 1, text.size(), stdout);
+  if (n != text.size() || (flush && std::fflush(stdout) != 0) || std::ferror(stdout)) {
+    const int err = errno;
+    throw IoError(fmt::format("cannot write: {} ({} of {} bytes of this block written)",
+                              err ? std::strerror(err) : "write failed", n, text.size()),
+                  {"", std::nullopt, "standard output"});
+  }
+}
+
+bool close_standard_output() {
+  errno = 0;
+  std::cout.flush();
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
+  const int err = errno;
+  const bool close_failed = std::fclose(stdout) != 0;
+  if (failed || close_failed) {
+    std::fprintf(stderr, "meridian: I/O error: cannot write to standard output: %s\n",
+                 err ? std::strerror(err) : close_failed ? std::strerror(errno) : "the write failed (a full disk or a closed descriptor?)");
+    return false;
+  }
+  return true;
+}
+
 void emit(const std::string& path, const std::string& text) {
   if (path.empty() || path == "-") {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fflush(stdout);
+    write_standard_output(text);
     return;
   }
   write_file_atomically(path, text);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "meridian/core/progress.hpp"
@@ -28,6 +29,17 @@ int guarded(const std::function<int()>& body);
 
 /// Write `text` to `path` atomically, or to stdout when path is empty or "-".
 void emit(const std::string& path, const std::string& text);
+
+/// Write `text` to standard output and flush it; throws IoError ("cannot write to standard
+/// output: No space left on device") when the write or the flush fails, so that a full disk
+/// behind `> out.csv`, /dev/full or a closed descriptor exits 4, never 0 with a cut file.
+/// A closed pipe ends the process by SIGPIPE first, as for any Unix filter. `flush` false:
+/// buffered (a streamed CSV row by row); the error then shows at a later write or flush.
+void write_standard_output(std::string_view text, bool flush = true);
+
+/// Flush and close standard output at the end of a run (std::cout and C stdio share it);
+/// returns false, with the message on stderr, when that fails: the caller exits kIoError.
+bool close_standard_output();
 
 /// One output of emit_all: `text` to `path` ("-": standard output; empty: not written).
 struct Output {

@@ -38,7 +38,7 @@ class StreamedOutput {
   io::TextSink sink() {
     return [this](std::string_view text) {
       if (path_.empty() || path_ == "-") {
-        std::fwrite(text.data(), 1, text.size(), stdout);
+        write_standard_output(text, false);
         return;
       }
       if (!file_) file_.emplace(path_);
@@ -47,7 +47,7 @@ class StreamedOutput {
   }
   void commit() {
     if (file_) file_->commit();
-    else std::fflush(stdout);
+    else write_standard_output({});
   }
 
  private:
@@ -74,6 +74,8 @@ struct PointsArgs {
 
 int run_points(const PointsArgs& a) {
   require_html_reports_for(a.report);
+  const std::string& in = a.request.input == "-" ? std::string() : a.request.input;
+  check_output_paths({{a.output, "-o", "output"}, {a.report, "--report", "report"}}, {in, a.request.model.model});
   StreamedOutput csv(a.output);
   TerminalProgress progress(a.quiet);
   const gravity::PointsResult r = io::run_gravity_points(a.request, csv.sink(), print_model(a.quiet), &progress);

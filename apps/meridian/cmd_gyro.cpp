@@ -34,6 +34,7 @@ struct ReduceArgs {
 
 int run_reduce(const ReduceArgs& a) {
   require_html_reports_for(a.report);
+  check_output_paths({{a.output, "-o", "output"}, {a.report, "--report", "report"}}, {a.file});
   TerminalProgress progress(a.quiet);
   const gyro::ReduceResult r = io::run_reduce_file(a.file, &progress).result;
   progress.finish();
@@ -51,6 +52,7 @@ struct StochasticArgs {
 
 int run_stochastic(const StochasticArgs& a) {
   require_html_reports_for(a.report);
+  check_output_paths({{a.output, "-o", "output"}, {a.report, "--report", "report"}}, {a.file});
   TerminalProgress progress(a.quiet);
   const gyro::StochasticBookResult r = io::run_stochastic_file(a.file, &progress);
   progress.finish();
@@ -88,6 +90,7 @@ void print_failed_checks(const std::vector<gyro::Check>& checks,
 
 int run_campaign(const CampaignArgs& a) {
   require_html_reports_for(a.report);
+  check_output_paths({{a.output, "-o", "output"}, {a.report, "--report", "report"}}, {a.file});
   TerminalProgress progress(a.quiet);
   const io::CampaignJob job = io::run_campaign_file(a.file, nullptr, &progress);
   const gyro::CampaignResult& r = job.result;
@@ -124,6 +127,7 @@ struct OrientationsArgs {
 
 int run_orientations(const OrientationsArgs& a) {
   require_html_reports_for(a.report);
+  check_output_paths({{a.output, "-o", "output"}, {a.report, "--report", "report"}}, a.files);
   TerminalProgress progress(a.quiet);
   std::vector<std::filesystem::path> paths(a.files.begin(), a.files.end());
   const io::OrientationsJob job = io::run_orientation_files(paths, &progress);

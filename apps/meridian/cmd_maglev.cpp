@@ -153,6 +153,10 @@ struct ReduceArgs {
 
 int run_reduce(const ReduceArgs& a) {
   require_html_reports_for(a.report);
+  std::vector<std::string> inputs = a.files;
+  inputs.push_back(a.config);
+  inputs.push_back(a.calibration);
+  check_output_paths({{a.output, "-o", "output"}, {a.report, "--report", "report"}}, inputs);
   TerminalProgress progress(a.quiet);
   const maglev::ReduceResult r = io::run_maglev_reduce_files(a.files, a.setup(), &progress);
   progress.finish();
@@ -171,6 +175,7 @@ struct DenoiseCmdArgs {
 };
 
 int run_denoise(const DenoiseCmdArgs& a) {
+  check_output_paths({{a.output, "-o", "output"}}, {a.file});
   maglev::DenoiseOptions options = a.d.options();
   // Level 0: the default, lowered to what a short series allows (as reduce does); an explicit
   // --level is taken as asked and refused when too deep.
@@ -315,6 +320,7 @@ struct CalibrateArgs {
 
 int run_calibrate(const CalibrateArgs& a) {
   require_html_reports_for(a.report);
+  check_output_paths({{a.output, "-o", "output"}, {a.report, "--report", "report"}}, {a.file});
   const maglev::CalibrationResult r = io::run_maglev_calibrate_file(
       a.file, angle_option(a.latitude, "--latitude"), a.alpha, a.nominal_scale);
   const std::string out = a.json ? report::json_text(report::maglev_calibration_to_json(r))

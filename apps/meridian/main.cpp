@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
-    return app.exit(e);
+    const int rc = app.exit(e);  // --help, --version
+    return meridian::cli::close_standard_output() ? rc : meridian::cli::kIoError;
   } catch (const CLI::ParseError& e) {
     if (const auto u = first_unknown(app, argc, argv))
       explain(*u);
@@ -138,5 +139,8 @@ int main(int argc, char** argv) {
       app.exit(e);
     return meridian::cli::kUsage;
   }
+  // Whatever a command wrote to standard output (std::cout or stdio) must have reached it.
+  // (A command that failed has said why; its unwritten output need not be named twice.)
+  if (exit_code == meridian::cli::kOk && !meridian::cli::close_standard_output()) return meridian::cli::kIoError;
   return exit_code;
 }

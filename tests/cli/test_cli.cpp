@@ -565,3 +565,54 @@ TEST_F(Cli, DirectoryAndClampMistakesAreNamed) {
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.err.find("--clamp"), std::string::npos) << bad.err;
 }
+
+// Issue 35: a write error on standard output (a full disk behind `>`, /dev/full, a closed
+// descriptor) exits 4 naming standard output; it exited 0 with the output lost or cut.
+TEST_F(Cli, AFullOrClosedStandardOutputExitsFour) {
+  const std::string ex = MERIDIAN_EXAMPLES_DIR;
+  ASSERT_EQ(run("gravity synth-model --degree 6 --seed 1 --out m").code, 0);
+  write("pts.csv", "lat,lon,h\n10,20,0\n-45,3,100\n");
+  ASSERT_EQ(run("gyro simulate --mode campaign --seed 3 -o o3.yaml").code, 0);
+  ASSERT_EQ(run("gyro simulate --mode campaign --seed 4 -o o4.yaml").code, 0);
+  for (const std::string& args : std::vector<std::string>{"gyro template", "gyro simulate --mode campaign", "gyro campaign " + ex + "/campaign.yaml -q",
+        "gyro campaign " + ex + "/campaign.yaml -q --json", "gyro orientations o3.yaml o4.yaml -q",
+        "gravity point --model m.egm 10 20", "gravity points --model m.egm --input pts.csv",
+        "nav process " + ex + "/nav-scenario-c/nav.yaml", "dov simulate --hours 0.01 --out -", "--version",
+        "gyro campaign --help"}) {
+    for (const char* sink : {"> /dev/full", ">&-"}) {
+      const CmdResult r = shell(std::string(MERIDIAN_EXE) + " " + args + " " + sink);
+      EXPECT_EQ(r.code, 4) << args << " " << sink << ": " << r.err;
+      EXPECT_NE(r.err.find("standard output"), std::string::npos) << args << " " << sink << ": " << r.err;
+      EXPECT_EQ(r.err.find("internal error"), std::string::npos) << args << ": " << r.err;
+    }
+    // The same command to a working standard output: 0.
+    EXPECT_EQ(shell(std::string(MERIDIAN_EXE) + " " + args + " > /dev/null").code, 0) << args;
+  }
+}
+
+// Issue 35: -o or --report naming the input was written over it (gyro reduce, gravity points,
+// maglev denoise); now refused before any work, the input untouched.
+TEST_F(Cli, AnOutputNamingAnInputIsRefused) {
+  const std::string ex = MERIDIAN_EXAMPLES_DIR;
+  ASSERT_EQ(run("gravity synth-model --degree 6 --seed 1 --out m").code, 0);
+  write("p.csv", "lat,lon,h\n10,20,0\n");
+  write("b.yaml", slurp(ex + "/tracking.yaml"));
+  write("c.yaml", slurp(ex + "/campaign.yaml"));
+  write("d.csv", slurp(ex + "/maglev-disturbed.csv"));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"gyro reduce b.yaml -o ./b.yaml", "b.yaml"},
+      {"gyro reduce b.yaml --report b.yaml", "b.yaml"},
+      {"gyro campaign c.yaml -q -o c.yaml", "c.yaml"},
+      {"gyro stochastic b.yaml -o b.yaml", "b.yaml"},
+      {"gyro orientations c.yaml c.yaml -o c.yaml", "c.yaml"},
+      {"gravity points --model m.egm --input p.csv -o p.csv", "p.csv"},
+      {"gravity points --model m.egm --input p.csv -o m.egm", "m.egm"},
+      {"maglev denoise d.csv -o d.csv", "d.csv"}};
+  for (const auto& [args, file] : cases) {
+    const std::string before = slurp(dir_ / file);
+    const CmdResult r = run(args);
+    EXPECT_EQ(r.code, 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("would overwrite the input " + file), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(slurp(dir_ / file), before) << args;
+  }
+}
