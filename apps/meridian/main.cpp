@@ -2,6 +2,8 @@
 // library and formats results; see docs/cli.md.
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cctype>
 #include <iostream>
 #include <optional>
@@ -142,5 +144,12 @@ int main(int argc, char** argv) {
   // Whatever a command wrote to standard output (std::cout or stdio) must have reached it.
   // (A command that failed has said why; its unwritten output need not be named twice.)
   if (exit_code == meridian::cli::kOk && !meridian::cli::close_standard_output()) return meridian::cli::kIoError;
+  if (exit_code != meridian::cli::kOk) {
+    // A failed run has cleaned up (its temporary files went with the stack) and said why; it
+    // leaves without the libraries' exit handlers: libhdf5's closes files whose writes failed
+    // (a disk that filled during a NetCDF write) and crashed doing so (issue 35).
+    std::fflush(nullptr);
+    std::_Exit(exit_code);
+  }
   return exit_code;
 }

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -49,6 +50,19 @@ class NetCdfGridWriter final : public GridFileWriter {
       : path_(std::move(path)), spec_(spec) {
     namespace fs = std::filesystem;
     const fs::path dir = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
+    // Room for the whole file first: libhdf5 cannot close a file whose writes failed and
+    // crashed at exit on a full disk (issue 35). The data are doubles, chunked, uncompressed.
+    struct statvfs fsinfo {};
+    if (::statvfs(dir.c_str(), &fsinfo) == 0) {
+      const double need = static_cast<double>(spec.rows()) * static_cast<double>(spec.columns()) *
+                              static_cast<double>(spec.quantities.size()) * 8.0 +
+                          static_cast<double>(spec.rows() + spec.columns()) * 8.0 + 65536.0;
+      const double free_bytes = static_cast<double>(fsinfo.f_bavail) * static_cast<double>(fsinfo.f_frsize);
+      if (free_bytes < need)
+        throw IoError(fmt::format("the NetCDF grid needs about {:.1f} MB and {} has {:.1f} MB free", need / 1e6,
+                                  dir.string(), free_bytes / 1e6),
+                      {path_.string(), std::nullopt, {}});
+    }
     tmp_ = (dir / ("." + path_.filename().string() + ".tmp.XXXXXX")).string();
     const int fd = ::mkstemp(tmp_.data());
     if (fd < 0)
@@ -56,13 +70,21 @@ class NetCdfGridWriter final : public GridFileWriter {
                     {path_.string(), std::nullopt, {}});
     ::close(fd);
     created_ = true;
-    check(nc_create(tmp_.c_str(), NC_CLOBBER | NC_NETCDF4 | NC_CLASSIC_MODEL, &ncid_), "cannot create");
-    open_ = true;
-    define(meta);
+    // A constructor that throws runs no destructor: clean up here (a failed create or define
+    // left the temporary file behind; issue 35, the full-disk shim of the CLI tests).
+    try {
+      check(nc_create(tmp_.c_str(), NC_CLOBBER | NC_NETCDF4 | NC_CLASSIC_MODEL, &ncid_), "cannot create");
+      open_ = true;
+      define(meta);
+    } catch (...) {
+      if (open_) nc_abort(ncid_);
+      ::unlink(tmp_.c_str());
+      throw;
+    }
   }
 
   ~NetCdfGridWriter() override {
-    if (open_) nc_close(ncid_);
+    if (open_) nc_abort(ncid_);
     if (created_) ::unlink(tmp_.c_str());
   }
 

@@ -616,3 +616,41 @@ TEST_F(Cli, AnOutputNamingAnInputIsRefused) {
     EXPECT_EQ(slurp(dir_ / file), before) << args;
   }
 }
+
+// Issue 35: a disk that fills during the write (an LD_PRELOAD shim fails every write under
+// full/ with ENOSPC; the free-space checks still pass). Every command exits 4 naming the file
+// and leaves nothing in full/ — no output, no temporary file; NetCDF crashed in libhdf5's exit
+// handler (exit 139) before.
+TEST_F(Cli, AFullDiskDuringTheWriteExitsFourAndLeavesNothing) {
+  const std::string ex = MERIDIAN_EXAMPLES_DIR;
+  ASSERT_EQ(run("gravity synth-model --degree 6 --seed 1 --out m").code, 0);
+  write("p.csv", "lat,lon,h\n10,20,0\n-45,3,100\n");
+  fs::create_directories(dir_ / "full");
+  const std::vector<std::string> cases = {
+      "gravity grid --model m.egm -R g -I 10 -o full/g.nc -q",
+      "gravity grid --model m.egm -R g -I 10 --quantities geoid -o full/g.gtx -q",
+      "gravity grid --model m.egm -R g -I 10 -o full/g.csv -q",
+      "gravity points --model m.egm --input p.csv -o full/p.csv -q",
+      "gyro campaign " + ex + "/campaign.yaml -q -o full/c.txt",
+      "gyro template -o full/t.yaml",
+      "nav process " + ex + "/nav-scenario-c/nav.yaml -o full/track.csv",
+      "dov simulate --hours 0.01 --out full/line.csv"};
+  const std::string preload = std::string("LD_PRELOAD=") + MERIDIAN_WRITE_FAULT +
+                              " ASAN_OPTIONS=verify_asan_link_order=0:detect_leaks=0 MERIDIAN_FAULT_PATH=/full/ ";
+  for (const std::string& args : cases) {
+    const CmdResult r = shell(preload + MERIDIAN_EXE + " " + args);
+    EXPECT_EQ(r.code, 4) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("full/"), std::string::npos) << args << ": " << r.err;
+    // libhdf5 reports its own words ("NetCDF: HDF error", "Permission denied" for a failed create).
+    if (args.find(".nc") == std::string::npos) {
+      EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << args << ": " << r.err;
+    }
+    for (const auto& left : fs::directory_iterator(dir_ / "full")) ADD_FAILURE() << args << " left " << left.path();
+    fs::remove_all(dir_ / "full");
+    fs::create_directories(dir_ / "full");
+    // The shim only fails writes under full/: the same command elsewhere succeeds.
+  }
+  std::string ok = cases[0];
+  ok.replace(ok.find("full/"), 5, "");
+  EXPECT_EQ(shell(preload + MERIDIAN_EXE + " " + ok).code, 0) << ok;
+}
