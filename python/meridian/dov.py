@@ -92,7 +92,8 @@ def process(source, **options) -> _Result:
     correlation_length_m, stationary_speed_m_s, sigma_obs_arcsec or
     sigma_obs_east_arcsec/sigma_obs_north_arcsec, initial={…}, discretisation,
     extraction, max_step_s, gate_alpha, statistics_start_s, transport_rate,
-    transport_rate_baseline_s).
+    transport_rate_baseline_s, speed_sigma_m_s, stationary_sigma_factor,
+    stationary_min_duration_s, whiteness_alpha).
     Errors: the file, line and column for files; for arrays the array and element
     ("lat_deg[3]"), or "<options>" and the key."""
     if isinstance(source, (str, _os.PathLike)):

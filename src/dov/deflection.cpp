@@ -1,6 +1,7 @@
 #include "meridian/dov/deflection.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -101,6 +102,79 @@ DeflectionEstimate deflection_of(const filter::Estimate<State::size>& e, const S
   d.sigma_eps_u_rad_s = e.sigma(State::eps_u);
   return d;
 }
+
+/// The stop/start class of the samples (deflection.hpp, Stops): causal, with hysteresis.
+class StopDetector {
+ public:
+  StopDetector(double threshold_m_s, double min_duration_s)
+      : threshold_(threshold_m_s), min_duration_(min_duration_s) {}
+  /// The class after the sample at time_s with speed_m_s: true when stationary.
+  bool add(double time_s, double speed_m_s) {
+    const bool below = speed_m_s < threshold_ || speed_m_s == 0.0;
+    if (!started_) {
+      started_ = true;
+      stationary_ = below;
+    } else if (below == stationary_) {
+      pending_ = false;
+    } else {
+      if (!pending_) {
+        pending_ = true;
+        pending_since_ = time_s;
+      }
+      if (time_s - pending_since_ >= min_duration_) {
+        stationary_ = below;
+        pending_ = false;
+      }
+    }
+    return stationary_;
+  }
+
+ private:
+  double threshold_, min_duration_;
+  bool started_ = false, stationary_ = false, pending_ = false;
+  double pending_since_ = 0.0;
+};
+
+/// P₀'s reference speed (deflection.hpp): the median speed ≥ V_s over the first `window` s of
+/// motion, motion beginning with the first run at ≥ V_s of at least `min_duration` s.
+class ReferenceSpeed {
+ public:
+  ReferenceSpeed(double threshold_m_s, double min_duration_s, double window_s)
+      : threshold_(threshold_m_s), min_duration_(min_duration_s), window_(window_s) {}
+  /// The next sample; true once the speed is decided (later samples are then ignored).
+  bool add(double time_s, double speed_m_s) {
+    if (decided_) return true;
+    const bool above = !(speed_m_s < threshold_) && speed_m_s > 0.0;
+    if (!confirmed_) {
+      if (!above) {
+        run_.clear();
+        return false;
+      }
+      if (run_.empty()) run_start_ = time_s;
+      run_.push_back(speed_m_s);
+      if (time_s - run_start_ >= min_duration_) confirmed_ = true;
+      return decided_ = confirmed_ && time_s - run_start_ >= window_;
+    }
+    if (time_s - run_start_ > window_) return decided_ = true;
+    if (above) run_.push_back(speed_m_s);
+    return decided_ = time_s - run_start_ >= window_;
+  }
+  /// The speed (m/s) once decided or at the end of the line (a run that reaches it counts);
+  /// 0 when the line never moves.
+  double value() {
+    if (run_.empty()) return 0.0;
+    const auto mid = run_.begin() + static_cast<std::ptrdiff_t>(run_.size() / 2);
+    std::nth_element(run_.begin(), mid, run_.end());
+    if (run_.size() % 2 == 1) return *mid;
+    return 0.5 * (*mid + *std::max_element(run_.begin(), mid));
+  }
+
+ private:
+  double threshold_, min_duration_, window_;
+  bool confirmed_ = false, decided_ = false;
+  double run_start_ = 0.0;
+  std::vector<double> run_;
+};
 
 /// The discretised model of the current step and the values it was made for.
 struct ModelCache {
@@ -230,7 +304,13 @@ void unpack(const double* p, EpochResult& e, StateVector* state) {
 constexpr filter::TransitionKernel<State::size> kTransitionKernel =
     filter::structured_transition_kernel<State::size, transition_structure()>();
 
-/// The forward pass of process_stream: one sample at a time.
+/// The model options with the workflow's stationary threshold.
+ModelOptions model_with_threshold(const Options& o) {
+  ModelOptions m = o.model;
+  m.stationary_speed_m_s = stationary_threshold_m_s(o);
+  return m;
+}
+
 /// The forward pass of process_stream: one sample at a time, steps 1–5 of deflection.hpp.
 class Forward {
  public:
@@ -241,18 +321,22 @@ class Forward {
       : o_(o),
         H_(observation_matrix()),
         R_(observation_covariance(o.sigma_obs_east_rad, o.sigma_obs_north_rad)),
-        kf_(initial_estimate(o.initial, o.model, reference_speed),
+        kf_(initial_estimate(o.initial, model_with_threshold(o), reference_speed),
             o.gate_alpha > 0.0 ? filter::InnovationGate(o.gate_alpha) : filter::InnovationGate()),
         storage_(State::size, o.storage),
         layout_(layout),
         epochs_(epochs),
-        out_(out) {
+        out_(out),
+        model_(model_with_threshold(o)),
+        stops_(model_.stationary_speed_m_s, o.stationary_min_duration_s),
+        whiteness_(Obs::size, o.whiteness_max_lag) {
     kf_.set_transition_kernel(&kTransitionKernel);
     if (!o.initial.x_rad_s)
       out.notes.push_back(
           reference_speed > 0.0
-              ? fmt::format("initial σ of x_E, x_N: σ_model/ω₀ at the first moving speed {} m/s",
-                            reference_speed)
+              ? fmt::format("initial σ of x_E, x_N: σ_model/ω₀ at the reference speed {:.4g} m/s "
+                            "(the median speed of the first {} s of motion)",
+                            reference_speed, o.reference_speed_window_s)
               : std::string("the whole line is stationary: x_E, x_N are decoupled"));
     if (!o.initial.delta_rad)
       out.notes.push_back("initial σ of δη, δξ: σ_model (the model's stationary value)");
@@ -267,6 +351,7 @@ class Forward {
     const std::size_t k = n_;
     if (truth) check_truth(*truth, k);
     check_sample(s, k, o_);
+    stationary_ = stops_.add(s.time_s, s.speed_m_s);
     if (k > 0)
       predict(s, k);
     else
@@ -291,6 +376,8 @@ class Forward {
   bool have_states() const { return have_states_; }
   std::size_t stationary_steps() const { return stationary_steps_; }
   filter::SmootherStorage<State::size>& storage() { return storage_; }
+  const filter::LjungBox& whiteness() const { return whiteness_; }
+  double stationary_threshold() const { return model_.stationary_speed_m_s; }
 
   Accumulator nis_, sf_eta_, sf_xi_, m_eta_, m_xi_, f_eta_, f_xi_, nees_f_;
 
@@ -330,8 +417,11 @@ class Forward {
                              "= {} s",
                              dt, o_.max_step_s));
     const double lat = 0.5 * (s.lat_rad + prev_lat_);
-    const double speed = 0.5 * (s.speed_m_s + prev_speed_);
-    const bool stationary = is_stationary(speed, o_.model);
+    // The step's class is the detector's after sample k (deflection.hpp, Stops): stationary at
+    // V = 0, moving at no less than the threshold.
+    const bool stationary = stationary_;
+    const double speed =
+        stationary ? 0.0 : std::max(0.5 * (s.speed_m_s + prev_speed_), model_.stationary_speed_m_s);
     if (stationary) ++stationary_steps_;
     if (o_.transport_rate && s.time_s - baseline_time_ >= o_.transport_rate_baseline_s)
       close_baseline(s);
@@ -339,7 +429,7 @@ class Forward {
         std::abs(lat - cache_.lat_rad) > o_.rediscretise_latitude_rad ||
         std::abs(speed - cache_.speed_m_s) > o_.rediscretise_speed_m_s ||
         stationary != cache_.stationary || transport_rate_ != cache_.transport_rate_rad_s) {
-      cache_.step = discrete_model(lat, speed, dt, o_.model, o_.discretisation, transport_rate_);
+      cache_.step = discrete_model(lat, speed, dt, model_, o_.discretisation, transport_rate_);
       cache_.valid = true;
       cache_.dt_s = dt;
       cache_.lat_rad = lat;
@@ -412,6 +502,13 @@ class Forward {
     e.sigma_innovation_north_rad = std::sqrt(in.S(Obs::north, Obs::north));
     e.nis = in.nis;
     e.accepted = in.accepted;
+    // S^{-1/2}·ν by the Cholesky factor of the 2×2 S: two independent N(0, 1) for a correct
+    // model (the whiteness test's series)
+    const double l00 = std::sqrt(in.S(0, 0));
+    const double l10 = in.S(1, 0) / l00;
+    const double l11 = std::sqrt(std::max(in.S(1, 1) - l10 * l10, 0.0));
+    whitened_[0] = in.nu(0) / l00;
+    whitened_[1] = l11 > 0.0 ? (in.nu(1) - l10 * whitened_[0]) / l11 : 0.0;
     if (!in.accepted) ++out_.summary.rejected;
     if (have_states_)
       e.nees_filtered = filter::nees<State::size>(*truth->state, kf_.estimate(),
@@ -423,7 +520,10 @@ class Forward {
   void accumulate(const Sample& s, const Truth* truth, const EpochResult& e) {
     if (!(s.time_s - t0_ >= o_.statistics_start_s)) return;
     ++out_.summary.statistics_epochs;
-    if (e.accepted) nis_.add(e.nis);
+    if (e.accepted) {
+      nis_.add(e.nis);
+      whiteness_.add(whitened_.data());
+    }
     sf_eta_.add(e.filtered.sigma_eta_rad * e.filtered.sigma_eta_rad);
     sf_xi_.add(e.filtered.sigma_xi_rad * e.filtered.sigma_xi_rad);
     if (truth) {
@@ -444,6 +544,11 @@ class Forward {
   EpochLayout layout_;
   filter::detail::RecordStore* epochs_;
   Result& out_;
+  ModelOptions model_;  // o_.model with the threshold of stationary_threshold_m_s
+  StopDetector stops_;
+  bool stationary_ = false;  // the class after the current sample
+  filter::LjungBox whiteness_;
+  std::array<double, Obs::size> whitened_{};
   ModelCache cache_;
   std::size_t n_ = 0;
   std::size_t stationary_steps_ = 0;
@@ -528,26 +633,30 @@ class LineRun {
     return true;
   }
 
-  // Samples wait in pending_ until the first moving one gives the reference speed of the
-  // initial x-variance (a stationary start), then stream straight through.
+  // Samples wait in pending_ until the reference speed of the initial x-variance is decided
+  // (deflection.hpp: the median over the first reference_speed_window_s of motion), then
+  // stream straight through. Bad samples are left for the forward pass to name.
   void read_until_moving() {
-    const auto moving = [&](const Sample& s) {
-      return std::isfinite(s.speed_m_s) && s.speed_m_s >= 0.0 &&
-             !is_stationary(s.speed_m_s, o_.model);
-    };
-    for (;;) {
+    ReferenceSpeed ref(stationary_threshold_m_s(o_), o_.stationary_min_duration_s,
+                       o_.reference_speed_window_s);
+    bool decided = false;
+    while (!decided) {
       if (!next_chunk()) {
         exhausted_ = true;
-        return;
+        break;
       }
       pending_.insert(pending_.end(), chunk_.begin(), chunk_.end());
       pending_truth_.insert(pending_truth_.end(), chunk_truth_.begin(), chunk_truth_.end());
-      const auto first = std::find_if(chunk_.begin(), chunk_.end(), moving);
-      if (first != chunk_.end()) {
-        reference_speed_ = first->speed_m_s;
-        return;
+      for (const Sample& s : chunk_) {
+        if (!std::isfinite(s.time_s) || !std::isfinite(s.speed_m_s) || s.speed_m_s < 0.0) {
+          decided = true;  // the forward pass stops there with its error
+          break;
+        }
+        if ((decided = ref.add(s.time_s, s.speed_m_s))) break;
       }
     }
+    reference_speed_ = ref.value();
+    result_.summary.reference_speed_m_s = reference_speed_;
   }
 
   // Pass 1: every sample through the filter; the epochs' forward outputs to epochs_.
@@ -679,6 +788,18 @@ class LineRun {
           "transport_rate_baseline_s)",
           o_.transport_rate_baseline_s, fw.last_time() - fw.t0()));
     warn_about_the_gate();
+    sum.whiteness = fw.whiteness().result(o_.whiteness_alpha);
+    if (!sum.whiteness.pass)
+      result_.warnings.push_back(fmt::format(
+          "the normalised innovations are not white: Ljung–Box Q = {:.1f} > {:.1f} (χ²({:g}) at "
+          "alpha = {:g}, {} lags, p = {:.2g}): the observation noise is correlated in time (e.g. "
+          "a Gauss–Markov INS/GNSS attitude error) or the model misses a dynamic, and the σ "
+          "are then optimistic",
+          sum.whiteness.q, sum.whiteness.critical_value, sum.whiteness.dof, o_.whiteness_alpha,
+          sum.whiteness.lags, sum.whiteness.p_value));
+    sum.stationary_speed_m_s = fw.stationary_threshold();
+    sum.stationary_from_speed_sigma = o_.speed_sigma_m_s > 0.0;
+    sum.stationary_steps = fw.stationary_steps();
     sum.rms_sigma_filtered = {fw.sf_eta_.rms(), fw.sf_xi_.rms()};
     sum.rms_sigma_smoothed = {ss_eta_.rms(), ss_xi_.rms()};
     if (have_truth_) {
@@ -692,11 +813,13 @@ class LineRun {
     }
     if (fw.stationary_steps() > 0)
       result_.notes.push_back(fmt::format(
-          "{} of {} steps stationary (V < {} m/s): δη, δξ held constant, x_E, x_N frozen; "
+          "{} of {} steps stationary (V < {} m/s for at least {} s): δη, δξ held constant, "
+          "x_E, x_N frozen; "
           "standing still η is not observable (the direction (φ_N, φ_U, δη) += c·(1, tan L, 1) "
           "leaves every observation unchanged), so while the carrier stands its σ(η) stays near "
           "the model's and η̂ may be no better than η_G",
-          fw.stationary_steps(), n_ - 1, o_.model.stationary_speed_m_s));
+          fw.stationary_steps(), n_ - 1, fw.stationary_threshold(),
+          o_.stationary_min_duration_s));
   }
 
   // The mean NIS is over the accepted updates only, so a gate that rejects far more than its
@@ -785,6 +908,23 @@ void validate(const Options& o) {
                  "0 (no gate) or in (0, 1)", o.gate_alpha);
   require_option(std::isfinite(o.statistics_start_s) && o.statistics_start_s >= 0.0,
                  "statistics_start_s", "finite and ≥ 0", o.statistics_start_s);
+  require_option(std::isfinite(o.speed_sigma_m_s) && o.speed_sigma_m_s >= 0.0, "speed_sigma_m_s",
+                 "finite and ≥ 0", o.speed_sigma_m_s);
+  require_option(std::isfinite(o.stationary_sigma_factor) && o.stationary_sigma_factor > 0.0,
+                 "stationary_sigma_factor", "finite and > 0", o.stationary_sigma_factor);
+  require_option(std::isfinite(o.stationary_min_duration_s) && o.stationary_min_duration_s >= 0.0,
+                 "stationary_min_duration_s", "finite and ≥ 0", o.stationary_min_duration_s);
+  require_option(std::isfinite(o.reference_speed_window_s) && o.reference_speed_window_s > 0.0,
+                 "reference_speed_window_s", "finite and > 0", o.reference_speed_window_s);
+  require_option(o.whiteness_alpha > 0.0 && o.whiteness_alpha < 1.0, "whiteness_alpha",
+                 "in (0, 1)", o.whiteness_alpha);
+  require_option(o.whiteness_max_lag >= 1 && o.whiteness_max_lag <= 1000, "whiteness_max_lag",
+                 "in [1, 1000]", o.whiteness_max_lag);
+}
+
+double stationary_threshold_m_s(const Options& o) {
+  return o.speed_sigma_m_s > 0.0 ? o.stationary_sigma_factor * o.speed_sigma_m_s
+                                 : o.model.stationary_speed_m_s;
 }
 
 Result process_stream(SampleSource& source, const Options& options, const EpochOutputs& outputs,

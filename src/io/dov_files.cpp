@@ -287,8 +287,19 @@ void read_noise_keys(const Node& root, dov::Options& o) {
   if (auto n = root.get("zeta")) o.model.zeta = n->positive_number();
   if (auto n = root.get("sigma_model_arcsec")) o.model.sigma_model_rad = n->positive_number() * kAs;
   if (auto n = root.get("correlation_length_m")) o.model.correlation_length_m = n->positive_number();
-  if (auto n = root.get("stationary_speed_m_s"))
+  if (auto n = root.get("stationary_speed_m_s")) {
+    if (root.has("speed_sigma_m_s"))
+      n->fail("give stationary_speed_m_s or speed_sigma_m_s (the threshold is then "
+              "stationary_sigma_factor x speed_sigma_m_s), not both");
     o.model.stationary_speed_m_s = n->non_negative_number();
+  }
+  if (auto n = root.get("speed_sigma_m_s")) o.speed_sigma_m_s = n->positive_number();
+  if (auto n = root.get("stationary_sigma_factor")) {
+    if (!root.has("speed_sigma_m_s")) n->fail("stationary_sigma_factor needs speed_sigma_m_s");
+    o.stationary_sigma_factor = n->positive_number();
+  }
+  if (auto n = root.get("stationary_min_duration_s"))
+    o.stationary_min_duration_s = n->non_negative_number();
   if (auto n = root.get("sigma_obs_arcsec")) {
     if (root.has("sigma_obs_east_arcsec") || root.has("sigma_obs_north_arcsec"))
       n->fail("give sigma_obs_arcsec or sigma_obs_east_arcsec/sigma_obs_north_arcsec, not both");
@@ -343,6 +354,11 @@ void read_method_keys(const Node& root, dov::Options& o) {
     o.gate_alpha = a;
   }
   if (auto n = root.get("statistics_start_s")) o.statistics_start_s = n->non_negative_number();
+  if (auto n = root.get("whiteness_alpha")) {
+    const double a = n->positive_number();
+    if (!(a < 1.0)) n->fail("whiteness_alpha must be in (0, 1)");
+    o.whiteness_alpha = a;
+  }
 }
 
 // `gravity_model:` as in gyro campaign files: a file beside the configuration at `path`, a
@@ -367,7 +383,8 @@ DovConfig read_dov_config(const std::string& path) {
                    "stationary_speed_m_s", "sigma_obs_arcsec", "sigma_obs_east_arcsec",
                    "sigma_obs_north_arcsec", "initial", "discretisation", "extraction",
                    "max_step_s", "gate_alpha", "statistics_start_s", "gravity_model",
-                   "transport_rate", "transport_rate_baseline_s"});
+                   "transport_rate", "transport_rate_baseline_s", "speed_sigma_m_s",
+                   "stationary_sigma_factor", "stationary_min_duration_s", "whiteness_alpha"});
   DovConfig c;
   c.file = path;
   const std::filesystem::path line = root.require("line").string();

@@ -157,10 +157,20 @@ Section dov_summary_section(const dov::Summary& s) {
                            fmt::format("[{:.3f}, {:.3f}]", s.nis_interval.lower, s.nis_interval.upper),
                            s.nis_interval.contains(s.mean_nis),
                            "95 % interval of the mean of χ²(2) values"});
+  if (s.whiteness.lags > 0)
+    checks.checks.push_back(
+        {fmt::format("innovation whiteness (Ljung–Box, {} lags)", s.whiteness.lags),
+         fmt::format("Q = {:.1f}", s.whiteness.q),
+         fmt::format("≤ {:.1f}", s.whiteness.critical_value), s.whiteness.pass,
+         fmt::format("χ²({:g}) at α = {:g}, normalised innovations, both components",
+                     s.whiteness.dof, s.whiteness.alpha)});
   summary.blocks.push_back(checks);
   KeyValueList kv{"Figures", {}};
   kv.items.push_back({"gate rejections", std::to_string(s.rejected)});
   kv.items.push_back({"discretisations of the model", std::to_string(s.discretisations)});
+  kv.items.push_back({"stationary steps",
+                      fmt::format("{} (V < {:g} m/s)", s.stationary_steps, s.stationary_speed_m_s)});
+  kv.items.push_back({"P₀ reference speed", fmt::format("{:.4g} m/s", s.reference_speed_m_s)});
   if (s.rms_model) kv.items.push_back({"RMS error of the global model", pair_text(*s.rms_model)});
   if (s.rms_filtered) kv.items.push_back({"RMS error filtered", pair_text(*s.rms_filtered)});
   if (s.rms_smoothed) kv.items.push_back({"RMS error smoothed", pair_text(*s.rms_smoothed)});

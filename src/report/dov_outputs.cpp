@@ -22,6 +22,14 @@ const char* extraction_name(const dov::Options& o) {
   return o.extraction == dov::Extraction::Exact ? "exact" : "skew_symmetric";
 }
 
+// The Ljung–Box test; null when there were too few epochs to test.
+json whiteness_json(const filter::LjungBoxResult& w) {
+  if (w.lags == 0) return nullptr;
+  return {{"test", "ljung_box"}, {"q", w.q},           {"dof", w.dof},
+          {"lags", w.lags},      {"alpha", w.alpha},   {"critical_value", w.critical_value},
+          {"p_value", w.p_value}, {"pass", w.pass},    {"samples", w.samples}};
+}
+
 }  // namespace
 
 json dov_summary_to_json(const dov::Result& r) {
@@ -42,6 +50,13 @@ json dov_summary_to_json(const dov::Result& r) {
              o.transport_rate ? json{{"baseline_s", o.transport_rate_baseline_s},
                                      {"updates", s.transport_rate_updates}}
                               : json(nullptr)},
+            {"stationary",
+             {{"threshold_m_s", s.stationary_speed_m_s},
+              {"threshold_from", s.stationary_from_speed_sigma ? "speed_sigma_m_s" : "stationary_speed_m_s"},
+              {"min_duration_s", o.stationary_min_duration_s},
+              {"steps", s.stationary_steps},
+              {"reference_speed_m_s", s.reference_speed_m_s}}},
+            {"whiteness", whiteness_json(s.whiteness)},
             {"notes", r.notes},
             {"warnings", r.warnings}};
   if (s.rms_model)
@@ -85,6 +100,20 @@ std::string dov_summary_text(const dov::Result& r) {
       units::rad_to_arcsec(s.rms_sigma_smoothed.xi_rad));
   t += fmt::format("mean NIS {:.3f} (95 % interval [{:.3f}, {:.3f}]), {} rejected\n", s.mean_nis,
                    s.nis_interval.lower, s.nis_interval.upper, s.rejected);
+  if (s.whiteness.lags > 0)
+    t += fmt::format("innovation whiteness: Ljung–Box Q {:.1f}, critical {:.1f} (χ²({:g}), {} lags, "
+                     "alpha {:g}), p = {:.3g}: {}\n",
+                     s.whiteness.q, s.whiteness.critical_value, s.whiteness.dof, s.whiteness.lags,
+                     s.whiteness.alpha, s.whiteness.p_value, s.whiteness.pass ? "white" : "NOT white");
+  else
+    t += "innovation whiteness: not tested (fewer than 5 epochs)\n";
+  t += fmt::format("stationary below {:g} m/s ({}) held for {:g} s: {} of {} steps; P0 reference "
+                   "speed {:.4g} m/s\n",
+                   s.stationary_speed_m_s,
+                   s.stationary_from_speed_sigma ? "stationary_sigma_factor x speed_sigma_m_s"
+                                                 : "stationary_speed_m_s",
+                   o.stationary_min_duration_s, s.stationary_steps,
+                   s.epochs > 0 ? s.epochs - 1 : 0, s.reference_speed_m_s);
   t += fmt::format("eps_U = {:.5f} ± {:.5f} °/h (smoothed)\n", deg_h(s.eps_u_rad_s),
                    deg_h(s.sigma_eps_u_rad_s));
   for (const std::string& n : r.notes) t += "note: " + n + "\n";

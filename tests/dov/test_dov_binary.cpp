@@ -261,7 +261,8 @@ class OneByOne final : public dov::SampleSource {
 TEST(DovStreaming, EpochsInTimeOrderSpilledOrNotAndALongStationaryStart) {
   dov::Input in = small_line(600.0);
   // 5000 samples standing still before the line moves: more than one chunk of the workflow
-  // (4096) waits for the first moving speed, which sets the initial σ of x_E, x_N.
+  // (4096) wait for the reference speed (the first 300 s of motion), which sets the initial
+  // σ of x_E, x_N.
   dov::Input stop = in;
   stop.samples.clear();
   stop.truth.clear();
@@ -278,7 +279,7 @@ TEST(DovStreaming, EpochsInTimeOrderSpilledOrNotAndALongStationaryStart) {
   const dov::Result mem = dov::process(stop);
   bool named = false;
   for (const std::string& n : mem.notes)
-    named = named || n.find(fmt::format("first moving speed {} m/s", in.samples[0].speed_m_s)) !=
+    named = named || n.find(fmt::format("reference speed {:.4g} m/s", in.samples[0].speed_m_s)) !=
                          std::string::npos;
   EXPECT_TRUE(named);
   // one sample at a time, everything spilled to disk: the same epochs, in time order

@@ -187,7 +187,7 @@ TEST(DovModel, GaussMarkovBlockAgainstTheDampedOscillator) {
 
 TEST(DovModel, StationaryCase) {
   ModelOptions o;
-  for (double v : {0.0, 0.005}) {  // V = 0 and below stationary_speed_m_s (0.01 m/s)
+  for (double v : {0.0, 0.005}) {  // V = 0 and below stationary_speed_m_s (0.1 m/s)
     EXPECT_TRUE(is_stationary(v, o));
     EXPECT_EQ(omega0_rad_s(v, o), 0.0);
     const auto d = discrete_model(0.6, v, 10.0, o);

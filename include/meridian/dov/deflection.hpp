@@ -18,7 +18,8 @@
 ///     speed of the step; the model is re-discretised only when the step length changes by
 ///     more than step_tolerance (relative), the latitude by more than rediscretise_latitude_rad,
 ///     the speed by more than rediscretise_speed_m_s, or the carrier starts or stops
-///     (model.hpp: stationary case); otherwise the last Φ, Q_d are reused;
+///     (model.hpp: stationary case); otherwise the last Φ, Q_d are reused. Stationary or
+///     moving (stops, below): the class after sample k, with hysteresis;
 ///  4. update with y = [ΔΦ_E − ξ_G, ΔΦ_N + η_G]ᵀ, H and R of model.hpp (Joseph form,
 ///     filter/kalman_filter.hpp), optional χ² gate;
 ///  5. η̂ = η_G + δη̂, ξ̂ = ξ_G + δξ̂ with σ(η̂) = σ(δη̂), σ(ξ̂) = σ(δξ̂) (the model values carry
@@ -31,6 +32,34 @@
 /// white), the quadratic mean of the reported σ, and — when truth is given — the RMS errors of
 /// the model, filtered and smoothed deflections and the mean NEES (8 states) when the full true
 /// state is given.
+///
+/// Stops. GNSS speed over ground is noisy (a few cm/s at rest), so one sample's speed does not
+/// decide whether the carrier stands. The threshold V_s is stationary_threshold_m_s(options):
+/// ModelOptions::stationary_speed_m_s (default 0.1 m/s, model.hpp), or, when the line's speed
+/// σ is known (Options::speed_sigma_m_s > 0), stationary_sigma_factor·σ_v (4σ: a Rayleigh
+/// speed at rest exceeds it in 3·10⁻⁴ of samples). The class changes only when the speed has
+/// stayed on the other side of V_s for at least stationary_min_duration_s (5 s; 0: at once),
+/// from the first sample on that side to the current one; sample 0 sets the first class. A
+/// step classed stationary is predicted with the stationary model (V = 0); a step classed
+/// moving with the moving model at max(V, V_s) (the speed of a carrier that is slowing down
+/// before the stop is confirmed). A noise spike above V_s during a stop, or a dip below it in
+/// motion, therefore changes nothing; the cost is that a real start or stop is taken up to
+/// 5 s late, a few metres of travel against the 10 km correlation length.
+///
+/// Reference speed of P₀ (model.hpp, initial_estimate: σ(x) = σ_model/ω₀(V_ref)): the median
+/// speed of the samples with V ≥ V_s in the first reference_speed_window_s (300 s) of motion,
+/// where motion begins with the first run of samples at V ≥ V_s that lasts
+/// stationary_min_duration_s (or reaches the end of the line). So a line that starts at rest
+/// and accelerates takes its cruising speed, not the first sample that crossed V_s; a line
+/// without such a run is stationary (σ(x) = σ_model·1 s). Summary::reference_speed_m_s.
+///
+/// Whiteness. The normalised innovations e_k = L_k⁻¹·ν_k (S_k = L_k·L_kᵀ, Cholesky; two
+/// independent N(0, 1) series for a correct model) of the accepted statistics epochs are
+/// tested by Ljung–Box (filter/whiteness.hpp) with h = min(whiteness_max_lag, ⌊n/5⌋) lags
+/// (20 by default), Q summed over the two components, χ²(2h) at whiteness_alpha (0.05);
+/// a warning when it fails. A time-correlated attitude noise the model does not have (e.g. a
+/// Gauss–Markov INS/GNSS error with a correlation time of 10–60 s) fails it even when its
+/// variance, and so the mean NIS, fits. Summary::whiteness.
 ///
 /// Memory: process(const Input&) holds the Input and the per-epoch Result (≈ 200 bytes per
 /// epoch each); it runs the streaming form, process_stream (streaming.hpp), over them, which
@@ -56,6 +85,7 @@
 #include "meridian/dov/model.hpp"
 #include "meridian/filter/consistency.hpp"
 #include "meridian/filter/detail/record_store.hpp"
+#include "meridian/filter/whiteness.hpp"
 
 namespace meridian::dov {
 
@@ -111,7 +141,20 @@ struct Options {
   double gate_alpha = 0.0;  ///< χ² innovation gate at significance α in (0, 1); 0: no gate
   double statistics_start_s = 0.0;  ///< summary over t − t₀ ≥ this (s), ≥ 0
   filter::StorageOptions storage;   ///< where the smoother's records spill
+  /// σ of the line's GNSS speed over ground per horizontal component (m/s), ≥ 0; 0: not known.
+  /// When > 0 the stationary threshold is stationary_sigma_factor·σ_v instead of
+  /// model.stationary_speed_m_s (file comment, Stops).
+  double speed_sigma_m_s{0.0};
+  double stationary_sigma_factor{4.0};    ///< k of k·σ_v, > 0
+  double stationary_min_duration_s{5.0};  ///< hysteresis of the stop/start class (s), ≥ 0
+  double reference_speed_window_s{300.0};  ///< motion that sets P₀'s reference speed (s), > 0
+  double whiteness_alpha{0.05};  ///< significance of the Ljung–Box test, in (0, 1)
+  int whiteness_max_lag{20};     ///< its lags h = min(this, ⌊n/5⌋), in [1, 1000]
 };
+
+/// The stationary threshold the workflow uses (m/s): stationary_sigma_factor·speed_sigma_m_s
+/// when speed_sigma_m_s > 0, else model.stationary_speed_m_s.
+double stationary_threshold_m_s(const Options& options);
 
 /// Where a line came from, as its writers name it (the report's header): text only, set by
 /// whoever made the line — io's runner from the configuration, the line file and the gravity
@@ -187,6 +230,16 @@ struct Summary {
   std::optional<double> mean_nees_smoothed;
   double eps_u_rad_s = 0.0;        ///< smoothed ε̂_U (a constant: the value at epoch 0)
   double sigma_eps_u_rad_s = 0.0;  ///< its σ
+  /// The stationary threshold used (stationary_threshold_m_s) and whether it came from
+  /// Options::speed_sigma_m_s.
+  double stationary_speed_m_s{0.0};
+  bool stationary_from_speed_sigma{false};
+  std::size_t stationary_steps{0};  ///< steps classed stationary (of epochs − 1)
+  /// The speed of P₀'s σ(x) (file comment); 0: no motion, the line is stationary.
+  double reference_speed_m_s{0.0};
+  /// Ljung–Box on the normalised innovations of the accepted statistics epochs (lags 0: fewer
+  /// than 5 of them, not tested).
+  filter::LjungBoxResult whiteness{};
 };
 
 /// The result of a line, self-describing: with the options and origin the writers show.

@@ -109,8 +109,14 @@ struct ModelOptions {
   double sigma_model_rad = 3.0 * units::kArcsecond;   ///< σ of δη, δξ, > 0 (rad)
   double correlation_length_m = 10000.0;              ///< λ in ω₀ = 2πV/λ, > 0 (m)
   double omega_ie_rad_s = units::kEarthRotationRate_rad_s;  ///< Earth rotation rate, ≥ 0
-  /// Speeds below this are the stationary case (file comment), ≥ 0 (m/s).
-  double stationary_speed_m_s = 0.01;
+  /// Speeds below this are the stationary case (file comment), ≥ 0 (m/s). 0.1 m/s: above the
+  /// speed over ground a GNSS receiver reports at rest (Doppler velocity noise of a few cm/s,
+  /// e.g. 3 cm/s per horizontal component: the speed at rest is Rayleigh-distributed and
+  /// exceeds 0.1 m/s in 0.4 % of samples), while a carrier slower than it moves less than
+  /// 360 m in an hour, a small part of the 10 km correlation length. The workflow classes
+  /// steps with hysteresis (deflection.hpp, Options::stationary_min_duration_s) and can take
+  /// the threshold from a known speed σ instead (Options::speed_sigma_m_s).
+  double stationary_speed_m_s = 0.1;
 };
 
 /// How the continuous model is discretised (file comment).

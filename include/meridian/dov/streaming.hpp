@@ -17,8 +17,10 @@
 ///  3. the completed results, read back in time order, to the sink and the epochs the Result
 ///     keeps (skipped when neither is asked for).
 /// Memory is O(chunk + buffers + kept epochs), independent of the line length — except a
-/// stationary start: the initial σ of x_E, x_N needs the first moving speed (deflection.hpp),
-/// so samples are held until the carrier first moves (≈ 200 bytes each) or the line ends. Disk: 424 + 2 × 304 bytes
+/// stationary start and the first minutes of motion: the initial σ of x_E, x_N needs the
+/// reference speed (deflection.hpp, Options::reference_speed_window_s), so samples are held
+/// until Options::reference_speed_window_s (300 s) after the carrier first moves
+/// (≈ 200 bytes each; 30 000 at 100 Hz) or the line ends. Disk: 424 + 2 × 304 bytes
 /// per epoch in the temporary files beyond the memory limit with pass 3; without it 424 + 32
 /// (with truth; 96 more with true states, 0 without truth).
 ///

@@ -120,7 +120,9 @@ struct DovGravityModel {
 ///   zeta: 0.05
 ///   sigma_model_arcsec: 3           # σ of the global model's error
 ///   correlation_length_m: 10000     # λ in ω₀ = 2πV/λ
-///   stationary_speed_m_s: 0.01
+///   stationary_speed_m_s: 0.1       # or speed_sigma_m_s: 0.03 (threshold 4σ; not both)
+///   stationary_sigma_factor: 4      # only with speed_sigma_m_s
+///   stationary_min_duration_s: 5    # hysteresis of stops and starts
 ///   sigma_obs_arcsec: 0.5           # or sigma_obs_east_arcsec, sigma_obs_north_arcsec
 ///   initial: {phi_e_arcsec: 2, phi_n_arcsec: 2, phi_u_arcsec: 5, eps_u_deg_per_h: 0.003,
 ///             delta_arcsec: 3, x_arcsec_s: 955}   # the last two default to the model's
@@ -129,6 +131,7 @@ struct DovGravityModel {
 ///   max_step_s: 60
 ///   gate_alpha: 0                   # χ² gate significance; 0: none
 ///   statistics_start_s: 0
+///   whiteness_alpha: 0.05           # Ljung–Box test of the normalised innovations
 ///   gravity_model: {model: egm2008, max_degree: 360}   # instead of the model columns
 ///
 /// Unknown keys are errors (typos). Errors carry the file, line and key.
