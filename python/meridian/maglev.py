@@ -182,8 +182,12 @@ _TABLE = ("azimuth_deg", "mean1_A", "sigma1_A", "mean2_A", "sigma2_A")
 
 
 def calibrate(table, *, latitude_deg, alpha=0.05, nominal_scale_A_s_per_rad=None) -> _Result:
-    """Multi-angle calibration (`maglev calibrate TABLE --json`): lines per position,
-    trend deviation, best azimuth α*, constant deviation I*, K from the slopes.
+    """Multi-angle calibration (`maglev calibrate TABLE --json`): the exact model
+    I_k = k_k·sin(α − α*) + I* fitted jointly (curves per position, model check `fit`),
+    trend deviation, the instrument constant α* (`instrument_constant_arcsec`, also
+    `best_azimuth_arcsec`), constant deviation I*, K from the slopes, `plausibility`
+    (a unit slip against nominal_scale_A_s_per_rad). The table file's header units are
+    applied (azimuth deg, dms, gon, rad, mrad; currents A, mA, uA).
 
     table: the CSV the CLI reads (path), or a mapping/Table with the arrays
     azimuth_deg, mean1_A, sigma1_A, mean2_A, sigma2_A (a simulate_calibration()

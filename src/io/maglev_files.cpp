@@ -38,9 +38,49 @@ double unit_scale(RecordReader& rr, std::size_t column, const char* field, bool 
     if (u == "ms") return 1e-3;
     if (u == "min") return 60.0;
   }
-  throw InputError(fmt::format("unit [{}] is not understood here (use {})", u,
-                               current ? "A, mA or uA" : "s, ms or min"),
+  throw InputError(fmt::format("column `{}`: unit [{}] is not understood here (use {})",
+                               header[column].name, u, current ? "A, mA or uA" : "s, ms or min"),
                    {rr.source(), rr.header_line(), field});
+}
+
+// How the calibration table's azimuth column is written: its header unit ([deg], [dms],
+// [gon], [rad], [mrad]; none: DMS or decimal degrees as before). An unknown unit is an input
+// error at the header line naming the column.
+enum class AzimuthUnit { Dms, Degrees, Gon, Radians, Milliradians };
+
+AzimuthUnit azimuth_unit(RecordReader& rr, std::size_t column) {
+  const auto& header = rr.header();
+  if (column >= header.size()) return AzimuthUnit::Dms;
+  const std::string& u = header[column].unit;
+  if (u.empty() || u == "dms" || u == "DMS") return AzimuthUnit::Dms;
+  if (u == "deg" || u == "°") return AzimuthUnit::Degrees;
+  if (u == "gon" || u == "grad") return AzimuthUnit::Gon;
+  if (u == "rad") return AzimuthUnit::Radians;
+  if (u == "mrad") return AzimuthUnit::Milliradians;
+  throw InputError(
+      fmt::format("column `{}`: unit [{}] is not understood (use deg, dms, gon, rad or mrad)",
+                  header[column].name, u),
+      {rr.source(), rr.header_line(), "azimuth"});
+}
+
+double read_azimuth(const Record& r, std::size_t column, AzimuthUnit unit) {
+  switch (unit) {
+    case AzimuthUnit::Dms:
+      return r.angle(column, {"azimuth"}).rad();
+    case AzimuthUnit::Degrees:
+      return r.parse(column, [](std::string_view t) { return parse_angle(t, AngleUnit::Degrees); },
+                     {"azimuth"})
+          .rad();
+    case AzimuthUnit::Gon:
+      return r.parse(column, [](std::string_view t) { return parse_angle(t, AngleUnit::Gon); },
+                     {"azimuth"})
+          .rad();
+    case AzimuthUnit::Radians:
+      return r.number(column, {"azimuth", "azimuth"});
+    case AzimuthUnit::Milliradians:
+      return r.number(column, {"azimuth", "azimuth"}) * 1e-3;
+  }
+  return 0.0;
 }
 
 Columns series_columns(RecordReader& rr) {
@@ -179,9 +219,13 @@ maglev::CalibrationInput read_maglev_calibration_table(const std::string& path) 
     if (all)
       for (int k = 0; k < 5; ++k) col[k] = *rr.find_column(names[k]);
   }
+  // Every column's unit applies (azimuth: deg, dms, gon, rad, mrad; currents: A, mA, uA).
   double scale[5] = {1.0, 1.0, 1.0, 1.0, 1.0};
-  if (!rr.header().empty())
+  AzimuthUnit az_unit = AzimuthUnit::Dms;
+  if (!rr.header().empty()) {
+    az_unit = azimuth_unit(rr, col[0]);
     for (int k = 1; k < 5; ++k) scale[k] = unit_scale(rr, col[k], names[k], true);
+  }
   maglev::CalibrationInput in;
   RecordChunk chunk;
   while (rr.next(chunk, 4096)) {
@@ -193,7 +237,7 @@ maglev::CalibrationInput read_maglev_calibration_table(const std::string& path) 
                         r.size()),
             r.context());
       maglev::CalibrationSetup s;
-      s.azimuth_rad = r.angle(col[0], {"azimuth"}).rad();
+      s.azimuth_rad = read_azimuth(r, col[0], az_unit);
       s.mean1_A = {r.number(col[1], {"mean1"}) * scale[1], r.number(col[2], {"sigma1"}) * scale[2]};
       s.mean2_A = {r.number(col[3], {"mean2"}) * scale[3], r.number(col[4], {"sigma2"}) * scale[4]};
       if (!(s.mean1_A.sigma > 0.0))

@@ -7,6 +7,7 @@
 
 #include "context.hpp"
 #include "meridian/adjust/least_squares.hpp"
+#include "meridian/adjust/nonlinear.hpp"
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
 
@@ -66,6 +67,13 @@ LineObservations observations(const CalibrationInput& in) {
   bool distinct = false;
   for (double a : o.azimuth_rad) distinct = distinct || a != o.azimuth_rad[0];
   if (!distinct) throw InputError("the set-up azimuths must not all be equal", at("setups"));
+  bool same = true;
+  for (const auto& s : in.setups) same = same && s.mean1_A.value == s.mean2_A.value;
+  if (same)
+    throw InputError(
+        "position 1 and position 2 have the same means at every set-up (one column or series "
+        "given for both positions?)",
+        at("setups"));
   return o;
 }
 
@@ -81,8 +89,9 @@ Eigen::Matrix4d line_covariance(const LineFit& p1, const LineFit& p2) {
   return C;
 }
 
-// Where the lines meet: sin α* = u = (c2 − c1)/(k1 − k2), I* = k1·u + c1, σ by first-order
-// propagation. Throws NumericalError for parallel lines or |u| ≥ 1.
+// Where the straight lines meet: sin α* = u = (c2 − c1)/(k1 − k2), I* = k1·u + c1, σ by
+// first-order propagation. Throws NumericalError for parallel lines or |u| ≥ 1. The starting
+// point of the exact fit (linear_best_azimuth_rad and constant_deviation_A set).
 void intersect(const Eigen::Matrix4d& C, CalibrationResult& r) {
   const double k1 = r.position1.slope_A_per_rad.value, c1 = r.position1.intercept_A.value;
   const double k2 = r.position2.slope_A_per_rad.value, c2 = r.position2.intercept_A.value;
@@ -100,8 +109,85 @@ void intersect(const Eigen::Matrix4d& C, CalibrationResult& r) {
   Eigen::Vector4d gi = k1 * gu;
   gi(0) += u;
   gi(1) += 1.0;
-  r.best_azimuth_rad = {as, std::sqrt(gu.dot(C * gu)) / std::cos(as)};
+  r.linear_best_azimuth_rad = {as, std::sqrt(gu.dot(C * gu)) / std::cos(as)};
   r.constant_deviation_A = {is, std::sqrt(gi.dot(C * gi))};
+}
+
+// The exact model I_p = k_p·sin(α − α*) + I* for both positions at once, x = (k1, k2, α*, I*),
+// observations (mean1 of every set-up, then mean2), from the straight lines' solution in r.
+// Sets position1/2 (curves, residuals, the positions' shares of the test), best_azimuth_rad,
+// constant_deviation_A, fit_test, covariance, iterations; returns the covariance.
+Eigen::Matrix4d fit_exact(const LineObservations& o, double alpha, CalibrationResult& r) {
+  const std::size_t n = o.azimuth_rad.size();
+  const auto N = static_cast<Eigen::Index>(n);
+  Eigen::VectorXd l(2 * N), s(2 * N);
+  for (Eigen::Index j = 0; j < N; ++j) {
+    const auto u = static_cast<std::size_t>(j);
+    l(j) = o.mean1_A[u].value;
+    s(j) = o.mean1_A[u].sigma;
+    l(N + j) = o.mean2_A[u].value;
+    s(N + j) = o.mean2_A[u].sigma;
+  }
+  adjust::NonlinearModel m;
+  m.predict = [&](const Eigen::VectorXd& x) {
+    Eigen::VectorXd f(2 * N);
+    for (Eigen::Index j = 0; j < N; ++j) {
+      const double sn = std::sin(o.azimuth_rad[static_cast<std::size_t>(j)] - x(2));
+      f(j) = x(0) * sn + x(3);
+      f(N + j) = x(1) * sn + x(3);
+    }
+    return f;
+  };
+  m.jacobian = [&](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * N, 4);
+    for (Eigen::Index j = 0; j < N; ++j) {
+      const double d = o.azimuth_rad[static_cast<std::size_t>(j)] - x(2);
+      J(j, 0) = std::sin(d);
+      J(N + j, 1) = std::sin(d);
+      J(j, 2) = -x(0) * std::cos(d);
+      J(N + j, 2) = -x(1) * std::cos(d);
+      J(j, 3) = J(N + j, 3) = 1.0;
+    }
+    return J;
+  };
+  Eigen::Vector4d x0(r.position1.slope_A_per_rad.value, r.position2.slope_A_per_rad.value,
+                     r.linear_best_azimuth_rad.value, r.constant_deviation_A.value);
+  adjust::NonlinearOptions opt;
+  opt.step_tolerance = 1e-10;
+  // Steps far below the straight lines' σ do not matter (and rounding hides them).
+  opt.step_scale = Eigen::Vector4d(r.position1.slope_A_per_rad.sigma,
+                                   r.position2.slope_A_per_rad.sigma,
+                                   std::max(r.linear_best_azimuth_rad.sigma, 1e-12),
+                                   std::max(r.constant_deviation_A.sigma, 1e-18));
+  const Eigen::MatrixXd sigma_ll = s.array().square().matrix().asDiagonal();
+  const adjust::NonlinearResult f = adjust::solve_nonlinear(m, l, sigma_ll, x0, opt);
+  const Eigen::Matrix4d C = f.covariance_aposteriori;
+  r.iterations = f.iterations;
+  r.fit_test = adjust::global_test(f, alpha);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      r.covariance[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = C(i, j);
+  const double as = f.x(2), is = f.x(3);
+  r.best_azimuth_rad = {as, std::sqrt(C(2, 2))};
+  r.constant_deviation_A = {is, std::sqrt(C(3, 3))};
+  for (int p = 0; p < 2; ++p) {
+    LineFit& lf = p == 0 ? r.position1 : r.position2;
+    const double k = f.x(p);
+    // c = I* − k·sin α*: gradient in (k1, k2, α*, I*).
+    Eigen::Vector4d gk = Eigen::Vector4d::Zero(), gc = Eigen::Vector4d::Zero();
+    gk(p) = 1.0;
+    gc(p) = -std::sin(as);
+    gc(2) = -k * std::cos(as);
+    gc(3) = 1.0;
+    lf.slope_A_per_rad = {k, std::sqrt(C(p, p))};
+    lf.intercept_A = {is - k * std::sin(as), std::sqrt(gc.dot(C * gc))};
+    lf.covariance = gk.dot(C * gc);
+    const auto v = f.residuals.segment(p * N, N);
+    lf.residuals_A.assign(v.data(), v.data() + v.size());
+    const double vtpv = (v.array() / s.segment(p * N, N).array()).square().sum();
+    lf.global_test = adjust::global_test(vtpv, static_cast<int>(n) - 2, alpha);
+  }
+  return C;
 }
 
 // The analysis' warnings and notes: trend deviation, mean line, slopes against a nominal K, the
@@ -126,11 +212,28 @@ void add_findings(const CalibrationInput& in, double f, CalibrationResult& r) {
     r.notes.push_back(fmt::format(
         "slopes against ±K·ω·cos φ = ±{:.6g} A/rad: z1 = {:.2f}, z2 = {:.2f}", a, z1, z2));
   }
-  for (const LineFit* lf : {&r.position1, &r.position2, &r.mean_line})
-    if (lf->global_test.dof > 0 && lf->global_test.rejected)
+  if (r.fit_test.rejected)
+    r.warnings.push_back(fmt::format(
+        "model check: the residuals of k·sin(α − α*) + I* exceed the means' σ (σ̂0 = {:.2f}, "
+        "p = {:.3g}): the σ of the means are optimistic or the model does not hold (σ of the "
+        "results scaled by σ̂0)",
+        r.fit_test.sigma0, r.fit_test.p_value));
+  if (r.mean_line.global_test.dof > 0 && r.mean_line.global_test.rejected)
+    r.warnings.push_back(fmt::format(
+        "the mean line's residuals exceed the means' σ (σ̂0 = {:.2f}): the σ may be optimistic",
+        r.mean_line.global_test.sigma0));
+  if (in.nominal_scale_A_s_per_rad) {
+    const double q = r.scale_A_s_per_rad.value / *in.nominal_scale_A_s_per_rad;
+    r.scale_ratio_to_nominal = q;
+    if (!(std::abs(std::log10(std::abs(q))) < 1.5) || q < 0.0) {
+      r.unit_slip_suspected = true;
       r.warnings.push_back(fmt::format(
-          "a line's residuals exceed the means' σ (σ̂0 = {:.2f}): the σ may be optimistic",
-          lf->global_test.sigma0));
+          "UNIT SLIP? K from the slopes ({:.6g} A·s/rad) is {:.3g} × the nominal K ({:.6g}): the "
+          "currents are not in the unit their header states (values in A under an [mA] header "
+          "give K 1000× too small); every result in A is off by the same factor",
+          r.scale_A_s_per_rad.value, q, *in.nominal_scale_A_s_per_rad));
+    }
+  }
 }
 
 }  // namespace
@@ -144,21 +247,46 @@ CalibrationResult calibrate(const CalibrationInput& in) {
   try {
     r.position1 = fit_line(o.azimuth_rad, o.mean1_A, in.alpha);
     r.position2 = fit_line(o.azimuth_rad, o.mean2_A, in.alpha);
-    r.mean_line = fit_line(o.azimuth_rad, o.mean_A, in.alpha);
   } catch (Error& e) {
     e.add_context("", std::nullopt, "setups");
     throw;
   }
-  const Eigen::Matrix4d C = line_covariance(r.position1, r.position2);
+  const double f = 2.0 * units::kEarthRotationRate_rad_s * std::cos(in.latitude_rad);
+  {
+    // The straight lines: the starting point, and their α*, K for comparison.
+    const Eigen::Matrix4d CL = line_covariance(r.position1, r.position2);
+    intersect(CL, r);
+    const Eigen::Vector4d g(1.0 / f, 0, -1.0 / f, 0);
+    r.linear_scale_A_s_per_rad = {
+        (r.position1.slope_A_per_rad.value - r.position2.slope_A_per_rad.value) / f,
+        std::sqrt(g.dot(CL * g))};
+  }
+  Eigen::Matrix4d C;
+  try {
+    C = fit_exact(o, in.alpha, r);
+  } catch (Error& e) {
+    e.add_context("", std::nullopt, "setups");
+    throw;
+  }
   const double k1 = r.position1.slope_A_per_rad.value, k2 = r.position2.slope_A_per_rad.value;
-  const Eigen::Vector4d g_trend(1, 0, 1, 0);
+  const Eigen::Vector4d g_trend(1, 1, 0, 0);
   r.trend_deviation_A_per_rad = {k1 + k2, std::sqrt(g_trend.dot(C * g_trend))};
   r.trend_z = r.trend_deviation_A_per_rad.value / r.trend_deviation_A_per_rad.sigma;
-  r.trend_significant = adjust::normal_two_sided_probability(r.trend_z) < in.alpha;
-  intersect(C, r);
-  const double f = 2.0 * units::kEarthRotationRate_rad_s * std::cos(in.latitude_rad);
-  const Eigen::Vector4d g_scale(1.0 / f, 0, -1.0 / f, 0);
+  r.trend_significant =
+      adjust::student_t_two_sided_probability(r.trend_z, r.fit_test.dof) < in.alpha;
+  const Eigen::Vector4d g_scale(1.0 / f, -1.0 / f, 0, 0);
   r.scale_A_s_per_rad = {(k1 - k2) / f, std::sqrt(g_scale.dot(C * g_scale))};
+  // The mean line about the fitted α*.
+  {
+    std::vector<double> shifted = o.azimuth_rad;
+    for (double& a : shifted) a -= r.best_azimuth_rad.value;
+    try {
+      r.mean_line = fit_line(shifted, o.mean_A, in.alpha);
+    } catch (Error& e) {
+      e.add_context("", std::nullopt, "setups");
+      throw;
+    }
+  }
   r.mean_slope_z = r.mean_line.slope_A_per_rad.value / r.mean_line.slope_A_per_rad.sigma;
   r.mean_line_constant = adjust::normal_two_sided_probability(r.mean_slope_z) >= in.alpha;
   add_findings(in, f, r);

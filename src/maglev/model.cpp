@@ -54,8 +54,11 @@ TwoPositionSolution two_position(Uncertain m1, Uncertain m2, double c12, Uncerta
         fmt::format(
             "|(I1 − I2)/(2·K·ω·cos φ)| = {:.6g} > 1: the position means ({:.9g} A, {:.9g} A) "
             "do not fit the scale K = {:.9g} A·s/rad at this latitude (check K, the latitude, "
-            "or whether the positions are 180° apart)",
-            std::abs(s.ratio), m1.value, m2.value, K.value),
+            "or whether the positions are 180° apart{})",
+            std::abs(s.ratio), m1.value, m2.value, K.value,
+            std::abs(s.ratio) > 100.0 ? "; currents 1000× too large? values in mA under an [A] "
+                                        "header"
+                                      : ""),
         field("alpha1"));
   const double a = std::asin(s.ratio);
   const double ca = std::cos(a);

@@ -328,6 +328,49 @@ void warn_few_samples(ReduceResult& r) {
           100.0 / std::sqrt(2.0 * std::max(p->kept.n_eff - 1.0, 1.0))));
 }
 
+// The same series for both positions (the same file given twice) gives α1 = 0 exactly and
+// means nothing: refused.
+void refuse_identical_positions(const PositionSeries& p1, const PositionSeries& p2) {
+  if (p1.current_A == p2.current_A)
+    throw InputError(
+        fmt::format("position 2 is the same series as position 1 ({} identical currents): the "
+                    "same file given for both positions?",
+                    p1.current_A.size()),
+        ErrorContext{{}, std::nullopt, "position2.current_A"});
+}
+
+// The currents' scale against A = K·ω_e·cos φ: the sample-to-sample noise of a position
+// (1.4826·median|Δi|/√2, robust to bursts and drift) as an angle, σ_i / A. A real instrument's
+// samples scatter by arcseconds to arcminutes; below kMinSampleNoise the currents are almost
+// certainly 10³ too small for K (values in A under an [mA] header): a loud warning.
+constexpr double kMinSampleNoise_rad = 0.5 * units::kArcsecond;
+
+double sample_noise_A(const std::vector<double>& x) {
+  if (x.size() < 3) return NAN;
+  std::vector<double> d(x.size() - 1);
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) d[i] = std::abs(x[i + 1] - x[i]);
+  auto mid = d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2);
+  std::nth_element(d.begin(), mid, d.end());
+  return 1.4826 * *mid / std::sqrt(2.0);
+}
+
+void check_current_scale(const ReduceInput& in, ReduceResult& r) {
+  const double n1 = sample_noise_A(in.position1.current_A);
+  const double n2 = sample_noise_A(in.position2.current_A);
+  if (!std::isfinite(n1) || !std::isfinite(n2) || !(r.amplitude_A.value > 0.0)) return;
+  r.sample_noise_rad = std::max(n1, n2) / r.amplitude_A.value;
+  if (r.sample_noise_rad < kMinSampleNoise_rad) {
+    r.unit_slip_suspected = true;
+    r.warnings.push_back(fmt::format(
+        "UNIT SLIP? the currents scatter by only {:.3g} A from sample to sample, {:.3g}″ of "
+        "K·ω·cos φ = {:.6g} A (a real instrument: arcseconds or more): the currents look 1000× "
+        "too small for K = {:.6g} A·s/rad (values in A under an [mA] header?); α1 and its σ "
+        "are then wrong",
+        std::max(n1, n2), units::rad_to_arcsec(r.sample_noise_rad), r.amplitude_A.value,
+        r.scale_A_s_per_rad.value));
+  }
+}
+
 // Spec §3 step 4: the two positions symmetric about the prior bias b₀.
 ReduceResult::Symmetry symmetry_check(const Uncertain& b, double alpha, ReduceResult& r) {
   const Uncertain& m1 = r.position1.cleaned_mean_A;
@@ -447,6 +490,7 @@ std::optional<double> curvature_check(const Determination& d) {
 ReduceResult process(const ReduceInput& in, Progress* progress) {
   validate_series(in.position1, "position1");
   validate_series(in.position2, "position2");
+  refuse_identical_positions(in.position1, in.position2);
   ReduceResult r;
   r.source = in.source;
   r.scale_A_s_per_rad = in.scale_A_s_per_rad;
@@ -512,6 +556,7 @@ ReduceResult process(const ReduceInput& in, Progress* progress) {
   if (!in.options.process) r.notes.push_back(
         "not processed: every sample kept, no segment tests, no denoising");
   warn_few_samples(r);
+  check_current_scale(in, r);
   if (in.options.prior_bias_A)
     r.symmetry = symmetry_check(*in.options.prior_bias_A, in.options.stationarity.alpha, r);
   if (in.chain) r.chain = target_azimuth(*in.chain, in.latitude_rad, r.processed);

@@ -85,13 +85,12 @@ CalibrationInput simulate_calibration(const CalibrationTruth& truth, const Noise
                                       std::uint64_t seed) {
   CalibrationInput in;
   in.latitude_rad = truth.latitude_rad;
-  const double u = std::sin(truth.best_azimuth_rad);
-  const double c1 = truth.constant_deviation_A - truth.slope1_A * u;
-  const double c2 = truth.constant_deviation_A - truth.slope2_A * u;
+  const double is = truth.constant_deviation_A;
   std::uint64_t s = seed;
   for (double a : truth.azimuths_rad) {
-    const auto p1 = simulate_series(truth.slope1_A * std::sin(a) + c1, spec, s++);
-    const auto p2 = simulate_series(truth.slope2_A * std::sin(a) + c2, spec, s++);
+    const double sn = std::sin(a - truth.best_azimuth_rad);
+    const auto p1 = simulate_series(truth.slope1_A * sn + is, spec, s++);
+    const auto p2 = simulate_series(truth.slope2_A * sn + is, spec, s++);
     const auto m1 = mean_with_autocorrelation(p1.current_A);
     const auto m2 = mean_with_autocorrelation(p2.current_A);
     in.setups.push_back({a, {m1.mean, m1.sigma}, {m2.mean, m2.sigma}});

@@ -146,7 +146,7 @@ Section position_section(int k, const maglev::PositionResult& p) {
 // The calibration's lines, intersection and K.
 KeyValueList calibration_lines(const maglev::CalibrationResult& r) {
   return KeyValueList{
-      "Lines I = k·sin α + c",
+      "Curves I = k·sin(α − α*) + I* (joint fit)",
       {{"position 1",
         fmt::format("k = {:.9g} ± {:.3g} A/rad, c = {:.9g} ± {:.3g} A",
                     r.position1.slope_A_per_rad.value, r.position1.slope_A_per_rad.sigma,
@@ -159,7 +159,10 @@ KeyValueList calibration_lines(const maglev::CalibrationResult& r) {
         fmt::format("{:.6g} ± {:.3g} A/rad ({})", r.trend_deviation_A_per_rad.value,
                     r.trend_deviation_A_per_rad.sigma,
                     r.trend_significant ? "significant" : "not significant")},
-       {"best set-up azimuth α*",
+       {"model check σ̂0",
+        fmt::format("{:.2f} (dof {}, {})", r.fit_test.sigma0, r.fit_test.dof,
+                    r.fit_test.rejected ? "REJECTED" : "passed")},
+       {"instrument constant α* (best set-up azimuth)",
         fmt::format("{} ± {:.3f}\"",
                     format_dms(Angle::radians(r.best_azimuth_rad.value), {3, true, true}),
                     units::rad_to_arcsec(r.best_azimuth_rad.sigma))},

@@ -69,6 +69,9 @@ json maglev_reduce_to_json(const maglev::ReduceResult& r) {
             {"position2", position(r.position2)},
             {"result", solution(r.processed)},
             {"plain", solution(r.plain)},
+            {"plausibility",
+             {{"sample_noise_arcsec", units::rad_to_arcsec(r.sample_noise_rad)},
+              {"unit_slip_suspected", r.unit_slip_suspected}}},
             {"notes", r.notes},
             {"warnings", r.warnings}};
   if (r.drift) {
@@ -143,7 +146,10 @@ json maglev_calibration_to_json(const maglev::CalibrationResult& r) {
                 {"intercept_A", f.intercept_A.value}, {"intercept_sigma_A", f.intercept_A.sigma},
                 {"sigma0", f.global_test.sigma0},     {"residuals_A", f.residuals_A}};
   };
-  return {{"kind", "maglev-calibration"},
+  json cov = json::array();
+  for (const auto& row : r.covariance) cov.push_back(row);
+  json j = {{"kind", "maglev-calibration"},
+          {"model", "I_k = k_k*sin(alpha - alpha*) + I*"},
           {"position1", line(r.position1)},
           {"position2", line(r.position2)},
           {"mean_line", line(r.mean_line)},
@@ -157,8 +163,28 @@ json maglev_calibration_to_json(const maglev::CalibrationResult& r) {
           {"scale_A_s_per_rad", r.scale_A_s_per_rad.value},
           {"scale_sigma_A_s_per_rad", r.scale_A_s_per_rad.sigma},
           {"mean_line_constant", r.mean_line_constant},
+          {"instrument_constant_arcsec", units::rad_to_arcsec(r.best_azimuth_rad.value)},
+          {"instrument_constant_sigma_arcsec", units::rad_to_arcsec(r.best_azimuth_rad.sigma)},
+          {"fit",
+           {{"sigma0", r.fit_test.sigma0},
+            {"dof", r.fit_test.dof},
+            {"vtpv", r.fit_test.vtpv},
+            {"p_value", r.fit_test.p_value},
+            {"rejected", r.fit_test.rejected},
+            {"iterations", r.iterations},
+            {"parameters", {"k1_A", "k2_A", "alpha_star_rad", "I_star_A"}},
+            {"covariance", cov}}},
+          {"linear_lines",
+           {{"best_azimuth_arcsec", units::rad_to_arcsec(r.linear_best_azimuth_rad.value)},
+            {"best_azimuth_sigma_arcsec", units::rad_to_arcsec(r.linear_best_azimuth_rad.sigma)},
+            {"scale_A_s_per_rad", r.linear_scale_A_s_per_rad.value},
+            {"scale_sigma_A_s_per_rad", r.linear_scale_A_s_per_rad.sigma}}},
+          {"plausibility", {{"unit_slip_suspected", r.unit_slip_suspected}}},
           {"notes", r.notes},
           {"warnings", r.warnings}};
+  if (r.scale_ratio_to_nominal)
+    j["plausibility"]["scale_ratio_to_nominal"] = *r.scale_ratio_to_nominal;
+  return j;
 }
 
 }  // namespace meridian::report

@@ -104,7 +104,8 @@ std::string maglev_reduce_text(const maglev::ReduceResult& r) {
 }
 
 std::string maglev_calibration_text(const maglev::CalibrationResult& r) {
-  std::string out = "Maglev gyro multi-angle calibration (I = k·sin α + c, k in A/rad)\n";
+  std::string out =
+      "Maglev gyro multi-angle calibration (I = k·sin(α − α*) + I*, k in A/rad, joint fit)\n";
   auto line = [&](const char* name, const maglev::LineFit& f) {
     out += fmt::format("  {:<10} k = {:.9g} ± {:.3g} A/rad   c = {:.9g} ± {:.3g} A   σ̂0 = {:.2f}\n",
                        name, f.slope_A_per_rad.value, f.slope_A_per_rad.sigma, f.intercept_A.value,
@@ -113,16 +114,23 @@ std::string maglev_calibration_text(const maglev::CalibrationResult& r) {
   line("position 1", r.position1);
   line("position 2", r.position2);
   line("mean line", r.mean_line);
+  out += fmt::format(
+      "model check: σ̂0 = {:.2f} (dof {}, p = {:.3g}, {}); σ below scaled by σ̂0; {} iterations\n",
+      r.fit_test.sigma0, r.fit_test.dof, r.fit_test.p_value,
+      r.fit_test.rejected ? "REJECTED" : "passed", r.iterations);
   out += fmt::format("trend deviation k1 + k2 = {:.6g} ± {:.3g} A/rad (z = {:.2f}, {})\n",
                      r.trend_deviation_A_per_rad.value, r.trend_deviation_A_per_rad.sigma,
                      r.trend_z, r.trend_significant ? "significant" : "not significant");
-  out += fmt::format("best set-up azimuth α* = {} ± {:.3f}\"\n",
+  out += fmt::format("instrument constant α* = {} ± {:.3f}\" (best set-up azimuth)\n",
                      format_dms(Angle::radians(r.best_azimuth_rad.value), {3, true, true}),
                      units::rad_to_arcsec(r.best_azimuth_rad.sigma));
   out += fmt::format("constant deviation  I* = {:.6e} ± {:.3g} A\n", r.constant_deviation_A.value,
                      r.constant_deviation_A.sigma);
   out += fmt::format("scale from slopes   K  = {:.6f} ± {:.4f} A·s/rad\n",
                      r.scale_A_s_per_rad.value, r.scale_A_s_per_rad.sigma);
+  out += fmt::format("straight lines k·sin α + c (for comparison): α* = {:.3f}\", K = {:.6f}\n",
+                     units::rad_to_arcsec(r.linear_best_azimuth_rad.value),
+                     r.linear_scale_A_s_per_rad.value);
   out += fmt::format("mean line slope z = {:.2f}: the constant deviation is {}\n", r.mean_slope_z,
                      r.mean_line_constant ? "constant" : "NOT constant (calibration defect)");
   out += "residuals (fit − observed, A):\n";

@@ -8,9 +8,12 @@
 ///   header has them (`time [s]`, `current [A]`), else the first two columns;
 ///   a third column `position` (1 or 2) puts both positions in one file.
 ///   Time strictly increasing within a position; every value a finite number.
-/// * Calibration table: `azimuth` (DMS or decimal degrees), `mean1` (A),
-///   `sigma1` (A), `mean2` (A), `sigma2` (A), in this order or by these
-///   header names.
+/// * Calibration table: `azimuth` (its header unit [deg], [dms], [gon], [rad] or
+///   [mrad]; without one DMS or decimal degrees), `mean1` (A, or [mA], [uA]),
+///   `sigma1`, `mean2`, `sigma2` (the same), in this order or by these
+///   header names. Every column's header unit is applied; one not understood
+///   is an InputError at the header line naming the column (issue 30: [gon]
+///   was read as degrees).
 ///
 /// Errors name the file, line and field (`pos1.csv:17: time: time does not
 /// increase`): ParseError for unreadable values, InputError for a missing

@@ -42,7 +42,12 @@
 /// non-monotonic time ("position2.time_s[17]"), non-finite samples, times and
 /// currents of different lengths (series.hpp), too few samples for the
 /// segments and bad options ("position1.segment_length"); NumericalError for
-/// no stable segment ("position1") or |(Ī_1 − Ī_2)/(2A)| > 1 ("alpha1").
+/// no stable segment ("position1") or |(Ī_1 − Ī_2)/(2A)| > 1 ("alpha1"); InputError for
+/// the same series at both positions ("position2.current_A": the same file given twice).
+///
+/// Plausibility (issue 30): the currents' sample-to-sample noise as an angle of A below 0.5″
+/// means they are probably 10³ too small for K (values in A under an [mA] header): a warning
+/// starting "UNIT SLIP?" and ReduceResult::unit_slip_suspected.
 
 #include <optional>
 #include <string>
@@ -155,6 +160,11 @@ struct ReduceResult {
   std::vector<SettlingCut> settling;  ///< the blocks whose start was cut
   std::optional<gyro::AzimuthChainResult> chain;
   std::vector<std::string> notes, warnings;
+  /// Plausibility of the currents' scale (issue 30): the larger sample-to-sample noise of the
+  /// two positions as an angle, σ_i / (K·ω_e·cos φ) (rad; 0 when not computed), and whether
+  /// it is so small (< 0.5″) that the currents are probably 10³ off their unit.
+  double sample_noise_rad{};
+  bool unit_slip_suspected{};
 };
 
 /// Process one determination (see the file comment).

@@ -80,8 +80,8 @@ ReduceInput simulate_determination(const TwoPositionTruth& truth, const NoiseSpe
                                    const NoiseSpec& spec2, std::uint64_t seed);
 
 /// A multi-angle calibration experiment (spec §2, §4): at each set-up
-/// azimuth α_j the position means follow the lines Ī_k = k_k·sin α_j + c_k
-/// with c_k = I* − k_k·sin α*, so the lines meet at (α*, I*).
+/// azimuth α_j the position means follow the exact curves of a misaligned
+/// instrument Ī_k = k_k·sin(α_j − α*) + I*, which meet at (α*, I*).
 struct CalibrationTruth {
   std::vector<double> azimuths_rad;   ///< α_j
   double slope1_A = 0.48;             ///< k_1 (A per unit sin α)
