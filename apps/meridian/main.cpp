@@ -15,6 +15,7 @@
 
 #include "cli_support.hpp"
 #include "commands.hpp"
+#include "meridian/core/interrupt_cleanup.hpp"
 #include "meridian/core/version.hpp"
 
 namespace {
@@ -118,6 +119,8 @@ void explain(const Unknown& u) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Ctrl-C or a kill removes the atomic writers' temporary files (core/interrupt_cleanup.hpp).
+  meridian::install_interrupt_cleanup();
   CLI::App app{"meridian - true north and the plumb line from instrument data"};
   app.set_version_flag("--version", std::string("meridian ") + meridian::version());
   app.require_subcommand(1);

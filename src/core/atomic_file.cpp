@@ -31,6 +31,7 @@ AtomicFileWriter::AtomicFileWriter(std::filesystem::path path) : path_(std::move
   if (fd_ < 0)
     throw IoError(fmt::format("cannot create a temporary file in {}: {}", dir.string(), std::strerror(errno)),
                   {path_.string(), std::nullopt, {}});
+  guard_.reset(tmp_);
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
@@ -95,6 +96,7 @@ void AtomicFileWriter::commit() {
     ::unlink(tmp_.c_str());
     fail(path_, "cannot rename the temporary file into place", err);
   }
+  guard_.release();
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {

@@ -70,6 +70,7 @@ class NetCdfGridWriter final : public GridFileWriter {
                     {path_.string(), std::nullopt, {}});
     ::close(fd);
     created_ = true;
+    guard_.reset(tmp_);
     // A constructor that throws runs no destructor: clean up here (a failed create or define
     // left the temporary file behind; issue 35, the full-disk shim of the CLI tests).
     try {
@@ -132,6 +133,7 @@ class NetCdfGridWriter final : public GridFileWriter {
     ::close(fd);
     if (::rename(tmp_.c_str(), path_.c_str()) != 0) fail("cannot rename the temporary file into place", errno);
     created_ = false;
+    guard_.release();
   }
 
  private:
@@ -234,6 +236,7 @@ class NetCdfGridWriter final : public GridFileWriter {
   GridSpec spec_;
   std::string tmp_;
   bool created_ = false, open_ = false;
+  TemporaryFileGuard guard_;  // tmp_ removed on SIGINT/SIGTERM too
   int ncid_ = -1;
   std::vector<int> vars_;
   std::vector<double> buffer_, lo_, hi_;

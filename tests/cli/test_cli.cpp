@@ -654,3 +654,32 @@ TEST_F(Cli, AFullDiskDuringTheWriteExitsFourAndLeavesNothing) {
   ok.replace(ok.find("full/"), 5, "");
   EXPECT_EQ(shell(preload + MERIDIAN_EXE + " " + ok).code, 0) << ok;
 }
+
+// Issue 35: Ctrl-C or a kill during a run left the atomic writer's hidden temporary file
+// (.out.csv.tmp.*) behind. gravity points reads its rows from a FIFO that stays open, so the
+// run is certainly in progress, its temporary file written, when the signal comes.
+TEST_F(Cli, AnInterruptedRunLeavesNoTemporaryFile) {
+  ASSERT_EQ(run("gravity synth-model --degree 6 --seed 1 --out m").code, 0);
+  std::string rows = "lat,lon,h\n";
+  for (int i = 0; i < 3000; ++i) rows += std::to_string(-60 + i % 120) + "," + std::to_string(i % 360) + ",0\n";
+  write("rows.csv", rows);
+  for (const auto& [signal, status] : {std::pair{"INT", 130}, std::pair{"TERM", 143}, std::pair{"HUP", 129}}) {
+    const std::string script =
+        // set -m: a background job of a shell without job control has SIGINT ignored, and an
+        // ignored signal stays ignored (nohup).
+        std::string("set -m; rm -f in; mkfifo in; ") + MERIDIAN_EXE +
+        " gravity points --model m.egm --input in -o out.csv -q 2> err & pid=$!; exec 3> in; cat rows.csv >&3; "
+        "for i in $(seq 200); do ls -a | grep -q '^\\.out\\.csv\\.tmp' && break; sleep 0.05; done; "
+        "ls -a | grep -c '^\\.out\\.csv\\.tmp' > during; kill -" + signal + " $pid; "
+        // A run that ignores the signal is killed after 10 s (status 137), not waited for forever.
+        "for i in $(seq 200); do kill -0 $pid 2> /dev/null || break; sleep 0.05; done; kill -9 $pid 2> /dev/null; "
+        "wait $pid; echo $?; exec 3>&-";
+    write("interrupt.sh", script);
+    const CmdResult r = shell("bash interrupt.sh");  // bash: set -m works in a script
+    EXPECT_EQ(slurp(dir_ / "during"), "1\n") << signal << ": the run had no temporary file to remove";
+    EXPECT_EQ(r.out, std::to_string(status) + "\n") << signal << ": " << r.err;
+    for (const auto& e : fs::directory_iterator(dir_))
+      EXPECT_EQ(e.path().filename().string().find(".out.csv.tmp"), std::string::npos) << signal << " left " << e.path();
+    EXPECT_FALSE(fs::exists(dir_ / "out.csv")) << signal;
+  }
+}

@@ -1,10 +1,14 @@
+#include <unistd.h>
+
 #include <filesystem>
+#include <vector>
 #include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
 
 #include "meridian/core/atomic_file.hpp"
+#include "meridian/core/interrupt_cleanup.hpp"
 #include "meridian/core/error.hpp"
 
 namespace fs = std::filesystem;
@@ -77,4 +81,39 @@ TEST(AtomicFile, WriteAtPatchesWhatWasWrittenAndNothingBeyond) {
   s << in.rdbuf();
   EXPECT_EQ(s.str(), "count=0042\nrows\n");
   fs::remove_all(dir);
+}
+
+// The interrupt registry (core/interrupt_cleanup.hpp): an atomic writer's temporary file is
+// registered while it exists and released by commit or by the destructor; a full table does not
+// fail the writer.
+TEST(InterruptCleanup, WritersRegisterTheirTemporaryFileUntilCommitOrDestruction) {
+  const std::size_t before = meridian::registered_temporary_files();
+  const auto dir = std::filesystem::temp_directory_path() / ("meridian_guard_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    meridian::AtomicFileWriter a(dir / "a.txt");
+    EXPECT_EQ(meridian::registered_temporary_files(), before + 1);
+    {
+      meridian::AtomicFileWriter b(dir / "b.txt");
+      EXPECT_EQ(meridian::registered_temporary_files(), before + 2);
+    }
+    EXPECT_EQ(meridian::registered_temporary_files(), before + 1);
+    a.write("x");
+    a.commit();
+    EXPECT_EQ(meridian::registered_temporary_files(), before);
+  }
+  std::vector<meridian::TemporaryFileGuard> guards;
+  for (std::size_t i = 0; i < meridian::kMaxTemporaryFiles + 3; ++i)
+    guards.emplace_back((dir / ("g" + std::to_string(i))).string());
+  EXPECT_EQ(meridian::registered_temporary_files(), meridian::kMaxTemporaryFiles);
+  EXPECT_FALSE(guards.back().registered());
+  meridian::TemporaryFileGuard moved = std::move(guards.front());
+  EXPECT_TRUE(moved.registered());
+  EXPECT_FALSE(guards.front().registered());
+  guards.clear();
+  EXPECT_EQ(meridian::registered_temporary_files(), before + 1);
+  moved.release();
+  EXPECT_EQ(meridian::registered_temporary_files(), before);
+  EXPECT_FALSE(meridian::TemporaryFileGuard(std::string(5000, 'x')).registered());
+  std::filesystem::remove_all(dir);
 }

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <string_view>
 
+#include "meridian/core/interrupt_cleanup.hpp"
+
 namespace meridian {
 
 /// Write `content` to `path` atomically. Throws IoError naming the path.
@@ -16,7 +18,8 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 /// Streaming atomic output for long runs: chunks go to a temporary file
 /// beside `path`; commit() flushes it to disk and renames it into place. If
 /// the writer is destroyed without commit() (an error, an interrupted run)
-/// the temporary file is removed and `path` is untouched.
+/// the temporary file is removed and `path` is untouched; on SIGINT/SIGTERM too, where the CLI
+/// installed install_interrupt_cleanup().
 class AtomicFileWriter {
  public:
   explicit AtomicFileWriter(std::filesystem::path path);
@@ -36,6 +39,7 @@ class AtomicFileWriter {
   std::string tmp_;
   int fd_ = -1;
   std::uint64_t written_ = 0;  // bytes written by write()
+  TemporaryFileGuard guard_;   // tmp_ removed on SIGINT/SIGTERM too (interrupt_cleanup.hpp)
 };
 
 }  // namespace meridian
