@@ -19,7 +19,7 @@ packages=(
   # Unicode normalisation (NFKC) of point names: a full-width "Ⅱ３" is "Ⅱ3" (core/unicode.hpp).
   libutf8proc-dev
   # The Python package (MERIDIAN_PYTHON=ON, docs/python.md) and its tests.
-  python3-dev pybind11-dev python3-pybind11 python3-pytest python3-yaml python3-dask python3-distributed
+  python3-dev python3-venv python3-pip-whl pybind11-dev python3-pybind11 python3-pytest python3-yaml python3-dask python3-distributed
   python3-netcdf4
   chromium fonts-dejavu-core fonts-liberation fonts-noto-cjk
   # libFuzzer harnesses (scripts/fuzz.sh): clang and its fuzzer/sanitizer runtimes.

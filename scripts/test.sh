@@ -27,6 +27,17 @@ cmake --build build/consumer -j"$jobs"
 (cd build/install && PYTHONPATH="$PWD/lib/python3/dist-packages" /usr/bin/python3 -c \
   'import meridian, meridian.gravity as g; print("import meridian:", g.synthetic_model(4, 1))')
 
+echo "== The wheel: pip wheel . installed into a fresh venv of Debian's Python, the docs' tour run there"
+# The backend (python/build_backend/meridian_wheel.py) reuses the Release tree above; nothing is
+# fetched from an index. --system-site-packages: numpy, dask and pytest are Debian's.
+rm -rf build/wheel build/venv
+MERIDIAN_WHEEL_BUILD_DIR="$PWD/build" /usr/bin/python3 -m pip wheel . -w build/wheel --no-deps --no-index -q
+/usr/bin/python3 -m venv --system-site-packages build/venv
+build/venv/bin/pip install --no-index -q build/wheel/meridian-*.whl
+(cd / && "$OLDPWD/build/venv/bin/python" -c 'import meridian, sys; f = meridian.__file__; print("wheel:", f); sys.exit(0 if "/build/venv/" in f else 1)')
+MERIDIAN_SOURCE_DIR="$PWD" MERIDIAN_CLI="$PWD/build/meridian" PYTHONDONTWRITEBYTECODE=1 \
+  build/venv/bin/python -m pytest -q -p no:cacheprovider tests/python/test_docs.py
+
 if [ "${MERIDIAN_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
   # -g1: line tables are all a sanitizer report needs; full -g made this build about
