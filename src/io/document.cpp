@@ -104,6 +104,10 @@ double Node::number() const {
   const auto v = whole_number(s);
   if (!v) fail(fmt::format("expected a number, got \"{}\"", s));
   if (!std::isfinite(*v)) fail(fmt::format("expected a finite number, got \"{}\"", s));
+  // No quantity a job or book holds comes near this in any unit; such a value is a slip, and a
+  // sigma of 1e200 overflowed when squared and was blamed on a data file's line (issue 35).
+  if (std::fabs(*v) > kMaxDocumentNumber)
+    fail(fmt::format("{} is beyond any value Meridian reads (|x| <= 1e30 in the field's unit): a slip?", s));
   return *v;
 }
 

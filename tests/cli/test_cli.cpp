@@ -683,3 +683,35 @@ TEST_F(Cli, AnInterruptedRunLeavesNoTemporaryFile) {
     EXPECT_FALSE(fs::exists(dir_ / "out.csv")) << signal;
   }
 }
+
+// Issue 35: a sigma of 1e200 in a job overflowed when squared and the error named a line of the
+// data file (dr.csv:4: ... covariance; line.csv:4: initial covariance P0 ...). Now the job's
+// own line and key are named.
+TEST_F(Cli, AnAbsurdNumberInAJobIsNamedAtItsOwnLine) {
+  const std::string ex = MERIDIAN_EXAMPLES_DIR;
+  for (const char* f : {"dr.csv", "stations.csv", "lops.csv", "truth.csv"})
+    write(f, slurp(ex + "/nav-scenario-c/" + f));
+  std::string nav = slurp(ex + "/nav-scenario-c/nav.yaml");
+  for (const std::string key : {"sigma_speed_m_s", "bias_sigma_m_s"}) {
+    std::string t = nav;
+    const auto at = t.find("\n" + key + ":");
+    ASSERT_NE(at, std::string::npos) << key;
+    const auto end = t.find('\n', at + 1);
+    t.replace(at + 1, end - at - 1, key + ": 1e200");
+    write("n.yaml", t);
+    const CmdResult r = run("nav process n.yaml -q");
+    EXPECT_EQ(r.code, 1) << key << ": " << r.err;
+    EXPECT_NE(r.err.find("n.yaml:"), std::string::npos) << key << ": " << r.err;
+    EXPECT_NE(r.err.find(key + ": 1e200 is beyond any value Meridian reads"), std::string::npos) << key << ": " << r.err;
+    EXPECT_EQ(r.err.find("dr.csv"), std::string::npos) << key << ": " << r.err;
+  }
+  ASSERT_EQ(run("dov simulate --hours 0.02 --out line.csv --config dov.yaml").code, 0);
+  std::string dov = slurp(dir_ / "dov.yaml");
+  const auto at = dov.find("sigma_model_arcsec: 3");
+  ASSERT_NE(at, std::string::npos) << dov;
+  dov.replace(at, std::string("sigma_model_arcsec: 3").size(), "sigma_model_arcsec: 1e200");
+  write("dov.yaml", dov);
+  const CmdResult r = run("dov process dov.yaml -q");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("dov.yaml:3: sigma_model_arcsec: 1e200 is beyond"), std::string::npos) << r.err;
+}

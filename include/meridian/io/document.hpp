@@ -77,7 +77,9 @@ class Node {
   /// Elements of a sequence (a scalar is not accepted).
   std::vector<Node> elements() const;
 
-  double number() const;           ///< a finite number
+  /// A finite number with |x| <= kMaxDocumentNumber (1e30: larger is a slip; a sigma of 1e200
+  /// overflowed when squared). Fails naming the field otherwise.
+  double number() const;
   double positive_number() const;  ///< a finite number > 0
   double non_negative_number() const;
   int integer() const;

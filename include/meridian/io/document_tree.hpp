@@ -17,6 +17,9 @@ namespace meridian::io {
 
 /// Deepest nesting a document may have (either parser): deeper is a ParseError, not a stack overflow.
 inline constexpr int kMaxDocumentDepth = 200;
+/// The largest magnitude io::Node::number() accepts, in the field's own unit (1e30: a larger
+/// value is a slip; a sigma of 1e200 overflowed when squared).
+inline constexpr double kMaxDocumentNumber = 1e30;
 
 struct DocumentTree {
   enum class Kind { Null, Scalar, Sequence, Map };
