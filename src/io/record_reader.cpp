@@ -273,10 +273,50 @@ int RecordReader::header_line() {
   return header_line_;
 }
 
+namespace {
+
+// The bracketed units that say the same as a column name's unit suffix ("speed_m_s" and
+// [m/s]); empty when the name carries no suffix this table knows.
+std::vector<std::string_view> units_of_suffix(std::string_view name) {
+  struct Suffix {
+    std::string_view suffix;
+    std::vector<std::string_view> units;
+  };
+  static const std::vector<Suffix> table = {
+      {"_m_s", {"m/s", "m_s", "m s-1", "m s^-1"}},   {"_m_s2", {"m/s2", "m/s^2", "m_s2"}},
+      {"_m", {"m"}},                                 {"_s", {"s"}},
+      {"_deg", {"deg", "°", "degrees"}},             {"_rad", {"rad"}},
+      {"_arcsec", {"arcsec", "\"", "″"}},            {"_mgal", {"mGal", "mgal"}},
+      {"_deg_h", {"deg/h", "°/h"}},                  {"_a", {"A"}},
+  };
+  const Suffix* best = nullptr;
+  for (const Suffix& x : table)
+    if (name.size() > x.suffix.size() &&
+        same_name(name.substr(name.size() - x.suffix.size()), x.suffix) &&
+        (!best || x.suffix.size() > best->suffix.size()))
+      best = &x;
+  return best ? best->units : std::vector<std::string_view>{};
+}
+
+}  // namespace
+
 std::optional<std::size_t> RecordReader::find_column(std::string_view name) {
   const auto& cs = header();
   for (std::size_t i = 0; i < cs.size(); ++i)
-    if (same_name(cs[i].name, name)) return i;
+    if (same_name(cs[i].name, name)) {
+      // The one unit rule (issue 35): a column found by a name that states its unit must not
+      // carry another unit in brackets ("speed_m_s [kn]" was read as m/s): refused, never ignored.
+      if (!cs[i].unit.empty()) {
+        const auto units = units_of_suffix(name);
+        const bool same = std::any_of(units.begin(), units.end(), [&](std::string_view u) { return u == cs[i].unit; });
+        if (!units.empty() && !same)
+          throw InputError(fmt::format("column {} [{}]: its name gives the unit {} and the brackets {}; write "
+                                       "the values in {} (Meridian converts no units here)",
+                                       cs[i].name, cs[i].unit, units.front(), cs[i].unit, units.front()),
+                           {source(), header_line_, cs[i].name});
+      }
+      return i;
+    }
   return std::nullopt;
 }
 

@@ -715,3 +715,41 @@ TEST_F(Cli, AnAbsurdNumberInAJobIsNamedAtItsOwnLine) {
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("dov.yaml:3: sigma_model_arcsec: 1e200 is beyond"), std::string::npos) << r.err;
 }
+
+// Issue 35, one unit rule: a bracketed unit is applied or refused naming the column, never
+// ignored (DR `speed [kn]`, `heading [rad]` and points `h [km]` were read as if unmarked).
+TEST_F(Cli, BracketedUnitsAreAppliedOrRefusedNeverIgnored) {
+  const std::string ex = MERIDIAN_EXAMPLES_DIR;
+  ASSERT_EQ(run("gravity synth-model --degree 6 --seed 1 --out m").code, 0);
+  write("km.csv", "lat [deg],lon [deg],h [km]\n10,20,1.5\n");
+  write("m.csv", "lat,lon,h [m]\n10,20,1500\n");
+  write("ft.csv", "lat,lon,h [ft]\n10,20,1500\n");
+  const CmdResult km = run("gravity points --model m.egm --input km.csv -q");
+  const CmdResult m = run("gravity points --model m.egm --input m.csv -q");
+  ASSERT_EQ(km.code, 0) << km.err;
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_EQ(km.out, m.out);
+  EXPECT_NE(km.out.find(",1500.0000,"), std::string::npos) << km.out;
+  const CmdResult ft = run("gravity points --model m.egm --input ft.csv -q");
+  EXPECT_EQ(ft.code, 1);
+  EXPECT_NE(ft.err.find("ft.csv:1: h: column h [ft]: heights in [m] or [km]"), std::string::npos) << ft.err;
+  for (const char* f : {"stations.csv", "lops.csv", "truth.csv", "nav.yaml"}) write(f, slurp(ex + "/nav-scenario-c/" + f));
+  const std::string dr = slurp(ex + "/nav-scenario-c/dr.csv");
+  const std::string header = "time_s,speed_m_s,heading_deg";
+  ASSERT_NE(dr.find(header), std::string::npos);
+  for (const auto& [marked, refused] : {std::pair{"time_s [s],speed_m_s [m/s],heading_deg [deg]", ""},
+                                        std::pair{"time_s,speed_m_s [kn],heading_deg", "column speed_m_s [kn]"},
+                                        std::pair{"time_s,speed_m_s,heading_deg [rad]", "column heading_deg [rad]"}}) {
+    std::string t = dr;
+    t.replace(t.find(header), header.size(), marked);
+    write("dr.csv", t);
+    const CmdResult r = run("nav process nav.yaml -q");
+    if (std::string(refused).empty()) {
+      EXPECT_EQ(r.code, 0) << marked << ": " << r.err;
+    } else {
+      EXPECT_EQ(r.code, 1) << marked;
+      EXPECT_NE(r.err.find(std::string("dr.csv:3: ") ), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(refused), std::string::npos) << r.err;
+    }
+  }
+}

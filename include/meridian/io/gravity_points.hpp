@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <istream>
 #include <string>
 #include <string_view>
@@ -50,6 +51,7 @@ class GravityPointReader {
  private:
   RecordReader records_;
   RecordChunk chunk_;
+  std::optional<double> height_scale_{};  // the h column's header unit to metres, once read
 };
 
 }  // namespace meridian::io
