@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "meridian/adjust/statistics.hpp"
 #include "methods.hpp"
 
 namespace meridian::nav {
@@ -84,7 +85,7 @@ ConsistencyAlarm alarm(const Prepared& p, MethodStatus s, std::string check, std
 // Runs of consecutive outlying fixes (kFixRunAlarm or more): diverged from the last fix that
 // agreed (or the start) to the next one that agrees (or the end); and the spread of all the
 // fixes' χ² against χ²_{1−α}(2K).
-void fix_checks(const Prepared& p, const Screening& sc,
+void fix_checks(const Prepared& p, const Screening& sc, double alpha, bool innovations,
                 const std::vector<Monitor::FixTest>& fx, Consistency& c) {
   c.fixes_tested = fx.size();
   c.fix_sigma_ratio = kNaN;
@@ -123,11 +124,13 @@ void fix_checks(const Prepared& p, const Screening& sc,
     }
     i = j + 1;
   }
-  // The spread of the fixes that agree (at least 3): their misclosures against one track are
-  // correlated through the track's own error (its initial offset, its bias estimate), so their
-  // Σχ² is not χ²(2K) — a consistent dead reckoning failed that test in 1 of 10 clean lines. The
-  // limit is therefore on the mean χ²: χ²_{1−α}(2), what a single fix may reach, valid even when
-  // the misclosures are fully correlated (false-alarm rate ≤ α); σ ratio above ≈ 2.6.
+  // The spread of the fixes that agree (at least 3). A forward method's fix innovations are
+  // (for a consistent filter) independent, so their Σχ² is χ²(2K) and is tested at α. The
+  // misclosures of a track that did not predict them (dead reckoning, smoothers, the fix
+  // closure) are correlated through the track's own error (its initial offset, its bias), so
+  // their Σχ² is not χ²(2K) — a consistent dead reckoning failed that test in 1 of 10 clean
+  // lines; for them the limit is on the mean χ², χ²_{1−α}(2) (what a single fix may reach),
+  // valid even when the misclosures are fully correlated.
   std::size_t k = 0;
   double s_ok = 0.0;
   for (const auto& f : fx)
@@ -136,13 +139,19 @@ void fix_checks(const Prepared& p, const Screening& sc,
       ++k;
     }
   if (k >= 3) {
-    const double mean = s_ok / static_cast<double>(k);
-    if (mean > sc.fix_chi2_limit)
+    const double K = static_cast<double>(k);
+    const double mean = s_ok / K;
+    const double limit = innovations ? adjust::chi_squared_upper_quantile(alpha, 2.0 * K) : K * sc.fix_chi2_limit;
+    if (s_ok > limit)
       c.alarms.push_back(alarm(
           p, MethodStatus::Inconsistent, "fix-spread", fx.front().epoch, fx.back().epoch,
-          fmt::format("the {} fixes that pass their test disagree with the track more than its σ "
-                      "allow: mean χ²(2) = {:.1f} > {:.1f} (σ ratio {:.2f})",
-                      k, mean, sc.fix_chi2_limit, std::sqrt(mean / 2.0))));
+          innovations
+              ? fmt::format("the {} fix innovations that pass their test are wider than the method's σ: "
+                            "Σχ² = {:.1f} > χ²_{{1−α}}({}) = {:.1f} (σ ratio {:.2f})",
+                            k, s_ok, 2 * k, limit, std::sqrt(mean / 2.0))
+              : fmt::format("the {} fixes that pass their test disagree with the track more than its σ "
+                            "allow: mean χ²(2) = {:.1f} > {:.1f} (σ ratio {:.2f})",
+                            k, mean, sc.fix_chi2_limit, std::sqrt(mean / 2.0))));
   }
 }
 
@@ -236,15 +245,16 @@ MethodStatus worst(const std::vector<ConsistencyAlarm>& alarms) {
 
 void check_consistency(const Prepared& p, const Screening& sc, const std::vector<Monitor>& monitors,
                        Result& res) {
+  const double alpha = p.input->options.alpha;
   for (MethodResult& m : res.methods) {
     Consistency& c = m.consistency;
     c = Consistency{};
     const Monitor& mon = monitors[static_cast<std::size_t>(m.method)];
     if (forward(m.method)) {
-      fix_checks(p, sc, mon.fixes, c);
+      fix_checks(p, sc, alpha, true, mon.fixes, c);
       lop_checks(p, mon.lops, c);
     } else {
-      fix_checks(p, sc, track_fix_tests(p, sc, m), c);
+      fix_checks(p, sc, alpha, false, track_fix_tests(p, sc, m), c);
       c.max_innovation_ratio = kNaN;
     }
   }
