@@ -59,7 +59,7 @@ int run_simulate(const SimulateArgs& a) {
 struct ProcessArgs {
   std::string config, track, geojson, rejected, report;
   std::string method = "rts";
-  bool json = false, quiet = false;
+  bool json = false, quiet = false, force = false;
 };
 
 
@@ -69,6 +69,17 @@ void check_result_for(const ProcessArgs& a, nav::Method method, const nav::Resul
     throw InputError(fmt::format("the method {} was not computed for this job{}", a.method,
                                  method == nav::Method::FixClosure ? " (it needs fixes)" : ""),
                      {"", std::nullopt, "--method"});
+  // A method whose self-checks failed (diverged, inconsistent) is not exported without --force:
+  // its track may be far off while its σ look fine (issue 32).
+  if (const nav::MethodResult* m = r.find(method); !a.track.empty() && m && !m->consistency.sigma_valid() && !a.force) {
+    const nav::ConsistencyAlarm& al = m->consistency.alarms.front();
+    throw InputError(fmt::format("the method {} is marked {} by its self-checks ({} from {:.1f} s to {:.1f} s: {}); "
+                                 "its track and σ are not valid there: choose a consistent method with --method, "
+                                 "or export it anyway with --force",
+                                 a.method, nav::to_string(m->consistency.status), al.check, al.from_s, al.to_s,
+                                 al.reason),
+                     {"", std::nullopt, "--method"});
+  }
   if (!a.geojson.empty() && !r.projection)
     throw InputError("GeoJSON needs latitudes and longitudes: the job is in plane coordinates without a "
                      "projection (give projection: in the configuration)",
@@ -160,6 +171,8 @@ void add_process(CLI::App* nav, int& exit_code) {
                   "Method of the -o track: dead-reckoning, sequential-no-bias, sequential-bias-I, "
                   "sequential-bias-II, backward, fix-closure, ekf, rts")
       ->capture_default_str();
+  pro->add_flag("--force", pa->force,
+                "Write the -o track even when --method is marked diverged or inconsistent by its self-checks");
   pro->add_option("--geojson", pa->geojson, "Write the tracks of every method as GeoJSON (needs a projection)");
   pro->add_option("--rejected", pa->rejected, "Write the rejected observations as CSV");
   pro->add_option("--report", pa->report, "Write an HTML report");

@@ -78,7 +78,7 @@ MethodResult smooth(const Prepared& p, filter::SmootherStorage<N>& storage, cons
 template <int N>
 std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
                                       std::vector<RejectedObservation>& rejected,
-                                      Progress* progress) {
+                                      Progress* progress, Monitor& ekf_monitor) {
   const Options& o = p.input->options;
   const std::size_t n = p.epochs;
   Layout layout;
@@ -111,7 +111,7 @@ std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
       kf.predict_extended(x, phi, q);
     }
     const unsigned flags =
-        update_epoch<N>(p, k, kf, layout, no_bias, Method::Ekf, sc, rejected, nullptr);
+        update_epoch<N>(p, k, kf, layout, no_bias, Method::Ekf, sc, rejected, nullptr, &ekf_monitor);
     // Full records: a navigation line stays in memory, where storing P⁻ is cheaper than
     // recomputing it (the compact layout pays off only when the records spill, docs/filter.md).
     storage.append(kf.predicted(), kf.transition(), kf.estimate());
@@ -129,9 +129,9 @@ std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& sc,
 }
 
 template std::vector<MethodResult> run_ekf_rts<4>(const Prepared&, const Screening&,
-                                                  std::vector<RejectedObservation>&, Progress*);
+                                                  std::vector<RejectedObservation>&, Progress*, Monitor&);
 template std::vector<MethodResult> run_ekf_rts<Eigen::Dynamic>(const Prepared&, const Screening&,
                                                                std::vector<RejectedObservation>&,
-                                                               Progress*);
+                                                               Progress*, Monitor&);
 
 }  // namespace meridian::nav::detail

@@ -23,6 +23,24 @@ struct Screening {
   double fix_tolerance_m = 200.0;
 };
 
+/// The innovations a forward method saw (its self-checks, consistency.cpp).
+struct Monitor {
+  struct LopTest {
+    std::size_t epoch = 0;
+    double w = 0.0;  ///< normalised innovation against the predicted state
+    bool rejected = false;
+  };
+  struct FixTest {
+    std::size_t index = 0;  ///< into Input::fixes
+    std::size_t epoch = 0;
+    double chi2 = 0.0;        ///< vᵀS⁻¹v against the state before the fix
+    double distance_m = 0.0;  ///< |v|
+    bool outlying = false;    ///< flagged by the method's fix test
+  };
+  std::vector<LopTest> lops;
+  std::vector<FixTest> fixes;
+};
+
 /// What one forward run used, for the methods built on it (backward, fix closure).
 template <int N>
 struct ForwardRun {
@@ -32,6 +50,7 @@ struct ForwardRun {
   std::vector<std::uint8_t> fix_used;     ///< per Prepared::fixes entry
   std::vector<Eigen::Vector2d> before_fix;  ///< per epoch: position before the fix update
   MethodResult result;
+  Monitor monitor;
 };
 
 enum class BiasMethod { None, I, II };
@@ -50,7 +69,12 @@ MethodResult run_fix_closure(const Prepared& p, const ForwardRun<N>& forward);
 template <int N>
 std::vector<MethodResult> run_ekf_rts(const Prepared& p, const Screening& screening,
                                       std::vector<RejectedObservation>& rejected,
-                                      Progress* progress);
+                                      Progress* progress, Monitor& ekf_monitor);
+
+/// The self-checks of every method of `res` (spec §6a): `monitors[m]` the innovations of the
+/// forward method m (empty for the others). Sets MethodResult::consistency, adds warnings.
+void check_consistency(const Prepared& p, const Screening& sc, const std::vector<Monitor>& monitors,
+                       Result& res);
 
 /// A track point from an estimate (position block and, with layout.bias ≥ 0, the bias).
 template <int N>
@@ -113,7 +137,8 @@ Eigen::Vector2d reduced_position(const Reduced& r, const filter::Vector<N>& x, c
 template <int N>
 unsigned update_lops(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& kf, const Layout& layout,
                      const Eigen::Vector2d& bias, Method method, const Screening& sc,
-                     std::vector<RejectedObservation>& rejected, ForwardRun<N>* record) {
+                     std::vector<RejectedObservation>& rejected, ForwardRun<N>* record,
+                     Monitor* monitor) {
   const std::size_t b = p.lop_begin[k];
   const std::size_t e = p.lop_begin[k + 1];
   if (e == b) return 0;
@@ -148,6 +173,10 @@ unsigned update_lops(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& 
     const double s = (h * pred.P * h.transpose())(0, 0) + var;
     const double w = v / std::sqrt(s);
     rej.misclosure_m = v;
+    const bool reject = sc.rejection == Rejection::Threshold && !ekf && k > 0
+                            ? std::abs(v) > sc.threshold_m
+                            : std::abs(w) > sc.w_critical;
+    if (monitor) monitor->lops.push_back({k, w, reject});
     // The fixed threshold needs a predicted position: the first epoch (spec §4: T_1 is
     // solved by least squares alone) is screened by the w-test, which weighs the prior σ.
     if (sc.rejection == Rejection::Threshold && !ekf && k > 0) {
@@ -182,7 +211,8 @@ unsigned update_lops(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& 
 template <int N>
 unsigned update_fixes(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& kf, const Layout& layout,
                       const Eigen::Vector2d& bias, Method method, const Screening& sc,
-                      std::vector<RejectedObservation>& rejected, ForwardRun<N>* record) {
+                      std::vector<RejectedObservation>& rejected, ForwardRun<N>* record,
+                      Monitor* monitor) {
   unsigned flags = 0;
   const bool ekf = layout.bias >= 0;
   for (std::size_t j = p.fix_begin[k]; j < p.fix_begin[k + 1]; ++j) {
@@ -201,7 +231,9 @@ unsigned update_fixes(const Prepared& p, std::size_t k, filter::KalmanFilter<N>&
     const Eigen::Matrix2d R = fix.covariance + (ekf ? red.q_delta : red.q_delta_seq);
     const Eigen::Matrix2d S = H * cur.P * H.transpose() + R;
     const double chi2 = v.dot(S.ldlt().solve(v));
-    if (v.norm() > sc.fix_tolerance_m || chi2 > sc.fix_chi2_limit) {
+    const bool outlying = v.norm() > sc.fix_tolerance_m || chi2 > sc.fix_chi2_limit;
+    if (monitor) monitor->fixes.push_back({red.index, k, chi2, v.norm(), outlying});
+    if (outlying) {
       RejectedObservation rej;
       rej.kind = RejectedObservation::Kind::Fix;
       rej.index = red.index;
@@ -231,9 +263,9 @@ template <int N>
 unsigned update_epoch(const Prepared& p, std::size_t k, filter::KalmanFilter<N>& kf,
                       const Layout& layout, const Eigen::Vector2d& bias, Method method,
                       const Screening& sc, std::vector<RejectedObservation>& rejected,
-                      ForwardRun<N>* record) {
-  const unsigned lops = update_lops<N>(p, k, kf, layout, bias, method, sc, rejected, record);
-  return lops | update_fixes<N>(p, k, kf, layout, bias, method, sc, rejected, record);
+                      ForwardRun<N>* record, Monitor* monitor) {
+  const unsigned lops = update_lops<N>(p, k, kf, layout, bias, method, sc, rejected, record, monitor);
+  return lops | update_fixes<N>(p, k, kf, layout, bias, method, sc, rejected, record, monitor);
 }
 
 }  // namespace meridian::nav::detail

@@ -123,18 +123,29 @@ void warn_gaps(const Prepared& p, const MethodResult& m, std::vector<std::string
 
 // The sequential family on N states, the EKF on NE.
 template <int N, int NE>
-void run_methods(const Prepared& p, const detail::Screening& sc, Result& res, Progress* progress) {
+void run_methods(const Prepared& p, const detail::Screening& sc, Result& res,
+                 std::vector<detail::Monitor>& monitors, Progress* progress) {
   using detail::BiasMethod;
-  res.methods.push_back(detail::run_sequential<N>(p, Method::SequentialNoBias, BiasMethod::None,
-                                                  sc, res.rejected).result);
-  const detail::ForwardRun<N> bias_i =
+  const auto slot = [&](Method m) -> detail::Monitor& { return monitors[static_cast<std::size_t>(m)]; };
+  {
+    detail::ForwardRun<N> no_bias =
+        detail::run_sequential<N>(p, Method::SequentialNoBias, BiasMethod::None, sc, res.rejected);
+    slot(Method::SequentialNoBias) = std::move(no_bias.monitor);
+    res.methods.push_back(std::move(no_bias.result));
+  }
+  detail::ForwardRun<N> bias_i =
       detail::run_sequential<N>(p, Method::SequentialBiasI, BiasMethod::I, sc, res.rejected);
   res.methods.push_back(bias_i.result);
-  res.methods.push_back(detail::run_sequential<N>(p, Method::SequentialBiasII, BiasMethod::II, sc,
-                                                  res.rejected).result);
+  {
+    detail::ForwardRun<N> bias_ii =
+        detail::run_sequential<N>(p, Method::SequentialBiasII, BiasMethod::II, sc, res.rejected);
+    slot(Method::SequentialBiasII) = std::move(bias_ii.monitor);
+    res.methods.push_back(std::move(bias_ii.result));
+  }
   res.methods.push_back(detail::run_backward<N>(p, bias_i));
   if (!p.fixes.empty()) res.methods.push_back(detail::run_fix_closure<N>(p, bias_i));
-  for (MethodResult& m : detail::run_ekf_rts<NE>(p, sc, res.rejected, progress))
+  slot(Method::SequentialBiasI) = std::move(bias_i.monitor);
+  for (MethodResult& m : detail::run_ekf_rts<NE>(p, sc, res.rejected, progress, slot(Method::Ekf)))
     res.methods.push_back(std::move(m));
 }
 
@@ -160,15 +171,17 @@ Result process(const Input& input, Progress* progress) {
 
   res.methods.push_back(dead_reckoning(p));
   report_progress(progress, 0, 2 * p.epochs, "sequential");
+  std::vector<detail::Monitor> monitors(kAllMethods.size());
   if (p.n_params == 0)
-    run_methods<2, 4>(p, sc, res, progress);
+    run_methods<2, 4>(p, sc, res, monitors, progress);
   else
-    run_methods<Eigen::Dynamic, Eigen::Dynamic>(p, sc, res, progress);
+    run_methods<Eigen::Dynamic, Eigen::Dynamic>(p, sc, res, monitors, progress);
 
   for (MethodResult& m : res.methods) {
     m.errors = error_statistics(p, m);
     if (m.method == Method::SequentialBiasI || m.method == Method::Ekf) warn_gaps(p, m, res.warnings);
   }
+  detail::check_consistency(p, sc, monitors, res);
   res.notes.push_back(fmt::format(
       "sequential methods: gross LOP errors rejected by {}; the EKF uses the w-test at α = {:g} "
       "(|w| > {:.2f}); a fix more than {:g} m or χ²(2) > {:.2f} from the track is flagged",

@@ -135,7 +135,7 @@ ForwardRun<N> run_sequential(const Prepared& p, Method method, BiasMethod bias_m
       kf.predict_extended(x, identity, q);
       run.bias_use[k] = bias.in_use();
     }
-    const unsigned flags = update_epoch<N>(p, k, kf, layout, bias.in_use(), method, sc, rejected, &run);
+    const unsigned flags = update_epoch<N>(p, k, kf, layout, bias.in_use(), method, sc, rejected, &run, &run.monitor);
     const Est& est = kf.estimate();
     bias.after_epoch(k, est.x.template head<2>(), (flags & (kUsedLop | kUsedFix)) != 0);
     TrackPoint tp = track_point<N>(p.t[k], est, layout);

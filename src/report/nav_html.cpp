@@ -256,12 +256,12 @@ Table nav_methods_table(const nav::Result& r, bool truth) {
   t.title = "Methods side by side";
   if (truth) {
     t.columns = {"method", "RMS (m)", "max (m)", "mean NEES", "final bias N (m/s)",
-                 "final bias E (m/s)", "rejected LOPs", "flagged fixes"};
-    t.numeric = {false, true, true, true, true, true, true, true};
+                 "final bias E (m/s)", "rejected LOPs", "flagged fixes", "status"};
+    t.numeric = {false, true, true, true, true, true, true, true, false};
   } else {
     t.columns = {"method", "final σx (m)", "final σy (m)", "mean σ (m)", "max σ (m)",
-                 "final bias N (m/s)", "final bias E (m/s)", "rejected LOPs", "flagged fixes"};
-    t.numeric = {false, true, true, true, true, true, true, true, true};
+                 "final bias N (m/s)", "final bias E (m/s)", "rejected LOPs", "flagged fixes", "status"};
+    t.numeric = {false, true, true, true, true, true, true, true, true, false};
   }
   for (const auto& m : r.methods) {
     std::vector<std::string> row{nav::to_string(m.method)};
@@ -271,7 +271,7 @@ Table nav_methods_table(const nav::Result& r, bool truth) {
       row.push_back(m.errors ? num(m.errors->mean_nees, 2) : "n/a");
     } else {
       const SigmaSummary sg = sigma_summary(m);
-      for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(num(v, 2));
+      for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(nav_sigma_cell(m, num(v, 2)));
     }
     row.push_back(nav_bias_cell(m, true));
     row.push_back(nav_bias_cell(m, false));
@@ -279,6 +279,7 @@ Table nav_methods_table(const nav::Result& r, bool truth) {
     const auto from = observations_of(m.method);
     row.push_back(from ? "as " + nav::to_string(*from) : std::to_string(c.lops));
     row.push_back(from ? "as " + nav::to_string(*from) : std::to_string(c.fixes));
+    row.push_back(nav_status_text(m));
     t.rows.push_back(row);
   }
   t.note = std::string(truth ? "RMS and max: horizontal position error against truth. Mean NEES of (x, y): 2 "
@@ -288,7 +289,26 @@ Table nav_methods_table(const nav::Result& r, bool truth) {
                                "methods' σ are rigorous. ") +
            "Bias: the correction to the DR velocity at the last epoch, ± σ where the method states "
            "one. Rejected: by the method's own screening; backward and fix-closure use the "
-           "observations sequential-bias-I accepted, rts those the ekf accepted.";
+           "observations sequential-bias-I accepted, rts those the ekf accepted. Status: the "
+           "method's self-checks from the data alone (no truth); a diverged or inconsistent "
+           "method's σ are not valid (\"(not valid)\" beside them).";
+  return t;
+}
+
+// The failed self-checks of every method (no rows: every method consistent).
+Table nav_alarms_table(const nav::Result& r) {
+  Table t;
+  t.title = "Self-checks that failed";
+  t.columns = {"method", "status", "from (s)", "to (s)", "epochs", "check", "reason"};
+  t.numeric = {false, false, true, true, false, false, false};
+  for (const auto& m : r.methods)
+    for (const auto& a : m.consistency.alarms)
+      t.rows.push_back({nav::to_string(m.method), nav::to_string(a.status), num(a.from_s, 1), num(a.to_s, 1),
+                        fmt::format("{}–{}", a.from_epoch, a.to_epoch), a.check, a.reason});
+  t.note = "Each method checks itself without truth: fix misclosures against the combined σ (a run of "
+           "consecutive outlying fixes: diverged), the share of rejected LOPs and the spread of the "
+           "normalised innovations per window. Its σ are not valid over these stretches; do not use "
+           "its track there.";
   return t;
 }
 
@@ -331,6 +351,7 @@ Section nav_summary_section(const nav::Result& r, bool truth) {
                                      false});
   }
   sec.blocks.push_back(nav_methods_table(r, truth));
+  if (Table a = nav_alarms_table(r); !a.rows.empty()) sec.blocks.push_back(a);
   KeyValueList kv{"Observations", {}};
   kv.items.push_back({"epochs", std::to_string(r.epochs)});
   kv.items.push_back({"LOPs reduced to an epoch", std::to_string(r.lops_used)});

@@ -158,7 +158,7 @@ std::vector<std::string> nav_method_row(const nav::Result& r, const nav::MethodR
     }
   } else {
     const SigmaSummary sg = sigma_summary(m);
-    for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(fmtx::num(v, 2));
+    for (double v : {sg.final_x, sg.final_y, sg.mean_h, sg.max_h}) row.push_back(nav_sigma_cell(m, fmtx::num(v, 2)));
   }
   if (!estimates_bias(m.method) || m.track.empty()) {
     row.insert(row.end(), {"not estimated", "not estimated"});
@@ -169,6 +169,7 @@ std::vector<std::string> nav_method_row(const nav::Result& r, const nav::MethodR
   }
   const auto from = observations_of(m.method);
   row.push_back(from ? "as " + nav_short_name(*from) : nav_rejected_text(rejection_counts(r, m.method)));
+  row.push_back(nav_status_text(m));
   return row;
 }
 
@@ -177,10 +178,10 @@ std::string nav_methods_text(const nav::Result& r, bool truth) {
   std::vector<std::vector<std::string>> rows;
   if (truth)
     rows.push_back({"method", "RMS (m)", "max (m)", "mean NEES", "final bias N (m/s)",
-                    "final bias E (m/s)", "rejected"});
+                    "final bias E (m/s)", "rejected", "status"});
   else
     rows.push_back({"method", "final σx (m)", "final σy (m)", "mean σ (m)", "max σ (m)",
-                    "final bias N (m/s)", "final bias E (m/s)", "rejected"});
+                    "final bias N (m/s)", "final bias E (m/s)", "rejected", "status"});
   for (const auto& m : r.methods) rows.push_back(nav_method_row(r, m, truth));
   std::string t = "\n" + nav_columns(rows, "");
   if (truth)
@@ -193,6 +194,13 @@ std::string nav_methods_text(const nav::Result& r, bool truth) {
        "one).\n";
   t += "Rejected: by the method's own screening; backward and fix-closure use the observations "
        "sequential-bias-I accepted, rts those the ekf accepted.\n";
+  t += "Status: the method's self-checks from the data alone (fix misclosures, rejected share, "
+       "innovation spread; no truth): diverged or inconsistent over the times given, its σ not "
+       "valid there (\"(not valid)\" beside a σ).\n";
+  for (const auto& m : r.methods)
+    for (const auto& a : m.consistency.alarms)
+      t += fmt::format("  {} {} {:.1f}–{:.1f} s (epochs {}–{}), {}: {}\n", nav::to_string(m.method),
+                       nav::to_string(a.status), a.from_s, a.to_s, a.from_epoch, a.to_epoch, a.check, a.reason);
   std::vector<std::vector<std::string>> params;
   for (const auto& m : r.methods)
     for (const auto& p : m.parameters)
@@ -330,6 +338,29 @@ json nav_to_json(const nav::Result& r) {
     const RejectionCounts c = rejection_counts(r, m.method);
     j["rejected_lops"] = c.lops;
     j["flagged_fixes"] = c.fixes;
+    const nav::Consistency& cs = m.consistency;
+    j["status"] = nav::to_string(cs.status);
+    j["sigma_valid"] = cs.sigma_valid();
+    json alarms = json::array();
+    for (const auto& a : cs.alarms)
+      alarms.push_back({{"status", nav::to_string(a.status)},
+                        {"check", a.check},
+                        {"from_s", json_number(a.from_s)},
+                        {"to_s", json_number(a.to_s)},
+                        {"from_epoch", a.from_epoch},
+                        {"to_epoch", a.to_epoch},
+                        {"reason", a.reason}});
+    j["consistency"] = {{"status", nav::to_string(cs.status)},
+                        {"sigma_valid", cs.sigma_valid()},
+                        {"alarms", alarms},
+                        {"fixes_tested", cs.fixes_tested},
+                        {"fixes_outlying", cs.fixes_outlying},
+                        {"longest_fix_run", cs.longest_fix_run},
+                        {"fix_sigma_ratio", json_number(cs.fix_sigma_ratio)},
+                        {"lops_tested", cs.lops_tested},
+                        {"lops_rejected", cs.lops_rejected},
+                        {"max_rejected_share", json_number(cs.max_rejected_share)},
+                        {"max_innovation_ratio", json_number(cs.max_innovation_ratio)}};
     methods[nav::to_string(m.method)] = j;
     order.push_back(nav::to_string(m.method));
   }
@@ -385,6 +416,10 @@ std::string nav_track_csv(const nav::Result& r, nav::Method method) {
   const std::size_t n = c.flags.size();
   std::string out = fmt::format("# meridian navigation track, method {}: {} epochs; x north, y east (m)\n",
                                 nav::to_string(method), n);
+  if (const nav::MethodResult& m = require_method(r, method); !m.consistency.sigma_valid())
+    for (const auto& a : m.consistency.alarms)
+      out += fmt::format("# WARNING: {} {} from {:.1f} s to {:.1f} s ({}): its positions and σ are not valid there\n",
+                         nav::to_string(method), nav::to_string(a.status), a.from_s, a.to_s, a.check);
   out += "# flags: sum of 1 LOP used, 2 LOP rejected, 4 fix combined, 8 fix flagged and not combined\n";
   out += fmt::format("{},flags\n", fmt::join(c.names, ","));
   for (std::size_t k = 0; k < n; ++k) {
@@ -446,7 +481,11 @@ std::string nav_track_geojson(const nav::Result& r, const std::vector<nav::Metho
       for (std::size_t i = 0; i < parts.size(); ++i) geometry += (i ? ",[" : "[") + parts[i] + "]";
       geometry += "]}";
     }
-    ojson props = {{"feature", "track"}, {"method", nav::to_string(m->method)}, {"epochs", m->track.size()}};
+    ojson props = {{"feature", "track"},
+                   {"method", nav::to_string(m->method)},
+                   {"epochs", m->track.size()},
+                   {"status", nav::to_string(m->consistency.status)},
+                   {"sigma_valid", m->consistency.sigma_valid()}};
     if (!m->track.empty()) {
       props["start_time_s"] = nav_geo_number(m->track.front().time_s);
       props["end_time_s"] = nav_geo_number(m->track.back().time_s);

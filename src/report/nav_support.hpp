@@ -59,6 +59,26 @@ struct SigmaSummary {
   double final_x = std::nan(""), final_y = std::nan("");
   double mean_h = std::nan(""), max_h = std::nan("");
 };
+/// The status cell of a method: "consistent", or "diverged 36000.0–41400.0 s (fix-run, …)".
+inline std::string nav_status_text(const nav::MethodResult& m) {
+  const nav::Consistency& c = m.consistency;
+  if (c.alarms.empty()) return nav::to_string(c.status);
+  std::string t = nav::to_string(c.status);
+  std::string checks;
+  double from = c.alarms.front().from_s, to = c.alarms.front().to_s;
+  for (const auto& a : c.alarms) {
+    from = std::min(from, a.from_s);
+    to = std::max(to, a.to_s);
+    if (checks.find(a.check) == std::string::npos) checks += (checks.empty() ? "" : ", ") + a.check;
+  }
+  return t + " " + fmt::format("{:.1f}–{:.1f} s", from, to) + " (" + checks + ")";
+}
+
+/// A σ cell: the value, with "(not valid)" where the method's self-checks failed.
+inline std::string nav_sigma_cell(const nav::MethodResult& m, const std::string& value) {
+  return m.consistency.sigma_valid() ? value : value + " (not valid)";
+}
+
 inline SigmaSummary sigma_summary(const nav::MethodResult& m) {
   SigmaSummary s;
   if (m.track.empty()) return s;

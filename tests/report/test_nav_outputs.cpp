@@ -771,3 +771,60 @@ TEST(NavText, ALongLineShowsTheFirstTwoHoursPerMinute) {
   EXPECT_EQ(nav_to_json(r)["method_order"][0], "dead-reckoning");
   EXPECT_EQ(nav_to_json(r)["method_order"].back(), "rts");
 }
+
+// ---- self-checks (issue 32) ------------------------------------------------------------------
+
+TEST(NavSelfChecks, AMarkedMethodSaysSoInEveryOutput) {
+  nav::Result r = make_result(12, false);
+  nav::MethodResult* bi = nullptr;
+  for (auto& m : r.methods)
+    if (m.method == nav::Method::SequentialBiasI) bi = &m;
+  ASSERT_NE(bi, nullptr);
+  nav::ConsistencyAlarm a;
+  a.status = nav::MethodStatus::Diverged;
+  a.check = "fix-run";
+  a.from_epoch = 2;
+  a.to_epoch = 11;
+  a.from_s = bi->track[2].time_s;
+  a.to_s = bi->track[11].time_s;
+  a.reason = "8 consecutive fixes (of 8) off the track";
+  bi->consistency.status = nav::MethodStatus::Diverged;
+  bi->consistency.alarms.push_back(a);
+  bi->consistency.longest_fix_run = 8;
+  // JSON
+  const json j = nav_to_json(r);
+  EXPECT_EQ(j["methods"]["sequential-bias-I"]["status"], "diverged");
+  EXPECT_EQ(j["methods"]["sequential-bias-I"]["sigma_valid"], false);
+  const json& al = j["methods"]["sequential-bias-I"]["consistency"]["alarms"];
+  ASSERT_EQ(al.size(), 1u);
+  EXPECT_EQ(al[0]["check"], "fix-run");
+  EXPECT_EQ(al[0]["from_epoch"], 2);
+  EXPECT_EQ(al[0]["to_epoch"], 11);
+  EXPECT_DOUBLE_EQ(al[0]["from_s"].get<double>(), 36010.1);
+  EXPECT_EQ(j["methods"]["ekf"]["status"], "consistent");
+  EXPECT_EQ(j["methods"]["ekf"]["sigma_valid"], true);
+  // text: the status column and "(not valid)" beside the σ of the marked method only
+  const std::string t = nav_summary_text(r);
+  const auto lines = lines_of(t);
+  const auto row = [&](const char* name) {
+    return *std::find_if(lines.begin(), lines.end(),
+                         [&](const std::string& l) { return l.rfind(std::string(name) + " ", 0) == 0; });
+  };
+  EXPECT_NE(row("sequential-bias-I").find("(not valid)"), std::string::npos) << t;
+  EXPECT_NE(row("sequential-bias-I").find("diverged 36010.1–36055.1 s (fix-run)"), std::string::npos) << t;
+  EXPECT_EQ(row("ekf").find("(not valid)"), std::string::npos) << t;
+  EXPECT_NE(row("ekf").find("consistent"), std::string::npos) << t;
+  // track CSV: a warning line for the marked method, none for a consistent one
+  EXPECT_NE(nav_track_csv(r, nav::Method::SequentialBiasI).find("# WARNING: sequential-bias-I diverged"),
+            std::string::npos);
+  EXPECT_EQ(nav_track_csv(r, nav::Method::Ekf).find("WARNING"), std::string::npos);
+  // HTML document: the status column and the table of failed checks
+  const Document d = nav_document(r, "line");
+  const auto tables = blocks<Table>(*find_section(d, "summary"));
+  ASSERT_GE(tables.size(), 2u);
+  EXPECT_EQ(tables[0]->columns.back(), "status");
+  EXPECT_EQ(tables[1]->title, "Self-checks that failed");
+  ASSERT_EQ(tables[1]->rows.size(), 1u);
+  EXPECT_EQ(tables[1]->rows[0][0], "sequential-bias-I");
+  EXPECT_EQ(tables[1]->rows[0][1], "diverged");
+}

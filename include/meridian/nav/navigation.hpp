@@ -48,6 +48,18 @@ inline constexpr double kMinStationDistance_m = 1.0;
 /// smaller bin is an InputError, not an allocation that cannot succeed.
 inline constexpr double kMaxStatisticsBins = 100000.0;
 
+// Self-checks of every method (spec §6a; docs/navigation.md, "Self-checks").
+/// Window of the LOP checks (s): windows of this length, every half of it.
+inline constexpr double kConsistencyWindow_s = 300.0;
+/// Fewest LOPs a window needs for the LOP checks.
+inline constexpr std::size_t kConsistencyMinLops = 30;
+/// A window whose share of rejected LOPs exceeds this is a divergence alarm.
+inline constexpr double kMaxRejectedShare = 0.5;
+/// A window whose robust innovation spread median|w|/0.6745 exceeds this is inconsistent.
+inline constexpr double kMaxInnovationRatio = 2.0;
+/// This many consecutive outlying fixes are a divergence alarm.
+inline constexpr std::size_t kFixRunAlarm = 2;
+
 /// How the sequential methods reject a gross LOP error (spec §4.4).
 enum class Rejection {
   Threshold,  ///< "threshold": |misclosure against the predicted position| > threshold_m
@@ -167,11 +179,57 @@ struct ChainParameter {
   double sigma = 0.0;
 };
 
+/// The verdict of a method's self-checks (spec §6a; docs/navigation.md, "Self-checks"): from
+/// the data alone, never from truth.
+enum class MethodStatus {
+  Consistent,    ///< "consistent": every check passed; its σ are as valid as its model
+  Inconsistent,  ///< "inconsistent": its residuals are wider than its σ say
+  Diverged,      ///< "diverged": it lost the observations (a run of outlying fixes, most LOPs rejected)
+};
+/// "consistent", "inconsistent", "diverged".
+std::string to_string(MethodStatus s);
+
+/// One failed self-check over a stretch of the line.
+struct ConsistencyAlarm {
+  MethodStatus status = MethodStatus::Inconsistent;
+  /// "fix-run" (consecutive fixes outside their χ²(2) limit or fix_tolerance_m),
+  /// "rejected-share" (most LOPs of a window rejected), "innovation-spread" (the LOP innovations
+  /// of a window wider than their σ), "fix-spread" (the fix misclosures of the line wider than
+  /// their σ)
+  std::string check;
+  double from_s = 0.0;  ///< the stretch concerned (times of its first and last epoch)
+  double to_s = 0.0;
+  std::size_t from_epoch = 0;
+  std::size_t to_epoch = 0;
+  std::string reason;  ///< what was measured against which limit
+};
+
+/// A method's self-checks: the statistics and the alarms they raised.
+struct Consistency {
+  MethodStatus status = MethodStatus::Consistent;  ///< the worst alarm's
+  std::vector<ConsistencyAlarm> alarms;
+  std::size_t fixes_tested = 0;     ///< fixes compared with the method's position
+  std::size_t fixes_outlying = 0;   ///< of them outside χ²_{1−α}(2) or fix_tolerance_m
+  std::size_t longest_fix_run = 0;  ///< most consecutive outlying fixes
+  /// √(mean χ²/2) of the fix misclosures, each normalised by the combined σ (fix + method):
+  /// ≈ 1 when the σ are right; NaN without fixes
+  double fix_sigma_ratio = 0.0;
+  std::size_t lops_tested = 0;    ///< LOP innovations monitored (forward methods; 0 otherwise)
+  std::size_t lops_rejected = 0;
+  double max_rejected_share = 0.0;  ///< the largest share of rejected LOPs in a window
+  /// The largest robust spread of the normalised LOP innovations in a window, median|w|/0.6745
+  /// (≈ 1 when the σ are right); NaN when not monitored
+  double max_innovation_ratio = 0.0;
+  /// The σ of the method stand for its errors only when it is consistent.
+  bool sigma_valid() const { return status == MethodStatus::Consistent; }
+};
+
 struct MethodResult {
   Method method = Method::DeadReckoning;
   std::vector<TrackPoint> track;  ///< one per epoch
   std::vector<ChainParameter> parameters;  ///< at the last epoch (smoother: the whole line)
   std::optional<ErrorStatistics> errors;   ///< with truth
+  Consistency consistency{};  ///< the self-checks (no truth used)
 };
 
 /// An observation that a method did not use.
