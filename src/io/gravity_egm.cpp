@@ -76,7 +76,7 @@ struct SetSize {
 
 class CofReader {
  public:
-  explicit CofReader(const std::string& file) : file_(file), in_(file, std::ios::binary) {
+  explicit CofReader(const std::string& file) : file_(file), in_((detail::check_readable_path(file), file), std::ios::binary) {
     if (!in_) throw IoError("cannot open coefficient file", {file, {}, ""});
     in_.seekg(0, std::ios::end);
     size_ = static_cast<std::uint64_t>(in_.tellg());
@@ -233,7 +233,8 @@ struct EgmMetadata {
 // The `.egm` file's keys (`Key value`, `#` comments); lines are numbered for errors.
 class EgmMetadataReader {
  public:
-  explicit EgmMetadataReader(const std::filesystem::path& path) : path_(path), file_(path.string()), in_(path) {
+  explicit EgmMetadataReader(const std::filesystem::path& path)
+      : path_(path), file_(path.string()), in_((detail::check_readable_path(path), path)) {
     if (!in_) throw IoError("cannot open gravity model metadata file", {file_, {}, ""});
   }
 
@@ -244,7 +245,7 @@ class EgmMetadataReader {
     meta.model.gm_m3_s2 = meta.model.radius_m = NAN;
     std::vector<std::string_view> fields;
     std::string line;
-    while (std::getline(in_, line)) {
+    while (detail::getline_bounded(in_, line, file_, line_no_ + 1)) {
       ++line_no_;
       if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
       detail::split_fields(line, fields);
@@ -261,7 +262,7 @@ class EgmMetadataReader {
  private:
   void signature() {
     std::string line;
-    if (!std::getline(in_, line) || line.rfind("EGMF-", 0) != 0)
+    if (!detail::getline_bounded(in_, line, file_, 1) || line.rfind("EGMF-", 0) != 0)
       throw ParseError("no EGMF-n signature on the first line (not a GeographicLib .egm file)", {file_, 1, ""});
     if (line.substr(5, line.find_first_of(" \t\r", 5) - 5) != "1")
       throw ParseError("unsupported .egm version \"" + line.substr(5) + "\" (expected EGMF-1)", {file_, 1, ""});

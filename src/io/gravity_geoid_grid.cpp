@@ -81,6 +81,7 @@ class PgmHeader {
   std::string next_line() {
     const std::size_t e = d_.find('\n', pos_);
     if (e == std::string::npos) throw ParseError("truncated PGM header", {file_, line_, "header"});
+    if (e - pos_ > detail::kMaxTextLineBytes) throw detail::line_too_long(file_, line_ + 1);
     std::string s = d_.substr(pos_, e - pos_);
     pos_ = e + 1;
     ++line_;
@@ -159,6 +160,7 @@ GeoidGrid read_pgm(const std::filesystem::path& path) {
 }  // namespace
 
 GeoidGrid read_geoid_grid(const std::filesystem::path& path) {
+  detail::check_readable_path(path);  // a directory is named as one, whatever its extension
   const std::string ext = detail::lower(path.extension().string());
   if (ext == ".gtx") return read_gtx(path);
   if (ext == ".pgm") return read_pgm(path);

@@ -46,6 +46,7 @@ class IcgemParser {
       const std::string_view line(text_.data() + pos, eol - pos);
       pos = eol + 1;
       ++line_no_;
+      if (line.size() > detail::kMaxTextLineBytes) throw detail::line_too_long(file_, line_no_);
       detail::split_fields(line, f_);
       if (f_.empty()) continue;
       if (in_header_) header_line();

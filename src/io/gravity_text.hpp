@@ -15,12 +15,16 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "meridian/core/error.hpp"
+#include "input_limits.hpp"
 
 namespace meridian::io::detail {
 
-/// The bytes of `path`. Throws IoError "cannot open <what>" or "error reading <what>" naming it.
+/// The bytes of `path`. Throws IoError for a directory or a device (check_readable_path), "cannot open <what>" or "error reading <what>" naming it.
 inline std::string read_whole_file(const std::filesystem::path& path, std::string_view what) {
+  check_readable_path(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open " + std::string(what), {path.string(), {}, ""});
   std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

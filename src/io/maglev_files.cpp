@@ -12,6 +12,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/io/document.hpp"
 #include "meridian/io/record_reader.hpp"
+#include "input_limits.hpp"
 
 namespace meridian::io {
 namespace {
@@ -153,6 +154,7 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
 
 std::unique_ptr<std::istream> open(const std::string& path) {
   if (path == "-") return nullptr;
+  detail::check_readable_path(path);
   auto f = std::make_unique<std::ifstream>(path);
   if (!*f) throw IoError("cannot open input file", {path, {}, ""});
   return f;

@@ -17,6 +17,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/io/nmea.hpp"
 #include "meridian/io/record_reader.hpp"
+#include "input_limits.hpp"
 
 namespace meridian::io {
 namespace {
@@ -84,6 +85,7 @@ double positive(const Record& r, std::size_t col, const char* what) {
 }
 
 std::ifstream open_or_throw(const std::string& path, const char* what) {
+  detail::check_readable_path(path);
   std::ifstream f(path, std::ios::binary);
   std::error_code ec;
   if (!f || std::filesystem::is_directory(path, ec))

