@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -92,6 +93,7 @@ class PgmHeader {
   // the first line that is not a comment (the raster size).
   std::string comments(GeoidGrid& g) {
     bool have_offset = false, have_scale = false;
+    int offset_line = 0, scale_line = 0;
     std::string s;
     while (true) {
       s = next_line();
@@ -107,6 +109,14 @@ class PgmHeader {
       std::getline(is >> std::ws, value);
       while (!value.empty() && std::isspace(static_cast<unsigned char>(value.back()))) value.pop_back();
       if (!key.empty() && !g.metadata.count(key)) g.metadata.emplace(key, value);
+      // The two keys the heights depend on may be given once only.
+      for (auto [name, at] : {std::pair<const char*, int*>{"Offset", &offset_line}, {"Scale", &scale_line}}) {
+        if (key != name) continue;
+        if (*at != 0)
+          throw ParseError(fmt::format("# {} is given twice in the header, on lines {} and {}", name, *at, line_),
+                           {file_, line_, name});
+        *at = line_;
+      }
       std::istringstream num(value);
       if (key == "Offset") have_offset = static_cast<bool>(num >> g.offset_m_) && std::isfinite(g.offset_m_);
       if (key == "Scale") have_scale = static_cast<bool>(num >> g.scale_m_) && g.scale_m_ > 0 && std::isfinite(g.scale_m_);

@@ -25,6 +25,33 @@ class ReadersCli : public meridian_test::CliTest {
 
 }  // namespace
 
+TEST_F(ReadersCli, AbsurdModelConstantsExitOneNamingFileLineAndField) {
+  ASSERT_EQ(run("gravity synth-model --degree 4 --seed 1 --out m").code, 0);
+  const std::string gfc = slurp(dir_ / "m.gfc"), egm = slurp(dir_ / "m.egm");
+  write("gm.gfc", with_line(gfc, "earth_gravity_constant", "earth_gravity_constant 1e308"));
+  CmdResult r = run("gravity point --model gm.gfc 10 20");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("gm.gfc:6: earth_gravity_constant: earth_gravity_constant = 1e+308 m^3/s^2 is not the GM of a "
+                       "terrestrial model"),
+            std::string::npos)
+      << r.err;
+  write("km.gfc", with_line(gfc, "radius", "radius 6378.137"));
+  r = run("gravity point --model km.gfc 10 20");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("km.gfc:7: radius: radius = 6378.137 is a radius in kilometres"), std::string::npos) << r.err;
+  std::filesystem::copy_file(dir_ / "m.egm.cof", dir_ / "r1.egm.cof");
+  write("r1.egm", with_line(egm, "ReferenceRadius", "ReferenceRadius 1"));
+  r = run("gravity point --model r1.egm 10 20");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("r1.egm:8: ReferenceRadius: ReferenceRadius = 1 m is not the radius"), std::string::npos) << r.err;
+  write("twice.gfc", with_line(gfc, "radius", "radius 6378137\nradius 6378000"));
+  r = run("gravity point --model twice.gfc 10 20");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("twice.gfc:8: radius: radius is given twice in the header, on lines 7 and 8"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
 TEST_F(ReadersCli, ADirectoryOrADeviceAsAGridOrModelExitsFour) {
   std::filesystem::create_directories(dir_ / "grid.gtx");
   std::filesystem::create_directories(dir_ / "tiles");

@@ -80,6 +80,76 @@ const gravity::GravityModelData& small_model() {
 
 }  // namespace
 
+TEST_F(IoReaderLimits, IcgemModelConstantsOutsideTheTerrestrialRanges) {
+  const std::string gfc = io::format_icgem(small_model());
+  const auto good = write("m.gfc", gfc);
+  EXPECT_NO_THROW(io::read_icgem_file(good));
+  const auto gm = write("gm.gfc", with_line(gfc, "earth_gravity_constant", "earth_gravity_constant 1e308"));
+  expect_error<ParseError>([&] { io::read_icgem_file(gm); },
+                           "gm.gfc:6: earth_gravity_constant: earth_gravity_constant = 1e+308 m^3/s^2 is not the GM "
+                           "of a terrestrial model (Meridian accepts 3.5e+14 to 4.5e+14 m^3/s^2");
+  const auto km = write("km.gfc", with_line(gfc, "radius", "radius 6378.137"));
+  expect_error<ParseError>([&] { io::read_icgem_file(km); },
+                           "km.gfc:7: radius: radius = 6378.137 is a radius in kilometres: the file must give metres "
+                           "(6378137 m)");
+  const auto one = write("one.gfc", with_line(gfc, "radius", "radius 1"));
+  expect_error<ParseError>([&] { io::read_icgem_file(one); }, "one.gfc:7: radius: radius = 1 m is not the radius");
+}
+
+TEST_F(IoReaderLimits, IcgemRepeatedHeaderKeyNamesBothLines) {
+  const std::string gfc = io::format_icgem(small_model());
+  const auto twice = write("twice.gfc", with_line(gfc, "radius", "radius 6378137\nradius 6378000"));
+  expect_error<ParseError>([&] { io::read_icgem_file(twice); },
+                           "twice.gfc:8: radius: radius is given twice in the header, on lines 7 and 8");
+  const auto deg = write("deg.gfc", with_line(gfc, "max_degree", "max_degree 4\nMAX_DEGREE 4"));
+  expect_error<ParseError>([&] { io::read_icgem_file(deg); }, "max_degree is given twice in the header, on lines 8 and 9");
+}
+
+TEST_F(IoReaderLimits, EgmModelConstantsOutsideTheTerrestrialRanges) {
+  io::write_egm_files(small_model(), dir_ / "m");
+  const std::string egm = slurp(dir_ / "m.egm"), cof = slurp(dir_ / "m.egm.cof");
+  EXPECT_NO_THROW(io::read_egm_file(dir_ / "m.egm"));
+  auto variant = [&](const std::string& name, const std::string& key, const std::string& line) {
+    write(name + ".egm.cof", cof);
+    return write(name + ".egm", with_line(egm, key, line));
+  };
+  const auto r1 = variant("r1", "ReferenceRadius", "ReferenceRadius 1");
+  expect_error<ParseError>([&] { io::read_egm_file(r1); },
+                           "r1.egm:8: ReferenceRadius: ReferenceRadius = 1 m is not the radius of a terrestrial model "
+                           "(Meridian accepts 6e+06 to 6.6e+06 m");
+  const auto km = variant("km", "ModelRadius", "ModelRadius 6378.137");
+  expect_error<ParseError>([&] { io::read_egm_file(km); }, "km.egm:5: ModelRadius: ModelRadius = 6378.137 is a radius in kilometres");
+  const auto gm = variant("gm", "ReferenceMass", "ReferenceMass 1e308");
+  expect_error<ParseError>([&] { io::read_egm_file(gm); }, "gm.egm:9: ReferenceMass: ReferenceMass = 1e+308 m^3/s^2 is not the GM");
+  const auto mm = variant("mm", "ModelMass", "ModelMass 4.9e12");  // the Moon's
+  expect_error<ParseError>([&] { io::read_egm_file(mm); }, "mm.egm:6: ModelMass: ModelMass = 4900000000000 m^3/s^2");
+  const auto f = variant("f", "Flattening", "Flattening 0.3");
+  expect_error<ParseError>([&] { io::read_egm_file(f); },
+                           "f.egm:10: Flattening: Flattening = 0.3 is not the flattening of a terrestrial model "
+                           "(Meridian accepts 0 to 0.01");
+  const auto nf = variant("nf", "Flattening", "Flattening -0.001");
+  expect_error<ParseError>([&] { io::read_egm_file(nf); }, "nf.egm:10: Flattening:");
+}
+
+TEST_F(IoReaderLimits, EgmRepeatedKeyNamesBothLines) {
+  io::write_egm_files(small_model(), dir_ / "m");
+  const std::string egm = slurp(dir_ / "m.egm");
+  write("t.egm.cof", slurp(dir_ / "m.egm.cof"));
+  const auto t = write("t.egm", with_line(egm, "ModelMass", "ModelMass 398600441500000\nModelMass 398600441800000"));
+  expect_error<ParseError>([&] { io::read_egm_file(t); }, "t.egm:7: ModelMass: ModelMass is given twice, on lines 6 and 7");
+}
+
+TEST_F(IoReaderLimits, PgmRepeatedOffsetOrScaleNamesBothLines) {
+  const std::string raster = "4 3\n65535\n" + std::string(24, '\0');
+  const auto ok = write("ok.pgm", "P5\n# Offset 0\n# Scale 0.001\n" + raster);
+  EXPECT_NO_THROW(io::read_geoid_grid(ok));
+  const auto o = write("o.pgm", "P5\n# Offset 0\n# Scale 0.001\n# Offset 5\n" + raster);
+  expect_error<ParseError>([&] { io::read_geoid_grid(o); },
+                           "o.pgm:4: Offset: # Offset is given twice in the header, on lines 2 and 4");
+  const auto s = write("s.pgm", "P5\n# Scale 0.001\n# Offset 0\n# Scale 0.002\n" + raster);
+  expect_error<ParseError>([&] { io::read_geoid_grid(s); }, "s.pgm:4: Scale: # Scale is given twice in the header, on lines 2 and 4");
+}
+
 TEST_F(IoReaderLimits, PathsThatAreNoFileAreRefusedAsIoErrors) {
   fs::create_directories(dir_ / "grid.gtx");
   fs::create_directories(dir_ / "plain");
