@@ -81,3 +81,22 @@ TEST_F(ReadersCli, EndlessInputEndsQuicklyWithAnError) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
 }
 
+TEST_F(ReadersCli, ANonPhysicalTruthRowOrMaglevCurrentNamesFileAndLine) {
+  ASSERT_EQ(run("nav simulate --scenario C --seed 7 --out line --stations 2 --duration-s 600 --fixes-every-s 300").code, 0);
+  std::string truth = slurp(dir_ / "line" / "truth.csv");
+  const auto header = truth.find("time_s,x_m,y_m\n");
+  ASSERT_NE(header, std::string::npos);
+  // the first data row (line 4 of the file) becomes 0,1e308,0
+  const auto row = header + std::string("time_s,x_m,y_m\n").size();
+  truth.replace(row, truth.find('\n', row) - row, "0,1e308,0");
+  write("line/truth.csv", truth);
+  CmdResult r = run("nav process line/nav.yaml -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("line/truth.csv:4: x_m: true coordinate 1e+308 m is beyond"), std::string::npos) << r.err;
+
+  write("d-1.csv", "time [s],current [A]\n0,0.01\n1,4e9\n2,0.01\n");
+  write("d-2.csv", "time [s],current [A]\n0,-0.01\n1,-0.01\n2,-0.01\n");
+  r = run("maglev reduce d-1.csv d-2.csv --scale 8000 --latitude 35 -q");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("d-1.csv:3: current: current 4e+09 A is beyond ±1000 A"), std::string::npos) << r.err;
+}

@@ -222,3 +222,35 @@ TEST_F(IoReaderLimits, LongLinesInModelFilesAreRefused) {
   expect_error<ParseError>([&] { io::read_egm_file(e); }, "e.egm:2: line 2 is longer than 1 MiB");
 }
 
+TEST_F(IoReaderLimits, CampaignMaxDegreeMustNotBeNegative) {
+  auto truth = gyro::example_campaign_truth();
+  const auto sim = gyro::simulate_campaign(truth, 5);
+  const std::string yaml = io::campaign_file_yaml(sim.input);
+  const auto ok = write("ok.yaml", yaml + "gravity_model: {model: m.egm, max_degree: 0}\n");
+  EXPECT_NO_THROW(io::read_campaign_file(ok));
+  const auto bad = write("c.yaml", yaml + "gravity_model: {model: m.egm, max_degree: -5}\n");
+  expect_error<InputError>([&] { io::read_campaign_file(bad); }, "max_degree must be >= 0");
+  expect_error<InputError>([&] { io::read_campaign_file(bad); }, "c.yaml:");
+}
+
+TEST_F(IoReaderLimits, NavTruthOfNoShipIsRefusedAtItsLine) {
+  std::istringstream plane("time_s,x_m,y_m\n0,0,0\n10,1e308,5\n");
+  expect_error<InputError>([&] { io::read_nav_truth(plane, "truth.csv"); },
+                           "truth.csv:3: x_m: true coordinate 1e+308 m is beyond ±1e+08 m: not a position");
+  std::istringstream east("time_s,x_m,y_m\n0,0,-2e8\n");
+  expect_error<InputError>([&] { io::read_nav_truth(east, "truth.csv"); }, "truth.csv:2: y_m:");
+  std::istringstream geo("time_s,lat_deg,lon_deg\n0,10,20\n5,10,1e308\n");
+  expect_error<InputError>([&] { io::read_nav_truth(geo, "geo.csv"); }, "geo.csv:3: lon_deg: true longitude");
+  std::istringstream fine("time_s,x_m,y_m\n0,0,0\n10,99999999,-5\n");
+  EXPECT_EQ(io::read_nav_truth(fine, "truth.csv").records.size(), 2u);
+}
+
+TEST_F(IoReaderLimits, MaglevCurrentBeyondAnyGyroNamesFileAndLine) {
+  std::istringstream in("time [s],current [A]\n0,0.01\n1,4e9\n");
+  expect_error<InputError>([&] { io::read_maglev_series(in, "d-1.csv"); },
+                           "d-1.csv:3: current: current 4e+09 A is beyond ±1000 A: not a gyro's current");
+  std::istringstream ma("time [s],current [mA]\n0,10\n1,-4e9\n");
+  expect_error<InputError>([&] { io::read_maglev_series(ma, "ma.csv"); }, "ma.csv:3: current: current -4e+06 A");
+  std::istringstream ok("time [s],current [A]\n0,0.01\n1,999\n");
+  EXPECT_EQ(io::read_maglev_series(ok, "ok.csv").series.current_A.size(), 2u);
+}
