@@ -8,6 +8,7 @@
 
 #include "meridian/core/error.hpp"
 #include "meridian/io/document.hpp"
+#include "input_limits.hpp"
 
 // Node's parser for YAML and JSON files: yaml-cpp, its tree copied into a DocumentTree.
 namespace meridian::io {
@@ -82,6 +83,7 @@ Node Node::load_file(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw IoError("is a directory, not a file", {file, std::nullopt, {}});
+  detail::check_readable_path(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open the file", {file, std::nullopt, {}});
   std::stringstream ss;

@@ -19,6 +19,7 @@
 #include "meridian/io/dov_binary.hpp"
 #include "meridian/io/record_reader.hpp"
 #include "dov_names.hpp"
+#include "input_limits.hpp"
 #include "gravity_model_ref.hpp"
 
 namespace meridian::io {
@@ -151,6 +152,7 @@ DovLineReader::DovLineReader(std::istream& in, const std::string& source)
 }
 
 DovLineReader::DovLineReader(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  detail::check_readable_path(path);
   impl_->file.open(path, std::ios::binary);
   if (!impl_->file)
     throw IoError(fmt::format("cannot open line file {}", path), ErrorContext{path, {}, {}});

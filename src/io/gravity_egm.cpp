@@ -11,6 +11,7 @@
 #endif
 #include <fstream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -76,7 +77,7 @@ struct SetSize {
 
 class CofReader {
  public:
-  explicit CofReader(const std::string& file) : file_(file), in_(file, std::ios::binary) {
+  explicit CofReader(const std::string& file) : file_(file), in_((detail::check_readable_path(file), file), std::ios::binary) {
     if (!in_) throw IoError("cannot open coefficient file", {file, {}, ""});
     in_.seekg(0, std::ios::end);
     size_ = static_cast<std::uint64_t>(in_.tellg());
@@ -233,7 +234,8 @@ struct EgmMetadata {
 // The `.egm` file's keys (`Key value`, `#` comments); lines are numbered for errors.
 class EgmMetadataReader {
  public:
-  explicit EgmMetadataReader(const std::filesystem::path& path) : path_(path), file_(path.string()), in_(path) {
+  explicit EgmMetadataReader(const std::filesystem::path& path)
+      : path_(path), file_(path.string()), in_((detail::check_readable_path(path), path)) {
     if (!in_) throw IoError("cannot open gravity model metadata file", {file_, {}, ""});
   }
 
@@ -244,7 +246,7 @@ class EgmMetadataReader {
     meta.model.gm_m3_s2 = meta.model.radius_m = NAN;
     std::vector<std::string_view> fields;
     std::string line;
-    while (std::getline(in_, line)) {
+    while (detail::getline_bounded(in_, line, file_, line_no_ + 1)) {
       ++line_no_;
       if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
       detail::split_fields(line, fields);
@@ -261,7 +263,7 @@ class EgmMetadataReader {
  private:
   void signature() {
     std::string line;
-    if (!std::getline(in_, line) || line.rfind("EGMF-", 0) != 0)
+    if (!detail::getline_bounded(in_, line, file_, 1) || line.rfind("EGMF-", 0) != 0)
       throw ParseError("no EGMF-n signature on the first line (not a GeographicLib .egm file)", {file_, 1, ""});
     if (line.substr(5, line.find_first_of(" \t\r", 5) - 5) != "1")
       throw ParseError("unsupported .egm version \"" + line.substr(5) + "\" (expected EGMF-1)", {file_, 1, ""});
@@ -281,8 +283,27 @@ class EgmMetadataReader {
     return val_;
   }
 
+  // The line of each key that means something here; a second one is refused.
+  void once() {
+    static constexpr std::string_view kKeys[] = {
+        "Name", "Description", "ModelRadius", "ModelMass", "AngularVelocity", "ReferenceRadius", "ReferenceMass",
+        "Flattening", "DynamicalFormFactor", "HeightOffset", "CorrectionMultiplier", "ID", "Normalization",
+        "ByteOrder"};
+    if (std::find(std::begin(kKeys), std::end(kKeys), key_) == std::end(kKeys)) return;
+    const auto [it, fresh] = key_lines_.emplace(key_, line_no_);
+    if (!fresh)
+      throw ParseError(fmt::format("{} is given twice, on lines {} and {}", key_, it->second, line_no_),
+                       {file_, line_no_, key_});
+  }
+
+  std::optional<int> line_of(const std::string& key) const {
+    const auto it = key_lines_.find(key);
+    return it == key_lines_.end() ? std::nullopt : std::optional<int>(it->second);
+  }
+
   void key_value(EgmMetadata& meta) {
     GravityModelData& model = meta.model;
+    once();
     if (key_ == "Name") model.name = text();
     else if (key_ == "Description") model.description = text();
     else if (key_ == "ModelRadius") model.radius_m = number();
@@ -315,6 +336,11 @@ class EgmMetadataReader {
     require(model.gm_m3_s2, "ModelMass");
     require(a_, "ReferenceRadius");
     require(gm_, "ReferenceMass");
+    detail::check_model_radius(model.radius_m, file_, line_of("ModelRadius"), "ModelRadius");
+    detail::check_model_gm(model.gm_m3_s2, file_, line_of("ModelMass"), "ModelMass");
+    detail::check_model_radius(a_, file_, line_of("ReferenceRadius"), "ReferenceRadius");
+    detail::check_model_gm(gm_, file_, line_of("ReferenceMass"), "ReferenceMass");
+    if (std::isfinite(f_)) detail::check_model_flattening(f_, file_, line_of("Flattening"), "Flattening");
     if (!(std::isfinite(omega_) && omega_ >= 0)) throw ParseError("missing AngularVelocity", {file_, {}, "AngularVelocity"});
     if (std::isfinite(f_) == std::isfinite(j2_))
       throw ParseError("exactly one of Flattening and DynamicalFormFactor must be given", {file_, {}, "Flattening"});
@@ -331,6 +357,7 @@ class EgmMetadataReader {
   std::ifstream in_;
   int line_no_ = 1;
   std::string key_, val_;
+  std::map<std::string, int> key_lines_;  // key → its line
   double a_ = NAN, gm_ = NAN, omega_ = NAN, f_ = NAN, j2_ = NAN;
 };
 

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -81,6 +82,7 @@ class PgmHeader {
   std::string next_line() {
     const std::size_t e = d_.find('\n', pos_);
     if (e == std::string::npos) throw ParseError("truncated PGM header", {file_, line_, "header"});
+    if (e - pos_ > detail::kMaxTextLineBytes) throw detail::line_too_long(file_, line_ + 1);
     std::string s = d_.substr(pos_, e - pos_);
     pos_ = e + 1;
     ++line_;
@@ -91,6 +93,7 @@ class PgmHeader {
   // the first line that is not a comment (the raster size).
   std::string comments(GeoidGrid& g) {
     bool have_offset = false, have_scale = false;
+    int offset_line = 0, scale_line = 0;
     std::string s;
     while (true) {
       s = next_line();
@@ -106,6 +109,14 @@ class PgmHeader {
       std::getline(is >> std::ws, value);
       while (!value.empty() && std::isspace(static_cast<unsigned char>(value.back()))) value.pop_back();
       if (!key.empty() && !g.metadata.count(key)) g.metadata.emplace(key, value);
+      // The two keys the heights depend on may be given once only.
+      for (auto [name, at] : {std::pair<const char*, int*>{"Offset", &offset_line}, {"Scale", &scale_line}}) {
+        if (key != name) continue;
+        if (*at != 0)
+          throw ParseError(fmt::format("# {} is given twice in the header, on lines {} and {}", name, *at, line_),
+                           {file_, line_, name});
+        *at = line_;
+      }
       std::istringstream num(value);
       if (key == "Offset") have_offset = static_cast<bool>(num >> g.offset_m_) && std::isfinite(g.offset_m_);
       if (key == "Scale") have_scale = static_cast<bool>(num >> g.scale_m_) && g.scale_m_ > 0 && std::isfinite(g.scale_m_);
@@ -159,6 +170,7 @@ GeoidGrid read_pgm(const std::filesystem::path& path) {
 }  // namespace
 
 GeoidGrid read_geoid_grid(const std::filesystem::path& path) {
+  detail::check_readable_path(path);  // a directory is named as one, whatever its extension
   const std::string ext = detail::lower(path.extension().string());
   if (ext == ".gtx") return read_gtx(path);
   if (ext == ".pgm") return read_pgm(path);

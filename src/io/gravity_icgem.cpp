@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -46,6 +47,7 @@ class IcgemParser {
       const std::string_view line(text_.data() + pos, eol - pos);
       pos = eol + 1;
       ++line_no_;
+      if (line.size() > detail::kMaxTextLineBytes) throw detail::line_too_long(file_, line_no_);
       detail::split_fields(line, f_);
       if (f_.empty()) continue;
       if (in_header_) header_line();
@@ -78,11 +80,28 @@ class IcgemParser {
     return *v;
   }
 
+  // A key that means something here, given a second time: refused (which one would win is
+  // not for the reader to guess).
+  void once(const std::string& key) {
+    static constexpr std::string_view kKeys[] = {"earth_gravity_constant", "radius", "max_degree", "modelname",
+                                                 "tide_system", "product_type", "norm", "errors"};
+    if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys)) return;
+    const auto [it, fresh] = key_lines_.emplace(key, line_no_);
+    if (!fresh)
+      throw fail(fmt::format("{} is given twice in the header, on lines {} and {}", key, it->second, line_no_), key);
+  }
+
   void header_line() {
     const std::string key = detail::lower(f_[0]);
+    once(key);
     if (key == "end_of_head") end_of_head();
-    else if (key == "earth_gravity_constant") gm_ = positive_number("earth_gravity_constant");
-    else if (key == "radius") radius_ = positive_number("radius");
+    else if (key == "earth_gravity_constant") {
+      gm_ = positive_number("earth_gravity_constant");
+      detail::check_model_gm(*gm_, file_, line_no_, "earth_gravity_constant");
+    } else if (key == "radius") {
+      radius_ = positive_number("radius");
+      detail::check_model_radius(*radius_, file_, line_no_, "radius");
+    }
     else if (key == "max_degree") {
       const auto v = f_.size() >= 2 ? detail::parse_int(f_[1]) : std::nullopt;
       if (!v || *v < 0) throw fail("max_degree must be a non-negative integer", "max_degree");
@@ -168,6 +187,7 @@ class IcgemParser {
   std::optional<int> max_degree_;
   std::vector<std::string_view> f_;
   std::vector<int> seen_;  // line where (n, m) was given, 0 = not yet
+  std::map<std::string, int> key_lines_;  // header key → its line
   int line_no_ = 0;
   bool in_header_ = true;
   int N_ = -1, M_ = -1;

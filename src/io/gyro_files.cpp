@@ -392,7 +392,10 @@ gyro::GravityModelRef read_gravity_model_ref(const Node& n, const std::filesyste
   gyro::GravityModelRef r;
   r.source = n.require("model").string();
   r.lookup = detail::model_lookup_path(campaign_path, r.source);
-  if (auto v = n.get("max_degree")) r.max_degree = v->integer();
+  if (auto v = n.get("max_degree")) {
+    r.max_degree = v->integer();
+    if (r.max_degree < 0) v->fail(fmt::format("max_degree must be >= 0 (leave it out for the model's full degree), not {}", r.max_degree));
+  }
   if (auto v = n.get("eta_sigma_arcsec"))
     r.sigma_eta_rad = v->positive_number() * units::kArcsecond;
   if (auto v = n.get("xi_sigma_arcsec")) r.sigma_xi_rad = v->positive_number() * units::kArcsecond;

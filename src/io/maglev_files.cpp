@@ -12,9 +12,15 @@
 #include "meridian/core/units.hpp"
 #include "meridian/io/document.hpp"
 #include "meridian/io/record_reader.hpp"
+#include "input_limits.hpp"
 
 namespace meridian::io {
 namespace {
+
+// Meridian's bound on a sample's current: 1000 A, far beyond any maglev gyro (a fraction of
+// an ampere) so that values 1000x too large (mA under an [A] header) still reach the reduction's
+// own unit-slip message.
+constexpr double kMaxCurrent_A = 1000.0;
 
 struct Columns {
   std::size_t time = 0, current = 1;
@@ -140,6 +146,13 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
       }
       const double t = r.number(c.time, {"time", "time"}) * c.time_scale;
       const double i = r.number(c.current, {"current", "current"}) * c.current_scale;
+      // A maglev gyro's current is well under an ampere; beyond kMaxCurrent_A it is no sample
+      // (4e9 A ended in a numerical failure that named neither file nor line).
+      if (!(std::abs(i) <= kMaxCurrent_A))
+        throw InputError(fmt::format("current {:g} A is beyond ±{:g} A: not a gyro's current (a unit slip, or a "
+                                     "damaged line?)",
+                                     i, kMaxCurrent_A),
+                         r.context(c.current, {"current"}));
       if (!f->series.time_s.empty() && !(t > f->series.time_s.back()))
         throw InputError(
             fmt::format("time does not increase ({} s after {} s)", t, f->series.time_s.back()),
@@ -153,6 +166,7 @@ void read_into(RecordReader& rr, const Columns& c, int want, MaglevSeriesFile* o
 
 std::unique_ptr<std::istream> open(const std::string& path) {
   if (path == "-") return nullptr;
+  detail::check_readable_path(path);
   auto f = std::make_unique<std::ifstream>(path);
   if (!*f) throw IoError("cannot open input file", {path, {}, ""});
   return f;

@@ -17,6 +17,7 @@
 #include "meridian/core/units.hpp"
 #include "meridian/io/nmea.hpp"
 #include "meridian/io/record_reader.hpp"
+#include "input_limits.hpp"
 
 namespace meridian::io {
 namespace {
@@ -77,6 +78,24 @@ NavPosition read_position(const Record& r, const PositionColumns& c) {
   return p;
 }
 
+// A true position is compared with every estimate: a value no ship has (1e308 m made every RMS
+// "n/a") is refused at its line. Plane coordinates within 1e8 m (2.5 times the Earth's
+// circumference) and longitudes within ±360°: Meridian's bounds.
+constexpr double kMaxTruthPlane_m = 1e8;
+void check_truth_position(const Record& r, const PositionColumns& c, const NavPosition& p) {
+  if (c.geographic) {
+    if (!(std::abs(p.lon_rad) <= 2 * units::kPi))
+      throw InputError(fmt::format("true longitude {:g}° is beyond ±360°", p.lon_rad / kDeg), r.context(c.b));
+    return;
+  }
+  if (!(std::abs(p.x_north_m) <= kMaxTruthPlane_m))
+    throw InputError(fmt::format("true coordinate {:g} m is beyond ±{:g} m: not a position", p.x_north_m, kMaxTruthPlane_m),
+                     r.context(c.a));
+  if (!(std::abs(p.y_east_m) <= kMaxTruthPlane_m))
+    throw InputError(fmt::format("true coordinate {:g} m is beyond ±{:g} m: not a position", p.y_east_m, kMaxTruthPlane_m),
+                     r.context(c.b));
+}
+
 double positive(const Record& r, std::size_t col, const char* what) {
   const double v = r.number(col);
   if (!(v > 0.0)) throw InputError(fmt::format("{} must be > 0, not {}", what, v), r.context(col));
@@ -84,6 +103,7 @@ double positive(const Record& r, std::size_t col, const char* what) {
 }
 
 std::ifstream open_or_throw(const std::string& path, const char* what) {
+  detail::check_readable_path(path);
   std::ifstream f(path, std::ios::binary);
   std::error_code ec;
   if (!f || std::filesystem::is_directory(path, ec))
@@ -296,6 +316,7 @@ NavTruthFile read_nav_truth(std::istream& in, const std::string& source) {
                                    it->second),
                        r.context(t));
     p.position = navf::read_position(r, pc);
+    navf::check_truth_position(r, pc, p.position);
     out.records.push_back(p);
     out.lines.push_back(r.line());
   });

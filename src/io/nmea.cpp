@@ -11,6 +11,7 @@
 
 #include "meridian/core/error.hpp"
 #include "meridian/core/units.hpp"
+#include "input_limits.hpp"
 
 namespace meridian::io::nmea {
 namespace {
@@ -207,11 +208,14 @@ int hex_digit(char c) {
   return -1;
 }
 
-// Reads one line into `out`, storing at most kMaxLineBytes + 1 bytes; false at end of input.
-bool next_nmea_line(std::streambuf& sb, std::string& out, bool& overlong) {
+// Reads line `n` into `out`, storing at most kMaxLineBytes + 1 bytes; false at end of input.
+// A line beyond detail::kMaxTextLineBytes (1 MiB) is no NMEA log (a file without line ends,
+// /dev/zero on stdin): ParseError, instead of reading it to the end.
+bool next_nmea_line(std::streambuf& sb, std::string& out, bool& overlong, const std::string& source, int n) {
   out.clear();
   overlong = false;
   bool any = false;
+  std::size_t length = 0;
   for (;;) {
     const int c = sb.sbumpc();
     if (c == std::char_traits<char>::eof()) return any;
@@ -221,6 +225,7 @@ bool next_nmea_line(std::streambuf& sb, std::string& out, bool& overlong) {
       out.push_back(static_cast<char>(c));
     else
       overlong = true;
+    if (++length > detail::kMaxTextLineBytes) throw detail::line_too_long(source, n);
   }
 }
 
@@ -410,7 +415,7 @@ Summary read(std::istream& in, const std::string& source, const Options& options
   int n = 0;
   std::streambuf* sb = in.rdbuf();
   if (!sb) throw IoError("cannot read", {source, std::nullopt, ""});
-  while (next_nmea_line(*sb, text, overlong)) inspector.line(++n, text, overlong);
+  while (next_nmea_line(*sb, text, overlong, source, n + 1)) inspector.line(++n, text, overlong);
   if (in.bad()) throw IoError("read error", {source, n, ""});
   return inspector.finish();
 }
@@ -419,6 +424,7 @@ Summary read_file(const std::string& path, const Options& options,
                   const std::function<void(const Sentence&)>& on_sentence) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw IoError("is a directory, not a file", {path, std::nullopt, ""});
+  detail::check_readable_path(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open the file", {path, std::nullopt, ""});
   return read(in, path, options, on_sentence);

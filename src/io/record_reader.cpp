@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "meridian/core/dms.hpp"
+#include "input_limits.hpp"
 
 namespace meridian::io {
 namespace {
@@ -187,7 +188,7 @@ RecordReader::RecordReader(std::istream& in, std::string source, RecordFormat fo
 
 // One physical line without its line end; false at the end of the stream.
 bool RecordReader::read_line(std::string& out) {
-  if (!std::getline(in_, out)) {
+  if (!detail::getline_bounded(in_, out, source(), line_ == INT_MAX ? line_ : line_ + 1)) {
     if (in_.bad()) throw IoError("cannot read the input", {source(), line_, ""});
     return false;
   }

@@ -23,7 +23,9 @@ namespace meridian::io {
 /// keys, ID mismatch, bad N/M, truncated or over-long `.cof`, non-zero C̄00,
 /// non-finite coefficients, |C̄|, |S̄| > 1 in the gravitational set or beyond
 /// 1000 m in the correction set, Schmidt normalisation, big-endian data, a
-/// Name or Description that is not UTF-8.
+/// Name or Description that is not UTF-8; ModelMass, ReferenceMass, ModelRadius,
+/// ReferenceRadius, Flattening outside Meridian's terrestrial ranges (docs/reliability.md);
+/// a key given twice; a line over 1 MiB.
 gravity::GravityModelData read_egm_file(const std::filesystem::path& path, const gravity::Truncation& truncation = {});
 
 /// Write `prefix.egm` and `prefix.egm.cof` atomically so GeographicLib's

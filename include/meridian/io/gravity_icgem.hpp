@@ -20,7 +20,9 @@ namespace meridian::io {
 /// `acos`, `asin` are rejected); 0 ≤ m ≤ n ≤ max_degree; no duplicate
 /// (n, m); every (n, m) with 2 ≤ n ≤ kept degree present (degrees 0 and 1
 /// may be omitted: C̄00 = 1, degree 1 = 0); |C̄|, |S̄| ≤ 1; `modelname` and
-/// `tide_system` UTF-8 text. Lines beyond the truncation are checked for
+/// `tide_system` UTF-8 text; GM and radius within Meridian's terrestrial ranges
+/// (3.5e14…4.5e14 m³/s², 6.0e6…6.6e6 m; docs/reliability.md); no header key it reads
+/// given twice; no line over 1 MiB. Lines beyond the truncation are checked for
 /// syntax but not stored. The header's max_degree is checked against the
 /// file's size before anything is allocated. The reference field is WGS84.
 /// IoError when the file cannot be opened or read.

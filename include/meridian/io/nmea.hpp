@@ -127,7 +127,8 @@ using nav::days_from_civil;
 using nav::iso8601_utc;
 
 /// Read `in` line by line, calling `on_sentence` for each accepted sentence; `source` names
-/// the file in the summary. Never throws for content; IoError when the stream goes bad.
+/// the file in the summary. Never throws for content, but for a line longer than 1 MiB
+/// (ParseError "line N is longer than 1 MiB: not a text file?"); IoError when the stream goes bad.
 Summary read(std::istream& in, const std::string& source, const Options& options,
              const std::function<void(const Sentence&)>& on_sentence);
 /// read() of the file at `path`; IoError naming it when it cannot be opened.
