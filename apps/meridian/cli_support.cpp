@@ -69,7 +69,8 @@ bool close_standard_output() {
   const int err = errno;
   const bool close_failed = std::fclose(stdout) != 0;
   if (failed || close_failed) {
-    std::fprintf(stderr, "meridian: I/O error: cannot write to standard output: %s\n",
+    // The same words as a failed write_standard_output reported through guarded().
+    std::fprintf(stderr, "meridian: I/O error: standard output: cannot write: %s\n",
                  err ? std::strerror(err) : close_failed ? std::strerror(errno) : "the write failed (a full disk or a closed descriptor?)");
     return false;
   }
